@@ -1,0 +1,96 @@
+#pragma once
+/// \file model.hpp
+/// The vocabulary of the project (paper §1–§3, generalised from 4 to n bodies):
+/// bodies numbered 1 (top) … n (bottom) on a vertical axis, pairs (i<j) with
+/// relative velocity D_ij(U) = U_i − U_j, adjacent contacts (i, i+1), the
+/// dissipation matrix M indexed by pairs, and evolution cases.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "superball/cases/number.hpp"
+
+namespace superball {
+
+/// A pair of bodies i < j (1-based), written "i-j".
+struct Pair {
+  int i = 1;
+  int j = 2;
+
+  /// Parse "i-j" with 1 <= i < j; throws std::invalid_argument("Pair::parse(): ...").
+  static Pair parse(std::string_view text);
+  std::string name() const;  ///< "i-j"
+  bool adjacent() const { return j == i + 1; }
+  friend bool operator==(const Pair& a, const Pair& b) { return a.i == b.i && a.j == b.j; }
+  friend bool operator!=(const Pair& a, const Pair& b) { return !(a == b); }
+  /// Lexicographic order (i, then j): the paper's order 1-2, 1-3, 1-4, 2-3, …
+  friend bool operator<(const Pair& a, const Pair& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; }
+};
+
+/// One entry of the symmetric dissipation matrix M (paper §3): the diagonal
+/// coefficient K_p when first == second, else the coupling between two pairs
+/// (the paper's α's for n = 4).  Stored once, with first < second.
+struct MatrixEntry {
+  Pair first;
+  Pair second;
+  Number value;
+  bool diagonal() const { return first == second; }
+};
+
+/// A set of adjacent contacts that stay closed after the collision: an
+/// evolution case (paper §4).  Contact c (0-based) is the pair (c+1, c+2).
+class ContactSet {
+ public:
+  ContactSet() = default;
+  explicit ContactSet(int bodies) : closed_(static_cast<std::size_t>(bodies > 1 ? bodies - 1 : 0), false) {}
+  /// Parse "2-3,3-4" (or "" / "none" for no closed contact) for n bodies;
+  /// throws std::invalid_argument("ContactSet::parse(): ...").
+  static ContactSet parse(std::string_view text, int bodies);
+  /// The set whose bit c is bit c of \p mask (n <= 64).
+  static ContactSet from_mask(std::uint64_t mask, int bodies);
+
+  int bodies() const { return static_cast<int>(closed_.size()) + 1; }
+  int contacts() const { return static_cast<int>(closed_.size()); }
+  bool closed(int c) const { return closed_[static_cast<std::size_t>(c)]; }
+  void set_closed(int c, bool value) { closed_[static_cast<std::size_t>(c)] = value; }
+  std::vector<std::string> closed_names() const;  ///< {"2-3", "3-4"}
+  std::string to_string() const;                  ///< "{2-3,3-4}"
+  friend bool operator==(const ContactSet& a, const ContactSet& b) { return a.closed_ == b.closed_; }
+  friend bool operator!=(const ContactSet& a, const ContactSet& b) { return !(a == b); }
+
+ private:
+  std::vector<bool> closed_;
+};
+
+/// A body of a scene, top to bottom.
+struct Body {
+  Number mass;                     ///< > 0 unless infinite
+  bool infinite = false;           ///< a fixed obstacle (bottom body only)
+  std::optional<Number> velocity;  ///< velocity before the collision, if given
+};
+
+/// Optional flight after the collision (issue 4): what a scene asks for.
+struct Flight {
+  bool requested = false;
+};
+
+/// A scene: the bodies and only the effects that are in play.
+struct Scene {
+  std::string title;
+  std::string origin;  ///< the file it came from (for messages), or a label
+  std::vector<Body> bodies;
+  std::optional<Number> drop_height;  ///< h: falling bodies move at -sqrt(2 g h)
+  std::optional<Number> fall_speed;   ///< a directly: falling bodies move at -a
+  Number g = Number::parse("9.81");
+  std::vector<MatrixEntry> entries;   ///< declared entries of M only
+  Flight flight;
+
+  int size() const { return static_cast<int>(bodies.size()); }
+  /// The declared entry for (p, q) in either order, if any.
+  const MatrixEntry* find(const Pair& p, const Pair& q) const;
+};
+
+}  // namespace superball

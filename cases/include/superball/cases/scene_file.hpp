@@ -1,0 +1,50 @@
+#pragma once
+/// \file scene_file.hpp
+/// The one loader of scene files (TOML).  Every structural check happens here;
+/// numerical admissibility (M positive semi-definite) is checked by the
+/// numeric backend at its entry point.
+
+#include <stdexcept>
+#include <string>
+
+#include "superball/cases/model.hpp"
+
+namespace superball {
+
+/// An input error: one line "FILE:LINE:COL: FIELD: what is wrong".
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Largest scene file read (bytes).  A scene is a few hundred bytes; long
+/// chains are generated, not listed.
+inline constexpr std::size_t max_scene_file_bytes = 4u << 20;
+/// Largest number of bodies a scene file may list.
+inline constexpr int max_scene_bodies = 100000;
+
+/// Read and check a scene file.
+///
+/// Format (all keys optional unless said):
+/// \code
+/// title = "Paper 4.4"
+/// drop_height = 0.5     # falling bodies move at -sqrt(2 g h) before
+/// g = 9.81
+/// fall_speed = 3.13209  # or give a = sqrt(2 g h) directly (not both)
+/// [[body]]              # required, top to bottom, at least 2
+/// mass = 0.001          # required: > 0, "inf" for a fixed bottom obstacle
+/// velocity = 0          # overrides the fall
+/// [dissipation]
+/// K = { "1-2" = 7 }                       # diagonal of M
+/// alpha = { "2" = -100 }                  # paper's α_k, n = 4 only
+/// coupling = [ { pairs = ["1-2", "1-4"], value = -100 } ]
+/// \endcode
+/// Numbers may be TOML integers or floats (read exactly as written) or
+/// strings holding a fraction "1/3".  Throws InputError naming the file, the
+/// place and what is wrong.
+Scene load_scene(const std::string& path);
+
+/// Same as load_scene() for text already in memory; \p origin names it in messages.
+Scene parse_scene(const std::string& text, const std::string& origin);
+
+}  // namespace superball

@@ -1,0 +1,123 @@
+#pragma once
+/// \file collision.hpp
+/// The collision solver (paper §2–§3, n bodies), one template over the scalar.
+///
+/// Unknowns: the velocities after the collision W = U⁺ of the free bodies and
+/// the impenetrability reactions on the n−1 adjacent contacts.  With
+/// K = DᵀMD (D the pair incidence matrix), A = diag(m) + K, the equations of
+/// motion (5) with P = 2MX + R, X = D(W+U⁻)/2 read
+///     A W = diag(m) U⁻ − K U⁻ + Cᵀλ,      λ = −R ≥ 0 on contacts,
+/// C the contact incidence matrix.  Eliminating W gives the linear
+/// complementarity problem on the contact gaps w = C W:
+///     w = q + N λ,  w ≥ 0,  λ ≥ 0,  wᵀλ = 0,   N = C A⁻¹ Cᵀ (positive definite),
+/// which has exactly one solution.  It is solved by Murty's least-index
+/// principal pivoting, each pivot an O(n²) update of the tableau (no
+/// refactorisation), then checked independently against the equations of
+/// motion and the complementarity conditions.
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "superball/cases/model.hpp"
+#include "superball/numeric/problem.hpp"
+
+namespace superball::numeric {
+
+/// How a solve ended (Eigen style: numerical outcomes are a status).
+enum class Status {
+  Success,         ///< converged and the independent residual check passed
+  NumericalIssue,  ///< converged but the residual check failed at the stated tolerances
+  NoConvergence,   ///< the pivoting did not terminate within Settings::max_pivots
+};
+const char* to_string(Status s);
+
+/// Named tolerances of a solve, in units of the scalar's unit roundoff u.
+template <class S>
+struct Settings {
+  /// A tableau value counts as negative when below −feasibility·|q|∞ (0 in exact arithmetic).
+  S feasibility = S(0);
+  /// The residual check passes when every relative residual is at most this.
+  S residual = S(0);
+  /// Pivot cap, per contact (Murty's rule terminates; the cap guards rounding cycles).
+  int max_pivots_per_contact = 16;
+
+  /// Defaults for S at \p digits: feasibility = 64u, residual = 1e6·u (u the unit roundoff).
+  static Settings defaults(int digits = 0);
+};
+
+/// The outcome of one collision (velocities in units of Problem::unit).
+template <class S>
+struct Solution {
+  Status status = Status::Success;
+  std::vector<S> velocities_after;   ///< U⁺, size n, top to bottom
+  std::vector<S> reactions;          ///< R on contact c = (c+1, c+2), ≤ 0; 0 where open
+  std::vector<S> gaps;               ///< D_{c,c+1}(U⁺) ≥ 0
+  ContactSet closed;                 ///< the evolution case
+  S kinetic_energy_before = S(0);    ///< finite bodies only
+  S kinetic_energy_after = S(0);
+  S dissipation = S(0);              ///< P·X = 2XᵀMX + R·X
+  S momentum_before = S(0);          ///< Σ m U⁻ over finite bodies
+  S momentum_after = S(0);
+  double residual_motion = 0;        ///< max relative residual of the equations of motion
+  double residual_complementarity = 0;  ///< max relative violation of w ≥ 0, λ ≥ 0, wλ = 0
+  int pivots = 0;
+};
+
+/// Reusable solver: construct once per problem size, then compute() any
+/// problem of that size; compute() does not allocate for double and long
+/// double once the workspace has its size.
+template <class S>
+class CollisionSolver {
+ public:
+  using Matrix = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
+  using Vector = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+
+  CollisionSolver() = default;
+  explicit CollisionSolver(const Settings<S>& settings) : settings_(settings) {}
+
+  /// Solve \p problem into \p out (reusing out's storage).  Throws
+  /// std::invalid_argument("CollisionSolver::compute(): ...") on misuse
+  /// (sizes inconsistent); the numerical outcome is out.status.
+  void compute(const Problem<S>& problem, Solution<S>& out);
+  Solution<S> compute(const Problem<S>& problem) {
+    Solution<S> out;
+    compute(problem, out);
+    return out;
+  }
+  const Settings<S>& settings() const { return settings_; }
+
+ private:
+  void assemble(const Problem<S>& p);
+  void factorize_and_reduce(const Problem<S>& p);
+  int pivot();
+  void finish(const Problem<S>& p, Solution<S>& out) const;
+
+  Settings<S> settings_ = Settings<S>::defaults();
+  int n_ = 0, nf_ = 0, nc_ = 0;
+  Matrix K_;          ///< DᵀMD, n × n
+  Matrix A_;          ///< diag(m) + K on free bodies, then its LDLᵀ factors in place
+  Vector rhs_;        ///< diag(m)u − K u − K_{·,fixed} u_fixed on free bodies
+  Matrix G_;          ///< A⁻¹ C_Fᵀ, nf × nc
+  Vector W0_;         ///< A⁻¹ rhs
+  Matrix T_;          ///< the pivoting tableau (starts as N)
+  Vector t_;          ///< its constant column (starts as q)
+  std::vector<char> basic_lambda_;  ///< contact c: λ_c basic (closed)
+};
+
+/// Convenience: the solution of \p problem with default settings.
+template <class S>
+Solution<S> solve(const Problem<S>& problem) {
+  CollisionSolver<S> solver(Settings<S>::defaults(problem.digits));
+  return solver.compute(problem);
+}
+
+extern template struct Settings<double>;
+extern template struct Settings<long double>;
+extern template struct Settings<cln::cl_R>;
+extern template struct Settings<cln::cl_RA>;
+extern template class CollisionSolver<double>;
+extern template class CollisionSolver<long double>;
+extern template class CollisionSolver<cln::cl_R>;
+extern template class CollisionSolver<cln::cl_RA>;
+
+}  // namespace superball::numeric

@@ -1,0 +1,88 @@
+#pragma once
+/// \file problem.hpp
+/// The entry point of the numeric backend: a Scene checked and turned into
+/// exact rationals (ExactScene), then into the scalar type of a solve
+/// (Problem<S>).
+
+#include <cln/rational.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "superball/cases/model.hpp"
+#include "superball/numeric/scalar.hpp"
+
+namespace superball::numeric {
+
+/// One declared entry of M: pairs (i, j) and (k, l), 0-based bodies.
+template <class S>
+struct Entry {
+  int i, j, k, l;
+  S value;
+  bool diagonal() const { return i == k && j == l; }
+};
+
+/// A scene in exact rationals, checked.
+///
+/// Velocities before the collision are U⁻ = unit · u: when every body either
+/// falls at −a or is given velocity 0, the unit is the fall speed
+/// a = sqrt(2 g h) (possibly irrational; only a² is stored) and u ∈ {−1, 0}.
+/// The collision is homogeneous of degree one in U⁻, so the solve runs on u
+/// and the results scale by a.  Otherwise the unit is 1 and u = U⁻.
+struct ExactScene {
+  std::string origin;
+  int n = 0;
+  bool fixed_bottom = false;             ///< body n has infinite mass
+  std::vector<cln::cl_RA> mass;          ///< size n (the fixed body's entry is unused)
+  std::vector<Entry<cln::cl_RA>> entries;
+  std::vector<cln::cl_RA> fall;          ///< coefficient of a in U⁻_i (−1 falls, 0 not)
+  std::vector<cln::cl_RA> velocity;      ///< the constant part of U⁻_i
+  std::optional<cln::cl_RA> a_squared;   ///< a², when the scene has a fall speed
+
+  /// Check \p scene and convert it.  Throws superball::InputError naming the
+  /// scene and what is wrong; the positive semi-definiteness of M is decided
+  /// exactly (the message names a principal minor of M that is negative).
+  static ExactScene from(const Scene& scene);
+
+  /// Whether U⁻ = a·u with u = fall (every explicit velocity is 0).
+  bool homogeneous() const;
+  /// The velocity unit squared: a² when homogeneous() and a exists, else 1.
+  cln::cl_RA unit_squared() const;
+  /// U⁻ in units of the unit, exact; nullopt when that needs an irrational a
+  /// (non-homogeneous scene with irrational a).
+  std::optional<std::vector<cln::cl_RA>> exact_u() const;
+};
+
+/// A collision problem in scalar type S (velocities in units of the unit).
+template <class S>
+struct Problem {
+  int n = 0;
+  bool fixed_bottom = false;
+  std::vector<S> mass;
+  std::vector<Entry<S>> entries;
+  std::vector<S> u;
+  S unit = S(1);            ///< multiply velocities by this (a, or 1)
+  bool unit_exact = true;   ///< false when the unit is irrational and S is exact (unit is then 1 here)
+  int digits = 0;           ///< for CLN floats: the decimal digits
+
+  /// Convert \p scene to S.  Throws superball::InputError when S is exact and
+  /// the scene needs an irrational number inside the solve.
+  static Problem from(const ExactScene& scene, int digits = 0);
+};
+
+/// The smallest principal minor check: nullopt when the symmetric matrix
+/// \p M (size m) is positive semi-definite, else the indices of a principal
+/// submatrix with a negative determinant and that determinant.
+struct NegativeMinor {
+  std::vector<int> indices;
+  cln::cl_RA determinant;
+};
+std::optional<NegativeMinor> find_negative_minor(const std::vector<std::vector<cln::cl_RA>>& M);
+
+extern template struct Problem<double>;
+extern template struct Problem<long double>;
+extern template struct Problem<cln::cl_R>;
+extern template struct Problem<cln::cl_RA>;
+
+}  // namespace superball::numeric

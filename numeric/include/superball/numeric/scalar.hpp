@@ -1,0 +1,93 @@
+#pragma once
+/// \file scalar.hpp
+/// The scalar types the numeric backend is instantiated with, and what it
+/// needs to know of each: double, long double, CLN floats of N decimal digits
+/// (cln::cl_R holding floats of one precision) and CLN exact rationals
+/// (cln::cl_RA).  Eigen needs NumTraits for the CLN types; they are here.
+
+#include <cln/rational.h>
+#include <cln/real.h>
+
+#include <Eigen/Core>
+#include <limits>
+#include <string>
+
+namespace Eigen {
+
+/// Eigen traits shared by the two CLN types (heap-allocated, slow, exact-ish).
+template <class T>
+struct ClnNumTraits : GenericNumTraits<T> {
+  using Real = T;
+  using NonInteger = T;
+  using Literal = T;
+  using Nested = T;
+  enum { IsInteger = 0, IsSigned = 1, IsComplex = 0, RequireInitialization = 1, ReadCost = 20, AddCost = 200, MulCost = 400 };
+  static inline int digits10() { return 0; }
+};
+template <>
+struct NumTraits<cln::cl_RA> : ClnNumTraits<cln::cl_RA> {};
+template <>
+struct NumTraits<cln::cl_R> : ClnNumTraits<cln::cl_R> {};
+
+}  // namespace Eigen
+
+namespace superball::numeric {
+
+/// What the solver needs to know about a scalar type \p S.
+template <class S>
+struct ScalarTraits;
+
+template <>
+struct ScalarTraits<double> {
+  static constexpr bool exact = false;
+  static std::string name() { return "double"; }
+  /// The value of the exact rational \p r in this type (\p digits is ignored).
+  static double from(const cln::cl_RA& r, int digits);
+  static double to_double(double x) { return x; }
+  static double unit_roundoff(int) { return std::numeric_limits<double>::epsilon() / 2; }
+  static bool sqrt(const cln::cl_RA& square, int digits, double& out);
+};
+
+template <>
+struct ScalarTraits<long double> {
+  static constexpr bool exact = false;
+  static std::string name() { return "long-double"; }
+  static long double from(const cln::cl_RA& r, int digits);
+  static double to_double(long double x) { return static_cast<double>(x); }
+  static long double unit_roundoff(int) { return std::numeric_limits<long double>::epsilon() / 2; }
+  static bool sqrt(const cln::cl_RA& square, int digits, long double& out);
+};
+
+/// CLN floats of \p digits decimal digits, held as cln::cl_R so that the
+/// integer constants Eigen creates stay exact and never lower the precision.
+template <>
+struct ScalarTraits<cln::cl_R> {
+  static constexpr bool exact = false;
+  static std::string name() { return "digits"; }
+  static cln::cl_R from(const cln::cl_RA& r, int digits);
+  static double to_double(const cln::cl_R& x);
+  static cln::cl_R unit_roundoff(int digits);
+  static bool sqrt(const cln::cl_RA& square, int digits, cln::cl_R& out);
+};
+
+template <>
+struct ScalarTraits<cln::cl_RA> {
+  static constexpr bool exact = true;
+  static std::string name() { return "exact"; }
+  static cln::cl_RA from(const cln::cl_RA& r, int) { return r; }
+  static double to_double(const cln::cl_RA& x);
+  static cln::cl_RA unit_roundoff(int) { return 0; }
+  /// True only when \p square is the square of a rational.
+  static bool sqrt(const cln::cl_RA& square, int digits, cln::cl_RA& out);
+};
+
+/// Decimal text of \p x with \p significant digits (exact rationals as "p/q").
+std::string to_string(double x, int significant = 17);
+std::string to_string(long double x, int significant = 21);
+std::string to_string(const cln::cl_R& x, int significant = 0);
+std::string to_string(const cln::cl_RA& x, int significant = 0);
+
+/// Parse a rational "p/q" or integer written by superball::Number::fraction().
+cln::cl_RA parse_rational(const std::string& fraction);
+
+}  // namespace superball::numeric

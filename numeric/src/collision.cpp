@@ -1,0 +1,244 @@
+#include "superball/numeric/collision.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace superball::numeric {
+namespace detail {
+
+template <class S>
+S abs_value(const S& x) {
+  return x < S(0) ? S(-x) : x;
+}
+
+template <class S>
+double to_double(const S& x) {
+  return ScalarTraits<S>::to_double(x);
+}
+
+}  // namespace detail
+
+const char* to_string(Status s) {
+  switch (s) {
+    case Status::Success: return "success";
+    case Status::NumericalIssue: return "numerical-issue";
+    case Status::NoConvergence: break;
+  }
+  return "no-convergence";
+}
+
+template <class S>
+Settings<S> Settings<S>::defaults(int digits) {
+  Settings<S> s;
+  const S u = ScalarTraits<S>::unit_roundoff(digits);
+  s.feasibility = S(64) * u;
+  s.residual = S(1000000) * u;
+  return s;
+}
+
+template <class S>
+void CollisionSolver<S>::assemble(const Problem<S>& p) {
+  n_ = p.n;
+  nf_ = p.fixed_bottom ? n_ - 1 : n_;
+  nc_ = n_ - 1;
+  K_.resize(n_, n_);
+  K_.setZero();
+  for (const Entry<S>& e : p.entries) {
+    // v (e_i − e_j)(e_k − e_l)ᵀ, and its transpose off the diagonal of M.
+    K_(e.i, e.k) += e.value;
+    K_(e.i, e.l) -= e.value;
+    K_(e.j, e.k) -= e.value;
+    K_(e.j, e.l) += e.value;
+    if (!e.diagonal()) {
+      K_(e.k, e.i) += e.value;
+      K_(e.l, e.i) -= e.value;
+      K_(e.k, e.j) -= e.value;
+      K_(e.l, e.j) += e.value;
+    }
+  }
+  A_.resize(nf_, nf_);
+  rhs_.resize(nf_);
+  for (int i = 0; i < nf_; ++i) {
+    S r = p.mass[i] * p.u[i];
+    for (int j = 0; j < n_; ++j) r -= K_(i, j) * p.u[j];
+    if (p.fixed_bottom) r -= K_(i, n_ - 1) * p.u[n_ - 1];
+    rhs_(i) = r;
+  }
+  A_ = K_.topLeftCorner(nf_, nf_);
+  for (int i = 0; i < nf_; ++i) A_(i, i) += p.mass[i];
+}
+
+template <class S>
+void CollisionSolver<S>::factorize_and_reduce(const Problem<S>& p) {
+  // LDLᵀ of A in place, no pivoting (A is symmetric positive definite:
+  // positive masses plus DᵀMD with M positive semi-definite).
+  for (int k = 0; k < nf_; ++k) {
+    const S d = A_(k, k);
+    for (int j = k + 1; j < nf_; ++j) {
+      const S ljk = A_(j, k) / d;
+      for (int i = j; i < nf_; ++i) A_(i, j) -= A_(i, k) * ljk;
+    }
+    for (int i = k + 1; i < nf_; ++i) A_(i, k) /= d;
+  }
+  auto solve_in_place = [&](auto&& x) {
+    for (int i = 1; i < nf_; ++i)
+      for (int k = 0; k < i; ++k) x(i) -= A_(i, k) * x(k);
+    for (int i = 0; i < nf_; ++i) x(i) /= A_(i, i);
+    for (int i = nf_ - 2; i >= 0; --i)
+      for (int k = i + 1; k < nf_; ++k) x(i) -= A_(k, i) * x(k);
+  };
+  W0_ = rhs_;
+  solve_in_place(W0_);
+  G_.resize(nf_, nc_);
+  G_.setZero();
+  for (int c = 0; c < nc_; ++c) {
+    G_(c, c) = S(1);
+    if (c + 1 < nf_) G_(c + 1, c) = S(-1);
+    solve_in_place(G_.col(c));
+  }
+  T_.resize(nc_, nc_);
+  t_.resize(nc_);
+  for (int c = 0; c < nc_; ++c) {
+    if (c + 1 < nf_) {
+      T_.row(c) = G_.row(c) - G_.row(c + 1);
+      t_(c) = W0_(c) - W0_(c + 1);
+    } else {
+      T_.row(c) = G_.row(c);
+      t_(c) = W0_(c) - p.u[n_ - 1];
+    }
+  }
+}
+
+template <class S>
+int CollisionSolver<S>::pivot() {
+  // Murty's least-index principal pivoting: exchange w_p and λ_p for the
+  // smallest p whose basic variable is negative.  Terminates for P-matrices.
+  basic_lambda_.assign(static_cast<std::size_t>(nc_), 0);
+  S scale = S(0);
+  for (int c = 0; c < nc_; ++c) scale = std::max(scale, detail::abs_value<S>(t_(c)));
+  const S tol = settings_.feasibility * scale;
+  const int cap = settings_.max_pivots_per_contact * std::max(nc_, 1);
+  int pivots = 0;
+  for (;;) {
+    int p = -1;
+    for (int c = 0; c < nc_ && p < 0; ++c)
+      if (t_(c) < -tol) p = c;
+    if (p < 0) return pivots;
+    if (++pivots > cap) return -1;
+    const S piv = T_(p, p);
+    if (!(piv > S(0))) return -2;
+    for (int i = 0; i < nc_; ++i) {
+      if (i == p) continue;
+      const S f = T_(i, p) / piv;
+      if (f == S(0)) continue;
+      for (int j = 0; j < nc_; ++j)
+        if (j != p) T_(i, j) -= f * T_(p, j);
+      t_(i) -= f * t_(p);
+      T_(i, p) = f;
+    }
+    for (int j = 0; j < nc_; ++j)
+      if (j != p) T_(p, j) = -T_(p, j) / piv;
+    T_(p, p) = S(1) / piv;
+    t_(p) = -t_(p) / piv;
+    basic_lambda_[static_cast<std::size_t>(p)] ^= 1;
+  }
+}
+
+template <class S>
+void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out) const {
+  using detail::abs_value;
+  using detail::to_double;
+  out.velocities_after.resize(static_cast<std::size_t>(n_));
+  out.reactions.resize(static_cast<std::size_t>(nc_));
+  out.gaps.resize(static_cast<std::size_t>(nc_));
+  if (out.closed.bodies() != n_) out.closed = ContactSet(n_);
+  auto lambda = [&](int c) { return basic_lambda_[static_cast<std::size_t>(c)] ? t_(c) : S(0); };
+  for (int i = 0; i < nf_; ++i) {
+    S w = W0_(i);
+    for (int c = 0; c < nc_; ++c)
+      if (basic_lambda_[static_cast<std::size_t>(c)]) w += G_(i, c) * t_(c);
+    out.velocities_after[static_cast<std::size_t>(i)] = w;
+  }
+  if (p.fixed_bottom) out.velocities_after[static_cast<std::size_t>(n_ - 1)] = p.u[n_ - 1];
+  const auto& W = out.velocities_after;
+  for (int c = 0; c < nc_; ++c) {
+    out.gaps[static_cast<std::size_t>(c)] = W[c] - W[c + 1];
+    out.reactions[static_cast<std::size_t>(c)] = -lambda(c);
+    out.closed.set_closed(c, basic_lambda_[static_cast<std::size_t>(c)] ||
+                                 (ScalarTraits<S>::exact && out.gaps[static_cast<std::size_t>(c)] == S(0)));
+  }
+  // Energies and momentum of the finite bodies; dissipation P·X from M and R.
+  out.kinetic_energy_before = out.kinetic_energy_after = out.momentum_before = out.momentum_after = S(0);
+  for (int i = 0; i < nf_; ++i) {
+    out.kinetic_energy_before += p.mass[i] * p.u[i] * p.u[i] / S(2);
+    out.kinetic_energy_after += p.mass[i] * W[i] * W[i] / S(2);
+    out.momentum_before += p.mass[i] * p.u[i];
+    out.momentum_after += p.mass[i] * W[i];
+  }
+  auto X = [&](int i, int j) { return (W[i] + p.u[i] - W[j] - p.u[j]) / S(2); };
+  S dissipation = S(0);
+  for (const Entry<S>& e : p.entries)
+    dissipation += (e.diagonal() ? S(2) : S(4)) * e.value * X(e.i, e.j) * X(e.k, e.l);
+  for (int c = 0; c < nc_; ++c) dissipation += out.reactions[static_cast<std::size_t>(c)] * X(c, c + 1);
+  out.dissipation = dissipation;
+
+  // Independent check, from the problem data: the equations of motion
+  // m(W − u) + K(W + u) − Cᵀλ = 0 on free bodies, and complementarity.
+  double motion = 0, comp = 0;
+  double vscale = 0, lscale = 0;
+  for (int i = 0; i < n_; ++i) vscale = std::max({vscale, std::fabs(to_double(W[i])), std::fabs(to_double(p.u[i]))});
+  for (int c = 0; c < nc_; ++c) lscale = std::max(lscale, std::fabs(to_double(lambda(c))));
+  for (int i = 0; i < nf_; ++i) {
+    S r = p.mass[i] * (W[i] - p.u[i]);
+    S size = abs_value<S>(p.mass[i] * W[i]) + abs_value<S>(p.mass[i] * p.u[i]);
+    for (int j = 0; j < n_; ++j) {
+      r += K_(i, j) * (W[j] + p.u[j]);
+      size += abs_value<S>(K_(i, j)) * (abs_value<S>(W[j]) + abs_value<S>(p.u[j]));
+    }
+    if (i < nc_) r -= lambda(i), size += abs_value<S>(lambda(i));
+    if (i > 0) r += lambda(i - 1), size += abs_value<S>(lambda(i - 1));
+    if (!(r == S(0))) motion = std::max(motion, to_double(abs_value<S>(r)) / std::max(to_double(size), 1e-300));
+  }
+  for (int c = 0; c < nc_; ++c) {
+    const double w = to_double(out.gaps[static_cast<std::size_t>(c)]), l = to_double(lambda(c));
+    const bool exact_zero = out.gaps[static_cast<std::size_t>(c)] == S(0);
+    if (basic_lambda_[static_cast<std::size_t>(c)]) {
+      if (!exact_zero) comp = std::max(comp, std::fabs(w) / std::max(vscale, 1e-300));
+      if (l < 0) comp = std::max(comp, -l / std::max(lscale, 1e-300));
+    } else if (w < 0) {
+      comp = std::max(comp, -w / std::max(vscale, 1e-300));
+    }
+  }
+  out.residual_motion = motion;
+  out.residual_complementarity = comp;
+  const double tol = to_double(settings_.residual);
+  if (out.status == Status::Success && (motion > tol || comp > tol)) out.status = Status::NumericalIssue;
+}
+
+template <class S>
+void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
+  if (p.n < 2) throw std::invalid_argument("CollisionSolver::compute(): a problem needs at least 2 bodies");
+  if (static_cast<int>(p.mass.size()) != p.n || static_cast<int>(p.u.size()) != p.n)
+    throw std::invalid_argument("CollisionSolver::compute(): masses and velocities must have one entry per body");
+  for (const Entry<S>& e : p.entries)
+    if (std::min({e.i, e.j, e.k, e.l}) < 0 || std::max({e.i, e.j, e.k, e.l}) >= p.n || e.i >= e.j || e.k >= e.l)
+      throw std::invalid_argument("CollisionSolver::compute(): an entry of M names a pair outside the bodies");
+  assemble(p);
+  factorize_and_reduce(p);
+  const int pivots = pivot();
+  out.status = pivots == -1 ? Status::NoConvergence : pivots == -2 ? Status::NumericalIssue : Status::Success;
+  out.pivots = std::max(pivots, 0);
+  finish(p, out);
+}
+
+template struct Settings<double>;
+template struct Settings<long double>;
+template struct Settings<cln::cl_R>;
+template struct Settings<cln::cl_RA>;
+template class CollisionSolver<double>;
+template class CollisionSolver<long double>;
+template class CollisionSolver<cln::cl_R>;
+template class CollisionSolver<cln::cl_RA>;
+
+}  // namespace superball::numeric

@@ -1,0 +1,111 @@
+#include "superball/numeric/scalar.hpp"
+
+#include <cln/float.h>
+#include <cln/float_io.h>
+#include <cln/rational_io.h>
+#include <cln/real_io.h>
+#include <cln/rational_ring.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+namespace superball::numeric {
+namespace {
+
+/// CLN writes floats with a type marker as exponent ("3.1L0", "2.5d-3");
+/// turn that into a plain decimal exponent.
+std::string plain_decimal(std::string s) {
+  for (char& c : s)
+    if (c == 'L' || c == 'd' || c == 'f' || c == 's' || c == 'E') c = 'e';
+  if (s.size() > 2 && s.compare(s.size() - 2, 2, "e0") == 0) s.resize(s.size() - 2);
+  return s;
+}
+
+std::string float_text(const cln::cl_F& x) {
+  std::ostringstream os;
+  cln::fprint(os, x);
+  return plain_decimal(os.str());
+}
+
+}  // namespace
+
+double ScalarTraits<double>::from(const cln::cl_RA& r, int) { return cln::double_approx(r); }
+
+bool ScalarTraits<double>::sqrt(const cln::cl_RA& square, int, double& out) {
+  out = std::sqrt(cln::double_approx(square));
+  return true;
+}
+
+long double ScalarTraits<long double>::from(const cln::cl_RA& r, int) {
+  // 40 digits, then the C library's correctly rounded decimal conversion.
+  return std::strtold(float_text(cln::cl_float(r, cln::float_format(40))).c_str(), nullptr);
+}
+
+bool ScalarTraits<long double>::sqrt(const cln::cl_RA& square, int, long double& out) {
+  out = std::sqrt(from(square, 0));
+  return true;
+}
+
+cln::cl_R ScalarTraits<cln::cl_R>::from(const cln::cl_RA& r, int digits) {
+  if (digits <= 0) throw std::invalid_argument("ScalarTraits<cl_R>::from(): digits must be > 0");
+  return cln::cl_float(r, cln::float_format(static_cast<uintE>(digits)));
+}
+
+double ScalarTraits<cln::cl_R>::to_double(const cln::cl_R& x) { return cln::double_approx(x); }
+
+cln::cl_R ScalarTraits<cln::cl_R>::unit_roundoff(int digits) {
+  return cln::float_epsilon(cln::float_format(static_cast<uintE>(digits > 0 ? digits : 20)));
+}
+
+bool ScalarTraits<cln::cl_R>::sqrt(const cln::cl_RA& square, int digits, cln::cl_R& out) {
+  out = cln::sqrt(from(square, digits));
+  return true;
+}
+
+double ScalarTraits<cln::cl_RA>::to_double(const cln::cl_RA& x) { return cln::double_approx(x); }
+
+bool ScalarTraits<cln::cl_RA>::sqrt(const cln::cl_RA& square, int, cln::cl_RA& out) {
+  return cln::sqrtp(square, &out);
+}
+
+std::string to_string(double x, int significant) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", significant, x);
+  return buf;
+}
+
+std::string to_string(long double x, int significant) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.*Lg", significant, x);
+  return buf;
+}
+
+std::string to_string(const cln::cl_R& x, int significant) {
+  if (cln::instanceof(x, cln::cl_RA_ring)) {
+    std::ostringstream os;
+    cln::fprint(os, cln::the<cln::cl_RA>(x));
+    return os.str();
+  }
+  const cln::cl_F f = cln::the<cln::cl_F>(x);
+  if (significant <= 0) return float_text(f);
+  return float_text(cln::cl_float(f, cln::float_format(static_cast<uintE>(significant))));
+}
+
+std::string to_string(const cln::cl_RA& x, int) {
+  std::ostringstream os;
+  cln::fprint(os, x);
+  return os.str();
+}
+
+cln::cl_RA parse_rational(const std::string& fraction) {
+  try {
+    return cln::cl_RA(fraction.c_str());
+  } catch (const std::exception& e) {
+    throw std::invalid_argument("parse_rational(): '" + fraction + "' is not a rational: " + e.what());
+  }
+}
+
+}  // namespace superball::numeric
