@@ -126,8 +126,16 @@ int CollisionSolver<S>::pivot() {
       if (t_(c) < -tol) p = c;
     if (p < 0) return pivots;
     if (++pivots > cap) return -1;
+    if (!pivot_on(p)) return -2;
+  }
+}
+
+template <class S>
+bool CollisionSolver<S>::pivot_on(int p) {
+  // Principal pivot transform on (p, p): exchange the basic and non-basic
+  // variables of contact p, an O(nc²) update of the tableau.
     const S piv = T_(p, p);
-    if (!(piv > S(0))) return -2;
+    if (!(piv > S(0))) return false;
     for (int i = 0; i < nc_; ++i) {
       if (i == p) continue;
       const S f = T_(i, p) / piv;
@@ -142,11 +150,11 @@ int CollisionSolver<S>::pivot() {
     T_(p, p) = S(1) / piv;
     t_(p) = -t_(p) / piv;
     basic_lambda_[static_cast<std::size_t>(p)] ^= 1;
-  }
+    return true;
 }
 
 template <class S>
-void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out) const {
+void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out, bool imposed) const {
   using detail::abs_value;
   using detail::to_double;
   out.velocities_after.resize(static_cast<std::size_t>(n_));
@@ -164,9 +172,9 @@ void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out) const {
   const auto& W = out.velocities_after;
   for (int c = 0; c < nc_; ++c) {
     out.gaps[static_cast<std::size_t>(c)] = W[c] - W[c + 1];
-    out.reactions[static_cast<std::size_t>(c)] = -lambda(c);
+    out.reactions[static_cast<std::size_t>(c)] = basic_lambda_[static_cast<std::size_t>(c)] ? S(-lambda(c)) : S(0);
     out.closed.set_closed(c, basic_lambda_[static_cast<std::size_t>(c)] ||
-                                 (ScalarTraits<S>::exact && out.gaps[static_cast<std::size_t>(c)] == S(0)));
+                                 (!imposed && ScalarTraits<S>::exact && out.gaps[static_cast<std::size_t>(c)] == S(0)));
   }
   // Energies and momentum of the finite bodies; dissipation P·X from M and R.
   out.kinetic_energy_before = out.kinetic_energy_after = out.momentum_before = out.momentum_after = S(0);
@@ -205,8 +213,8 @@ void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out) const {
     const bool exact_zero = out.gaps[static_cast<std::size_t>(c)] == S(0);
     if (basic_lambda_[static_cast<std::size_t>(c)]) {
       if (!exact_zero) comp = std::max(comp, std::fabs(w) / std::max(vscale, 1e-300));
-      if (l < 0) comp = std::max(comp, -l / std::max(lscale, 1e-300));
-    } else if (w < 0) {
+      if (l < 0 && !imposed) comp = std::max(comp, -l / std::max(lscale, 1e-300));
+    } else if (w < 0 && !imposed) {
       comp = std::max(comp, -w / std::max(vscale, 1e-300));
     }
   }
@@ -217,19 +225,43 @@ void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out) const {
 }
 
 template <class S>
-void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
+void CollisionSolver<S>::check(const Problem<S>& p) const {
   if (p.n < 2) throw std::invalid_argument("CollisionSolver::compute(): a problem needs at least 2 bodies");
   if (static_cast<int>(p.mass.size()) != p.n || static_cast<int>(p.u.size()) != p.n)
     throw std::invalid_argument("CollisionSolver::compute(): masses and velocities must have one entry per body");
   for (const Entry<S>& e : p.entries)
     if (std::min({e.i, e.j, e.k, e.l}) < 0 || std::max({e.i, e.j, e.k, e.l}) >= p.n || e.i >= e.j || e.k >= e.l)
       throw std::invalid_argument("CollisionSolver::compute(): an entry of M names a pair outside the bodies");
+}
+
+template <class S>
+void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
+  check(p);
   assemble(p);
   factorize_and_reduce(p);
   const int pivots = pivot();
   out.status = pivots == -1 ? Status::NoConvergence : pivots == -2 ? Status::NumericalIssue : Status::Success;
   out.pivots = std::max(pivots, 0);
-  finish(p, out);
+  finish(p, out, false);
+}
+
+template <class S>
+void CollisionSolver<S>::compute_case(const Problem<S>& p, const ContactSet& closed, Solution<S>& out) {
+  check(p);
+  if (closed.bodies() != p.n)
+    throw std::invalid_argument("CollisionSolver::compute_case(): the case is for " + std::to_string(closed.bodies()) +
+                                " bodies, the problem has " + std::to_string(p.n));
+  assemble(p);
+  factorize_and_reduce(p);
+  basic_lambda_.assign(static_cast<std::size_t>(nc_), 0);
+  out.status = Status::Success;
+  out.pivots = 0;
+  for (int c = 0; c < nc_; ++c)
+    if (closed.closed(c)) {
+      ++out.pivots;
+      if (!pivot_on(c)) out.status = Status::NumericalIssue;
+    }
+  finish(p, out, true);
 }
 
 template struct Settings<double>;

@@ -84,13 +84,22 @@ class CollisionSolver {
     compute(problem, out);
     return out;
   }
+  /// Solve with the evolution case imposed: the contacts in \p closed are
+  /// kept closed (their gaps are 0, their reactions whatever they come out)
+  /// and the others open (reaction 0, gap whatever it comes out), without
+  /// any sign condition.  This is the paper's way of solving "an assumed
+  /// evolution case" (§4.1); out.closed is \p closed, and the residual check
+  /// covers the equations of motion and the imposed gaps only.
+  void compute_case(const Problem<S>& problem, const ContactSet& closed, Solution<S>& out);
   const Settings<S>& settings() const { return settings_; }
 
  private:
   void assemble(const Problem<S>& p);
   void factorize_and_reduce(const Problem<S>& p);
+  void check(const Problem<S>& p) const;
   int pivot();
-  void finish(const Problem<S>& p, Solution<S>& out) const;
+  bool pivot_on(int p);
+  void finish(const Problem<S>& p, Solution<S>& out, bool imposed) const;
 
   Settings<S> settings_ = Settings<S>::defaults();
   int n_ = 0, nf_ = 0, nc_ = 0;

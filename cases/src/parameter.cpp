@@ -1,0 +1,100 @@
+#include "superball/cases/parameter.hpp"
+
+#include <stdexcept>
+
+#include "superball/cases/vocabulary.hpp"
+
+namespace superball {
+namespace {
+
+[[noreturn]] void bad(const std::string& key, const std::string& why) {
+  throw std::invalid_argument("Parameter::parse(): '" + key + "': " + why);
+}
+
+Pair pair_of(const std::string& key, const std::string& text, int n) {
+  Pair p;
+  try {
+    p = Pair::parse(text);
+  } catch (const std::invalid_argument&) {
+    bad(key, "'" + text + "' is not a pair i-j");
+  }
+  if (p.j > n) bad(key, "pair " + p.name() + " is outside bodies 1.." + std::to_string(n));
+  return p;
+}
+
+int body_of(const std::string& key, const std::string& text, int n) {
+  int b = 0;
+  try {
+    std::size_t used = 0;
+    b = std::stoi(text, &used);
+    if (used != text.size()) b = 0;
+  } catch (const std::exception&) {
+    b = 0;
+  }
+  if (b < 1 || b > n) bad(key, "body must be 1.." + std::to_string(n));
+  return b;
+}
+
+}  // namespace
+
+Parameter Parameter::parse(const std::string& key, const Scene& scene) {
+  Parameter p;
+  p.key_ = key;
+  const int n = scene.size();
+  const auto dot = key.find('.');
+  const std::string head = key.substr(0, dot), tail = dot == std::string::npos ? "" : key.substr(dot + 1);
+  if (head == "K") {
+    p.kind_ = Kind::Entry;
+    p.first = p.second = pair_of(key, tail, n);
+  } else if (head == "alpha") {
+    const Vocabulary& v = Vocabulary::paper();
+    if (n != v.bodies()) bad(key, "the paper's alpha_k name couplings of 4 bodies; use coupling.i-j/k-l");
+    int k = 0;
+    if (tail.size() == 1 && tail[0] >= '1' && tail[0] <= '9') k = tail[0] - '0';
+    if (k < 1 || k > static_cast<int>(v.alphas().size())) bad(key, "alpha must be 1.." + std::to_string(v.alphas().size()));
+    p.kind_ = Kind::Entry;
+    p.first = v.alpha(k).first;
+    p.second = v.alpha(k).second;
+  } else if (head == "coupling") {
+    const auto slash = tail.find('/');
+    if (slash == std::string::npos) bad(key, "write coupling.i-j/k-l");
+    p.kind_ = Kind::Entry;
+    p.first = pair_of(key, tail.substr(0, slash), n);
+    p.second = pair_of(key, tail.substr(slash + 1), n);
+    if (p.first == p.second) bad(key, "a coupling joins two different pairs (use K.i-j)");
+    if (p.second < p.first) std::swap(p.first, p.second);
+  } else if (head == "mass" || head == "velocity") {
+    p.kind_ = head == "mass" ? Kind::Mass : Kind::Velocity;
+    p.body = body_of(key, tail, n);
+    if (p.kind_ == Kind::Mass && scene.bodies[static_cast<std::size_t>(p.body - 1)].infinite)
+      bad(key, "body " + tail + " is a fixed obstacle (infinite mass)");
+  } else if (key == "drop_height" || key == "fall_speed" || key == "g") {
+    p.kind_ = key == "g" ? Kind::Gravity : key == "drop_height" ? Kind::DropHeight : Kind::FallSpeed;
+    if (p.kind_ == Kind::DropHeight && scene.fall_speed) bad(key, "the scene gives fall_speed, not drop_height");
+    if (p.kind_ == Kind::FallSpeed && scene.drop_height) bad(key, "the scene gives drop_height, not fall_speed");
+  } else {
+    bad(key, "unknown parameter (expected K.i-j, alpha.k, coupling.i-j/k-l, mass.i, velocity.i, drop_height, fall_speed or g)");
+  }
+  return p;
+}
+
+void Parameter::set(Scene& scene, const Number& value) const {
+  switch (kind_) {
+    case Kind::Entry: {
+      for (auto& e : scene.entries)
+        if ((e.first == first && e.second == second) || (e.first == second && e.second == first)) {
+          e.value = value;
+          return;
+        }
+      scene.entries.push_back({first, second, value});
+      return;
+    }
+    case Kind::Mass: scene.bodies[static_cast<std::size_t>(body - 1)].mass = value; return;
+    case Kind::Velocity: scene.bodies[static_cast<std::size_t>(body - 1)].velocity = value; return;
+    case Kind::DropHeight: scene.drop_height = value; return;
+    case Kind::FallSpeed: scene.fall_speed = value; return;
+    case Kind::Gravity: scene.g = value; return;
+  }
+}
+
+}  // namespace superball

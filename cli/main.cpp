@@ -1,0 +1,40 @@
+// superball: conditions for the superball phenomenon in Frémond's theory of
+// collisions.  See README.md and `superball --help`.
+#include <iostream>
+
+#include "commands.hpp"
+#include "superball/cases/scene_file.hpp"
+
+int main(int argc, char** argv) {
+  using namespace superball::cli;
+  CLI::App app{
+      "superball: derive and check the conditions under which a stack of aligned balls dropped on a massive\n"
+      "obstacle sends the top ball up faster than it fell (Fremond's theory of collisions).\n\n"
+      "Typical use:\n"
+      "  superball solve cases/scenes/paper-4.4-alpha2.toml            velocities after the collision\n"
+      "  superball solve SCENE --precision exact --json                exact fractions, for programs\n"
+      "  superball sweep SCENE --vary K.3-4=0:20:401 --switch-points   where the evolution case changes\n",
+      "superball"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "superball 0.1.0");
+  Action action;
+  add_solve(app, action);
+  add_sweep(app, action);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    return action();
+  } catch (const superball::InputError& e) {
+    std::cerr << "superball: " << e.what() << '\n';
+    return bad_input;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "superball: " << e.what() << '\n';
+    return bad_input;
+  } catch (const std::exception& e) {
+    std::cerr << "superball: internal error: " << e.what() << '\n';
+    return internal_error;
+  }
+}

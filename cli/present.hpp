@@ -1,0 +1,34 @@
+#pragma once
+/// \file present.hpp
+/// A solution as people and programs read it: values scaled from the
+/// solver's velocity unit to SI, as JSON and as text.
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "superball/numeric/collision.hpp"
+#include "superball/numeric/precision.hpp"
+
+namespace superball::cli {
+
+/// One solved scene, in any precision, flattened for output.
+struct Presented {
+  std::string origin, title, precision, status, case_name;
+  int n = 0, pivots = 0;
+  bool fixed_bottom = false, superball = false;
+  std::vector<double> masses, before, after, reactions;
+  std::vector<std::string> after_text, reaction_text;  ///< full precision (exact: fractions)
+  std::vector<std::string> closed;
+  double ke_before = 0, ke_after = 0, dissipation = 0, momentum_before = 0, momentum_after = 0;
+  double residual_motion = 0, residual_complementarity = 0;
+  bool exact = false;
+};
+
+/// Solve \p scene in \p precision and flatten the result.
+Presented solve_scene(const Scene& scene, const numeric::Precision& precision);
+
+nlohmann::json to_json(const Presented& p);
+std::string to_text(const Presented& p);
+
+}  // namespace superball::cli

@@ -1,0 +1,50 @@
+#pragma once
+/// \file sweep.hpp
+/// Solutions along one parameter of a scene, and the parameter values where
+/// the evolution case changes (paper §4.4, Fig. 7).
+
+#include <cln/rational.h>
+
+#include <vector>
+
+#include "superball/cases/parameter.hpp"
+#include "superball/numeric/collision.hpp"
+#include "superball/numeric/precision.hpp"
+
+namespace superball::numeric {
+
+/// `steps` equally spaced exact values from \p from to \p to (steps >= 2).
+std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, int steps);
+
+/// \p scene with \p parameter set to the exact \p value.
+Scene with_value(const Scene& scene, const Parameter& parameter, const cln::cl_RA& value);
+
+/// One point of a sweep: the parameter value, the solution in the chosen
+/// arithmetic, with velocities already multiplied by the velocity unit and
+/// converted to double, and the case.
+struct SweepPoint {
+  cln::cl_RA value;
+  std::vector<double> velocities_after;
+  ContactSet closed;
+  Status status = Status::Success;
+};
+
+/// Solve \p scene at each of \p values of \p parameter in \p precision.
+std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
+                              const Precision& precision);
+
+/// A change of evolution case between two parameter values: the case is
+/// `below` for values in [low, …) up to the switch and `above` after it;
+/// high − low is the width left by the bisection.
+struct SwitchPoint {
+  cln::cl_RA low, high;
+  ContactSet below, above;
+};
+
+/// Locate every case change between consecutive \p points by bisection on
+/// the exact solution (CLN rationals) until the bracket is narrower than
+/// 2^-bits of the sweep step (default: 64 bits, beyond double precision).
+std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<SweepPoint>& points,
+                                       int bits = 64);
+
+}  // namespace superball::numeric
