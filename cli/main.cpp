@@ -20,10 +20,13 @@ int main(int argc, char** argv) {
   Action action;
   add_solve(app, action);
   add_sweep(app, action);
+  add_reproduce(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::cerr << "superball: " << e.what() << " (see superball --help)\n";
+    return bad_input;
   }
   try {
     return action();
@@ -31,7 +34,7 @@ int main(int argc, char** argv) {
     std::cerr << "superball: " << e.what() << '\n';
     return bad_input;
   } catch (const std::invalid_argument& e) {
-    std::cerr << "superball: " << e.what() << '\n';
+    std::cerr << "superball: " << superball::without_function_prefix(e.what()) << '\n';
     return bad_input;
   } catch (const std::exception& e) {
     std::cerr << "superball: internal error: " << e.what() << '\n';

@@ -30,8 +30,7 @@ Range parse_vary(const std::string& text, const Scene& scene) {
             try {
               return Parameter::parse(key, scene);
             } catch (const std::invalid_argument& e) {
-              std::string why = e.what();
-              throw bad(why.substr(why.find(':') + 2));
+              throw bad(without_function_prefix(e.what()));
             }
           }(),
           0, 0, 0};
@@ -39,8 +38,7 @@ Range parse_vary(const std::string& text, const Scene& scene) {
     r.from = numeric::parse_rational(Number::parse(rest.substr(0, c1)).fraction());
     r.to = numeric::parse_rational(Number::parse(rest.substr(c1 + 1, c2 - c1 - 1)).fraction());
   } catch (const std::invalid_argument& e) {
-    std::string why = e.what();
-    throw bad(why.substr(why.find(':') + 2));
+    throw bad(without_function_prefix(e.what()));
   }
   const std::string steps = rest.substr(c2 + 1);
   std::size_t used = 0;
@@ -56,9 +54,7 @@ Range parse_vary(const std::string& text, const Scene& scene) {
   return r;
 }
 
-std::string decimal(const cln::cl_RA& x, int digits = 17) {
-  return numeric::to_string(cln::cl_float(x, cln::float_format(static_cast<uintE>(digits))), digits);
-}
+std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_decimal(x, digits); }
 
 }  // namespace
 

@@ -101,9 +101,7 @@ class SceneReader {
     try {
       return Number::parse(text);
     } catch (const std::invalid_argument& e) {
-      std::string why = e.what();
-      why = why.substr(why.find(':') + 2);
-      fail(node, field, why);
+      fail(node, field, without_function_prefix(e.what()));
     }
   }
 
@@ -157,8 +155,7 @@ class SceneReader {
     try {
       p = Pair::parse(text);
     } catch (const std::invalid_argument& e) {
-      std::string why = e.what();
-      fail(at, field, why.substr(why.find(':') + 2));
+      fail(at, field, without_function_prefix(e.what()));
     }
     if (p.j > n) fail(at, field, "pair " + p.name() + " is outside bodies 1.." + std::to_string(n));
     return p;

@@ -4,10 +4,9 @@
 
 #include <stdexcept>
 
+#include "superball/cases/paper_data.hpp"
+
 namespace superball {
-namespace detail {
-extern const char* const vocabulary_toml;  // generated from cases/paper/vocabulary.toml
-}
 
 namespace {
 [[noreturn]] void bad(const std::string& origin, const std::string& what) {
@@ -57,7 +56,7 @@ Vocabulary Vocabulary::parse(const std::string& text, const std::string& origin)
 }
 
 const Vocabulary& Vocabulary::paper() {
-  static const Vocabulary v = parse(detail::vocabulary_toml, "cases/paper/vocabulary.toml");
+  static const Vocabulary v = parse(detail::paper_file("vocabulary.toml"), "cases/paper/vocabulary.toml");
   return v;
 }
 

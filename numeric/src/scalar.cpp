@@ -5,6 +5,7 @@
 #include <cln/rational_io.h>
 #include <cln/real_io.h>
 #include <cln/rational_ring.h>
+#include <cln/integer_io.h>
 
 #include <cmath>
 #include <cstdio>
@@ -98,6 +99,41 @@ std::string to_string(const cln::cl_RA& x, int) {
   std::ostringstream os;
   cln::fprint(os, x);
   return os.str();
+}
+
+std::string to_decimal(const cln::cl_RA& x, int significant) {
+  if (significant < 1) throw std::invalid_argument("to_decimal(): significant digits must be >= 1");
+  if (cln::zerop(x)) return "0";
+  const bool negative = cln::minusp(x);
+  const cln::cl_RA ax = negative ? cln::cl_RA(-x) : x;
+  // e = floor(log10 |x|): 10^e <= |x| < 10^(e+1)
+  long e = 0;
+  cln::cl_RA p = 1;
+  while (p * 10 <= ax) p = p * 10, ++e;
+  while (p > ax) p = p / 10, --e;
+  // digits = round(|x| / 10^(e - significant + 1)), as an integer
+  cln::cl_RA scale = 1;
+  for (long k = 0; k < std::labs(e - significant + 1); ++k) scale = scale * 10;
+  const cln::cl_RA scaled = e - significant + 1 >= 0 ? ax / scale : ax * scale;
+  cln::cl_I digits = cln::floor1(scaled + cln::cl_RA(1) / 2);
+  std::ostringstream ds;
+  cln::fprint(ds, digits);
+  std::string d = ds.str();
+  if (static_cast<int>(d.size()) > significant) {  // rounding carried into a new digit
+    d.pop_back();
+    ++e;
+  }
+  std::string out;
+  if (e < -4 || e >= significant) {
+    out = d.substr(0, 1) + (d.size() > 1 ? "." + d.substr(1) : "") + "e" + (e < 0 ? "-" : "+") + (std::labs(e) < 10 ? "0" : "") +
+          std::to_string(std::labs(e));
+  } else if (e >= 0) {
+    out = d.substr(0, static_cast<std::size_t>(e + 1));
+    if (static_cast<int>(d.size()) > e + 1) out += "." + d.substr(static_cast<std::size_t>(e + 1));
+  } else {
+    out = "0." + std::string(static_cast<std::size_t>(-e - 1), '0') + d;
+  }
+  return (negative ? "-" : "") + out;
 }
 
 cln::cl_RA parse_rational(const std::string& fraction) {

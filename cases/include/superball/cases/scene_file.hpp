@@ -4,18 +4,12 @@
 /// numerical admissibility (M positive semi-definite) is checked by the
 /// numeric backend at its entry point.
 
-#include <stdexcept>
 #include <string>
 
+#include "superball/cases/error.hpp"
 #include "superball/cases/model.hpp"
 
 namespace superball {
-
-/// An input error: one line "FILE:LINE:COL: FIELD: what is wrong".
-class InputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// Largest scene file read (bytes).  A scene is a few hundred bytes; long
 /// chains are generated, not listed.

@@ -87,6 +87,11 @@ std::string to_string(long double x, int significant = 21);
 std::string to_string(const cln::cl_R& x, int significant = 0);
 std::string to_string(const cln::cl_RA& x, int significant = 0);
 
+/// \p x rounded to \p significant decimal digits, exactly (round half away
+/// from zero), in scientific notation when the exponent is below -4 or at
+/// least \p significant: "13.41", "-1.741e-05".
+std::string to_decimal(const cln::cl_RA& x, int significant);
+
 /// Parse a rational "p/q" or integer written by superball::Number::fraction().
 cln::cl_RA parse_rational(const std::string& fraction);
 

@@ -1,0 +1,40 @@
+// Time per collision solve for the paper scene (§4.4, alpha_2 reading) in
+// each arithmetic.  The solver is constructed once and reused, as in a sweep.
+#include <benchmark/benchmark.h>
+
+#include "superball/cases/scene_file.hpp"
+#include "superball/numeric/collision.hpp"
+
+namespace {
+
+using namespace superball;
+
+const numeric::ExactScene& paper_scene() {
+  static const numeric::ExactScene s = numeric::ExactScene::from(load_scene(SUPERBALL_SCENES_DIR "/paper-4.4-alpha2.toml"));
+  return s;
+}
+
+template <class S>
+void BM_Solve(benchmark::State& state) {
+  const int digits = static_cast<int>(state.range(0));
+  const auto problem = numeric::Problem<S>::from(paper_scene(), digits);
+  numeric::CollisionSolver<S> solver(numeric::Settings<S>::defaults(digits));
+  numeric::Solution<S> out;
+  solver.compute(problem, out);
+  for (auto _ : state) {
+    solver.compute(problem, out);
+    benchmark::DoNotOptimize(out.velocities_after.data());
+  }
+  if (out.status != numeric::Status::Success) state.SkipWithError("the solve did not succeed");
+}
+
+BENCHMARK_TEMPLATE(BM_Solve, double)->Arg(0)->Name("solve/paper/double");
+BENCHMARK_TEMPLATE(BM_Solve, long double)->Arg(0)->Name("solve/paper/long-double");
+BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(20)->Name("solve/paper/digits:20");
+BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(50)->Name("solve/paper/digits:50");
+BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(100)->Name("solve/paper/digits:100");
+BENCHMARK_TEMPLATE(BM_Solve, cln::cl_RA)->Arg(0)->Name("solve/paper/exact");
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,31 @@
+# Shared by scripts/reproduce.sh and scripts/test.sh: install Debian 12's
+# packages, configure and build.  Source it; it sets BUILD_DIR.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
+
+PACKAGES=(
+  build-essential cmake pkg-config                      # toolchain
+  libginac-dev libcln-dev libeigen3-dev                 # symbolic and numeric backends
+  libtomlplusplus-dev nlohmann-json3-dev libcli11-dev   # scene files, JSON, command line
+  libgtest-dev libbenchmark-dev                         # tests and benchmarks
+  texlive-latex-base gnuplot-nox python3-sympy          # LaTeX check, plots, the SymPy reference
+)
+
+install_packages() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  echo "installing: ${missing[*]}"
+  $sudo apt-get update -q
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+}
+
+configure_and_build() {
+  cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "$@"
+  cmake --build "$BUILD_DIR" -j "$(nproc)"
+}
