@@ -123,11 +123,13 @@ std::string to_decimal(const cln::cl_RA& x, int significant) {
     d.pop_back();
     ++e;
   }
+  while (d.size() > 1 && d.back() == '0') d.pop_back();  // trailing zeros say nothing here
   std::string out;
   if (e < -4 || e >= significant) {
     out = d.substr(0, 1) + (d.size() > 1 ? "." + d.substr(1) : "") + "e" + (e < 0 ? "-" : "+") + (std::labs(e) < 10 ? "0" : "") +
           std::to_string(std::labs(e));
   } else if (e >= 0) {
+    if (static_cast<int>(d.size()) < e + 1) d += std::string(static_cast<std::size_t>(e + 1) - d.size(), '0');
     out = d.substr(0, static_cast<std::size_t>(e + 1));
     if (static_cast<int>(d.size()) > e + 1) out += "." + d.substr(static_cast<std::size_t>(e + 1));
   } else {

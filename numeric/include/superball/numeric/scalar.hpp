@@ -88,8 +88,8 @@ std::string to_string(const cln::cl_R& x, int significant = 0);
 std::string to_string(const cln::cl_RA& x, int significant = 0);
 
 /// \p x rounded to \p significant decimal digits, exactly (round half away
-/// from zero), in scientific notation when the exponent is below -4 or at
-/// least \p significant: "13.41", "-1.741e-05".
+/// from zero), without trailing zeros, in scientific notation when the
+/// exponent is below -4 or at least \p significant: "13.41", "-1.741e-05", "20".
 std::string to_decimal(const cln::cl_RA& x, int significant);
 
 /// Parse a rational "p/q" or integer written by superball::Number::fraction().
