@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 
+#include "superball/cases/error.hpp"
 #include "superball/cases/paper_data.hpp"
 
 namespace superball {
@@ -22,33 +23,44 @@ Vocabulary Vocabulary::parse(const std::string& text, const std::string& origin)
   } catch (const toml::parse_error& e) {
     bad(origin, std::string(e.description()));
   }
+  auto pair = [&](const toml::node& node, const std::string& where) {
+    try {
+      return Pair::parse(node.value_or(std::string()));
+    } catch (const std::invalid_argument& e) {
+      bad(origin, where + ": " + without_function_prefix(e.what()));
+    }
+  };
   v.bodies_ = root["bodies"].value_or(0);
   if (v.bodies_ < 2) bad(origin, "bodies must be >= 2");
-  if (const auto* cases = root["case"].as_array()) {
-    for (const auto& node : *cases) {
+  if (const toml::node* cases = root.get("case")) {
+    const toml::array* list = cases->as_array();
+    if (!list || !list->is_array_of_tables()) bad(origin, "case must be an array of tables [[case]]");
+    for (const auto& node : *list) {
       const auto& t = *node.as_table();
       NamedCase c{t["name"].value_or(std::string()), ContactSet(v.bodies_), t["description"].value_or(std::string())};
-      if (const auto* closed = t["closed"].as_array())
-        for (const auto& p : *closed) c.closed = [&] {
-            ContactSet s = c.closed;
-            const Pair pair = Pair::parse(p.value_or(std::string()));
-            if (!pair.adjacent() || pair.j > v.bodies_) bad(origin, "case " + c.name + ": " + pair.name() + " is not a contact");
-            s.set_closed(pair.i - 1, true);
-            return s;
-          }();
+      if (c.name.empty()) bad(origin, "a case has no name");
+      const toml::array* closed = t["closed"].as_array();
+      if (!closed) bad(origin, "case " + c.name + ": closed must be an array of contacts");
+      for (const auto& p : *closed) {
+        const Pair contact = pair(p, "case " + c.name);
+        if (!contact.adjacent() || contact.j > v.bodies_) bad(origin, "case " + c.name + ": " + contact.name() + " is not a contact");
+        c.closed.set_closed(contact.i - 1, true);
+      }
       for (const auto& other : v.cases_)
         if (other.closed == c.closed || other.name == c.name) bad(origin, "case " + c.name + " is listed twice");
       v.cases_.push_back(std::move(c));
     }
   }
-  if (const auto* alphas = root["alpha"].as_array()) {
-    for (const auto& node : *alphas) {
+  if (const toml::node* alphas = root.get("alpha")) {
+    const toml::array* list = alphas->as_array();
+    if (!list || !list->is_array_of_tables()) bad(origin, "alpha must be an array of tables [[alpha]]");
+    for (const auto& node : *list) {
       const auto& t = *node.as_table();
       const auto* pairs = t["pairs"].as_array();
       if (!pairs || pairs->size() != 2) bad(origin, "alpha needs two pairs");
-      NamedCoupling c{t["index"].value_or(0), Pair::parse((*pairs)[0].value_or(std::string())),
-                      Pair::parse((*pairs)[1].value_or(std::string()))};
-      if (c.index != static_cast<int>(v.alphas_.size()) + 1) bad(origin, "alphas must be numbered 1, 2, … in order");
+      const std::string where = "alpha " + std::to_string(v.alphas_.size() + 1);
+      NamedCoupling c{t["index"].value_or(0), pair((*pairs)[0], where), pair((*pairs)[1], where)};
+      if (c.index != static_cast<int>(v.alphas_.size()) + 1) bad(origin, "alphas must be numbered 1, 2, ... in order");
       v.alphas_.push_back(c);
     }
   }

@@ -5,15 +5,35 @@
 #include <stdexcept>
 
 namespace superball::numeric {
-namespace {
-
-/// The evolution case of the exact solution at \p value.
-ContactSet exact_case(const Scene& scene, const Parameter& parameter, const cln::cl_RA& value) {
-  const auto exact = ExactScene::from(with_value(scene, parameter, value));
-  return solve(Problem<cln::cl_RA>::from(exact)).closed;
+ExactPoint solve_exact_at(const Scene& scene, const Parameter& parameter, const cln::cl_RA& value) {
+  auto problem = Problem<cln::cl_RA>::from(ExactScene::from(with_value(scene, parameter, value)));
+  auto solution = solve(problem);
+  return {std::move(problem), std::move(solution)};
 }
 
-}  // namespace
+std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
+                                       const Label& label, int bits) {
+  std::vector<LabelChange> out;
+  auto at = [&](const cln::cl_RA& v) { return label(solve_exact_at(scene, parameter, v)); };
+  std::string previous = values.empty() ? "" : at(values.front());
+  for (std::size_t k = 1; k < values.size(); ++k) {
+    LabelChange c{values[k - 1], values[k], previous, at(values[k])};
+    previous = c.above;
+    if (c.below == c.above) continue;
+    for (int b = 0; b < bits; ++b) {
+      const cln::cl_RA mid = (c.low + c.high) / 2;
+      const std::string l = at(mid);
+      if (l == c.below) {
+        c.low = mid;
+      } else {
+        c.high = mid;
+        c.above = l;
+      }
+    }
+    out.push_back(c);
+  }
+  return out;
+}
 
 std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, int steps) {
   if (steps < 2) throw std::invalid_argument("linspace(): a sweep needs at least 2 steps");
@@ -51,25 +71,13 @@ std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, co
 
 std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<SweepPoint>& points,
                                        int bits) {
+  std::vector<cln::cl_RA> values;
+  for (const auto& p : points) values.push_back(p.value);
+  const Label by_case = [](const ExactPoint& e) { return e.solution.closed.to_string(); };
   std::vector<SwitchPoint> out;
-  for (std::size_t k = 1; k < points.size(); ++k) {
-    SwitchPoint s{points[k - 1].value, points[k].value, exact_case(scene, parameter, points[k - 1].value),
-                  exact_case(scene, parameter, points[k].value)};
-    if (s.below == s.above) continue;
-    for (int b = 0; b < bits; ++b) {
-      const cln::cl_RA mid = (s.low + s.high) / 2;
-      const ContactSet c = exact_case(scene, parameter, mid);
-      if (c == s.below) {
-        s.low = mid;
-      } else if (c == s.above) {
-        s.high = mid;
-      } else {  // a third case in between: keep the nearer change
-        s.high = mid;
-        s.above = c;
-      }
-    }
-    out.push_back(s);
-  }
+  for (const auto& c : label_changes(scene, parameter, values, by_case, bits))
+    out.push_back({c.low, c.high, solve_exact_at(scene, parameter, c.low).solution.closed,
+                   solve_exact_at(scene, parameter, c.high).solution.closed});
   return out;
 }
 

@@ -5,6 +5,8 @@
 
 #include <cln/rational.h>
 
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "superball/cases/parameter.hpp"
@@ -32,6 +34,30 @@ struct SweepPoint {
 /// Solve \p scene at each of \p values of \p parameter in \p precision.
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision);
+
+/// The exact solution (CLN rationals) of a scene at one parameter value.
+struct ExactPoint {
+  Problem<cln::cl_RA> problem;
+  Solution<cln::cl_RA> solution;
+};
+/// The exact solution of \p scene with \p parameter = \p value.
+ExactPoint solve_exact_at(const Scene& scene, const Parameter& parameter, const cln::cl_RA& value);
+
+/// A property of the exact solution that a bisection tracks (the case, "is
+/// U1+ > a", …), as a label.
+using Label = std::function<std::string(const ExactPoint&)>;
+
+/// A change of label between two parameter values, bracketed by [low, high].
+struct LabelChange {
+  cln::cl_RA low, high;
+  std::string below, above;
+};
+
+/// Locate every change of \p label between consecutive \p values by bisection
+/// on the exact solution until the bracket is narrower than 2^-bits of the
+/// step.  Where a third label appears inside a bracket, the nearer change is kept.
+std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
+                                       const Label& label, int bits = 64);
 
 /// A change of evolution case between two parameter values: the case is
 /// `below` for values in [low, …) up to the switch and `above` after it;
