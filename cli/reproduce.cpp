@@ -1,13 +1,17 @@
-// `superball reproduce`: recompute the paper's numbers and write a report.
+// `superball reproduce`: recompute the paper's numbers and write a report
+// (report.md, report.tex, figures as PNG and SVG drawn by gnuplot).
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <sstream>
 
 #include "commands.hpp"
+#include "document.hpp"
+#include "gnuplot.hpp"
 #include "present.hpp"
 #include "superball/cases/printed.hpp"
 #include "superball/cases/scene_file.hpp"
@@ -21,11 +25,19 @@
 namespace superball::cli {
 namespace {
 
+const numeric::Precision exact_precision{numeric::Precision::Kind::Exact, 0};
+const numeric::Precision double_precision{numeric::Precision::Kind::Double, 0};
+
 /// Half a unit of the last digit printed in \p printed ("3.3069" -> 5e-5).
 double printed_half_ulp(const Number& printed) {
   const auto dot = printed.text.find('.');
   const int decimals = dot == std::string::npos ? 0 : static_cast<int>(printed.text.size() - dot - 1);
   return 0.5 * std::pow(10.0, -decimals);
+}
+
+/// Whether \p computed rounds to the printed digits of \p printed.
+bool matches_printed(double computed, const Number& printed) {
+  return std::fabs(computed - printed.approx()) <= printed_half_ulp(printed) * (1 + 1e-12);
 }
 
 std::string fixed(double x, int decimals) {
@@ -37,125 +49,205 @@ std::string fixed(double x, int decimals) {
 }
 
 std::string decimal(const cln::cl_RA& x, int digits) { return numeric::to_decimal(x, digits); }
+std::string decimal(double x, int digits) { return numeric::to_string(x, digits); }
 
-struct Section {
-  std::string markdown;
-  int matches = 0, total = 0;
+/// A report run: where the scenes are, where the report goes.
+struct Run {
+  std::string scenes, out;
+  Scene scene(const std::string& file) const { return load_scene(scenes + "/" + file); }
 };
 
-/// Eq. (16): both readings of §4.4, exact.
-Section eq16(const std::string& dir) {
+/// The values of a sweep and its curves U_i(parameter).
+struct Curves {
+  std::vector<double> x;
+  std::vector<std::vector<double>> u;  // u[i][k]: body i+1 at value k
+};
+
+Curves curves_of(const std::vector<numeric::SweepPoint>& points) {
+  Curves c;
+  for (const auto& p : points) {
+    c.x.push_back(cln::double_approx(p.value));
+    if (c.u.size() < p.velocities_after.size()) c.u.resize(p.velocities_after.size());
+    for (std::size_t i = 0; i < p.velocities_after.size(); ++i) c.u[i].push_back(p.velocities_after[i]);
+  }
+  return c;
+}
+
+/// Eq. (16): both readings of §4.4, exact, and every single-alpha placement.
+void eq16(const Run& run, Document& doc) {
   const PrintedNumbers& printed = PrintedNumbers::paper();
-  const numeric::Precision exact{numeric::Precision::Kind::Exact, 0};
   const char* files[] = {"paper-4.4-as-printed.toml", "paper-4.4-alpha2.toml"};
   std::vector<Presented> runs;
-  for (const char* f : files) runs.push_back(solve_scene(load_scene(dir + "/" + f), exact));
-  Section s;
-  std::ostringstream os;
-  os << "## Eq. (16): velocities after the collision, §" << printed.eq16_section << "\n\n"
-     << "Exact solves (CLN rationals) of the two readings of §4.4: the coupling -100 on alpha_4 as printed, "
-        "and on alpha_2.  A value matches when it rounds to the paper's printed digits.\n\n"
-     << "| body | paper | as printed (alpha_4 = -100) | match | alpha_2 = -100 | match |\n|---|---|---|---|---|---|\n";
+  for (const char* f : files) runs.push_back(solve_scene(run.scene(f), exact_precision));
+  doc.heading("Eq. (16): velocities after the collision, §" + printed.eq16_section);
+  doc.paragraph(
+      "Exact solves (CLN rationals) of two readings of §4.4: the coupling -100 on alpha_4 as printed "
+      "(`paper-4.4-as-printed.toml`), and on alpha_2 (`paper-4.4-alpha2.toml`).  A velocity matches when it rounds to "
+      "the paper's printed digits.");
+  std::vector<std::vector<std::string>> rows;
   std::vector<int> matches(runs.size(), 0);
   for (std::size_t i = 0; i < printed.eq16_velocities.size(); ++i) {
     const Number& p = printed.eq16_velocities[i];
-    os << "| " << i + 1 << " | " << p.text;
+    std::vector<std::string> row{"U" + std::to_string(i + 1) + "+ (m/s)", p.text};
     for (std::size_t r = 0; r < runs.size(); ++r) {
-      const double v = runs[r].after[i];
-      const bool ok = std::fabs(v - p.approx()) <= printed_half_ulp(p) * (1 + 1e-12);
+      const bool ok = matches_printed(runs[r].after[i], p);
       matches[r] += ok;
-      os << " | " << numeric::to_string(v, 8) << " | " << (ok ? "yes" : "**no**");
+      row.push_back(decimal(runs[r].after[i], 8));
+      row.push_back(ok ? "yes" : "**no**");
     }
-    os << " |\n";
+    rows.push_back(row);
   }
-  os << "| case | " << printed.eq16_case;
-  for (const auto& r : runs) os << " | " << r.case_name << " | " << (r.case_name == printed.eq16_case ? "yes" : "**no**");
-  os << " |\n\n";
+  std::vector<std::string> case_row{"case", printed.eq16_case};
+  for (const auto& r : runs) {
+    case_row.push_back(r.case_name);
+    case_row.push_back(r.case_name == printed.eq16_case ? "yes" : "**no**");
+  }
+  rows.push_back(case_row);
+  doc.table({"", "paper", "alpha_4 = -100 (as printed)", "match", "alpha_2 = -100", "match"}, rows);
+  std::vector<std::string> notes;
   for (std::size_t r = 0; r < runs.size(); ++r)
-    os << "- `" << runs[r].origin << "`: " << matches[r] << " of " << printed.eq16_velocities.size()
-       << " velocities match the printed digits; U1+ exact = " << runs[r].after_text[0] << "; superball: "
-       << (runs[r].superball ? "yes" : "no") << ".\n";
-  os << "\nWhich single coupling of M carries the -100?  Every alpha_k = +-100 in place of alpha_4 = -100, the rest "
-        "as printed, exact solves:\n\n| coupling | value | M positive semi-definite | velocities matching eq. (16) | case |\n"
-        "|---|---|---|---|---|\n";
-  const Scene printed_scene = load_scene(dir + "/" + files[0]);
-  const Vocabulary& vocab = Vocabulary::paper();
-  for (const auto& alpha : vocab.alphas())
+    notes.push_back("`" + runs[r].origin + "`: " + std::to_string(matches[r]) + " of " +
+                    std::to_string(printed.eq16_velocities.size()) + " velocities match; exact U1+ = " + runs[r].after_text[0] +
+                    " m/s; superball: " + (runs[r].superball ? "yes" : "no") + ".");
+  doc.bullets(notes);
+
+  doc.paragraph("Which single coupling carries the -100?  Every alpha_k = +-100 in place of alpha_4 = -100, the rest as "
+                "printed, exact solves:");
+  rows.clear();
+  const Scene printed_scene = run.scene(files[0]);
+  for (const auto& alpha : Vocabulary::paper().alphas())
     for (const char* value : {"-100", "100"}) {
       Scene scene = printed_scene;
       scene.entries.erase(std::remove_if(scene.entries.begin(), scene.entries.end(), [](const MatrixEntry& e) { return !e.diagonal(); }),
                           scene.entries.end());
       Parameter::parse("alpha." + std::to_string(alpha.index), scene).set(scene, Number::parse(value));
-      os << "| alpha_" << alpha.index << " | " << value << " | ";
+      std::vector<std::string> row{"alpha_" + std::to_string(alpha.index), value};
       try {
-        const Presented r = solve_scene(scene, exact);
+        const Presented r = solve_scene(scene, exact_precision);
         int m = 0;
-        for (std::size_t i = 0; i < printed.eq16_velocities.size(); ++i)
-          m += std::fabs(r.after[i] - printed.eq16_velocities[i].approx()) <= printed_half_ulp(printed.eq16_velocities[i]) * (1 + 1e-12);
-        os << "yes | " << m << " of " << printed.eq16_velocities.size() << " | " << r.case_name << " |\n";
-      } catch (const InputError& e) {
-        os << "no | - | - |\n";
+        for (std::size_t i = 0; i < printed.eq16_velocities.size(); ++i) m += matches_printed(r.after[i], printed.eq16_velocities[i]);
+        row.insert(row.end(), {"yes", std::to_string(m) + " of " + std::to_string(printed.eq16_velocities.size()), r.case_name});
+      } catch (const InputError&) {
+        row.insert(row.end(), {"no", "-", "-"});
       }
+      rows.push_back(row);
     }
-  os << '\n';
-  s.markdown = os.str();
-  s.matches = matches.back() == static_cast<int>(printed.eq16_velocities.size());
-  s.total = 1;
-  return s;
+  doc.table({"coupling", "value", "M positive semi-definite", "velocities matching eq. (16)", "case"}, rows);
 }
 
-/// Fig. 7: switch points along K34 for both readings, beside the printed ones.
-Section fig7(const std::string& dir) {
+/// Fig. 5: U1+ against alpha_2 (alpha_5 = 0) and against alpha_5 (alpha_2 = 0).
+void fig5(const Run& run, Document& doc) {
+  doc.heading("Fig. 5: U1+ against alpha_2 and against alpha_5, §4.3");
+  Plot plot{"Fig. 5: velocity of ball 1 after the collision", "coupling alpha_k (kg)", "U_1^+ (m/s)", false, false,
+            "inside bottom center box opaque spacing 1.4", {}, {}};
+  std::vector<std::vector<std::string>> rows;
+  double a = 0;
+  for (const auto& [file, key, pair_a, pair_b] :
+       {std::tuple<const char*, const char*, const char*, const char*>{"paper-fig5-alpha2.toml", "alpha.2", "K.1-2", "K.1-4"},
+        {"paper-fig5-alpha5.toml", "alpha.5", "K.1-4", "K.2-4"}}) {
+    const Scene scene = run.scene(file);
+    const Parameter p = Parameter::parse(key, scene);
+    // The range where M stays positive semi-definite: alpha^2 <= K_a K_b, kept 0.1 % inside.
+    double ka = 0, kb = 0;
+    for (const auto& e : scene.entries)
+      if (e.diagonal()) {
+        if ("K." + e.first.name() == pair_a) ka = e.value.approx();
+        if ("K." + e.first.name() == pair_b) kb = e.value.approx();
+      }
+    const cln::cl_RA limit = cln::rational(cln::floor1(cln::rational(cln::cl_float(std::sqrt(ka * kb) * 0.999)) * 10)) / 10;
+    const auto values = numeric::linspace(-limit, limit, 401);
+    const auto points = numeric::sweep(scene, p, values, double_precision);
+    const Curves c = curves_of(points);
+    const auto exact = numeric::ExactScene::from(scene);
+    a = std::sqrt(cln::double_approx(*exact.a_squared));
+    plot.series.push_back({"U_1^+ against " + std::string(key == std::string("alpha.2") ? "alpha_2 (alpha_5 = 0)" : "alpha_5 (alpha_2 = 0)"),
+                           c.x, c.u[0], false});
+    const numeric::Label superball = [](const numeric::ExactPoint& e) {
+      return e.solution.velocities_after[0] > -e.problem.u[0] ? std::string("U1+ > a") : std::string("U1+ <= a");
+    };
+    for (const auto& change : numeric::label_changes(scene, p, values, superball)) {
+      const cln::cl_RA mid = (change.low + change.high) / 2;
+      rows.push_back({"`" + std::string(file) + "`", key, decimal(mid, 6), change.below + " -> " + change.above});
+      plot.markers.push_back({cln::double_approx(mid), p.key() + " = " + decimal(mid, 4), true, true, 0.97, false});
+    }
+  }
+  plot.markers.push_back({a, "a = " + decimal(a, 6) + " m/s", false, false, 0.97, false});
+  draw(run.out, "fig5", plot);
+  doc.paragraph("Parameters of §4.3 (m1 = 0.001, m2 = m3 = 15, m4 = 5e6 kg, K12 = 7, K23 = 1, K13 = 5, K24 = 13, K34 = 12, "
+                "K14 = 1500, a = 3.13209 m/s), each coupling swept over the range where M stays positive semi-definite "
+                "(401 values, double), and the superball threshold U1+ = a located by bisection on the exact solution:");
+  doc.table({"scene", "coupling", "U1+ = a at", "change"}, rows);
+  doc.figure("fig5", "U1+ against alpha_2 (alpha_5 = 0) and against alpha_5 (alpha_2 = 0); the horizontal line is U1+ = a.");
+  doc.paragraph("As the paper says, both couplings produce the superball; alpha_2 must be negative and alpha_5 positive "
+                "(read the thresholds above).");
+}
+
+/// Fig. 7: U1+, U2+, U3+ against K34 with the switch points, both readings.
+void fig7(const Run& run, Document& doc) {
   const PrintedNumbers& printed = PrintedNumbers::paper();
   const Vocabulary& v = Vocabulary::paper();
-  std::ostringstream os;
-  os << "## Fig. 7: where the evolution case changes along K34, §4.4\n\n"
-     << "`superball sweep SCENE --vary K.3-4=0:20:401 --switch-points`: bisection on the exact solution "
-        "between sweep values of different cases.\n\n"
-     << "| scene | paper | computed switch K34 | cases | relative difference |\n|---|---|---|---|---|\n";
-  Section s;
+  doc.heading("Fig. 7: where the evolution case changes along K34, §4.4");
+  doc.paragraph("`superball sweep SCENE --vary K.3-4=0:20:401 --switch-points`: bisection on the exact solution between "
+                "sweep values of different cases, beside the values the paper reads off its Fig. 7.");
+  std::vector<std::vector<std::string>> rows;
   for (const char* f : {"paper-4.4-as-printed.toml", "paper-4.4-alpha2.toml"}) {
-    const Scene scene = load_scene(dir + "/" + f);
+    const Scene scene = run.scene(f);
     const Parameter k34 = Parameter::parse("K.3-4", scene);
-    const auto points = numeric::sweep(scene, k34, numeric::linspace(0, 20, 401), {numeric::Precision::Kind::Double, 0});
+    const auto points = numeric::sweep(scene, k34, numeric::linspace(0, 20, 401), double_precision);
     const auto switches = numeric::switch_points(scene, k34, points);
+    const bool alpha2 = std::string(f) == "paper-4.4-alpha2.toml";
+    Plot plot{std::string("Fig. 7: velocities after the collision against K_{34} (") + (alpha2 ? "alpha_2" : "alpha_4") +
+                  " = -100)",
+              "K_{34} (kg)", "velocity after the collision (m/s)", false, false, "inside center right box opaque spacing 1.4", {}, {}};
+    const Curves c = curves_of(points);
+    for (int i = 0; i < 3; ++i) plot.series.push_back({"U_" + std::to_string(i + 1) + "^+", c.x, c.u[i], false});
+    for (const auto& sw : switches) {
+      const cln::cl_RA mid = (sw.low + sw.high) / 2;
+      plot.markers.push_back({cln::double_approx(mid), "switch " + decimal(mid, 4) + " (" + v.case_name(sw.below) + " -> " +
+                                                           v.case_name(sw.above) + ")", true, false, 0.97, false});
+    }
     for (const auto& p : printed.switches) {
-      os << "| `" << f << "` | " << p.value.text << " (case " << p.case_name << ") | ";
+      plot.markers.push_back({p.value.approx(), "paper: " + p.value.text, true, true, 0.6, true});
+      std::vector<std::string> row{"`" + std::string(f) + "`", p.value.text + " (case " + p.case_name + ")"};
       const numeric::SwitchPoint* found = nullptr;
       for (const auto& sw : switches)
         if (v.case_name(sw.below) == p.case_name || v.case_name(sw.above) == p.case_name) found = &sw;
       if (!found) {
-        os << "none in 0..20 | - | - |\n";
-        continue;
+        row.insert(row.end(), {"none in 0..20", "-", "-"});
+      } else {
+        const cln::cl_RA mid = (found->low + found->high) / 2;
+        row.insert(row.end(), {decimal(mid, 4) + " (" + decimal(mid, 15) + ")",
+                               v.case_name(found->below) + " -> " + v.case_name(found->above),
+                               fixed(100 * (cln::double_approx(mid) - p.value.approx()) / p.value.approx(), 2) + " %"});
       }
-      const cln::cl_RA mid = (found->low + found->high) / 2;
-      os << decimal(mid, 4) << " (" << decimal(mid, 15) << ") | " << v.case_name(found->below) << " -> "
-         << v.case_name(found->above) << " | " << fixed(100 * (cln::double_approx(mid) - p.value.approx()) / p.value.approx(), 2)
-         << " % |\n";
-      ++s.total;
+      rows.push_back(row);
     }
+    draw(run.out, alpha2 ? "fig7-alpha2" : "fig7-as-printed", plot);
   }
-  os << '\n';
-  s.markdown = os.str();
-  return s;
+  doc.table({"scene", "paper", "computed switch K34", "cases", "relative difference"}, rows);
+  doc.figure("fig7-alpha2", "U1+, U2+, U3+ against K34 with alpha_2 = -100 (the reading that reproduces eq. 16); solid lines: "
+                            "computed switch points, dashed: the paper's values.");
+  doc.figure("fig7-as-printed", "The same with alpha_4 = -100 as printed: balls 2 and 3 never stay together for K34 <= 20.");
 }
 
 /// §4.1: the epsilon family, exact, obstacle of infinite mass.
-Section epsilon_family(const std::string& dir) {
-  const Scene base = load_scene(dir + "/paper-4.1-family.toml");
+void epsilon_family(const Run& run, Document& doc) {
+  const Scene base = run.scene("paper-4.1-family.toml");
   const Vocabulary& v = Vocabulary::paper();
-  std::ostringstream os;
-  os << "## The epsilon family of §4.1 (case 1, alpha_2 = -1, m4 = infinity, a = 1)\n\n"
-     << "K12 = -alpha2 (1 - eps + eps^2), K13 = -alpha2 eps^2, K14 = -alpha2 (1 + eps), m1 = -alpha2 eps^3; "
-        "other parameters from `cases/scenes/paper-4.1-family.toml`.  Exact solves.\n\n"
-     << "| eps | case | U1+/a exact | U1+/a | 1/(2 eps) | U1+ / (a/(2 eps)) |\n|---|---|---|---|---|---|\n";
-  Section s;
+  doc.heading("The epsilon family of §4.1 (case 1, alpha_2 = -1, m4 = infinity, a = 1)");
+  doc.paragraph("K12 = -alpha2 (1 - eps + eps^2), K13 = -alpha2 eps^2, K14 = -alpha2 (1 + eps), m1 = -alpha2 eps^3; the other "
+                "parameters from `cases/scenes/paper-4.1-family.toml`.  Exact solves.");
+  std::vector<std::vector<std::string>> rows;
+  Plot plot{"Sec. 4.1: U_1^+/a against 1/(2 eps)", "1/(2 eps)", "U_1^+ / a", true, true, "inside top left box opaque spacing 1.4", {}, {}};
+  Series computed{"U_1^+/a, exact solve", {}, {}, true}, claim_line{"U_1^+ = a/(2 eps) (paper)", {}, {}, false};
   for (int k = 1; k <= 6; ++k) {
     cln::cl_RA eps = 1;
     for (int j = 0; j < k; ++j) eps = eps / 10;
     Scene scene = base;
     const cln::cl_RA alpha2 = -1;
-    auto set = [&](const std::string& key, const cln::cl_RA& x) { Parameter::parse(key, scene).set(scene, Number::parse(numeric::to_string(x))); };
+    auto set = [&](const std::string& key, const cln::cl_RA& x) {
+      Parameter::parse(key, scene).set(scene, Number::parse(numeric::to_string(x)));
+    };
     set("K.1-2", -alpha2 * (1 - eps + eps * eps));
     set("K.1-3", -alpha2 * eps * eps);
     set("K.1-4", -alpha2 * (1 + eps));
@@ -165,15 +257,19 @@ Section epsilon_family(const std::string& dir) {
     const auto sol = numeric::solve(problem);
     const cln::cl_RA u1 = sol.velocities_after[0] * problem.unit;
     const cln::cl_RA claim = 1 / (2 * eps);
-    os << "| 1e-" << k << " | " << v.case_name(sol.closed) << " | " << numeric::to_string(u1) << " | " << decimal(u1, 10) << " | "
-       << decimal(claim, 10) << " | " << decimal(u1 / claim, 10) << " |\n";
-    s.total++;
-    s.matches += v.case_name(sol.closed) == "1";
+    rows.push_back({"1e-" + std::to_string(k), v.case_name(sol.closed), numeric::to_string(u1), decimal(u1, 10), decimal(claim, 10),
+                    decimal(u1 / claim, 10)});
+    computed.x.push_back(cln::double_approx(claim));
+    computed.y.push_back(cln::double_approx(u1));
+    claim_line.x.push_back(cln::double_approx(claim));
+    claim_line.y.push_back(cln::double_approx(claim));
   }
-  os << "\nThe ratio tends to 1 as eps -> 0: U1+ = a/(2 eps) holds to leading order (the exact value of the paper's "
-        "formula on this family is a (1 - eps^2) / (eps (2 + eps)) = a/(2 eps) - a/4 + O(eps)).\n\n";
-  s.markdown = os.str();
-  return s;
+  plot.series = {claim_line, computed};
+  draw(run.out, "epsilon", plot);
+  doc.table({"eps", "case", "U1+/a exact", "U1+/a", "1/(2 eps)", "U1+ / (a/(2 eps))"}, rows);
+  doc.figure("epsilon", "U1+/a against 1/(2 eps), log-log: the exact solves lie on the paper's line.");
+  doc.paragraph("The ratio tends to 1 as eps -> 0: U1+ = a/(2 eps) holds to leading order; the paper's own case-1 formula gives "
+                "exactly a (1 - eps^2) / (eps (2 + eps)) = a/(2 eps) - a/4 + O(eps) on this family.");
 }
 
 /// cases/scenes below the working folder when there is one (paths in the
@@ -186,28 +282,28 @@ std::string default_scenes() {
 }  // namespace
 
 void add_reproduce(CLI::App& app, Action& action) {
-  struct Options {
-    std::string out = "report", scenes = default_scenes();
-  };
-  auto o = std::make_shared<Options>();
-  CLI::App* cmd = app.add_subcommand("reproduce", "Recompute the paper's numbers (eq. 16, Fig. 7, §4.1) and write a report");
+  auto o = std::make_shared<Run>(Run{default_scenes(), "report"});
+  CLI::App* cmd = app.add_subcommand("reproduce", "Recompute the paper's numbers and figures and write a report");
   cmd->footer(
-      "Every number in the report is computed by this run from the scene files in --scenes; the paper's\n"
-      "printed numbers (cases/paper/printed-numbers.toml) are shown beside them for comparison only.\n\n"
-      "Example:\n  superball reproduce --out report   # writes report/report.md and prints it");
+      "Writes OUT/report.md, OUT/report.tex and the figures (PNG and SVG, with their gnuplot data and scripts).\n"
+      "Every number is computed by this run from the scene files in --scenes; the paper's printed numbers\n"
+      "(cases/paper/printed-numbers.toml) are shown beside them for comparison only.  Needs gnuplot.\n\n"
+      "Example:\n  superball reproduce --out report");
   cmd->add_option("--out,-o", o->out, "Report folder (created if missing)")->capture_default_str();
   cmd->add_option("--scenes", o->scenes, "Folder of the paper's scene files")->capture_default_str();
   cmd->callback([o, &action] {
     action = [o] {
-      std::ostringstream md;
-      md << "# superball reproduce: the paper's numbers recomputed\n\n"
-         << "Paper: Collision of four balls aligned (Fremond's theory).  Scenes: `" << o->scenes << "`.\n\n";
-      const Section sections[] = {eq16(o->scenes), fig7(o->scenes), epsilon_family(o->scenes)};
-      for (const auto& s : sections) md << s.markdown;
       if (::mkdir(o->out.c_str(), 0777) != 0 && errno != EEXIST)
-        throw std::runtime_error("reproduce: --out " + o->out + ": cannot create the folder");
-      write_file_atomically(o->out + "/report.md", md.str());
-      std::cout << md.str() << "(written to " << o->out << "/report.md)\n";
+        throw std::invalid_argument("--out " + o->out + ": cannot create the folder");
+      Document doc("superball reproduce: the paper's numbers recomputed");
+      doc.paragraph("Paper: Collision of four balls aligned (Fremond's theory of collisions).  Scenes: `" + o->scenes + "`.");
+      eq16(*o, doc);
+      fig5(*o, doc);
+      fig7(*o, doc);
+      epsilon_family(*o, doc);
+      write_file_atomically(o->out + "/report.tex", doc.latex());
+      write_file_atomically(o->out + "/report.md", doc.markdown());
+      std::cout << doc.markdown() << "(written to " << o->out << "/report.md and report.tex)\n";
       return ok;
     };
   });
