@@ -1,9 +1,11 @@
 #include "present.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
+#include "gnuplot.hpp"
 #include "superball/cases/vocabulary.hpp"
 
 namespace superball::cli {
@@ -62,7 +64,26 @@ Presented present(const Scene& scene, const numeric::ExactScene& exact, const nu
 
 Presented solve_scene(const Scene& scene, const numeric::Precision& precision) {
   const auto exact = numeric::ExactScene::from(scene);
-  return numeric::with_scalar(precision, [&](auto tag) { return present(scene, exact, precision, tag); });
+  Presented p = numeric::with_scalar(precision, [&](auto tag) { return present(scene, exact, precision, tag); });
+  if (scene.flight.requested) {  // only the effects a scene calls for
+    p.g = scene.g.approx();
+    p.flight = numeric::free_flight(p.after, p.g);
+    double last = 0;
+    for (const auto& f : p.flight) last = std::max(last, f.landing_time);
+    p.flight_duration = scene.flight.duration ? scene.flight.duration->approx() : (last > 0 ? last : 1.0);
+  }
+  return p;
+}
+
+void draw_flight(const Presented& p, const std::string& dir) {
+  Plot plot{"Free flight after the collision (" + p.origin + ")", "time after the collision (s)", "height above the collision point (m)",
+            false, false, "inside top right box opaque spacing 1.4", {}, {}};
+  for (std::size_t i = 0; i < p.flight.size(); ++i) {
+    Series s{"body " + std::to_string(i + 1), {}, {}, false};
+    s.y = numeric::trajectory(p.flight[i], p.g, p.flight_duration, 400, &s.x);
+    plot.series.push_back(std::move(s));
+  }
+  draw(dir, "trajectories", plot);
 }
 
 nlohmann::json to_json(const Presented& p) {
@@ -94,6 +115,13 @@ nlohmann::json to_json(const Presented& p) {
   j["superball"] = p.superball;
   j["pivots"] = p.pivots;
   j["residuals"] = {{"motion", p.residual_motion}, {"complementarity", p.residual_complementarity}};
+  if (!p.flight.empty()) {
+    nlohmann::json f = nlohmann::json::array();
+    for (std::size_t i = 0; i < p.flight.size(); ++i)
+      f.push_back({{"body", i + 1}, {"velocity_after", p.flight[i].velocity}, {"apex_height", p.flight[i].apex_height},
+                   {"apex_time", p.flight[i].apex_time}, {"landing_time", p.flight[i].landing_time}});
+    j["flight"] = {{"g", p.g}, {"bodies", f}};
+  }
   return j;
 }
 
@@ -123,6 +151,13 @@ std::string to_text(const Presented& p) {
      << ", dissipated " << numeric::to_string(p.dissipation, 8) << '\n';
   os << "superball: " << (p.superball ? "yes" : "no") << " (U1+ = " << numeric::to_string(p.after[0], 6) << ", |U1-| = "
      << numeric::to_string(std::fabs(p.before[0]), 6) << ")\n";
+  if (!p.flight.empty()) {
+    os << "\nflight after the collision (g = " << numeric::to_string(p.g, 6) << " m/s^2; bodies fly freely, later collisions not modelled):\n"
+       << "  body    U+ (m/s)   apex height (m)   apex time (s)\n";
+    for (std::size_t i = 0; i < p.flight.size(); ++i)
+      os << "  " << std::setw(4) << i + 1 << "  " << std::setw(10) << numeric::to_string(p.flight[i].velocity, 6) << "  " << std::setw(16)
+         << numeric::to_string(p.flight[i].apex_height, 6) << "  " << std::setw(14) << numeric::to_string(p.flight[i].apex_time, 6) << '\n';
+  }
   return os.str();
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "superball/numeric/collision.hpp"
+#include "superball/numeric/flight.hpp"
 #include "superball/numeric/precision.hpp"
 
 namespace superball::cli {
@@ -23,6 +24,8 @@ struct Presented {
   double ke_before = 0, ke_after = 0, dissipation = 0, momentum_before = 0, momentum_after = 0;
   double residual_motion = 0, residual_complementarity = 0;
   bool exact = false;
+  std::vector<numeric::BodyFlight> flight;  ///< only when the scene asks for it ([flight])
+  double g = 9.81, flight_duration = 0;
 };
 
 /// Solve \p scene in \p precision and flatten the result.
@@ -30,5 +33,8 @@ Presented solve_scene(const Scene& scene, const numeric::Precision& precision);
 
 nlohmann::json to_json(const Presented& p);
 std::string to_text(const Presented& p);
+
+/// Draw the flights of \p p (which must have them) as DIR/trajectories.png and .svg.
+void draw_flight(const Presented& p, const std::string& dir);
 
 }  // namespace superball::cli

@@ -9,7 +9,7 @@ namespace superball::cli {
 
 void add_solve(CLI::App& app, Action& action) {
   struct Options {
-    std::string scene, precision = "double";
+    std::string scene, precision = "double", plot;
     bool json = false;
   };
   auto o = std::make_shared<Options>();
@@ -21,16 +21,22 @@ void add_solve(CLI::App& app, Action& action) {
       "Examples:\n"
       "  superball solve cases/scenes/paper-4.4-alpha2.toml\n"
       "  superball solve cases/scenes/paper-4.4-alpha2.toml --precision exact --json\n"
-      "  superball solve SCENE --precision digits:50");
+      "  superball solve SCENE --precision digits:50\n"
+      "  superball solve cases/scenes/paper-4.4-flight.toml --plot out   # apex heights, out/trajectories.png");
   cmd->add_option("scene", o->scene, "Scene file (TOML)")->required();
   cmd->add_option("--precision,-p", o->precision,
                   "Arithmetic: double (default), long-double, digits:N (CLN floats, N decimal digits), exact (CLN rationals)")
       ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON for programs instead of text");
+  cmd->add_option("--plot", o->plot, "Folder for the trajectory plot (scenes with a [flight] table)");
   cmd->callback([o, &action] {
     action = [o] {
       const auto precision = numeric::Precision::parse(o->precision);
-      const Presented p = solve_scene(load_scene(o->scene), precision);
+      const Scene scene = load_scene(o->scene);
+      if (!o->plot.empty() && !scene.flight.requested)
+        throw std::invalid_argument("--plot: " + o->scene + " has no [flight] table, so there is no flight to draw");
+      const Presented p = solve_scene(scene, precision);
+      if (!o->plot.empty()) draw_flight(p, o->plot);
       if (o->json)
         std::cout << to_json(p).dump(2) << '\n';
       else

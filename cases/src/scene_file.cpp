@@ -45,8 +45,13 @@ class SceneReader {
     if (auto d = root.get("dissipation")) read_dissipation(*d, scene);
     if (auto f = root.get("flight")) {
       if (!f->is_table()) fail(*f, "flight", "must be a table");
-      check_keys(*f->as_table(), "flight.", {});
+      check_keys(*f->as_table(), "flight.", {"duration"});
       scene.flight.requested = true;
+      if (const toml::node* d = f->as_table()->get("duration")) {
+        scene.flight.duration = number(*d, "flight.duration");
+        if (scene.flight.duration->is_negative() || scene.flight.duration->is_zero())
+          fail(*d, "flight.duration", "must be > 0 seconds (got " + scene.flight.duration->text + ")");
+      }
     }
     return scene;
   }

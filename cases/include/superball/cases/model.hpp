@@ -72,9 +72,11 @@ struct Body {
   std::optional<Number> velocity;  ///< velocity before the collision, if given
 };
 
-/// Optional flight after the collision (issue 4): what a scene asks for.
+/// The flight after the collision, computed only when a scene asks for it
+/// with a [flight] table: each body's free flight under gravity g.
 struct Flight {
   bool requested = false;
+  std::optional<Number> duration;  ///< seconds to draw; default: until the highest apex is passed twice over
 };
 
 /// A scene: the bodies and only the effects that are in play.
