@@ -1,23 +1,12 @@
 #include "superball/numeric/collision.hpp"
 
+#include "detail/complete.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace superball::numeric {
-namespace detail {
-
-template <class S>
-S abs_value(const S& x) {
-  return x < S(0) ? S(-x) : x;
-}
-
-template <class S>
-double to_double(const S& x) {
-  return ScalarTraits<S>::to_double(x);
-}
-
-}  // namespace detail
 
 const char* to_string(Status s) {
   switch (s) {
@@ -154,14 +143,10 @@ bool CollisionSolver<S>::pivot_on(int p) {
 }
 
 template <class S>
-void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out, bool imposed) const {
-  using detail::abs_value;
-  using detail::to_double;
+void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out, bool imposed) {
   out.velocities_after.resize(static_cast<std::size_t>(n_));
-  out.reactions.resize(static_cast<std::size_t>(nc_));
-  out.gaps.resize(static_cast<std::size_t>(nc_));
-  if (out.closed.bodies() != n_) out.closed = ContactSet(n_);
-  auto lambda = [&](int c) { return basic_lambda_[static_cast<std::size_t>(c)] ? t_(c) : S(0); };
+  lambda_.resize(static_cast<std::size_t>(nc_));
+  for (int c = 0; c < nc_; ++c) lambda_[static_cast<std::size_t>(c)] = basic_lambda_[static_cast<std::size_t>(c)] ? t_(c) : S(0);
   for (int i = 0; i < nf_; ++i) {
     S w = W0_(i);
     for (int c = 0; c < nc_; ++c)
@@ -169,59 +154,7 @@ void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out, bool impo
     out.velocities_after[static_cast<std::size_t>(i)] = w;
   }
   if (p.fixed_bottom) out.velocities_after[static_cast<std::size_t>(n_ - 1)] = p.u[n_ - 1];
-  const auto& W = out.velocities_after;
-  for (int c = 0; c < nc_; ++c) {
-    out.gaps[static_cast<std::size_t>(c)] = W[c] - W[c + 1];
-    out.reactions[static_cast<std::size_t>(c)] = basic_lambda_[static_cast<std::size_t>(c)] ? S(-lambda(c)) : S(0);
-    out.closed.set_closed(c, basic_lambda_[static_cast<std::size_t>(c)] ||
-                                 (!imposed && ScalarTraits<S>::exact && out.gaps[static_cast<std::size_t>(c)] == S(0)));
-  }
-  // Energies and momentum of the finite bodies; dissipation P·X from M and R.
-  out.kinetic_energy_before = out.kinetic_energy_after = out.momentum_before = out.momentum_after = S(0);
-  for (int i = 0; i < nf_; ++i) {
-    out.kinetic_energy_before += p.mass[i] * p.u[i] * p.u[i] / S(2);
-    out.kinetic_energy_after += p.mass[i] * W[i] * W[i] / S(2);
-    out.momentum_before += p.mass[i] * p.u[i];
-    out.momentum_after += p.mass[i] * W[i];
-  }
-  auto X = [&](int i, int j) { return (W[i] + p.u[i] - W[j] - p.u[j]) / S(2); };
-  S dissipation = S(0);
-  for (const Entry<S>& e : p.entries)
-    dissipation += (e.diagonal() ? S(2) : S(4)) * e.value * X(e.i, e.j) * X(e.k, e.l);
-  for (int c = 0; c < nc_; ++c) dissipation += out.reactions[static_cast<std::size_t>(c)] * X(c, c + 1);
-  out.dissipation = dissipation;
-
-  // Independent check, from the problem data: the equations of motion
-  // m(W − u) + K(W + u) − Cᵀλ = 0 on free bodies, and complementarity.
-  double motion = 0, comp = 0;
-  double vscale = 0, lscale = 0;
-  for (int i = 0; i < n_; ++i) vscale = std::max({vscale, std::fabs(to_double(W[i])), std::fabs(to_double(p.u[i]))});
-  for (int c = 0; c < nc_; ++c) lscale = std::max(lscale, std::fabs(to_double(lambda(c))));
-  for (int i = 0; i < nf_; ++i) {
-    S r = p.mass[i] * (W[i] - p.u[i]);
-    S size = abs_value<S>(p.mass[i] * W[i]) + abs_value<S>(p.mass[i] * p.u[i]);
-    for (int j = 0; j < n_; ++j) {
-      r += K_(i, j) * (W[j] + p.u[j]);
-      size += abs_value<S>(K_(i, j)) * (abs_value<S>(W[j]) + abs_value<S>(p.u[j]));
-    }
-    if (i < nc_) r -= lambda(i), size += abs_value<S>(lambda(i));
-    if (i > 0) r += lambda(i - 1), size += abs_value<S>(lambda(i - 1));
-    if (!(r == S(0))) motion = std::max(motion, to_double(abs_value<S>(r)) / std::max(to_double(size), 1e-300));
-  }
-  for (int c = 0; c < nc_; ++c) {
-    const double w = to_double(out.gaps[static_cast<std::size_t>(c)]), l = to_double(lambda(c));
-    const bool exact_zero = out.gaps[static_cast<std::size_t>(c)] == S(0);
-    if (basic_lambda_[static_cast<std::size_t>(c)]) {
-      if (!exact_zero) comp = std::max(comp, std::fabs(w) / std::max(vscale, 1e-300));
-      if (l < 0 && !imposed) comp = std::max(comp, -l / std::max(lscale, 1e-300));
-    } else if (w < 0 && !imposed) {
-      comp = std::max(comp, -w / std::max(vscale, 1e-300));
-    }
-  }
-  out.residual_motion = motion;
-  out.residual_complementarity = comp;
-  const double tol = to_double(settings_.residual);
-  if (out.status == Status::Success && (motion > tol || comp > tol)) out.status = Status::NumericalIssue;
+  detail::complete_solution(p, lambda_, basic_lambda_, imposed, settings_, check_, out);
 }
 
 template <class S>

@@ -23,6 +23,15 @@
 
 namespace superball::numeric {
 
+namespace detail {
+/// Scratch space of the residual check, kept by a solver between solves so
+/// that a solve does not allocate.
+template <class S>
+struct CheckWorkspace {
+  std::vector<S> residual, size;
+};
+}  // namespace detail
+
 /// How a solve ended (Eigen style: numerical outcomes are a status).
 enum class Status {
   Success,         ///< converged and the independent residual check passed
@@ -99,7 +108,7 @@ class CollisionSolver {
   void check(const Problem<S>& p) const;
   int pivot();
   bool pivot_on(int p);
-  void finish(const Problem<S>& p, Solution<S>& out, bool imposed) const;
+  void finish(const Problem<S>& p, Solution<S>& out, bool imposed);
 
   Settings<S> settings_ = Settings<S>::defaults();
   int n_ = 0, nf_ = 0, nc_ = 0;
@@ -111,6 +120,8 @@ class CollisionSolver {
   Matrix T_;          ///< the pivoting tableau (starts as N)
   Vector t_;          ///< its constant column (starts as q)
   std::vector<char> basic_lambda_;  ///< contact c: λ_c basic (closed)
+  std::vector<S> lambda_;           ///< λ on every contact, 0 where open
+  detail::CheckWorkspace<S> check_;  ///< scratch of the residual check
 };
 
 /// Convenience: the solution of \p problem with default settings.

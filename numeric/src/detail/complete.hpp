@@ -1,0 +1,34 @@
+#pragma once
+// Internal: what every solver does once it has the velocities after the
+// collision and the contact reactions — the derived quantities and the
+// independent residual check.
+
+#include <vector>
+
+#include "superball/numeric/collision.hpp"
+
+namespace superball::numeric::detail {
+
+template <class S>
+S abs_value(const S& x) {
+  return x < S(0) ? S(-x) : x;
+}
+
+template <class S>
+double to_double(const S& x) {
+  return ScalarTraits<S>::to_double(x);
+}
+
+/// Fill \p out from W = out.velocities_after (size n, already set) and
+/// λ = −R on contacts (\p lambda, 0 where open; \p active marks the contacts
+/// solved as closed): gaps, reactions, the case, energies, momentum,
+/// dissipation P·X, and the residual check computed from the problem data
+/// alone (the declared entries of M, not the solver's matrices):
+///   m(W − u) + DᵀMD(W + u) − Cᵀλ = 0 on the free bodies, and complementarity
+/// (skipped where \p imposed: the case was imposed, not solved for).
+/// Sets out.status to NumericalIssue when a residual exceeds settings.residual.
+template <class S>
+void complete_solution(const Problem<S>& p, const std::vector<S>& lambda, const std::vector<char>& active, bool imposed,
+                       const Settings<S>& settings, CheckWorkspace<S>& work, Solution<S>& out);
+
+}  // namespace superball::numeric::detail
