@@ -1,0 +1,196 @@
+#pragma once
+/// \file derivation.hpp
+/// One evolution case solved exactly (paper §2–§4, n bodies): velocities
+/// after the collision, reactions on the closed contacts and the conditions
+/// under which the case is the actual evolution and gives the superball.
+///
+/// Model (numeric/src/collision.cpp is the same model in numbers).  Bodies
+/// 1 (top) … n (bottom); before the collision u_i = −a for i < n and u_n = 0.
+/// With K = DᵀMD (D the pair incidence, M the dissipation matrix of §3) and
+/// A = diag(m) + K, the equations of motion (5) with the constitutive laws
+/// (6)–(12) read, for every body that is not a fixed obstacle,
+///     m_i (W_i − u_i) + Σ_j K_ij (W_j + u_j) = λ_i − λ_{i−1},
+/// W = U⁺ the velocities after, λ_c = −R_c the reaction on the contact
+/// (c, c+1), zero on open contacts.  A case closes some contacts: bodies
+/// joined by closed contacts form a cluster with one velocity.  With Z the
+/// cluster incidence, the velocities solve the reduced system
+///     (ZᵀAZ) V = Zᵀ(diag(m) u − K u),
+/// and the reaction on a closed contact is the running sum of the equations
+/// of its cluster from the cluster's top body down to the contact.
+
+#include <ginac/ginac.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "superball/cases/model.hpp"
+#include "superball/symbolic/pattern.hpp"
+#include "superball/symbolic/symbols.hpp"
+
+namespace superball::symbolic {
+
+/// The order in a small ε of each parameter (paper §4: m₁ very small, m₄ and
+/// K₁₄ very large): parameter p behaves like ε^order(p); unlisted ones are O(1).
+class Scaling {
+ public:
+  /// The paper's regime: m₁ ~ ε, m_n ~ 1/ε (finite obstacle only), K_1n ~ 1/ε
+  /// (when K_1n is declared).
+  static Scaling paper(const Symbols& symbols);
+  /// Parse "m1=1,m4=-1,K14=-1" (ASCII names, integer or rational orders) or
+  /// "none" (everything O(1)).  Throws std::invalid_argument("Scaling::parse(): ...")
+  /// for an unknown name or a malformed order.
+  static Scaling parse(const std::string& text, const Symbols& symbols);
+
+  /// The order of the symbol \p s (0 when unlisted).
+  GiNaC::numeric order(const Symbols& symbols, const GiNaC::ex& s) const;
+  /// "m₁ ~ ε, K₁₄ ~ ε^-1" in \p style ("m1 ~ eps^1" in ASCII, "m_{1} \sim \varepsilon^{1}" in LaTeX).
+  std::string describe(const Symbols& symbols, Style style) const;
+  /// The listed (ASCII name, order) entries.
+  const std::map<std::string, GiNaC::numeric>& entries() const { return order_; }
+
+ private:
+  std::map<std::string, GiNaC::numeric> order_;
+};
+
+/// What a condition says (paper §4).
+enum class ConditionKind {
+  Superball,  ///< U₁⁺ > a
+  Evolution,  ///< an open contact opens: U_i⁺ > U_{i+1}⁺
+  Contact,    ///< a closed contact does not interpenetrate: R ≤ 0
+  Psd         ///< a principal minor of M is >= 0 (K > 0 for a single pair)
+};
+const char* to_string(ConditionKind kind);
+
+/// The relation of a condition "P REL 0".
+enum class Relation { Greater, GreaterEqual };
+
+/// Whether a condition can hold: it depends on the parameters, or it holds
+/// (fails) for every admissible parameter (positive masses, K's and a).
+enum class Verdict { Depends, Always, Never };
+const char* to_string(Verdict v);
+
+/// One form of a condition: numerator / denominator REL 0, with the
+/// denominator 1 whenever its sign was proved and cleared.
+struct ConditionForm {
+  GiNaC::ex numerator = 0;    ///< an expanded polynomial
+  GiNaC::ex denominator = 1;  ///< 1, or a polynomial whose sign was not proved
+  Verdict verdict = Verdict::Depends;
+  bool sign_proved() const;   ///< denominator == 1
+};
+
+/// A condition on the parameters, in its exact and asymptotic forms.
+struct Condition {
+  ConditionKind kind = ConditionKind::Superball;
+  std::string about;  ///< "U1 > a", "2-3" (the contact), or "1-2,1-4" (the pairs of a minor)
+  Relation relation = Relation::Greater;
+  ConditionForm exact;                 ///< m_n = ∞ (for a finite obstacle: the limit m_n → ∞)
+  std::optional<ConditionForm> finite; ///< finite obstacle: the condition with m_n
+  ConditionForm asymptotic;            ///< the dominant balance (plus --order corrections)
+  GiNaC::numeric leading_order = 0;    ///< power of ε of the dominant balance
+  GiNaC::numeric descended = 0;        ///< orders of ε lost because the leading terms of the parts cancel
+  int orders_kept = 1;                 ///< number of orders of ε kept in `asymptotic`
+  std::string proof;                   ///< how the denominator's sign was proved, or "sign not proved: ..."
+  GiNaC::ex removed = 1;               ///< positive factor divided out of the numerator
+};
+
+/// A rational function numerator/denominator, normalised (gcd cancelled),
+/// the denominator positive on the admissible parameters when proved.
+struct Fraction {
+  GiNaC::ex numerator = 0, denominator = 1;
+  GiNaC::ex value() const { return numerator / denominator; }
+};
+
+/// One evolution case solved, checked and turned into conditions.
+struct Derivation {
+  std::shared_ptr<const Symbols> symbols;
+  ContactSet closed;
+  std::string case_name;             ///< the paper's name (n = 4) or "{2-3,3-4}"
+  std::vector<Fraction> velocities;  ///< U₁⁺ … U_n⁺
+  std::vector<Fraction> reactions;   ///< R on contact (c, c+1), 0 where open
+  GiNaC::ex determinant;             ///< det(ZᵀAZ), > 0 (1 when no body is free)
+  int free_clusters = 0;             ///< size of the reduced system
+  std::vector<Condition> conditions; ///< superball, evolution, contact, then psd
+  std::string check;                 ///< what the substitution check verified
+};
+
+/// Solves evolution cases for one pattern and one obstacle, with the
+/// asymptotic regime and order used for the asymptotic forms.
+class Deriver {
+ public:
+  /// \p scaling defaults to Scaling::paper(); \p order >= 0 is the number of
+  /// correction orders kept beyond the dominant balance.  Throws
+  /// std::invalid_argument("Deriver::Deriver(): ...") for order < 0.
+  Deriver(const Pattern& pattern, Obstacle obstacle, std::optional<Scaling> scaling = std::nullopt, int order = 0);
+
+  /// Solve the case \p closed (paper §4): reduced system (ZᵀAZ)V = Zᵀb by
+  /// fraction-free determinants (Cramer with det(ZᵀAZ) > 0), reactions by
+  /// running sums, every result substituted back into the unreduced equations
+  /// (throws std::logic_error("Deriver::derive(): ...") if a residual is not
+  /// zero), then the conditions.  Throws std::invalid_argument for a case of
+  /// another number of bodies.
+  Derivation derive(const ContactSet& closed) const;
+  /// All 2^(n−1) cases, mask order (bit c closes contact (c+1, c+2)).
+  std::vector<Derivation> derive_all() const;
+
+  const Symbols& symbols() const { return *symbols_; }
+  std::shared_ptr<const Symbols> shared_symbols() const { return symbols_; }
+  const Scaling& scaling() const { return scaling_; }
+  int order() const { return order_; }
+  /// The positive semi-definiteness conditions of M for the pattern (§3):
+  /// one principal minor >= 0 per connected set of pairs of the coupling
+  /// graph (a minor on a disconnected set is the product of its parts), so
+  /// together they are equivalent to M ⪰ 0; a single pair reads K_p > 0 as
+  /// in the paper.
+  const std::vector<Condition>& psd() const { return psd_; }
+
+  /// The asymptotic form of the polynomial condition \p p: the terms of the
+  /// lowest ε-orders (1 + order() of them), positive factors removed.
+  /// \p leading receives the lowest order.
+  GiNaC::ex asymptotic(const GiNaC::ex& p, GiNaC::numeric* leading = nullptr) const;
+
+ private:
+  Condition make_condition(ConditionKind kind, const std::string& about, Relation relation, const GiNaC::ex& raw,
+                           const GiNaC::ex& determinant, const std::vector<GiNaC::ex>& parts) const;
+  void build_psd();
+
+  std::shared_ptr<const Symbols> symbols_;
+  Scaling scaling_;
+  int order_ = 0;
+  std::vector<Condition> psd_;
+};
+
+/// The ε-order of the expanded polynomial \p p (lowest over its terms) under
+/// \p scaling; throws std::invalid_argument("epsilon_order(): ...") for p = 0.
+GiNaC::numeric epsilon_order(const GiNaC::ex& p, const Symbols& symbols, const Scaling& scaling);
+
+/// Polynomials with more terms than this are not factorised by
+/// strip_positive_factors() (multivariate factorisation would dominate the
+/// cost of a derivation; the content and the common monomial are still removed).
+inline constexpr std::size_t max_factor_terms = 40;
+
+/// \p p with its positive factors divided out: the positive rational content,
+/// the monomial of positive symbols common to every term, and (for at most
+/// max_factor_terms terms) every irreducible factor that is a sum of terms
+/// with positive coefficients in positive symbols and even powers of
+/// couplings.  \p removed receives the product divided out (positive for
+/// all admissible parameters).
+GiNaC::ex strip_positive_factors(const GiNaC::ex& p, const Symbols& symbols, GiNaC::ex* removed = nullptr);
+
+/// Whether the expanded polynomial \p p is > 0 for every admissible
+/// parameter point (positive masses, K's, a; real couplings): every term has
+/// a positive coefficient, even powers of couplings, and one term has no coupling.
+bool certainly_positive(const GiNaC::ex& p, const Symbols& symbols);
+
+/// Whether the conditions "p REL 0" and "q REL 0" are the same: p/q is
+/// positive for every admissible parameter point (a positive rational times
+/// a product of positive symbols).
+bool same_condition(const GiNaC::ex& p, const GiNaC::ex& q, const Symbols& symbols);
+
+/// The reference point used to fix the sign of a factor of det(ZᵀAZ): every
+/// mass, K and a equal to 1, every coupling 0 (M = identity, positive definite).
+GiNaC::exmap reference_point(const Symbols& symbols);
+
+}  // namespace superball::symbolic

@@ -1,0 +1,59 @@
+#pragma once
+/// \file format.hpp
+/// Writing derivations the way a person writes them: a condition "P > 0"
+/// becomes an inequality with positive-coefficient terms on both sides
+/// (−α₂ > 2m₁ + K₁₂ + K₁₃), a velocity a fraction with its common factor in
+/// front (a(K₁₄ + α₂ − m₁)/(m₁ + …)).  Text uses Unicode subscripts, LaTeX is
+/// written here term by term (GiNaC would print relations literally), ASCII
+/// is GiNaC's default printing with the names m1, K12, alpha2, c_12_14, a.
+/// Every function prints to a local stream: no global print state changes.
+
+#include <ginac/ginac.h>
+
+#include <string>
+#include <vector>
+
+#include "superball/symbolic/derivation.hpp"
+#include "superball/symbolic/symbols.hpp"
+
+namespace superball::symbolic {
+
+/// The expanded polynomial \p p in \p style: terms with positive
+/// coefficients first, each group in the order masses, K's, couplings, a.
+/// ASCII is GiNaC's default printing.  Throws std::invalid_argument
+/// ("format_polynomial(): ...") when \p p is not a polynomial in \p symbols.
+std::string format_polynomial(const GiNaC::ex& p, const Symbols& symbols, Style style);
+
+/// The normalised fraction \p f: numerator with its rational content and
+/// common monomial in front, "/" or \\frac, parentheses where needed.
+std::string format_fraction(const Fraction& f, const Symbols& symbols, Style style);
+
+/// The condition "\p p REL 0" as an inequality (paper §4 style).  Rule:
+/// positive-coefficient terms on the left, the others (negated) on the
+/// right; when the right side is the shorter one (or as short and holding
+/// the couplings) the sides swap and the relation turns (m₁ < K₁₄ + α₂);
+/// when no term is positive the couplings stay on the left with their sign
+/// (−α₂ > 2m₁ + K₁₂ + K₁₃).  ASCII gives "EXPR > 0" (GiNaC printing).
+std::string format_condition(const GiNaC::ex& p, Relation relation, const Symbols& symbols, Style style);
+
+/// A condition form, with its unproved denominator if it has one
+/// ("(N)/(D) > 0 (sign of the denominator not proved)").
+std::string format_condition(const ConditionForm& form, Relation relation, const Symbols& symbols, Style style);
+
+/// U₁⁺ (text), U_{1}^{+} (LaTeX), U1 (ASCII).
+std::string velocity_name(int body, Style style);
+/// R₂₃ (text), R_{23} (LaTeX), R2_3 (ASCII): the reaction on contact \p contact.
+std::string reaction_name(const Pair& contact, Style style);
+/// What the condition says in words: "superball (U₁⁺ > a)", "contact 2-3 stays closed (R₂₃ ≤ 0)", …
+std::string condition_title(const Condition& c, Style style);
+
+/// A full report of \p d in Text or Latex style (a LaTeX fragment: use
+/// latex_document() for a compilable file).  Throws std::invalid_argument
+/// ("report(): ...") for Style::Ascii (use JSON for programs).
+std::string report(const Derivation& d, const Deriver& deriver, Style style);
+
+/// A standalone LaTeX document (article class, amsmath) with the reports of
+/// \p derivations; compiles with texlive-latex-base.
+std::string latex_document(const std::vector<Derivation>& derivations, const Deriver& deriver);
+
+}  // namespace superball::symbolic

@@ -1,0 +1,475 @@
+#include "superball/symbolic/derivation.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <sstream>
+#include <stdexcept>
+
+#include "polynomial.hpp"
+#include "superball/cases/vocabulary.hpp"
+
+namespace superball::symbolic {
+namespace {
+
+std::string show(const GiNaC::ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str();
+}
+
+std::string order_text(const GiNaC::numeric& k, Style style) {
+  std::ostringstream os;
+  os << k;
+  if (style == Style::Latex) return "\\varepsilon^{" + os.str() + "}";
+  if (style == Style::Text) return "ε^" + os.str();
+  return "eps^" + os.str();
+}
+
+/// Polynomial `p` with the lowest ε-orders kept: (order, polynomial) per level, ascending.
+std::vector<std::pair<GiNaC::numeric, GiNaC::ex>> levels(const GiNaC::ex& p, const Symbols& symbols, const Scaling& scaling) {
+  std::vector<std::pair<GiNaC::numeric, GiNaC::ex>> out;
+  for (const detail::Term& t : detail::terms(GiNaC::expand(p))) {
+    GiNaC::numeric w = 0;
+    for (const auto& [s, e] : t.powers) w += scaling.order(symbols, s) * e;
+    auto it = std::find_if(out.begin(), out.end(), [&](const auto& level) { return level.first == w; });
+    if (it == out.end())
+      out.emplace_back(w, t.coefficient * t.monomial());
+    else
+      it->second += t.coefficient * t.monomial();
+  }
+  std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  return out;
+}
+
+Verdict verdict_of(const GiNaC::ex& p, Relation rel, const Symbols& symbols) {
+  if (p.is_zero()) return rel == Relation::GreaterEqual ? Verdict::Always : Verdict::Never;
+  if (rel == Relation::Greater ? certainly_positive(p, symbols) : detail::certainly_nonnegative(p, symbols)) return Verdict::Always;
+  if (rel == Relation::Greater ? detail::certainly_nonnegative(-p, symbols) : certainly_positive(-p, symbols)) return Verdict::Never;
+  return Verdict::Depends;
+}
+
+/// Connected sets of vertices of an undirected graph (ESU enumeration, each
+/// set once), at most `cap` of them; returns false when the cap was hit.
+bool connected_sets(const std::vector<std::vector<int>>& adjacent, std::size_t cap, std::vector<std::vector<int>>& out) {
+  const int v = static_cast<int>(adjacent.size());
+  auto adjacent_to = [&](int x, int y) { return std::find(adjacent[x].begin(), adjacent[x].end(), y) != adjacent[x].end(); };
+  struct Frame {
+    std::vector<int> set, extension;
+  };
+  for (int root = 0; root < v; ++root) {
+    std::vector<Frame> stack{{{root}, {}}};
+    for (int w : adjacent[root])
+      if (w > root) stack.back().extension.push_back(w);
+    while (!stack.empty()) {
+      Frame f = std::move(stack.back());
+      stack.pop_back();
+      std::vector<int> sorted = f.set;
+      std::sort(sorted.begin(), sorted.end());
+      out.push_back(sorted);
+      if (out.size() >= cap) return false;
+      while (!f.extension.empty()) {
+        const int w = f.extension.back();
+        f.extension.pop_back();
+        Frame next{f.set, f.extension};
+        next.set.push_back(w);
+        for (int u : adjacent[w]) {
+          if (u <= root || std::find(f.set.begin(), f.set.end(), u) != f.set.end() ||
+              std::find(next.extension.begin(), next.extension.end(), u) != next.extension.end() || u == w)
+            continue;
+          bool exclusive = true;
+          for (int s : f.set) exclusive = exclusive && !adjacent_to(s, u);
+          if (exclusive) next.extension.push_back(u);
+        }
+        stack.push_back(std::move(next));
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+const char* to_string(ConditionKind kind) {
+  switch (kind) {
+    case ConditionKind::Superball: return "superball";
+    case ConditionKind::Evolution: return "evolution";
+    case ConditionKind::Contact: return "contact";
+    case ConditionKind::Psd: break;
+  }
+  return "psd";
+}
+
+const char* to_string(Verdict v) {
+  switch (v) {
+    case Verdict::Depends: return "depends";
+    case Verdict::Always: return "always";
+    case Verdict::Never: break;
+  }
+  return "never";
+}
+
+bool ConditionForm::sign_proved() const { return denominator.is_equal(GiNaC::ex(1)); }
+
+// ---------------------------------------------------------------- Scaling
+
+Scaling Scaling::paper(const Symbols& symbols) {
+  Scaling s;
+  const int n = symbols.bodies();
+  s.order_["m1"] = 1;
+  if (symbols.obstacle() == Obstacle::Finite) s.order_["m" + std::to_string(n)] = -1;
+  if (symbols.pattern().has_diagonal(Pair{1, n})) s.order_["K" + pair_code(Pair{1, n})] = -1;
+  return s;
+}
+
+Scaling Scaling::parse(const std::string& text, const Symbols& symbols) {
+  Scaling s;
+  if (text == "none" || text.empty()) return s;
+  std::size_t start = 0;
+  for (;;) {
+    const auto comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const auto eq = item.find('=');
+    if (eq == std::string::npos)
+      throw std::invalid_argument("Scaling::parse(): '" + item + "' is not NAME=ORDER (e.g. m1=1, K14=-1)");
+    const std::string name = item.substr(0, eq), value = item.substr(eq + 1);
+    try {
+      symbols.by_name(name);
+    } catch (const std::invalid_argument& e) {
+      const std::string why = e.what();
+      throw std::invalid_argument("Scaling::parse(): " + why.substr(why.find(':') + 2));
+    }
+    GiNaC::numeric order;
+    try {
+      const GiNaC::ex v = GiNaC::parser()(value);
+      if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_rational()) throw std::invalid_argument("");
+      order = GiNaC::ex_to<GiNaC::numeric>(v);
+    } catch (const std::exception&) {
+      throw std::invalid_argument("Scaling::parse(): the order of " + name + " must be a rational number (got '" + value + "')");
+    }
+    if (s.order_.count(name)) throw std::invalid_argument("Scaling::parse(): " + name + " is given twice");
+    s.order_[name] = order;
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return s;
+}
+
+GiNaC::numeric Scaling::order(const Symbols& symbols, const GiNaC::ex& s) const {
+  const auto it = order_.find(symbols.info(s).ascii);
+  return it == order_.end() ? GiNaC::numeric(0) : it->second;
+}
+
+std::string Scaling::describe(const Symbols& symbols, Style style) const {
+  if (order_.empty()) return style == Style::Latex ? "\\text{all parameters } O(1)" : "all parameters O(1)";
+  std::string out;
+  for (const SymbolInfo& s : symbols.all()) {
+    const auto it = order_.find(s.ascii);
+    if (it == order_.end()) continue;
+    out += (out.empty() ? "" : ", ") + s.name(style) + (style == Style::Latex ? " \\sim " : " ~ ") + order_text(it->second, style);
+  }
+  return out + (style == Style::Latex ? ",\\ \\text{others } O(1)" : ", others O(1)");
+}
+
+// ---------------------------------------------------------------- Deriver
+
+Deriver::Deriver(const Pattern& pattern, Obstacle obstacle, std::optional<Scaling> scaling, int order)
+    : symbols_(std::make_shared<const Symbols>(pattern, obstacle)), order_(order) {
+  if (order < 0) throw std::invalid_argument("Deriver::Deriver(): the order must be >= 0 (got " + std::to_string(order) + ")");
+  scaling_ = scaling ? *scaling : Scaling::paper(*symbols_);
+  build_psd();
+}
+
+GiNaC::ex Deriver::asymptotic(const GiNaC::ex& p, GiNaC::numeric* leading) const {
+  const auto ls = levels(p, *symbols_, scaling_);
+  if (ls.empty()) {
+    if (leading) *leading = 0;
+    return 0;
+  }
+  if (leading) *leading = ls.front().first;
+  GiNaC::ex kept = 0;
+  for (std::size_t k = 0; k < ls.size() && k <= static_cast<std::size_t>(order_); ++k) kept += ls[k].second;
+  const GiNaC::ex stripped = strip_positive_factors(kept, *symbols_);
+  if (!GiNaC::is_a<GiNaC::numeric>(stripped)) return stripped;
+  // A constant says "always" (or "never"); the dominant terms say why (K₁₄ > 0).
+  GiNaC::numeric content = 0, denominators = 1;
+  for (const detail::Term& t : detail::terms(kept)) {
+    content = GiNaC::gcd(content, t.coefficient.numer());
+    denominators = GiNaC::lcm(denominators, t.coefficient.denom());
+  }
+  return GiNaC::expand(kept * denominators / content);
+}
+
+Condition Deriver::make_condition(ConditionKind kind, const std::string& about, Relation relation, const GiNaC::ex& raw,
+                                  const GiNaC::ex& determinant, const std::vector<GiNaC::ex>& parts) const {
+  const Symbols& sy = *symbols_;
+  Condition c;
+  c.kind = kind;
+  c.about = about;
+  c.relation = relation;
+  // raw / det(ZᵀAZ) in lowest terms (at most one numer_denom per condition).
+  auto [numerator, denominator] = detail::lowest_terms(raw, determinant, sy);
+  ConditionForm form;
+  if (GiNaC::is_a<GiNaC::numeric>(denominator)) {
+    numerator = numerator * GiNaC::ex_to<GiNaC::numeric>(denominator).csgn();
+    c.proof = "the denominator is a positive number";
+    if (!GiNaC::is_a<GiNaC::numeric>(determinant))
+      c.proof = "det(Z^T A Z) cancels: no denominator is left";
+  } else if (GiNaC::ex q; denominator.is_equal(determinant) || GiNaC::divide(determinant, denominator, q)) {
+    const GiNaC::numeric at_ref = detail::evaluate(denominator, reference_point(sy));
+    if (at_ref.is_zero()) throw std::logic_error("Deriver::derive(): a factor of det(Z^T A Z) vanishes at the reference point");
+    numerator = numerator * at_ref.csgn();
+    c.proof = std::string("the denominator divides det(Z^T A Z), which is > 0 (Z^T A Z is positive definite: A = diag(m) + D^T M D ") +
+              "with m > 0 and M positive semi-definite, Z the cluster incidence of full rank); a factor of a polynomial that never " +
+              "vanishes on the connected set of admissible parameters keeps one sign there: " + (at_ref.is_positive() ? "+" : "-") +
+              ", its sign at m = K = a = 1, couplings = 0";
+  } else if (certainly_positive(denominator, sy)) {
+    c.proof = "the denominator has only positive terms in positive parameters";
+  } else {
+    c.proof = "sign not proved: the denominator " + show(denominator) + " is kept";
+  }
+  const bool proved = c.proof.rfind("sign not proved", 0) != 0;
+  if (proved) {
+    form.numerator = strip_positive_factors(numerator, sy, &c.removed);
+    form.denominator = 1;
+  } else {
+    form.numerator = GiNaC::expand(numerator);
+    form.denominator = GiNaC::expand(denominator);
+  }
+  form.verdict = proved ? verdict_of(form.numerator, relation, sy) : Verdict::Depends;
+  if (sy.obstacle() == Obstacle::Finite) {
+    // m_n → ∞: for m_n large the sign is that of the leading coefficient in m_n.
+    const GiNaC::ex& mn = sy.mass(sy.bodies());
+    c.finite = form;
+    ConditionForm limit;
+    limit.numerator = form.numerator.is_zero() ? GiNaC::ex(0)
+                                               : strip_positive_factors(form.numerator.lcoeff(mn), sy);
+    limit.denominator = proved ? GiNaC::ex(1) : GiNaC::expand(form.denominator.lcoeff(mn));
+    limit.verdict = proved ? verdict_of(limit.numerator, relation, sy) : Verdict::Depends;
+    c.exact = limit;
+  } else {
+    c.exact = form;
+  }
+  // Asymptotic form of the exact (m_n = ∞) condition.
+  c.asymptotic.denominator = c.exact.denominator.is_equal(1) ? GiNaC::ex(1) : asymptotic(c.exact.denominator);
+  c.asymptotic.numerator = asymptotic(c.exact.numerator, &c.leading_order);
+  c.asymptotic.verdict = c.asymptotic.sign_proved() ? verdict_of(c.asymptotic.numerator, relation, sy) : Verdict::Depends;
+  c.orders_kept = 1 + order_;
+  // Did the leading orders of the parts cancel (the paper's superball condition)?
+  const GiNaC::ex raw_e = GiNaC::expand(raw);
+  if (!raw_e.is_zero()) {
+    const GiNaC::numeric whole = epsilon_order(raw_e, sy, scaling_);
+    GiNaC::numeric lowest = whole;
+    for (const GiNaC::ex& p : parts) {
+      const GiNaC::ex pe = GiNaC::expand(p);
+      if (pe.is_zero()) continue;
+      const GiNaC::numeric o = epsilon_order(pe, sy, scaling_);
+      if (o < lowest) lowest = o;
+    }
+    c.descended = whole - lowest;
+  }
+  return c;
+}
+
+void Deriver::build_psd() {
+  const Symbols& sy = *symbols_;
+  const std::vector<Pair> pairs = sy.pattern().pairs();
+  const int v = static_cast<int>(pairs.size());
+  auto index = [&](const Pair& p) { return static_cast<int>(std::find(pairs.begin(), pairs.end(), p) - pairs.begin()); };
+  std::vector<std::vector<int>> adjacent(static_cast<std::size_t>(v));
+  for (const auto& [p, q] : sy.pattern().couplings) {
+    adjacent[index(p)].push_back(index(q));
+    adjacent[index(q)].push_back(index(p));
+  }
+  std::vector<std::vector<int>> sets;
+  constexpr std::size_t cap = 4096;
+  if (!connected_sets(adjacent, cap, sets))
+    throw std::invalid_argument("Deriver::Deriver(): the coupling graph has more than " + std::to_string(cap) +
+                                " connected sets of pairs; too many principal minors to list");
+  std::sort(sets.begin(), sets.end(), [](const auto& x, const auto& y) { return x.size() != y.size() ? x.size() < y.size() : x < y; });
+  for (const auto& set : sets) {
+    const auto k = static_cast<unsigned>(set.size());
+    GiNaC::matrix m(k, k);
+    std::string about;
+    for (unsigned r = 0; r < k; ++r) {
+      about += (about.empty() ? "" : ",") + pairs[static_cast<std::size_t>(set[r])].name();
+      for (unsigned s = 0; s < k; ++s) m(r, s) = sy.entry(pairs[static_cast<std::size_t>(set[r])], pairs[static_cast<std::size_t>(set[s])]);
+    }
+    const GiNaC::ex minor = detail::determinant(m);
+    const Relation rel = k == 1 ? Relation::Greater : Relation::GreaterEqual;
+    if (minor.is_zero()) continue;  // an undeclared K alone: 0 >= 0
+    Condition c;
+    c.kind = ConditionKind::Psd;
+    c.about = about;
+    c.relation = rel;
+    c.exact.numerator = minor;
+    c.exact.verdict = verdict_of(minor, rel, sy);
+    c.proof = k == 1 ? "K is a positive symbol (the paper's K > 0)" : "principal minor of M on the pairs " + about + ", no denominator";
+    c.asymptotic.numerator = asymptotic(minor, &c.leading_order);
+    c.asymptotic.verdict = verdict_of(c.asymptotic.numerator, rel, sy);
+    c.orders_kept = 1 + order_;
+    if (sy.obstacle() == Obstacle::Finite) c.finite = c.exact;
+    psd_.push_back(std::move(c));
+  }
+}
+
+Derivation Deriver::derive(const ContactSet& closed) const {
+  const Symbols& sy = *symbols_;
+  const int n = sy.bodies();
+  if (closed.bodies() != n)
+    throw std::invalid_argument("Deriver::derive(): the case " + closed.to_string() + " is for " + std::to_string(closed.bodies()) +
+                                " bodies, the pattern has " + std::to_string(n));
+  const bool fixed = sy.obstacle() == Obstacle::Infinite;
+  const int free_bodies = fixed ? n - 1 : n;
+  const GiNaC::ex& a = sy.fall_speed();
+
+  // Clusters of bodies joined by closed contacts; with a fixed obstacle the
+  // bottom cluster does not move (velocity u_n = 0).
+  std::vector<int> cluster(static_cast<std::size_t>(n)), top(1, 0);
+  for (int i = 1; i < n; ++i) {
+    if (!closed.closed(i - 1)) top.push_back(i);
+    cluster[static_cast<std::size_t>(i)] = static_cast<int>(top.size()) - 1;
+  }
+  const int clusters = static_cast<int>(top.size());
+  const int fixed_cluster = fixed ? cluster[static_cast<std::size_t>(n - 1)] : -1;
+  const int k = fixed ? clusters - 1 : clusters;  // free clusters are 0..k-1 (the fixed one is the last)
+
+  // Data: K = DᵀMD (declared entries only), masses, u.
+  GiNaC::matrix K(static_cast<unsigned>(n), static_cast<unsigned>(n));
+  auto add_outer = [&](const Pair& p, const Pair& q, const GiNaC::ex& v) {
+    const int pi = p.i - 1, pj = p.j - 1, qi = q.i - 1, qj = q.j - 1;
+    auto at = [&](int r, int s) -> GiNaC::ex& { return K(static_cast<unsigned>(r), static_cast<unsigned>(s)); };
+    at(pi, qi) += v;
+    at(pi, qj) -= v;
+    at(pj, qi) -= v;
+    at(pj, qj) += v;
+  };
+  for (const Pair& p : sy.pattern().diagonal) add_outer(p, p, sy.diagonal(p));
+  for (const auto& [p, q] : sy.pattern().couplings) {
+    add_outer(p, q, sy.coupling(p, q));
+    add_outer(q, p, sy.coupling(p, q));
+  }
+  auto Kij = [&](int i, int j) { return K(static_cast<unsigned>(i), static_cast<unsigned>(j)); };
+  std::vector<GiNaC::ex> m(static_cast<std::size_t>(n), 0), u(static_cast<std::size_t>(n), 0);
+  for (int i = 0; i < free_bodies; ++i) m[static_cast<std::size_t>(i)] = sy.mass(i + 1);
+  for (int i = 0; i + 1 < n; ++i) u[static_cast<std::size_t>(i)] = -a;
+  const GiNaC::ex u_obstacle = u[static_cast<std::size_t>(n - 1)];
+
+  // Reduced system (ZᵀAZ) V = Zᵀb over the free clusters.
+  GiNaC::matrix B(static_cast<unsigned>(k), static_cast<unsigned>(k)), rhs(static_cast<unsigned>(k), 1);
+  for (int i = 0; i < free_bodies; ++i) {
+    const int ci = cluster[static_cast<std::size_t>(i)];
+    if (ci == fixed_cluster) continue;
+    GiNaC::ex r = m[static_cast<std::size_t>(i)] * u[static_cast<std::size_t>(i)];
+    for (int j = 0; j < n; ++j) {
+      r -= Kij(i, j) * u[static_cast<std::size_t>(j)];
+      const int cj = cluster[static_cast<std::size_t>(j)];
+      if (cj == fixed_cluster)
+        r -= Kij(i, j) * u_obstacle;  // W_j = u_n is known
+      else
+        B(static_cast<unsigned>(ci), static_cast<unsigned>(cj)) += Kij(i, j) + (i == j ? m[static_cast<std::size_t>(i)] : GiNaC::ex(0));
+    }
+    rhs(static_cast<unsigned>(ci), 0) += r;
+  }
+  const GiNaC::ex D = detail::determinant(B);
+  if (D.is_zero()) throw std::logic_error("Deriver::derive(): the reduced system of case " + closed.to_string() + " is singular");
+  // Cramer's rule, fraction-free: V_c = det(B with column c replaced by rhs) / D.
+  std::vector<GiNaC::ex> Wh(static_cast<std::size_t>(n));  // D · W
+  std::vector<GiNaC::ex> Vh(static_cast<std::size_t>(k));
+  for (int c = 0; c < k; ++c) {
+    GiNaC::matrix Bc = B;
+    for (int r = 0; r < k; ++r) Bc(static_cast<unsigned>(r), static_cast<unsigned>(c)) = rhs(static_cast<unsigned>(r), 0);
+    Vh[static_cast<std::size_t>(c)] = detail::determinant(Bc);
+  }
+  for (int i = 0; i < n; ++i) {
+    const int ci = cluster[static_cast<std::size_t>(i)];
+    Wh[static_cast<std::size_t>(i)] = ci == fixed_cluster ? GiNaC::ex(u_obstacle * D) : Vh[static_cast<std::size_t>(ci)];
+  }
+  // Row i of the equations of motion times D, without the reactions.
+  auto row = [&](int i, const std::vector<GiNaC::ex>& W) {
+    GiNaC::ex r = m[static_cast<std::size_t>(i)] * (W[static_cast<std::size_t>(i)] - u[static_cast<std::size_t>(i)] * D);
+    for (int j = 0; j < n; ++j) r += Kij(i, j) * (W[static_cast<std::size_t>(j)] + u[static_cast<std::size_t>(j)] * D);
+    return r;
+  };
+  // λ_c · D on closed contacts: running sums from the cluster's top body.
+  std::vector<GiNaC::ex> Lh(static_cast<std::size_t>(n - 1), 0), inertia(static_cast<std::size_t>(n - 1), 0),
+      dissipation(static_cast<std::size_t>(n - 1), 0);
+  for (int c = 0; c + 1 < n; ++c) {
+    if (!closed.closed(c)) continue;
+    GiNaC::ex in = 0, dis = 0;
+    for (int i = top[static_cast<std::size_t>(cluster[static_cast<std::size_t>(c)])]; i <= c; ++i) {
+      in += m[static_cast<std::size_t>(i)] * (Wh[static_cast<std::size_t>(i)] - u[static_cast<std::size_t>(i)] * D);
+      for (int j = 0; j < n; ++j) dis += Kij(i, j) * (Wh[static_cast<std::size_t>(j)] + u[static_cast<std::size_t>(j)] * D);
+    }
+    inertia[static_cast<std::size_t>(c)] = GiNaC::expand(in);
+    dissipation[static_cast<std::size_t>(c)] = GiNaC::expand(dis);
+    Lh[static_cast<std::size_t>(c)] = GiNaC::expand(in + dis);
+  }
+
+  Derivation out;
+  out.symbols = symbols_;
+  out.closed = closed;
+  out.case_name = Vocabulary::paper().case_name(closed);
+  out.determinant = D;
+  out.free_clusters = k;
+  const GiNaC::exmap ref = reference_point(sy);
+  auto normalise = [&](const GiNaC::ex& numerator) {
+    const auto [num, den] = detail::lowest_terms(numerator, D, sy);
+    Fraction f{num, den};
+    if (detail::evaluate(f.denominator, ref).is_negative()) f = {GiNaC::expand(-f.numerator), GiNaC::expand(-f.denominator)};
+    return f;
+  };
+  for (int i = 0; i < n; ++i) out.velocities.push_back(normalise(Wh[static_cast<std::size_t>(i)]));
+  for (int c = 0; c + 1 < n; ++c) out.reactions.push_back(closed.closed(c) ? normalise(-Lh[static_cast<std::size_t>(c)]) : Fraction{});
+
+  // Check: substitute the normalised results into the unreduced equations.
+  auto times_D = [&](const Fraction& f, const char* what) {
+    GiNaC::ex q = 1;
+    if (!f.denominator.is_equal(D) && !GiNaC::divide(D, f.denominator, q))
+      throw std::logic_error(std::string("Deriver::derive(): the denominator of ") + what + " does not divide det(Z^T A Z)");
+    return GiNaC::expand(f.numerator * q);
+  };
+  std::vector<GiNaC::ex> W(static_cast<std::size_t>(n)), L(static_cast<std::size_t>(n - 1));
+  for (int i = 0; i < n; ++i) W[static_cast<std::size_t>(i)] = times_D(out.velocities[static_cast<std::size_t>(i)], "a velocity");
+  for (int c = 0; c + 1 < n; ++c) L[static_cast<std::size_t>(c)] = -times_D(out.reactions[static_cast<std::size_t>(c)], "a reaction");
+  for (int i = 0; i < free_bodies; ++i) {
+    GiNaC::ex r = row(i, W);
+    if (i + 1 < n) r -= L[static_cast<std::size_t>(i)];
+    if (i > 0) r += L[static_cast<std::size_t>(i - 1)];
+    if (!GiNaC::normal(r).is_zero())
+      throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the equation of motion of body " + std::to_string(i + 1) +
+                             " is not satisfied by the solution (residual " + show(GiNaC::normal(r / D)) + ")");
+  }
+  for (int c = 0; c + 1 < n; ++c)
+    if (closed.closed(c) && !GiNaC::normal(W[static_cast<std::size_t>(c)] - W[static_cast<std::size_t>(c + 1)]).is_zero())
+      throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": contact " + Pair{c + 1, c + 2}.name() + " does not stay closed");
+  if (fixed && !GiNaC::normal(W[static_cast<std::size_t>(n - 1)] - u_obstacle * D).is_zero())
+    throw std::logic_error("Deriver::derive(): the fixed obstacle moves");
+  out.check = "substituted back: the " + std::to_string(free_bodies) +
+              " equations of motion with the reactions hold exactly (times det(Z^T A Z) they expand to 0), closed contacts keep equal "
+              "velocities" + std::string(fixed ? ", the obstacle stays at rest" : "");
+
+  // Conditions (paper §4).
+  out.conditions.push_back(make_condition(ConditionKind::Superball, "U1 > a", Relation::Greater, Wh[0] - a * D, D, {Wh[0], a * D}));
+  for (int c = 0; c + 1 < n; ++c)
+    if (!closed.closed(c))
+      out.conditions.push_back(make_condition(ConditionKind::Evolution, Pair{c + 1, c + 2}.name(), Relation::Greater,
+                                              Wh[static_cast<std::size_t>(c)] - Wh[static_cast<std::size_t>(c + 1)], D,
+                                              {Wh[static_cast<std::size_t>(c)], Wh[static_cast<std::size_t>(c + 1)]}));
+  for (int c = 0; c + 1 < n; ++c)
+    if (closed.closed(c))
+      out.conditions.push_back(make_condition(ConditionKind::Contact, Pair{c + 1, c + 2}.name(), Relation::GreaterEqual,
+                                              Lh[static_cast<std::size_t>(c)], D,
+                                              {inertia[static_cast<std::size_t>(c)], dissipation[static_cast<std::size_t>(c)]}));
+  out.conditions.insert(out.conditions.end(), psd_.begin(), psd_.end());
+  return out;
+}
+
+std::vector<Derivation> Deriver::derive_all() const {
+  const int n = symbols_->bodies();
+  if (n > 21) throw std::invalid_argument("Deriver::derive_all(): 2^(n-1) cases for n = " + std::to_string(n) + " is too many");
+  std::vector<Derivation> out;
+  for (std::uint64_t mask = 0; mask < (std::uint64_t{1} << (n - 1)); ++mask) out.push_back(derive(ContactSet::from_mask(mask, n)));
+  return out;
+}
+
+}  // namespace superball::symbolic

@@ -1,0 +1,223 @@
+#include "polynomial.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+#include "superball/symbolic/derivation.hpp"
+
+namespace superball::symbolic {
+namespace detail {
+namespace {
+
+std::string show(const GiNaC::ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str();
+}
+
+/// Multiply \p term by the factor \p f (a number, a symbol or a power of a symbol).
+void absorb(Term& term, const GiNaC::ex& f, const GiNaC::ex& whole) {
+  if (GiNaC::is_a<GiNaC::numeric>(f)) {
+    const auto& c = GiNaC::ex_to<GiNaC::numeric>(f);
+    if (!c.is_rational()) throw std::invalid_argument("terms(): coefficient " + show(f) + " of " + show(whole) + " is not rational");
+    term.coefficient *= c;
+  } else if (GiNaC::is_a<GiNaC::symbol>(f)) {
+    term.powers.emplace_back(f, 1);
+  } else if (GiNaC::is_a<GiNaC::power>(f) && GiNaC::is_a<GiNaC::symbol>(f.op(0)) && f.op(1).info(GiNaC::info_flags::posint)) {
+    term.powers.emplace_back(f.op(0), GiNaC::ex_to<GiNaC::numeric>(f.op(1)).to_int());
+  } else {
+    throw std::invalid_argument("terms(): '" + show(whole) + "' is not an expanded polynomial (factor " + show(f) + ")");
+  }
+}
+
+}  // namespace
+
+GiNaC::ex Term::monomial() const {
+  GiNaC::ex m = 1;
+  for (const auto& [s, e] : powers) m *= GiNaC::pow(s, e);
+  return m;
+}
+
+std::vector<Term> terms(const GiNaC::ex& p) {
+  std::vector<Term> out;
+  if (p.is_zero()) return out;
+  auto one = [&](const GiNaC::ex& t) {
+    Term term;
+    if (GiNaC::is_a<GiNaC::mul>(t))
+      for (std::size_t k = 0; k < t.nops(); ++k) absorb(term, t.op(k), p);
+    else
+      absorb(term, t, p);
+    out.push_back(std::move(term));
+  };
+  if (GiNaC::is_a<GiNaC::add>(p))
+    for (std::size_t k = 0; k < p.nops(); ++k) one(p.op(k));
+  else
+    one(p);
+  return out;
+}
+
+GiNaC::ex determinant(const GiNaC::matrix& m) {
+  if (m.rows() == 0) return 1;
+  return GiNaC::expand(m.determinant(GiNaC::determinant_algo::automatic));
+}
+
+GiNaC::numeric evaluate(const GiNaC::ex& p, const GiNaC::exmap& point) {
+  const GiNaC::ex v = p.subs(point, GiNaC::subs_options::no_pattern);
+  if (!GiNaC::is_a<GiNaC::numeric>(v)) throw std::logic_error("evaluate(): '" + show(p) + "' is not a number at the point (got " + show(v) + ")");
+  return GiNaC::ex_to<GiNaC::numeric>(v);
+}
+
+bool certainly_nonnegative(const GiNaC::ex& p, const Symbols& symbols) {
+  for (const Term& t : terms(GiNaC::expand(p))) {
+    if (!t.coefficient.is_positive()) return false;
+    for (const auto& [s, e] : t.powers)
+      if (symbols.is_coupling(s) && e % 2) return false;
+  }
+  return true;
+}
+
+bool coprime(const GiNaC::ex& p, const GiNaC::ex& q, const Symbols& symbols) {
+  const GiNaC::ex pe = GiNaC::expand(p), qe = GiNaC::expand(q);
+  if (pe.is_zero() || qe.is_zero()) return false;
+  if (GiNaC::is_a<GiNaC::numeric>(pe) || GiNaC::is_a<GiNaC::numeric>(qe)) return true;
+  std::vector<GiNaC::ex> shared;
+  for (const SymbolInfo& s : symbols.all())
+    if (pe.has(s.symbol) && qe.has(s.symbol)) shared.push_back(s.symbol);
+  static const int values[] = {3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97};
+  constexpr int count = sizeof(values) / sizeof(values[0]);
+  for (const GiNaC::ex& x : shared) {
+    const GiNaC::ex lc = qe.lcoeff(x);
+    bool done = false;
+    for (int attempt = 0; attempt < 3 && !done; ++attempt) {
+      GiNaC::exmap point;
+      int k = 0;
+      for (const SymbolInfo& s : symbols.all())
+        if (!s.symbol.is_equal(x)) point[s.symbol] = values[(k++ * 7 + attempt * 5 + 1) % count] + attempt;
+      if (lc.subs(point, GiNaC::subs_options::no_pattern).is_zero()) continue;
+      const GiNaC::ex g = GiNaC::gcd(GiNaC::expand(pe.subs(point, GiNaC::subs_options::no_pattern)),
+                                     GiNaC::expand(qe.subs(point, GiNaC::subs_options::no_pattern)));
+      if (g.degree(x) > 0) return false;
+      done = true;
+    }
+    if (!done) return false;
+  }
+  return true;
+}
+
+std::pair<GiNaC::ex, GiNaC::ex> lowest_terms(const GiNaC::ex& num, const GiNaC::ex& den, const Symbols& symbols) {
+  GiNaC::ex n = GiNaC::expand(num), d = GiNaC::expand(den);
+  if (n.is_zero()) return {0, 1};
+  if (!coprime(n, d, symbols)) {
+    const GiNaC::ex nd = GiNaC::numer_denom(n / d);
+    n = GiNaC::expand(nd.op(0));
+    d = GiNaC::expand(nd.op(1));
+  }
+  // Common rational content.
+  GiNaC::numeric top = 0, bottom = 1;
+  for (const GiNaC::ex* e : {&n, &d})
+    for (const Term& t : terms(*e)) {
+      top = GiNaC::gcd(top, t.coefficient.numer());
+      bottom = GiNaC::lcm(bottom, t.coefficient.denom());
+    }
+  const GiNaC::numeric c = top / bottom;
+  if (!c.is_zero() && !c.is_equal(1)) {
+    n = GiNaC::expand(n / c);
+    d = GiNaC::expand(d / c);
+  }
+  return {n, d};
+}
+
+}  // namespace detail
+
+bool certainly_positive(const GiNaC::ex& p, const Symbols& symbols) {
+  const GiNaC::ex e = GiNaC::expand(p);
+  if (!detail::certainly_nonnegative(e, symbols)) return false;
+  for (const detail::Term& t : detail::terms(e)) {
+    bool free_of_couplings = true;
+    for (const auto& pe : t.powers) free_of_couplings = free_of_couplings && !symbols.is_coupling(pe.first);
+    if (free_of_couplings) return true;
+  }
+  return false;
+}
+
+GiNaC::numeric epsilon_order(const GiNaC::ex& p, const Symbols& symbols, const Scaling& scaling) {
+  const auto ts = detail::terms(GiNaC::expand(p));
+  if (ts.empty()) throw std::invalid_argument("epsilon_order(): the zero polynomial has no order");
+  GiNaC::numeric lowest = 0;
+  bool first = true;
+  for (const detail::Term& t : ts) {
+    GiNaC::numeric w = 0;
+    for (const auto& [s, e] : t.powers) w += scaling.order(symbols, s) * e;
+    if (first || w < lowest) lowest = w;
+    first = false;
+  }
+  return lowest;
+}
+
+GiNaC::ex strip_positive_factors(const GiNaC::ex& p, const Symbols& symbols, GiNaC::ex* removed) {
+  GiNaC::ex e = GiNaC::expand(p);
+  GiNaC::ex gone = 1;
+  const auto ts = detail::terms(e);
+  if (ts.empty()) {
+    if (removed) *removed = 1;
+    return 0;
+  }
+  // Rational content (positive) and the common monomial of positive symbols.
+  GiNaC::numeric num = 0, den = 1;
+  for (const detail::Term& t : ts) {
+    num = GiNaC::gcd(num, t.coefficient.numer());
+    den = GiNaC::lcm(den, t.coefficient.denom());
+  }
+  GiNaC::ex monomial = 1;
+  for (const auto& [s, e0] : ts.front().powers) {
+    if (symbols.is_coupling(s)) continue;
+    int low = e0;
+    for (const detail::Term& t : ts) {
+      int here = 0;
+      for (const auto& [s2, e2] : t.powers)
+        if (s2.is_equal(s)) here = e2;
+      low = std::min(low, here);
+    }
+    if (low > 0) monomial *= GiNaC::pow(s, low);
+  }
+  gone = (num / den) * monomial;
+  GiNaC::ex q;
+  if (!GiNaC::divide(e, gone, q)) throw std::logic_error("strip_positive_factors(): the content does not divide the polynomial");
+  e = GiNaC::expand(q);
+  // Irreducible factors that are positive for every admissible point
+  // (factorisation only for small polynomials: it dominates the cost otherwise).
+  if (GiNaC::is_a<GiNaC::add>(e) && e.nops() <= max_factor_terms) {
+    const GiNaC::ex f = GiNaC::factor(e);
+    if (GiNaC::is_a<GiNaC::mul>(f)) {
+      GiNaC::ex kept = 1;
+      for (std::size_t k = 0; k < f.nops(); ++k) {
+        const GiNaC::ex& fk = f.op(k);
+        const GiNaC::ex base = GiNaC::is_a<GiNaC::power>(fk) ? fk.op(0) : fk;
+        if (!GiNaC::is_a<GiNaC::numeric>(base) && certainly_positive(base, symbols))
+          gone *= fk;
+        else
+          kept *= fk;
+      }
+      e = GiNaC::expand(kept);
+    }
+  }
+  if (removed) *removed = gone;
+  return e;
+}
+
+bool same_condition(const GiNaC::ex& p, const GiNaC::ex& q, const Symbols& symbols) {
+  if (p.is_zero() || q.is_zero()) return p.is_zero() && q.is_zero();
+  const GiNaC::ex nd = GiNaC::numer_denom(p / q);
+  const GiNaC::ex n = nd.op(0), d = nd.op(1);
+  return (certainly_positive(n, symbols) && certainly_positive(d, symbols)) ||
+         (certainly_positive(-n, symbols) && certainly_positive(-d, symbols));
+}
+
+GiNaC::exmap reference_point(const Symbols& symbols) {
+  GiNaC::exmap point;
+  for (const SymbolInfo& s : symbols.all()) point[s.symbol] = s.kind == SymbolKind::Coupling ? 0 : 1;
+  return point;
+}
+
+}  // namespace superball::symbolic
