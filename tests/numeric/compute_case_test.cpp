@@ -1,0 +1,137 @@
+// compute_case(): the collision solved with an evolution case imposed (the
+// paper's way, §4.1).  For the actual case it is compute(); for every other
+// case some sign condition fails (a gap < 0 on an open contact or a reaction
+// > 0 on a closed one) — the uniqueness of the solution.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+#include "support.hpp"
+
+namespace superball::testing {
+namespace {
+
+template <class S>
+class ComputeCase : public ::testing::Test {};
+TYPED_TEST_SUITE(ComputeCase, Scalars, ScalarNames);
+
+constexpr std::uint64_t kFirstSeed = 5000, kSeeds = 60;
+
+TYPED_TEST(ComputeCase, TheActualCaseGivesTheSolution) {
+  using S = TypeParam;
+  numeric::CollisionSolver<S> solver(numeric::Settings<S>::defaults(digits_of<S>()));
+  for (std::uint64_t seed = kFirstSeed; seed < kFirstSeed + kSeeds; ++seed) {
+    const RandomScene r = random_scene(seed, {2, 8});
+    SCOPED_TRACE(r.describe());
+    const ExactScene scene = ExactScene::from(r.scene());
+    const auto pe = Problem<cl_RA>::from(scene);
+    const auto se = numeric::solve(pe);
+    const auto p = Problem<S>::from(scene, digits_of<S>());
+    Solution<S> free, imposed;
+    solver.compute(p, free);
+    solver.compute_case(p, se.closed, imposed);
+    EXPECT_EQ(imposed.status, numeric::Status::Success);
+    EXPECT_EQ(imposed.closed, se.closed);
+    const Tolerances tol = tolerances(p);
+    const cl_RA err = relative_velocity_error(exact_vector(imposed.velocities_after), exact_vector(free.velocities_after),
+                                              exact_vector(p.u));
+    EXPECT_TRUE(err <= tol.forward) << "compute_case differs from compute by " << approx(err);
+    check_physics(p, imposed, tol, "compute_case");
+    if (ScalarTraits<S>::exact) {
+      EXPECT_EQ(imposed.velocities_after, free.velocities_after);
+      EXPECT_EQ(imposed.reactions, free.reactions);
+    }
+  }
+}
+
+TEST(ComputeCase, EveryOtherCaseViolatesASignCondition) {
+  numeric::CollisionSolver<cl_RA> solver;
+  int cases_checked = 0;
+  for (std::uint64_t seed = kFirstSeed; seed < kFirstSeed + kSeeds; ++seed) {
+    const RandomScene r = random_scene(seed, {2, 7});
+    SCOPED_TRACE(r.describe());
+    const auto p = problem_of<cl_RA>(r.scene());
+    const auto actual = numeric::solve(p);
+    for (std::uint64_t mask = 0; mask < (std::uint64_t{1} << (p.n - 1)); ++mask) {
+      const ContactSet closed = ContactSet::from_mask(mask, p.n);
+      Solution<cl_RA> s;
+      solver.compute_case(p, closed, s);
+      ASSERT_EQ(s.status, numeric::Status::Success) << closed.to_string();
+      EXPECT_EQ(s.closed, closed);
+      // The imposed case holds by construction: closed gaps 0, open reactions 0.
+      bool admissible = true;
+      for (int c = 0; c + 1 < p.n; ++c) {
+        const auto k = static_cast<std::size_t>(c);
+        if (closed.closed(c)) {
+          EXPECT_EQ(s.gaps[k], 0);
+          admissible = admissible && s.reactions[k] <= 0;
+        } else {
+          EXPECT_EQ(s.reactions[k], 0);
+          admissible = admissible && s.gaps[k] >= 0;
+        }
+      }
+      ++cases_checked;
+      // Exactly one solution: an admissible case gives the solution (several
+      // cases are admissible only at a switch point, where they coincide).
+      if (admissible) {
+        EXPECT_EQ(s.velocities_after, actual.velocities_after) << "a second admissible case " << closed.to_string();
+        EXPECT_EQ(s.reactions, actual.reactions) << closed.to_string();
+      }
+      if (closed == actual.closed) {
+        EXPECT_TRUE(admissible) << "the actual case fails its own conditions";
+      }
+    }
+  }
+  EXPECT_GT(cases_checked, 500);
+}
+
+TEST(ComputeCase, ThePapersCaseOneForTheAlpha2Scene) {
+  // Imposing case 1 on eq. (16)'s scene (whose actual case is 3.3) gives a
+  // solution that breaks a sign condition: a negative gap or a pulling reaction.
+  const auto p = problem_of<cl_RA>(load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml"));
+  numeric::CollisionSolver<cl_RA> solver;
+  Solution<cl_RA> s;
+  solver.compute_case(p, ContactSet::parse("2-3,3-4", 4), s);
+  EXPECT_TRUE(s.reactions[1] > 0 || s.reactions[2] > 0 || s.gaps[0] < 0);
+}
+
+TEST(ComputeCase, RejectsACaseForAnotherNumberOfBodies) {
+  const auto p = problem_of<double>(load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml"));
+  numeric::CollisionSolver<double> solver;
+  Solution<double> s;
+  try {
+    solver.compute_case(p, ContactSet(5), s);
+    ADD_FAILURE() << "accepted a 5-body case for 4 bodies";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("CollisionSolver::compute_case(): ", 0), 0u) << e.what();
+  }
+}
+
+TEST(Compute, RejectsInconsistentProblems) {
+  numeric::CollisionSolver<double> solver;
+  Solution<double> s;
+  Problem<double> p;
+  p.n = 1;
+  p.mass = {1};
+  p.u = {0};
+  EXPECT_THROW(solver.compute(p, s), std::invalid_argument);
+  p.n = 2;
+  EXPECT_THROW(solver.compute(p, s), std::invalid_argument);  // one mass for two bodies
+  p.mass = {1, 1};
+  p.u = {-1, 0};
+  p.entries.push_back({0, 2, 0, 2, 1.0});  // pair 1-3 of 2 bodies
+  EXPECT_THROW(solver.compute(p, s), std::invalid_argument);
+  p.entries = {{1, 0, 1, 0, 1.0}};  // i > j
+  EXPECT_THROW(solver.compute(p, s), std::invalid_argument);
+  p.entries.clear();
+  EXPECT_NO_THROW(solver.compute(p, s));
+  EXPECT_EQ(s.status, numeric::Status::Success);
+  // Two equal masses, plastic: both move at the mean velocity.
+  EXPECT_DOUBLE_EQ(s.velocities_after[0], -0.5);
+  EXPECT_DOUBLE_EQ(s.velocities_after[1], -0.5);
+}
+
+}  // namespace
+}  // namespace superball::testing
