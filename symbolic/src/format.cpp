@@ -59,7 +59,9 @@ std::string term_text(const detail::Term& t, const Symbols& symbols, Style style
   std::sort(factors.begin(), factors.end());
   const GiNaC::numeric c = GiNaC::abs(t.coefficient);
   std::string out = c.is_equal(1) && !factors.empty() ? "" : number_text(c, style);
-  for (const auto& f : factors) out += (style == Style::Latex && !out.empty() && out.back() != ' ' ? " " : "") + f.second;
+  // LaTeX: "2m_{1}", "K_{12} K_{14}" (a space between two symbols only).
+  for (const auto& f : factors)
+    out += (style == Style::Latex && !out.empty() && !(out.back() >= '0' && out.back() <= '9') ? " " : "") + f.second;
   return out;
 }
 
@@ -222,7 +224,7 @@ std::string format_fraction(const Fraction& f, const Symbols& symbols, Style sty
   if (f.denominator.is_equal(1)) return num;
   const std::string den = factored(f.denominator, symbols, style, &single_den);
   if (style == Style::Latex && num.size() + den.size() < 160) return "\\frac{" + num + "}{" + den + "}";
-  return (single_num ? num : "(" + num + ")") + " / " + (single_den ? den : "(" + den + ")");
+  return (single_num ? num : "(" + num + ")") + "/" + (single_den ? den : "(" + den + ")");
 }
 
 std::string format_condition(const GiNaC::ex& p, Relation relation, const Symbols& symbols, Style style) {

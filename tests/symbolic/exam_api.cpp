@@ -1,0 +1,98 @@
+// The library's contract: declared entries only become symbols, misuse is
+// reported with standard exceptions prefixed by the function name, the
+// asymptotic order is honoured, and every derivation of several patterns
+// passes its own substitution check.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "superball/cases/vocabulary.hpp"
+#include "superball/symbolic/derivation.hpp"
+
+namespace superball::symbolic {
+namespace {
+
+template <class F>
+std::string message_of(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
+
+TEST(ExamApi, OnlyDeclaredEntriesAreSymbols) {
+  const Symbols s(Pattern::paper({2}), Obstacle::Infinite);
+  int masses = 0, diagonal = 0, couplings = 0;
+  for (const SymbolInfo& i : s.all()) {
+    masses += i.kind == SymbolKind::Mass;
+    diagonal += i.kind == SymbolKind::Diagonal;
+    couplings += i.kind == SymbolKind::Coupling;
+  }
+  EXPECT_EQ(masses, 3);  // m4 = ∞ has no symbol
+  EXPECT_EQ(diagonal, 6);
+  EXPECT_EQ(couplings, 1);
+  EXPECT_TRUE(s.entry(Pair{1, 2}, Pair{1, 3}).is_zero());  // α₁ absent: exactly 0
+  EXPECT_TRUE(s.mass(1).info(GiNaC::info_flags::positive));
+  EXPECT_FALSE(s.by_name("alpha2").info(GiNaC::info_flags::positive));
+  const Symbols f(Pattern::paper({2}), Obstacle::Finite);
+  EXPECT_NO_THROW(f.mass(4));
+}
+
+TEST(ExamApi, ErrorsNameTheFunction) {
+  EXPECT_TRUE(starts_with(message_of([] { Pattern::paper({8}); }), "Pattern::paper(): "));
+  EXPECT_TRUE(starts_with(message_of([] { Pattern::parse_pairs("1-9", 4); }), "Pattern::parse_pairs(): "));
+  EXPECT_TRUE(starts_with(message_of([] { Pattern::parse_couplings("1-2", 4); }), "Pattern::parse_couplings(): "));
+  const Symbols s(Pattern::paper({2}), Obstacle::Infinite);
+  EXPECT_TRUE(starts_with(message_of([&] { s.mass(4); }), "Symbols::mass(): "));
+  EXPECT_TRUE(starts_with(message_of([&] { Scaling::parse("m9=1", s); }), "Scaling::parse(): "));
+  EXPECT_TRUE(starts_with(message_of([&] { Scaling::parse("m1=x", s); }), "Scaling::parse(): "));
+  const Deriver d(Pattern::paper({2}), Obstacle::Infinite);
+  EXPECT_TRUE(starts_with(message_of([&] { d.derive(ContactSet(5)); }), "Deriver::derive(): "));
+  EXPECT_TRUE(starts_with(message_of([] { Deriver(Pattern::paper({2}), Obstacle::Infinite, std::nullopt, -1); }), "Deriver::Deriver(): "));
+}
+
+TEST(ExamApi, OrderOneKeepsTheNextCorrection) {
+  const Deriver d(Pattern::paper({2}), Obstacle::Infinite, std::nullopt, 1);
+  const Derivation r = d.derive(Vocabulary::paper().named_case("1").closed);
+  GiNaC::parser reader(d.symbols().table(), true);
+  EXPECT_TRUE(same_condition(r.conditions.front().asymptotic.numerator, reader("-alpha2-2*m1-K12-K13"), d.symbols()));
+  EXPECT_EQ(r.conditions.front().orders_kept, 2);
+}
+
+TEST(ExamApi, CustomScaling) {
+  const Symbols s(Pattern::paper({2}), Obstacle::Infinite);
+  const Scaling sc = Scaling::parse("m1=1,K14=-1,alpha2=-1", s);
+  const Deriver d(Pattern::paper({2}), Obstacle::Infinite, sc);
+  const Derivation r = d.derive(Vocabulary::paper().named_case("1").closed);
+  // With α₂ ~ K₁₄ ~ 1/ε the superball condition −α₂ − 2m₁ − K₁₂ − K₁₃ > 0 reduces to −α₂ > 0 at order ε^-1.
+  EXPECT_EQ(r.conditions.front().leading_order, -1);
+  EXPECT_TRUE(same_condition(r.conditions.front().asymptotic.numerator, GiNaC::parser(d.symbols().table(), true)("-alpha2"), d.symbols()));
+}
+
+TEST(ExamApi, EveryCaseOfSeveralPatternsPassesItsCheck) {
+  std::vector<std::pair<Pattern, Obstacle>> patterns = {
+      {Pattern::paper({}), Obstacle::Infinite},          {Pattern::paper({1, 2, 3, 4, 5, 6, 7}), Obstacle::Infinite},
+      {Pattern::paper({4}), Obstacle::Finite},           {Pattern::all_pairs(2), Obstacle::Infinite},
+      {Pattern::all_pairs(3), Obstacle::Finite},         {Pattern::near(5, 1), Obstacle::Infinite},
+      {Pattern::nearest_and_next_nearest(5), Obstacle::Infinite},
+  };
+  for (const auto& [p, o] : patterns) {
+    SCOPED_TRACE(p.describe());
+    const Deriver d(p, o);
+    const auto all = d.derive_all();
+    EXPECT_EQ(all.size(), std::size_t{1} << (p.bodies - 1));
+    for (const Derivation& r : all) {
+      EXPECT_FALSE(r.check.empty());
+      EXPECT_FALSE(r.determinant.is_zero());
+      for (const Condition& c : r.conditions) EXPECT_TRUE(c.exact.sign_proved()) << r.case_name << " " << c.about << ": " << c.proof;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace superball::symbolic
