@@ -1,0 +1,200 @@
+// `superball derive`: solve evolution cases symbolically (superball::symbolic)
+// and print the velocities, reactions and conditions as text, LaTeX or JSON.
+#include <nlohmann/json.hpp>
+
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "commands.hpp"
+#include "superball/cases/scene_file.hpp"
+#include "superball/cases/vocabulary.hpp"
+#include "superball/symbolic/derivation.hpp"
+#include "superball/symbolic/format.hpp"
+
+namespace superball::cli {
+namespace {
+
+using namespace superball::symbolic;
+
+std::vector<int> parse_alphas(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (item.empty()) continue;
+    std::size_t used = 0;
+    int k = 0;
+    try {
+      k = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size()) throw std::invalid_argument("--alphas: '" + item + "' is not an index 1..7 (e.g. --alphas 1,6)");
+    out.push_back(k);
+  }
+  return out;
+}
+
+nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s) {
+  nlohmann::ordered_json j;
+  j["kind"] = to_string(c.kind);
+  j["about"] = c.about;
+  j["exact"] = format_condition(c.exact, c.relation, s, Style::Ascii);
+  j["asymptotic"] = format_condition(c.asymptotic, c.relation, s, Style::Ascii);
+  j["text"] = format_condition(c.exact, c.relation, s, Style::Text);
+  j["latex"] = format_condition(c.exact, c.relation, s, Style::Latex);
+  j["asymptotic_text"] = format_condition(c.asymptotic, c.relation, s, Style::Text);
+  j["asymptotic_latex"] = format_condition(c.asymptotic, c.relation, s, Style::Latex);
+  if (c.finite) j["finite"] = format_condition(*c.finite, c.relation, s, Style::Ascii);
+  std::ostringstream order;
+  order << c.leading_order;
+  j["order"] = order.str();
+  j["orders_kept"] = c.orders_kept;
+  j["verdict"] = to_string(c.exact.verdict);
+  j["asymptotic_verdict"] = to_string(c.asymptotic.verdict);
+  j["proof"] = c.proof;
+  return j;
+}
+
+nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriver) {
+  const Symbols& s = *d.symbols;
+  nlohmann::ordered_json j;
+  j["case"] = d.case_name;
+  j["closed_contacts"] = d.closed.closed_names();
+  j["pattern"] = s.pattern().describe();
+  j["obstacle"] = s.obstacle() == Obstacle::Infinite ? "infinite" : "finite";
+  j["scaling"] = deriver.scaling().describe(s, Style::Ascii);
+  nlohmann::ordered_json symbols = nlohmann::ordered_json::array();
+  for (const SymbolInfo& i : s.all()) {
+    const char* kind = i.kind == SymbolKind::Mass ? "mass" : i.kind == SymbolKind::Diagonal ? "K" : i.kind == SymbolKind::Coupling ? "coupling" : "fall_speed";
+    nlohmann::ordered_json sym{{"name", i.ascii}, {"kind", kind}, {"text", i.text}, {"latex", i.latex}, {"positive", i.kind != SymbolKind::Coupling}};
+    if (i.kind == SymbolKind::Diagonal || i.kind == SymbolKind::Coupling) sym["pairs"] = {i.first.name(), i.second.name()};
+    symbols.push_back(sym);
+  }
+  j["symbols"] = symbols;
+  nlohmann::ordered_json v = nlohmann::ordered_json::object();
+  for (int i = 1; i <= s.bodies(); ++i) v["U" + std::to_string(i)] = format_fraction(d.velocities[static_cast<std::size_t>(i - 1)], s, Style::Ascii);
+  j["velocities_after"] = v;
+  nlohmann::ordered_json r = nlohmann::ordered_json::object();
+  for (int c = 0; c + 1 < s.bodies(); ++c)
+    if (d.closed.closed(c)) r[Pair{c + 1, c + 2}.name()] = format_fraction(d.reactions[static_cast<std::size_t>(c)], s, Style::Ascii);
+  j["reactions"] = r;
+  j["determinant"] = format_polynomial(d.determinant, s, Style::Ascii);
+  j["check"] = d.check;
+  nlohmann::ordered_json conditions = nlohmann::ordered_json::array();
+  for (const Condition& c : d.conditions) conditions.push_back(condition_json(c, s));
+  j["conditions"] = conditions;
+  return j;
+}
+
+}  // namespace
+
+void add_derive(CLI::App& app, Action& action) {
+  struct Options {
+    int bodies = 4, order = 0;
+    std::string case_name, closed, alphas, coupling, pairs = "all", scene, obstacle = "infinite", scaling, format = "text", output;
+    bool all = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("derive", "Solve evolution cases symbolically: velocities, reactions and the conditions, exact and asymptotic");
+  cmd->footer(
+      "What it does.  A case says which adjacent contacts stay closed after the collision (paper §4).  For the\n"
+      "case, the equations of motion (5) with the constitutive laws (6)-(12) are solved exactly with GiNaC:\n"
+      "bodies joined by closed contacts share one velocity, the reduced system (Z^T A Z) V = Z^T b is solved by\n"
+      "fraction-free determinants, the reactions come from running sums, and everything is substituted back into\n"
+      "the unreduced equations.  Then the paper's conditions: superball (U1+ > a), actual evolution (each open\n"
+      "contact opens, U_i+ > U_i+1+), non-interpenetration (each closed contact's reaction <= 0) and M positive\n"
+      "semi-definite (its principal minors).  A denominator is cleared only when its sign is proved (it divides\n"
+      "det(Z^T A Z) > 0); otherwise the output says \"sign not proved\".  Each condition is given exactly (bottom\n"
+      "body fixed: m_n = infinity) and asymptotically (dominant balance for --scaling, plus --order corrections).\n\n"
+      "The pattern.  Only declared entries of M are symbols; absent ones are exactly 0.  For 4 bodies the paper's\n"
+      "names: K on the six pairs and the couplings alpha_1..alpha_7 (--alphas).  For any n: K on --pairs\n"
+      "(all, near = j-i=1, near2 = j-i<=2, or a list) and couplings --coupling i-j/k-l,... (or near2: each pair\n"
+      "(i,i+2) with (i,i+1) and (i+1,i+2)).  Or --scene FILE: the declared entries of a scene (values ignored).\n\n"
+      "Examples:\n"
+      "  superball derive --case 1 --alphas 2                   the paper's §4.1: U1+, -alpha2 > 2m1 + K12 + K13, ...\n"
+      "  superball derive --case 2.1 --alphas 1,6 --format latex\n"
+      "  superball derive --all --alphas 1,2,3,4,5,6,7 --format json -o all.json\n"
+      "  superball derive --closed 2-3 --alphas 5 --order 1      one more order of epsilon\n"
+      "  superball derive --case 1 --alphas 2 --scaling m1=1,K14=-1,alpha2=-1\n"
+      "  superball derive --bodies 5 --pairs near2 --coupling near2 --all\n"
+      "  superball derive --scene cases/scenes/paper-fig5-alpha5.toml --case 3.2 --obstacle finite\n\n"
+      "Names (JSON and --scaling): m1..mn, K12 (K1_10 past 9 bodies), alpha1..alpha7 (n = 4), c_12_14 for a\n"
+      "coupling of the pairs 1-2 and 1-4, a for the fall speed, U1.. for the velocities after.");
+  cmd->add_option("--bodies,-n", o->bodies, "Number of bodies n >= 2, the bottom one being the obstacle")->capture_default_str();
+  auto* g = cmd->add_option_group("case", "Which evolution case (one of)");
+  g->add_option("--case", o->case_name, "The paper's case name (n = 4): 0, 1, 2.1, 2.2, 3.1, 3.2, 3.3, 3.4");
+  g->add_option("--closed", o->closed, "The closed contacts, e.g. 2-3,3-4 (\"none\" for no closed contact)");
+  g->add_flag("--all", o->all, "Every one of the 2^(n-1) cases");
+  g->require_option(1);
+  cmd->add_option("--alphas", o->alphas, "The paper's couplings alpha_k in play (n = 4), e.g. 2 or 1,6");
+  cmd->add_option("--coupling", o->coupling, "Couplings of pairs, e.g. 1-2/1-4,2-3/2-4, or near2");
+  cmd->add_option("--pairs", o->pairs, "Pairs with a diagonal K: all, near, near2 or a list 1-2,2-3")->capture_default_str();
+  cmd->add_option("--scene", o->scene, "Take the pattern (declared entries of M) and n from a scene file");
+  cmd->add_option("--obstacle", o->obstacle, "infinite (m_n = infinity, default) or finite (m_n a symbol; the m_n = infinity limit is also given)")
+      ->check(CLI::IsMember({"infinite", "finite"}))
+      ->capture_default_str();
+  cmd->add_option("--scaling", o->scaling, "Orders in epsilon, e.g. m1=1,K14=-1 (default m1=1, K1n=-1, mn=-1 if finite; \"none\")");
+  cmd->add_option("--order", o->order, "Correction orders kept beyond the dominant balance")->check(CLI::Range(0, 20))->capture_default_str();
+  cmd->add_option("--format,-f", o->format, "text, latex (a complete document) or json")
+      ->check(CLI::IsMember({"text", "latex", "json"}))
+      ->capture_default_str();
+  cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output");
+  cmd->callback([o, &action] {
+    action = [o] {
+      Pattern pattern;
+      if (!o->scene.empty()) {
+        if (!o->alphas.empty() || !o->coupling.empty()) throw std::invalid_argument("--scene gives the pattern: drop --alphas/--coupling");
+        pattern = Pattern::from_scene(load_scene(o->scene));
+      } else {
+        if (o->bodies < 2 || o->bodies > 64) throw std::invalid_argument("--bodies must be 2..64");
+        if (!o->alphas.empty()) {
+          if (o->bodies != Vocabulary::paper().bodies())
+            throw std::invalid_argument("--alphas names the paper's couplings of 4 bodies; use --coupling for " + std::to_string(o->bodies));
+          pattern = Pattern::paper(parse_alphas(o->alphas));
+        } else {
+          pattern.bodies = o->bodies;
+        }
+        pattern.diagonal = Pattern::parse_pairs(o->pairs, o->bodies);
+        if (!o->coupling.empty()) {
+          const auto more = Pattern::parse_couplings(o->coupling, o->bodies);
+          pattern.couplings.insert(pattern.couplings.end(), more.begin(), more.end());
+        }
+        pattern.check();
+      }
+      const int n = pattern.bodies;
+      const Obstacle obstacle = o->obstacle == "finite" ? Obstacle::Finite : Obstacle::Infinite;
+      const Symbols symbols(pattern, obstacle);
+      std::optional<Scaling> scaling;
+      if (!o->scaling.empty()) scaling = Scaling::parse(o->scaling, symbols);
+      const Deriver deriver(pattern, obstacle, scaling, o->order);
+      std::vector<Derivation> results;
+      if (o->all) {
+        if (n > 16) throw std::invalid_argument("--all with " + std::to_string(n) + " bodies means 2^" + std::to_string(n - 1) + " cases; choose one with --closed");
+        results = deriver.derive_all();
+      } else if (!o->case_name.empty()) {
+        if (n != Vocabulary::paper().bodies()) throw std::invalid_argument("--case names the paper's cases of 4 bodies; use --closed");
+        results.push_back(deriver.derive(Vocabulary::paper().named_case(o->case_name).closed));
+      } else {
+        results.push_back(deriver.derive(ContactSet::parse(o->closed, n)));
+      }
+      std::string text;
+      if (o->format == "json") {
+        nlohmann::ordered_json j = nlohmann::ordered_json::array();
+        for (const Derivation& d : results) j.push_back(derivation_json(d, deriver));
+        text = (results.size() == 1 ? j[0] : j).dump(2) + "\n";
+      } else if (o->format == "latex") {
+        text = latex_document(results, deriver);
+      } else {
+        for (const Derivation& d : results) text += report(d, deriver, Style::Text) + "\n";
+      }
+      if (o->output.empty())
+        std::cout << text;
+      else
+        write_file_atomically(o->output, text);
+      return ok;
+    };
+  });
+}
+
+}  // namespace superball::cli
