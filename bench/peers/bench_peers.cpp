@@ -1,0 +1,609 @@
+// Peers, in the same run (issue 5): this project's collision solve against
+// Siconos' LCP solvers (Debian's libsiconos-numerics-dev, C API) on the same
+// instances.
+//
+// What is timed (median of the repetitions, per solve):
+//  - ours/double:  CollisionSolver<double>::compute on the Problem: the FULL
+//    solve (assembly of K = DᵀMD and A, LDLᵀ of A, N and q, Murty pivoting,
+//    the velocities and the independent residual check).
+//  - ours/exact:   the same in CLN exact rationals; it is the reference.
+//  - siconos/...:  one call of the Siconos solver on (N, q) ONLY.  N and q are
+//    built once, outside the timed loop, in double by the same operations as
+//    our solver (q is checked to be bit for bit ours); leaving that build out
+//    favours Siconos.  z is reset to 0 before each call (a cold start, as for
+//    a new instance); the solver options are created once, outside the loop.
+//
+// Accuracy (benchmark counters, so they are in the same run's output):
+//  - rel_err: ‖W − W*‖∞ / ‖W*‖∞ for the velocities after the collision W,
+//    W* the exact solution (in the scene's velocity unit), evaluated exactly.
+//    For Siconos, W = A⁻¹(b + Cᵀλ) = W0 + Gλ from its λ = z, in double, by the
+//    same operations our solver uses for its own λ.
+//  - case_ok: 1 when the computed case equals the exact one, {c : λ*_c > 0}.
+//    A computed contact c counts as closed when N_cc λ_c > w_c, w_c = W_c −
+//    W_{c+1} (whichever side of the complementarity pair is larger, in
+//    velocity units); on an exact, strictly complementary solution that is
+//    λ_c > 0.
+//  - converged: 1 when the solver reported success (our Status::Success,
+//    Siconos info == 0); iters: our pivots, Siconos' iterations.
+//
+// At the end a summary of the medians, ratios and counters is printed.
+#include <benchmark/benchmark.h>
+#include <cln/dfloat.h>
+#include <cln/rational.h>
+#include <cln/rational_io.h>
+#include <cln/real.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "superball/cases/parameter.hpp"
+#include "superball/cases/scene_file.hpp"
+#include "superball/numeric/collision.hpp"
+
+// Siconos numerics, C API.
+#include "LCP_Solvers.h"
+#include "LinearComplementarityProblem.h"
+#include "NumericsMatrix.h"
+#include "NumericsVerbose.h"
+#include "SolverOptions.h"
+#include "lcp_cst.h"
+
+namespace {
+
+using namespace superball;
+using cln::cl_RA;
+
+std::string text(const cl_RA& x) {
+  std::ostringstream os;
+  cln::fprint(os, x);
+  return os.str();
+}
+
+// ---------------------------------------------------------------- instances
+
+/// §4.1's epsilon family (case 1, alpha_2 = -1, m4 = infinity) at \p eps, set
+/// on cases/scenes/paper-4.1-family.toml as `superball reproduce` does.
+Scene epsilon_scene(const cl_RA& eps) {
+  Scene scene = load_scene(SUPERBALL_SCENES_DIR "/paper-4.1-family.toml");
+  const cl_RA alpha2 = -1;
+  auto set = [&](const std::string& key, const cl_RA& x) { Parameter::parse(key, scene).set(scene, Number::parse(text(x))); };
+  set("K.1-2", -alpha2 * (1 - eps + eps * eps));
+  set("K.1-3", -alpha2 * eps * eps);
+  set("K.1-4", -alpha2 * (1 + eps));
+  set("mass.1", -alpha2 * eps * eps * eps);
+  set("alpha.2", alpha2);
+  scene.origin = "paper-4.1-family.toml, eps = " + text(eps);
+  return scene;
+}
+
+/// A seeded random chain of \p n free bodies colliding.  M
+/// lives on the nearest and next-nearest neighbour pairs (i, i+1), (i, i+2)
+/// and couples only pairs that share a body or are next to each other,
+/// ((i,i+1),(i,i+2)), ((i,i+2),(i+1,i+2)), ((i,i+2),(i+1,i+3)), so that
+/// K = DᵀMD is banded.  Couplings are ±0.1 … ±5 (both signs), every diagonal
+/// entry exceeds the sum of its row's |couplings| by 0.1 … 10, so M is
+/// positive definite (checked exactly by ExactScene::from).  Masses are
+/// log-uniform in 1e-2 … 1e3, velocities before in -2 … 2 (pairs approach
+/// and separate).  All values are short decimals, exact as written.
+Scene chain_scene(int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);  // the engine's output is fixed by the standard
+  auto pick = [&](int lo, int hi) { return lo + static_cast<int>(rng() % static_cast<std::uint64_t>(hi - lo + 1)); };
+  Scene s;
+  s.title = "random chain, n = " + std::to_string(n);
+  s.origin = "chain-" + std::to_string(n) + " (seed " + std::to_string(seed) + ")";
+  for (int i = 0; i < n; ++i) {
+    Body b;
+    b.mass = Number::parse(std::to_string(pick(100, 999)) + "e" + std::to_string(pick(-4, 0)));
+    b.velocity = Number::parse(std::to_string(pick(-200, 200)) + "/100");
+    s.bodies.push_back(b);
+  }
+  // Couplings, in tenths, and the row sums of their magnitudes.
+  std::map<std::pair<int, int>, long long> row_sum;  // (i, j) 1-based pair -> Σ|coupling| in tenths
+  auto key = [](const Pair& p) { return std::make_pair(p.i, p.j); };
+  auto couple = [&](Pair a, Pair b) {
+    if (a.j > n || b.j > n) return;
+    const int v = (pick(0, 1) ? 1 : -1) * pick(1, 50);
+    s.entries.push_back({a, b, Number::parse(std::to_string(v) + "/10")});
+    row_sum[key(a)] += std::abs(v);
+    row_sum[key(b)] += std::abs(v);
+  };
+  for (int i = 1; i < n; ++i) {
+    couple({i, i + 1}, {i, i + 2});
+    couple({i, i + 2}, {i + 1, i + 2});
+    couple({i, i + 2}, {i + 1, i + 3});
+  }
+  for (int i = 1; i < n; ++i)
+    for (int d = 1; d <= 2 && i + d <= n; ++d) {
+      const Pair p{i, i + d};
+      s.entries.push_back({p, p, Number::parse(std::to_string(row_sum[key(p)] + pick(1, 100)) + "/10")});
+    }
+  return s;
+}
+
+// ------------------------------------------------- the LCP (N, q) in double
+
+/// The LCP our solver builds, w = q + Nλ, in double, by the same operations
+/// in the same order as CollisionSolver<double> (assemble, LDLᵀ without
+/// pivoting, G = A⁻¹C_Fᵀ, W0 = A⁻¹b, N = CG, q = CW0 − fixed velocity), and
+/// the map back from λ to the velocities, W = W0 + Gλ.
+struct Lcp {
+  int n = 0, nf = 0, nc = 0;
+  bool fixed_bottom = false;
+  double u_fixed = 0;
+  Eigen::MatrixXd G;
+  Eigen::VectorXd W0;
+  std::vector<double> N;  ///< nc × nc, column-major (Siconos' dense storage)
+  std::vector<double> q;
+
+  static Lcp from(const numeric::Problem<double>& p) {
+    Lcp l;
+    l.n = p.n;
+    l.fixed_bottom = p.fixed_bottom;
+    l.nf = p.fixed_bottom ? p.n - 1 : p.n;
+    l.nc = p.n - 1;
+    l.u_fixed = p.u[static_cast<std::size_t>(p.n - 1)];
+    const int n = l.n, nf = l.nf, nc = l.nc;
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+    for (const auto& e : p.entries) {
+      K(e.i, e.k) += e.value;
+      K(e.i, e.l) -= e.value;
+      K(e.j, e.k) -= e.value;
+      K(e.j, e.l) += e.value;
+      if (!e.diagonal()) {
+        K(e.k, e.i) += e.value;
+        K(e.l, e.i) -= e.value;
+        K(e.k, e.j) -= e.value;
+        K(e.l, e.j) += e.value;
+      }
+    }
+    Eigen::VectorXd rhs(nf);
+    for (int i = 0; i < nf; ++i) {
+      double r = p.mass[i] * p.u[i];
+      for (int j = 0; j < n; ++j) r -= K(i, j) * p.u[j];
+      if (p.fixed_bottom) r -= K(i, n - 1) * p.u[n - 1];
+      rhs(i) = r;
+    }
+    Eigen::MatrixXd A = K.topLeftCorner(nf, nf);
+    for (int i = 0; i < nf; ++i) A(i, i) += p.mass[i];
+    for (int k = 0; k < nf; ++k) {
+      const double d = A(k, k);
+      for (int j = k + 1; j < nf; ++j) {
+        const double ljk = A(j, k) / d;
+        for (int i = j; i < nf; ++i) A(i, j) -= A(i, k) * ljk;
+      }
+      for (int i = k + 1; i < nf; ++i) A(i, k) /= d;
+    }
+    auto solve_in_place = [&](auto&& x) {
+      for (int i = 1; i < nf; ++i)
+        for (int k = 0; k < i; ++k) x(i) -= A(i, k) * x(k);
+      for (int i = 0; i < nf; ++i) x(i) /= A(i, i);
+      for (int i = nf - 2; i >= 0; --i)
+        for (int k = i + 1; k < nf; ++k) x(i) -= A(k, i) * x(k);
+    };
+    l.W0 = rhs;
+    solve_in_place(l.W0);
+    l.G = Eigen::MatrixXd::Zero(nf, nc);
+    for (int c = 0; c < nc; ++c) {
+      l.G(c, c) = 1;
+      if (c + 1 < nf) l.G(c + 1, c) = -1;
+      solve_in_place(l.G.col(c));
+    }
+    l.N.assign(static_cast<std::size_t>(nc * nc), 0.0);
+    l.q.assign(static_cast<std::size_t>(nc), 0.0);
+    for (int c = 0; c < nc; ++c) {
+      for (int j = 0; j < nc; ++j)
+        l.N[static_cast<std::size_t>(j * nc + c)] = c + 1 < nf ? l.G(c, j) - l.G(c + 1, j) : l.G(c, j);
+      l.q[static_cast<std::size_t>(c)] = c + 1 < nf ? l.W0(c) - l.W0(c + 1) : l.W0(c) - p.u[n - 1];
+    }
+    return l;
+  }
+
+  double N_at(int i, int j) const { return N[static_cast<std::size_t>(j * nc + i)]; }
+
+  /// W = W0 + Gλ (the fixed body keeps its velocity), summed as our solver does.
+  std::vector<double> velocities(const std::vector<double>& lambda) const {
+    std::vector<double> W(static_cast<std::size_t>(n));
+    for (int i = 0; i < nf; ++i) {
+      double w = W0(i);
+      for (int c = 0; c < nc; ++c)
+        if (lambda[static_cast<std::size_t>(c)] != 0) w += G(i, c) * lambda[static_cast<std::size_t>(c)];
+      W[static_cast<std::size_t>(i)] = w;
+    }
+    if (fixed_bottom) W[static_cast<std::size_t>(n - 1)] = u_fixed;
+    return W;
+  }
+};
+
+// ------------------------------------------------------ reference, accuracy
+
+struct Instance {
+  std::string name;
+  numeric::ExactScene scene;
+  numeric::Problem<double> pd;
+  numeric::Problem<cl_RA> pe;
+  Lcp lcp;
+  std::vector<cl_RA> W_exact;  ///< velocities after, exact (velocity unit)
+  cl_RA W_norm;                ///< ‖W*‖∞
+  std::vector<bool> closed;    ///< the exact case, λ*_c > 0
+  int degenerate = 0;          ///< contacts with λ* = 0 and w* = 0
+  int exact_pivots = 0;
+};
+
+/// ‖W − W*‖∞ / ‖W*‖∞, evaluated exactly (the doubles are exact rationals).
+double relative_error(const Instance& in, const std::vector<double>& W) {
+  cl_RA worst = 0;
+  for (std::size_t i = 0; i < W.size(); ++i) {
+    if (!std::isfinite(W[i])) return INFINITY;
+    const cl_RA d = cln::abs(cln::rational(cln::cl_DF(W[i])) - in.W_exact[i]);
+    if (d > worst) worst = d;
+  }
+  return cln::double_approx(worst / in.W_norm);
+}
+
+/// 1 when the case of (λ, W) is the exact case, else 0 (see the file comment).
+double case_ok(const Instance& in, const std::vector<double>& lambda, const std::vector<double>& W) {
+  for (int c = 0; c < in.lcp.nc; ++c) {
+    const double w = W[static_cast<std::size_t>(c)] - W[static_cast<std::size_t>(c + 1)];
+    const bool closed = in.lcp.N_at(c, c) * lambda[static_cast<std::size_t>(c)] > w;
+    if (closed != in.closed[static_cast<std::size_t>(c)]) return 0;
+  }
+  return 1;
+}
+
+Instance make_instance(const std::string& name, const Scene& scene) {
+  Instance in;
+  in.name = name;
+  in.scene = numeric::ExactScene::from(scene);
+  in.pd = numeric::Problem<double>::from(in.scene);
+  in.pe = numeric::Problem<cl_RA>::from(in.scene);
+  in.lcp = Lcp::from(in.pd);
+  const auto exact = numeric::solve(in.pe);
+  if (exact.status != numeric::Status::Success) throw std::runtime_error(name + ": the exact solve did not succeed");
+  in.W_exact = exact.velocities_after;
+  in.W_norm = 0;
+  for (const auto& w : in.W_exact) in.W_norm = std::max(in.W_norm, cl_RA(cln::abs(w)));
+  if (cln::zerop(in.W_norm)) throw std::runtime_error(name + ": every velocity after is 0, no relative error");
+  for (int c = 0; c + 1 < in.pe.n; ++c) {
+    const cl_RA lambda = -exact.reactions[static_cast<std::size_t>(c)];
+    in.closed.push_back(lambda > 0);
+    in.degenerate += cln::zerop(lambda) && cln::zerop(exact.gaps[static_cast<std::size_t>(c)]);
+  }
+  in.exact_pivots = exact.pivots;
+  // q must be bit for bit the constant column our double solver starts from:
+  // with every contact imposed open, its gaps are exactly that column.
+  numeric::CollisionSolver<double> solver(numeric::Settings<double>::defaults());
+  numeric::Solution<double> open;
+  solver.compute_case(in.pd, ContactSet(in.pd.n), open);
+  for (int c = 0; c < in.lcp.nc; ++c)
+    if (open.gaps[static_cast<std::size_t>(c)] != in.lcp.q[static_cast<std::size_t>(c)])
+      throw std::runtime_error(name + ": the bench's q differs from the solver's");
+  return in;
+}
+
+std::vector<Instance>& instances() {
+  static std::vector<Instance> all;
+  return all;
+}
+
+void set_accuracy(benchmark::State& state, double rel_err, double ok, bool converged, int iters) {
+  state.counters["rel_err"] = rel_err;
+  state.counters["case_ok"] = ok;
+  state.counters["converged"] = converged ? 1 : 0;
+  state.counters["iters"] = iters;
+}
+
+// ---------------------------------------------------------------- our solve
+
+template <class S>
+void bm_ours(benchmark::State& state, const Instance* in) {
+  const numeric::Problem<S>& p = [&]() -> const numeric::Problem<S>& {
+    if constexpr (std::is_same_v<S, double>)
+      return in->pd;
+    else
+      return in->pe;
+  }();
+  numeric::CollisionSolver<S> solver(numeric::Settings<S>::defaults());
+  numeric::Solution<S> out;
+  solver.compute(p, out);
+  for (auto _ : state) {
+    solver.compute(p, out);
+    benchmark::DoNotOptimize(out.velocities_after.data());
+    benchmark::ClobberMemory();
+  }
+  std::vector<double> W, lambda;
+  for (const auto& w : out.velocities_after) W.push_back(numeric::ScalarTraits<S>::to_double(w));
+  for (const auto& r : out.reactions) lambda.push_back(-numeric::ScalarTraits<S>::to_double(r));
+  double err = 0;
+  if constexpr (std::is_same_v<S, double>) {
+    err = relative_error(*in, W);
+  } else {  // exact: compare exactly (0 when it is the reference's own answer)
+    cl_RA worst = 0;
+    for (std::size_t i = 0; i < out.velocities_after.size(); ++i)
+      worst = std::max(worst, cl_RA(cln::abs(out.velocities_after[i] - in->W_exact[i])));
+    err = cln::double_approx(worst / in->W_norm);
+  }
+  set_accuracy(state, err, case_ok(*in, lambda, W), out.status == numeric::Status::Success, out.pivots);
+}
+
+/// Our double solve with every contact imposed open (compute_case): the
+/// assembly, LDLᵀ, N and q, the velocities and the residual check, without
+/// pivoting.  ours/double minus this is roughly our LCP part, the part the
+/// Siconos timings cover.
+void bm_ours_no_pivots(benchmark::State& state, const Instance* in) {
+  numeric::CollisionSolver<double> solver(numeric::Settings<double>::defaults());
+  numeric::Solution<double> out;
+  const ContactSet open(in->pd.n);
+  solver.compute_case(in->pd, open, out);
+  for (auto _ : state) {
+    solver.compute_case(in->pd, open, out);
+    benchmark::DoNotOptimize(out.velocities_after.data());
+    benchmark::ClobberMemory();
+  }
+}
+
+// -------------------------------------------------------------- Siconos
+
+using LcpSolverFn = void (*)(LinearComplementarityProblem*, double*, double*, int*, SolverOptions*);
+
+struct SiconosSolver {
+  std::string name;  ///< in the benchmark name
+  int id;            ///< SICONOS_LCP_*
+  LcpSolverFn fn;
+  double tol = -1;   ///< < 0: Siconos' default
+  int itermax = -1;  ///< < 0: Siconos' default
+};
+
+/// lcp_enum tries the complementary bases in binary order (bit c set: w_c
+/// basic, contact c open), solving one nc × nc system per basis.  Beyond this
+/// many bases before the exact one a solve takes too long to be benchmarked.
+constexpr double kMaxEnumBases = double(1 << 20);
+
+double enum_bases_before_solution(const Instance& in) {
+  double index = 0;
+  for (int c = 0; c < in.lcp.nc; ++c)
+    if (!in.closed[static_cast<std::size_t>(c)]) index += std::ldexp(1.0, c);
+  return index + 1;
+}
+
+void bm_siconos(benchmark::State& state, const Instance* in, SiconosSolver s) {
+  const int nc = in->lcp.nc;
+  if (s.id == SICONOS_LCP_ENUM && enum_bases_before_solution(*in) > kMaxEnumBases) {
+    std::ostringstream msg;
+    msg << "not run: lcp_enum would solve " << enum_bases_before_solution(*in) << " linear systems of size " << nc
+        << " (of 2^" << nc << " bases) before reaching the exact case";
+    state.SkipWithError(msg.str().c_str());
+    for (auto _ : state) {
+    }
+    return;
+  }
+  NumericsMatrix* M = NM_create(NM_DENSE, nc, nc);
+  std::copy(in->lcp.N.begin(), in->lcp.N.end(), M->matrix0);
+  std::vector<double> q = in->lcp.q;
+  LinearComplementarityProblem problem{};
+  problem.size = nc;
+  problem.M = M;
+  problem.q = q.data();
+  SolverOptions* options = solver_options_create(s.id);
+  if (s.tol >= 0) options->dparam[SICONOS_DPARAM_TOL] = s.tol;
+  if (s.itermax >= 0) options->iparam[SICONOS_IPARAM_MAX_ITER] = s.itermax;
+  if (s.id == SICONOS_LCP_ENUM) lcp_enum_init(&problem, options, 1);
+  std::vector<double> z(static_cast<std::size_t>(nc), 0.0), w(static_cast<std::size_t>(nc), 0.0);
+  int info = 0;
+  s.fn(&problem, z.data(), w.data(), &info, options);
+  for (auto _ : state) {
+    std::fill(z.begin(), z.end(), 0.0);
+    s.fn(&problem, z.data(), w.data(), &info, options);
+    benchmark::DoNotOptimize(z.data());
+    benchmark::ClobberMemory();
+  }
+  const std::vector<double> W = in->lcp.velocities(z);
+  // lcp_enum reports no iteration count: report the bases it tried.
+  const int iters = s.id == SICONOS_LCP_ENUM ? options->iparam[SICONOS_LCP_IPARAM_ENUM_CURRENT_ENUM] + 1
+                                             : options->iparam[SICONOS_IPARAM_ITER_DONE];
+  set_accuracy(state, relative_error(*in, W), case_ok(*in, z, W), info == 0, iters);
+  if (s.id == SICONOS_LCP_ENUM) lcp_enum_reset(&problem, options, 1);
+  solver_options_delete(options);
+  NM_free(M);
+}
+
+// ------------------------------------------------------------ the summary
+
+/// The console output, then a summary of the medians with the ratios to
+/// ours/double and the accuracy counters, per instance.
+class SummaryReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    ConsoleReporter::ReportRuns(runs);
+    for (const Run& r : runs) {
+      const bool median = r.run_type == Run::RT_Aggregate && r.aggregate_name == "median";
+      const bool single = r.run_type == Run::RT_Iteration && r.repetitions <= 1;
+      if (r.error_occurred) {
+        rows_[r.run_name.str()] = Row{r.run_name.str(), 0, {}, r.error_message};
+        order(r.run_name.str());
+      } else if (median || single) {
+        const double ns = r.GetAdjustedRealTime() * 1e9 / benchmark::GetTimeUnitMultiplier(r.time_unit);
+        std::map<std::string, double> counters;
+        for (const auto& [k, v] : r.counters) counters[k] = v.value;
+        rows_[r.run_name.str()] = Row{r.run_name.str(), ns, counters, ""};
+        order(r.run_name.str());
+      }
+    }
+  }
+
+  void Finalize() override {
+    ConsoleReporter::Finalize();
+    std::ostream& os = GetOutputStream();
+    os << "\nSummary: medians per solve; ratio = time / ours/double (full solve); Siconos times are the LCP (N, q) only.\n";
+    std::string current;
+    const Row* ours = nullptr;
+    std::vector<const Row*> group;
+    auto flush = [&] {
+      if (group.empty()) return;
+      verdict(os, ours, group);
+      group.clear();
+      ours = nullptr;
+    };
+    for (const std::string& name : names_) {
+      const Row& r = rows_[name];
+      const std::string inst = instance_of(name);
+      if (inst != current) {
+        flush();
+        current = inst;
+        os << "\n" << inst << "\n";
+        char head[160];
+        std::snprintf(head, sizeof head, "  %-30s %14s %10s %10s %8s %9s %7s\n", "solver", "median", "ratio", "rel_err", "case_ok",
+                      "converged", "iters");
+        os << head;
+      }
+      if (method_of(name) == "ours/double") ours = &r;
+      group.push_back(&r);
+    }
+    flush();
+  }
+
+ private:
+  struct Row {
+    std::string name;
+    double ns = 0;
+    std::map<std::string, double> counters;
+    std::string error;
+  };
+
+  static std::string instance_of(const std::string& name) {
+    const auto a = name.find('/'), b = name.find('/', a + 1);
+    return name.substr(a + 1, b - a - 1);
+  }
+  static std::string method_of(const std::string& name) {
+    const auto a = name.find('/'), b = name.find('/', a + 1);
+    return name.substr(b + 1);
+  }
+  static std::string time_text(double ns) {
+    char buf[64];
+    if (ns < 1e4)
+      std::snprintf(buf, sizeof buf, "%.0f ns", ns);
+    else if (ns < 1e7)
+      std::snprintf(buf, sizeof buf, "%.1f us", ns / 1e3);
+    else
+      std::snprintf(buf, sizeof buf, "%.1f ms", ns / 1e6);
+    return buf;
+  }
+  double counter(const Row& r, const std::string& k) const {
+    const auto it = r.counters.find(k);
+    return it == r.counters.end() ? NAN : it->second;
+  }
+
+  void verdict(std::ostream& os, const Row* ours, const std::vector<const Row*>& group) const {
+    const double base = ours ? ours->ns : NAN;
+    const Row* fastest = nullptr;
+    const Row* fastest_equal = nullptr;
+    const Row* exact = nullptr;
+    // "Equal or better accuracy": the right case and a relative error within
+    // 10× of ours/double's (or of the unit roundoff when ours is smaller).
+    const double limit = ours ? 10 * std::max(counter(*ours, "rel_err"), 0x1p-53) : NAN;
+    for (const Row* r : group) {
+      char line[200];
+      if (!r->error.empty()) {
+        std::snprintf(line, sizeof line, "  %-30s %s\n", method_of(r->name).c_str(), r->error.c_str());
+        os << line;
+        continue;
+      }
+      if (r->counters.empty())
+        std::snprintf(line, sizeof line, "  %-30s %14s %9.2fx\n", method_of(r->name).c_str(), time_text(r->ns).c_str(), r->ns / base);
+      else
+        std::snprintf(line, sizeof line, "  %-30s %14s %9.2fx %10.2e %8.0f %9.0f %7.0f\n", method_of(r->name).c_str(),
+                      time_text(r->ns).c_str(), r->ns / base, counter(*r, "rel_err"), counter(*r, "case_ok"),
+                      counter(*r, "converged"), counter(*r, "iters"));
+      os << line;
+      if (method_of(r->name) == "ours/exact") exact = r;
+      if (method_of(r->name).rfind("siconos/", 0) != 0) continue;
+      if (!fastest || r->ns < fastest->ns) fastest = r;
+      if (counter(*r, "case_ok") == 1 && counter(*r, "rel_err") <= limit && (!fastest_equal || r->ns < fastest_equal->ns))
+        fastest_equal = r;
+    }
+    if (!ours) return;
+    char line[300];
+    if (fastest) {
+      std::snprintf(line, sizeof line, "  fastest Siconos: %s, %s: speed-up of ours/double over it %.2fx (goal >= 10x)\n",
+                    method_of(fastest->name).c_str(), time_text(fastest->ns).c_str(), fastest->ns / base);
+      os << line;
+    }
+    if (fastest_equal)
+      std::snprintf(line, sizeof line,
+                    "  fastest Siconos at equal or better accuracy (case right, rel_err <= %.1e): %s, %s: speed-up of "
+                    "ours/double over it %.2fx\n",
+                    limit, method_of(fastest_equal->name).c_str(), time_text(fastest_equal->ns).c_str(), fastest_equal->ns / base);
+    else
+      std::snprintf(line, sizeof line, "  no Siconos solver reached equal accuracy (case right, rel_err <= %.1e)\n", limit);
+    os << line;
+    if (exact && fastest) {
+      std::snprintf(line, sizeof line, "  ours/exact (rel_err 0) takes %.1fx the time of the fastest Siconos solver\n",
+                    exact->ns / fastest->ns);
+      os << line;
+    }
+  }
+
+  void order(const std::string& name) {
+    if (std::find(names_.begin(), names_.end(), name) == names_.end()) names_.push_back(name);
+  }
+
+  std::map<std::string, Row> rows_;
+  std::vector<std::string> names_;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  numerics_set_verbose(0);
+  if (!std::getenv("OPENBLAS_NUM_THREADS"))
+    std::cerr << "note: OPENBLAS_NUM_THREADS is not set; Siconos' LAPACK calls may use threads (run.sh sets it to 1)\n";
+
+  auto& all = instances();
+  all.push_back(make_instance("paper-4.4-alpha2", load_scene(SUPERBALL_SCENES_DIR "/paper-4.4-alpha2.toml")));
+  all.push_back(make_instance("eps-1e-8", epsilon_scene(cl_RA(1) / cl_RA(100000000))));
+  all.push_back(make_instance("chain-8", chain_scene(8, 8)));
+  all.push_back(make_instance("chain-32", chain_scene(32, 32)));
+
+  const double tight = 1e-14;
+  const int tight_iter = 100000;
+  const std::vector<SiconosSolver> solvers = {
+      {"lemke", SICONOS_LCP_LEMKE, lcp_lexicolemke},
+      {"enum", SICONOS_LCP_ENUM, lcp_enum},
+      {"enum/tol:1e-14", SICONOS_LCP_ENUM, lcp_enum, tight},
+      {"pgs", SICONOS_LCP_PGS, lcp_pgs},
+      {"pgs/tol:1e-14", SICONOS_LCP_PGS, lcp_pgs, tight, tight_iter},
+      {"newton-min", SICONOS_LCP_NEWTONMIN, lcp_newton_min},
+      {"newton-min/tol:1e-14", SICONOS_LCP_NEWTONMIN, lcp_newton_min, tight, tight_iter},
+  };
+  for (const Instance& in : all) {
+    std::cerr << in.name << ": n = " << in.pd.n << ", " << in.lcp.nc << " contacts, exact case closes";
+    int closed = 0;
+    for (int c = 0; c < in.lcp.nc; ++c)
+      if (in.closed[static_cast<std::size_t>(c)]) std::cerr << " " << c + 1 << "-" << c + 2, ++closed;
+    std::cerr << (closed ? "" : " none") << " (" << closed << " of " << in.lcp.nc << "), exact pivots " << in.exact_pivots
+              << ", degenerate contacts " << in.degenerate << "\n";
+    const std::string prefix = "peers/" + in.name + "/";
+    benchmark::RegisterBenchmark((prefix + "ours/double").c_str(), bm_ours<double>, &in)->Unit(benchmark::kNanosecond);
+    benchmark::RegisterBenchmark((prefix + "ours/exact").c_str(), bm_ours<cl_RA>, &in)->Unit(benchmark::kNanosecond);
+    benchmark::RegisterBenchmark((prefix + "ours/double-no-pivots").c_str(), bm_ours_no_pivots, &in)->Unit(benchmark::kNanosecond);
+    for (const SiconosSolver& s : solvers)
+      benchmark::RegisterBenchmark((prefix + "siconos/" + s.name).c_str(), bm_siconos, &in, s)->Unit(benchmark::kNanosecond);
+  }
+
+  SummaryReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+  benchmark::Shutdown();
+  return 0;
+}
