@@ -1,0 +1,376 @@
+// The `superball` command as a user runs it: the paper's scenes in text and
+// JSON, sweeps and switch points, every scene of the bad catalogue (exit 2,
+// one line on stderr, nothing on stdout) and bad command-line arguments.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cln/rational.h>
+#include <cln/rational_io.h>
+#include <cln/real.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+const std::string kExe = SUPERBALL_EXE;
+const std::string kScenes = std::string(SUPERBALL_CASES_DIR) + "/scenes/";
+const std::string kData = std::string(SUPERBALL_TEST_DATA_DIR) + "/";
+
+const std::vector<std::string> kCatalogue = {
+#include "bad_scene_list.inc"
+};
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+  std::vector<std::string> err_lines() const {
+    std::vector<std::string> lines;
+    std::istringstream in(err);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+  }
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+/// Run the tool with \p args, stdout and stderr captured in temporary files.
+RunResult run(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const std::string base = ::testing::TempDir() + "superball-cli-" + std::to_string(::getpid()) + "-" + std::to_string(++counter);
+  const std::string out = base + ".out", err = base + ".err";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> argv_s = {kExe};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  RunResult r;
+  pid_t pid = 0;
+  if (posix_spawn(&pid, kExe.c_str(), &actions, nullptr, argv.data(), environ) == 0) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+  posix_spawn_file_actions_destroy(&actions);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+std::string describe(const RunResult& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
+
+/// Bad input: exit 2, exactly one line on stderr containing every piece of
+/// \p expected, nothing on stdout.
+void expect_bad_input(const RunResult& r, const std::vector<std::string>& expected) {
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  EXPECT_TRUE(r.out.empty()) << describe(r);
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << describe(r);
+  EXPECT_EQ(lines[0].rfind("superball: ", 0), 0u) << lines[0];
+  for (const auto& e : expected) EXPECT_NE(lines[0].find(e), std::string::npos) << "'" << e << "' not in: " << lines[0];
+  EXPECT_EQ(r.err.back(), '\n');
+}
+
+nlohmann::json json_of(const RunResult& r) {
+  try {
+    return nlohmann::json::parse(r.out);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not JSON: " << e.what() << "\n" << describe(r);
+    return {};
+  }
+}
+
+double rational(const std::string& fraction) { return cln::double_approx(cln::cl_RA(fraction.c_str())); }
+
+// ---------------------------------------------------------------------------
+// solve
+
+TEST(Solve, PaperSceneAsText) {
+  const RunResult r = run({"solve", kScenes + "paper-4.4-alpha2.toml"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_NE(r.out.find("case 3.3"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("3.30688"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("superball: yes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("precision double, status success"), std::string::npos) << r.out;
+}
+
+/// Eq. (16) as printed, and half a unit of the last printed digit.
+const double kEq16[4] = {3.3069, 0.4478, 0.2849, -0.000017};
+const double kEq16HalfUlp[4] = {0.5e-4, 0.5e-4, 0.5e-4, 0.5e-6};
+
+class SolveJson : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SolveJson, PaperSceneFieldsAndPhysics) {
+  const std::string precision = GetParam();
+  const RunResult r = run({"solve", kScenes + "paper-4.4-alpha2.toml", "--json", "--precision", precision});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const nlohmann::json j = json_of(r);
+  ASSERT_TRUE(j.is_object());
+  EXPECT_EQ(j.at("precision"), precision);
+  EXPECT_EQ(j.at("status"), "success");
+  EXPECT_EQ(j.at("case"), "3.3");
+  EXPECT_EQ(j.at("closed_contacts"), nlohmann::json::array());
+  EXPECT_EQ(j.at("superball"), true);
+  const auto& U = j.at("velocities_after");
+  ASSERT_TRUE(U.is_array());
+  ASSERT_EQ(U.size(), 4u);
+  for (int i = 0; i < 4; ++i) {
+    ASSERT_TRUE(U[i].is_number());
+    EXPECT_NEAR(U[i].get<double>(), kEq16[i], kEq16HalfUlp[i]) << "U" << i + 1;
+  }
+  const auto& R = j.at("reactions");
+  ASSERT_TRUE(R.is_object());
+  EXPECT_EQ(R.size(), 3u);
+  for (const char* c : {"1-2", "2-3", "3-4"}) {
+    ASSERT_TRUE(R.contains(c)) << c;
+    EXPECT_EQ(R.at(c).get<double>(), 0.0) << "case 3.3: every contact open";
+  }
+  // Energies: KE- = ½ (m1 + m2 + m3) a², KE- - KE+ = dissipation >= 0.
+  const double a = 3.13209, ke_before = 0.5 * (0.001 + 10 + 15) * a * a;
+  const double kb = j.at("kinetic_energy_before"), ka = j.at("kinetic_energy_after"), d = j.at("dissipation");
+  EXPECT_NEAR(kb, ke_before, 1e-9 * ke_before);
+  EXPECT_NEAR(kb - ka, d, 1e-9 * kb);
+  EXPECT_GT(d, 0);
+  EXPECT_LT(ka, kb);
+  EXPECT_NEAR(j.at("momentum_before").get<double>(), j.at("momentum_after").get<double>(), 1e-9 * 25 * a);
+  if (precision == "exact") {
+    const auto& X = j.at("velocities_after_exact");
+    ASSERT_EQ(X.size(), 4u);
+    for (int i = 0; i < 4; ++i) {
+      ASSERT_TRUE(X[i].is_string());
+      const std::string f = X[i];
+      EXPECT_EQ(f.find_first_not_of("-0123456789/"), std::string::npos) << "not a fraction: " << f;
+      EXPECT_NEAR(rational(f), U[i].get<double>(), 1e-15 * std::fabs(U[i].get<double>())) << f;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Precisions, SolveJson, ::testing::Values("double", "long-double", "digits:30", "exact"),
+                         [](const auto& info) {
+                           std::string s = info.param;
+                           for (char& c : s)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return s;
+                         });
+
+TEST(Solve, AsPrintedSceneGivesAnotherU1) {
+  const RunResult r = run({"solve", kScenes + "paper-4.4-as-printed.toml", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const nlohmann::json j = json_of(r);
+  EXPECT_NEAR(j.at("velocities_after")[0].get<double>(), 3.1467, 0.5e-4);
+  EXPECT_GT(std::fabs(j.at("velocities_after")[0].get<double>() - kEq16[0]), 0.1);
+}
+
+TEST(Solve, ClosedContactsAndReactions) {
+  // 2 kg at -1 m/s on 3 kg at +1 m/s, no dissipation: a plastic impact, both
+  // at the centre-of-mass velocity 1/5, reaction m2 (1/5 - 1) = -12/5.
+  const RunResult r = run({"solve", kData + "good/two-bodies-no-dissipation.toml", "--json", "--precision", "exact"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const nlohmann::json j = json_of(r);
+  EXPECT_EQ(j.at("closed_contacts"), nlohmann::json::array({"1-2"}));
+  EXPECT_EQ(j.at("case"), "{1-2}");  // not a 4-body scene: the set itself
+  EXPECT_EQ(j.at("velocities_after_exact"), nlohmann::json::array({"1/5", "1/5"}));
+  EXPECT_DOUBLE_EQ(j.at("reactions").at("1-2").get<double>(), -2.4);
+  EXPECT_DOUBLE_EQ(j.at("kinetic_energy_before").get<double>(), 2.5);
+  EXPECT_DOUBLE_EQ(j.at("kinetic_energy_after").get<double>(), 0.1);
+  EXPECT_DOUBLE_EQ(j.at("dissipation").get<double>(), 2.4);
+  EXPECT_EQ(j.at("superball"), false);
+}
+
+TEST(Solve, ExactWithAnIrrationalFallSpeed) {
+  // h = 0.5, g = 9.81: a = sqrt(9.81) is irrational; an exact run prints
+  // each velocity as a fraction times sqrt(981/100), and the numbers agree.
+  const RunResult r = run({"solve", kData + "good/paper-4.4-alpha4-float-inf.toml", "--json", "--precision", "exact"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const nlohmann::json j = json_of(r);
+  const auto& X = j.at("velocities_after_exact");
+  ASSERT_EQ(X.size(), 4u);
+  for (int i = 0; i < 3; ++i) {
+    const std::string f = X[i];
+    const auto star = f.find("*sqrt(981/100)");
+    ASSERT_NE(star, std::string::npos) << f;
+    EXPECT_NEAR(rational(f.substr(0, star)) * std::sqrt(9.81), j.at("velocities_after")[i].get<double>(), 1e-12) << f;
+  }
+  EXPECT_EQ(j.at("velocities_after")[3].get<double>(), 0.0);  // the fixed obstacle
+  EXPECT_EQ(j.at("fixed_obstacle"), true);
+  // The double run agrees.
+  const nlohmann::json d = json_of(run({"solve", kData + "good/paper-4.4-alpha4-float-inf.toml", "--json"}));
+  for (int i = 0; i < 4; ++i)
+    EXPECT_NEAR(d.at("velocities_after")[i].get<double>(), j.at("velocities_after")[i].get<double>(), 1e-12);
+}
+
+// ---------------------------------------------------------------------------
+// sweep
+
+TEST(Sweep, SwitchPointsOfFig7) {
+  const RunResult r = run({"sweep", kScenes + "paper-4.4-alpha2.toml", "--vary", "K.3-4=0:20:41", "--switch-points"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  std::istringstream in(r.out);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 2u) << r.out;
+  EXPECT_EQ(lines[0].rfind("K.3-4 = 6.428", 0), 0u) << lines[0];
+  EXPECT_NE(lines[0].find("case 2.2 {3-4} -> case 3.3 {}"), std::string::npos) << lines[0];
+  EXPECT_EQ(lines[1].rfind("K.3-4 = 13.41", 0), 0u) << lines[1];
+  EXPECT_NE(lines[1].find("case 3.3 {} -> case 3.2 {2-3}"), std::string::npos) << lines[1];
+}
+
+TEST(Sweep, CsvAlongK34) {
+  const RunResult r = run({"sweep", kScenes + "paper-4.4-alpha2.toml", "--vary", "K.3-4=0:20:41", "--csv"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  std::istringstream in(r.out);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 42u) << r.out;
+  EXPECT_EQ(lines[0], "K.3-4,U1,U2,U3,U4,case");
+  int cases[3] = {0, 0, 0};
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    std::vector<std::string> cells;
+    std::istringstream row(lines[k]);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 6u) << lines[k];
+    const double k34 = std::stod(cells[0]);
+    EXPECT_NEAR(k34, 0.5 * static_cast<double>(k - 1), 1e-9);
+    const double U[4] = {std::stod(cells[1]), std::stod(cells[2]), std::stod(cells[3]), std::stod(cells[4])};
+    // Impenetrability along the whole sweep.
+    for (int i = 0; i < 3; ++i) EXPECT_GE(U[i] - U[i + 1], -1e-12) << lines[k];
+    const std::string& c = cells[5];
+    EXPECT_EQ(c, k34 < 6.43 ? "2.2" : k34 < 13.41 ? "3.3" : "3.2") << lines[k];
+    cases[c == "2.2" ? 0 : c == "3.3" ? 1 : 2] += 1;
+    if (k34 == 10) {
+      for (int i = 0; i < 4; ++i) EXPECT_NEAR(U[i], kEq16[i], kEq16HalfUlp[i]) << lines[k];
+    }
+  }
+  EXPECT_EQ(cases[0], 13);  // 0 .. 6
+  EXPECT_EQ(cases[1], 14);  // 6.5 .. 13
+  EXPECT_EQ(cases[2], 14);  // 13.5 .. 20
+}
+
+// ---------------------------------------------------------------------------
+// bad input
+
+class BadSceneCli : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(BadSceneCli, ExitTwoOneLineNothingOnStdout) {
+  const std::string path = kData + "bad/" + GetParam();
+  std::ifstream in(path, std::ios::binary);
+  std::string first;
+  std::getline(in, first);
+  ASSERT_EQ(first.rfind("# expect: ", 0), 0u);
+  const std::string expected = first.substr(10);
+  const std::vector<std::vector<std::string>> variants = {{}, {"--json"}, {"--precision", "exact"}};
+  for (const auto& extra : variants) {
+    std::vector<std::string> args = {"solve", path};
+    args.insert(args.end(), extra.begin(), extra.end());
+    expect_bad_input(run(args), {path, expected});
+  }
+  expect_bad_input(run({"sweep", path, "--vary", "g=1:2:3"}), {path});
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, BadSceneCli, ::testing::ValuesIn(kCatalogue), [](const auto& info) {
+  std::string name = info.param.substr(0, info.param.rfind('.'));
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+});
+
+TEST(BadInput, MissingSceneFile) {
+  const std::string path = kData + "bad/no-such-file.toml";
+  expect_bad_input(run({"solve", path}), {path, "cannot open"});
+}
+
+TEST(BadInput, FileOverTheSizeLimit) {
+  const std::string path = ::testing::TempDir() + "superball-cli-big-" + std::to_string(::getpid()) + ".toml";
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "fall_speed = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n";
+    const std::string line(99, '#');
+    for (int k = 0; k < 50000; ++k) out << line << '\n';  // 5 MB of comments
+  }
+  expect_bad_input(run({"solve", path}), {path, "bytes; a scene file has at most"});
+  std::remove(path.c_str());
+}
+
+struct BadArgs {
+  std::vector<std::string> args;
+  std::vector<std::string> expected;
+};
+
+void PrintTo(const BadArgs& b, std::ostream* os) {
+  *os << "superball";
+  for (const auto& a : b.args) *os << " '" << a << "'";
+}
+
+class BadArguments : public ::testing::TestWithParam<BadArgs> {};
+
+TEST_P(BadArguments, ExitNonZeroWithOneClearLine) {
+  const BadArgs b = GetParam();
+  const RunResult r = run(b.args);
+  EXPECT_NE(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(r.out.empty()) << describe(r);
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << describe(r);
+  for (const auto& e : b.expected) EXPECT_NE(lines[0].find(e), std::string::npos) << "'" << e << "' not in: " << lines[0];
+}
+
+const std::string kPaper = kScenes + "paper-4.4-alpha2.toml";
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, BadArguments,
+    ::testing::Values(
+        BadArgs{{"solve", kPaper, "--precision", "nonsense"}, {"nonsense", "double, long-double, digits:N or exact"}},
+        BadArgs{{"solve", kPaper, "--precision", "digits:5"}, {"digits:5", "10"}},
+        BadArgs{{"solve", kPaper, "--precision", "digits:abc"}, {"digits:abc"}},
+        BadArgs{{"solve", kPaper, "-p", ""}, {"precision"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20"}, {"--vary K.3-4=0:20", "FROM:TO:STEPS"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:1"}, {"STEPS"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:many"}, {"STEPS"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:1e3"}, {"STEPS"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:-5"}, {"STEPS"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=5:5:10"}, {"FROM and TO are equal"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=a:b:3"}, {"--vary K.3-4=a:b:3", "'a'"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=1/0:2:3"}, {"zero denominator"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4"}, {"no '='"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.9-10=0:1:3"}, {"outside bodies 1..4"}},
+        BadArgs{{"sweep", kPaper, "--vary", "colour=0:1:3"}, {"unknown parameter"}},
+        BadArgs{{"sweep", kPaper, "--vary", "alpha.9=0:1:3"}, {"alpha"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=-100:20:5"}, {"not positive semi-definite"}},
+        BadArgs{{"sweep", kPaper, "--vary", "mass.1=-1:1:3"}, {"must be > 0"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:5", "--precision", "quad"}, {"quad"}},
+        BadArgs{{"sweep", kPaper}, {"--vary"}},
+        BadArgs{{"solve"}, {"scene"}},
+        BadArgs{{"solve", kPaper, "--bogus"}, {"--bogus"}},
+        BadArgs{{"frobnicate"}, {"subcommand"}},
+        BadArgs{{}, {"subcommand"}}),
+    [](const auto& info) { return "case" + std::to_string(info.index); });
+
+TEST(Cli, Version) {
+  const RunResult r = run({"--version"});
+  EXPECT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_EQ(r.out.rfind("superball ", 0), 0u) << r.out;
+}
+
+}  // namespace
