@@ -204,7 +204,7 @@ class SceneReader {
     }
     if (const toml::node* c = d->get("coupling")) {
       const toml::array* list = c->as_array();
-      if (!list || !list->is_array_of_tables())
+      if (!list || (!list->empty() && !list->is_array_of_tables()))
         fail(*c, "dissipation.coupling", "must be an array of tables { pairs = [\"1-2\", \"1-4\"], value = -100 }");
       for (std::size_t k = 0; k < list->size(); ++k) {
         const toml::table& t = *(*list)[k].as_table();
