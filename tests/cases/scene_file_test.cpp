@@ -174,6 +174,35 @@ TEST(SceneFile, ExactNumbersReadAsWritten) {
   EXPECT_EQ(s.bodies[1].mass.denominator, "1" + std::string(300, '0'));
 }
 
+TEST(SceneFile, EmptyTablesAndListsOfMAreNoEntries) {
+  // K = {}, alpha = {} and coupling = [] all say "no entries": the same scene.
+  const std::string head = "fall_speed = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\n";
+  for (const char* d : {"", "K = {}\n", "alpha = {}\n", "coupling = []\n", "K = {}\ncoupling = []\n"}) {
+    SCOPED_TRACE(d);
+    try {
+      const Scene s = parse_scene(head + d, "empty");
+      EXPECT_TRUE(s.entries.empty());
+    } catch (const InputError& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
+}
+
+TEST(SceneFile, TomlIntegersInEveryBase) {
+  // "Numbers may be TOML integers or floats (read exactly as written)":
+  // TOML writes integers in hexadecimal, octal and binary too.
+  const std::string tail = "\n[[body]]\nmass = \"inf\"\n";
+  for (const char* spelling : {"0x10", "0o20", "0b10000", "+16", "1_6"}) {
+    SCOPED_TRACE(spelling);
+    try {
+      const Scene s = parse_scene(std::string("fall_speed = 1\n[[body]]\nmass = ") + spelling + tail, "bases");
+      EXPECT_EQ(s.bodies[0].mass.approx(), 16.0);
+    } catch (const InputError& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
+}
+
 TEST(SceneFile, MissingFileAndDirectory) {
   const std::string missing = kGood + "no-such-scene.toml";
   try {

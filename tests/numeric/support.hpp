@@ -30,6 +30,11 @@
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/problem.hpp"
 
+namespace superball::numeric {
+/// gtest prints a Status by name.
+inline void PrintTo(Status s, std::ostream* os) { *os << to_string(s); }
+}  // namespace superball::numeric
+
 namespace superball::testing {
 
 using cln::cl_R;
