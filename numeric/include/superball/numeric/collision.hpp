@@ -72,6 +72,9 @@ struct Solution {
   int pivots = 0;
 };
 
+/// Largest n CollisionSolver accepts: it stores n × n matrices.
+inline constexpr int dense_solver_max_bodies = 4096;
+
 /// Reusable solver: construct once per problem size, then compute() any
 /// problem of that size; compute() does not allocate for double and long
 /// double once the workspace has its size.
@@ -124,12 +127,11 @@ class CollisionSolver {
   detail::CheckWorkspace<S> check_;  ///< scratch of the residual check
 };
 
-/// Convenience: the solution of \p problem with default settings.
+/// The solution of \p problem with default settings, by the formulation that
+/// suits it: the dense CollisionSolver for small n, the banded ChainSolver
+/// (chain.hpp) for long chains whose M couples only nearby pairs.
 template <class S>
-Solution<S> solve(const Problem<S>& problem) {
-  CollisionSolver<S> solver(Settings<S>::defaults(problem.digits));
-  return solver.compute(problem);
-}
+Solution<S> solve(const Problem<S>& problem);
 
 extern template struct Settings<double>;
 extern template struct Settings<long double>;
@@ -139,5 +141,9 @@ extern template class CollisionSolver<double>;
 extern template class CollisionSolver<long double>;
 extern template class CollisionSolver<cln::cl_R>;
 extern template class CollisionSolver<cln::cl_RA>;
+extern template Solution<double> solve(const Problem<double>&);
+extern template Solution<long double> solve(const Problem<long double>&);
+extern template Solution<cln::cl_R> solve(const Problem<cln::cl_R>&);
+extern template Solution<cln::cl_RA> solve(const Problem<cln::cl_RA>&);
 
 }  // namespace superball::numeric

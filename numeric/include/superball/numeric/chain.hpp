@@ -1,0 +1,71 @@
+#pragma once
+/// \file chain.hpp
+/// The collision solver for long chains: O(n) time and memory when M only
+/// couples pairs within a band (e.g. nearest and next-nearest neighbours).
+///
+/// Same problem as CollisionSolver (collision.hpp), another formulation:
+/// for a guess of the evolution case S, closed contacts tie consecutive
+/// bodies into clusters with one velocity each; with Z the cluster incidence,
+///     Zᵀ A Z V = Zᵀ b̃,        W = Z V,
+/// a banded system (its bandwidth is at most M's, b) solved by a banded
+/// LDLᵀ in O(n b²).  The reaction on a closed contact is the running sum of
+/// the residuals A W − b̃ down its cluster; the gap of an open contact is
+/// W_c − W_{c+1}.  The case is found by block principal pivoting (Júdice &
+/// Pires): every contact whose gap or reaction has the wrong sign flips at
+/// once; when that stops reducing the number of wrong signs, one contact
+/// flips at a time, the smallest index first (Murty's rule, which
+/// terminates because the contact matrix is positive definite).
+
+#include <vector>
+
+#include "superball/numeric/collision.hpp"
+
+namespace superball::numeric {
+
+/// Reusable banded solver (see the file comment).  compute() does not
+/// allocate once the workspace has its size.
+template <class S>
+class ChainSolver {
+ public:
+  ChainSolver() = default;
+  explicit ChainSolver(const Settings<S>& settings) : settings_(settings) {}
+
+  /// Solve \p problem into \p out; out.pivots counts the active-set
+  /// iterations.  Throws std::invalid_argument("ChainSolver::compute(): ...")
+  /// on misuse; the numerical outcome is out.status.
+  void compute(const Problem<S>& problem, Solution<S>& out);
+  Solution<S> compute(const Problem<S>& problem) {
+    Solution<S> out;
+    compute(problem, out);
+    return out;
+  }
+  /// The bandwidth b of DᵀMD for the last problem.
+  int bandwidth() const { return b_; }
+
+ private:
+  S& A(int i, int d) { return A_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(d)]; }
+  S& R(int i, int d) { return R_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(d)]; }
+  void assemble(const Problem<S>& p);
+  bool solve_case(const Problem<S>& p, std::vector<S>& W);
+
+  Settings<S> settings_ = Settings<S>::defaults();
+  int n_ = 0, nf_ = 0, nc_ = 0, b_ = 0;
+  std::vector<S> A_;       ///< lower band of diag(m) + DᵀMD over all n bodies: A(i, d) = A_{i, i−d}
+  std::vector<S> rhs_;     ///< b̃ on free bodies
+  std::vector<int> cluster_;
+  std::vector<S> R_, y_;   ///< the reduced banded system and its right side / solution
+  std::vector<S> lambda_;  ///< λ on closed contacts, 0 on open ones
+  std::vector<char> closed_;
+  detail::CheckWorkspace<S> check_;
+};
+
+/// Largest n the dense CollisionSolver is used for by solve(); above it, and
+/// whenever DᵀMD is banded with 2b + 1 < n, ChainSolver is used.
+inline constexpr int dense_max_bodies = 64;
+
+extern template class ChainSolver<double>;
+extern template class ChainSolver<long double>;
+extern template class ChainSolver<cln::cl_R>;
+extern template class ChainSolver<cln::cl_RA>;
+
+}  // namespace superball::numeric
