@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
       "  superball solve cases/scenes/paper-4.4-alpha2.toml            velocities after the collision\n"
       "  superball solve SCENE --precision exact --json                exact fractions, for programs\n"
       "  superball sweep SCENE --vary K.3-4=0:20:401 --switch-points   where the evolution case changes\n"
-      "  superball derive --case 1 --alphas 2                          conditions of a case, symbolically\n",
+      "  superball derive --case 1 --alphas 2                          conditions of a case, symbolically\n"
+      "  superball audit                                               the paper's printed conditions, checked\n",
       "superball"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "superball 0.1.0");
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   add_sweep(app, action);
   add_reproduce(app, action);
   add_derive(app, action);
+  add_audit(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -130,6 +130,8 @@ std::pair<GiNaC::ex, GiNaC::ex> lowest_terms(const GiNaC::ex& num, const GiNaC::
 
 }  // namespace detail
 
+bool certainly_nonnegative(const GiNaC::ex& p, const Symbols& symbols) { return detail::certainly_nonnegative(p, symbols); }
+
 bool certainly_positive(const GiNaC::ex& p, const Symbols& symbols) {
   const GiNaC::ex e = GiNaC::expand(p);
   if (!detail::certainly_nonnegative(e, symbols)) return false;

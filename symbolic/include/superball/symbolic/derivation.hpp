@@ -184,6 +184,10 @@ GiNaC::ex strip_positive_factors(const GiNaC::ex& p, const Symbols& symbols, GiN
 /// a positive coefficient, even powers of couplings, and one term has no coupling.
 bool certainly_positive(const GiNaC::ex& p, const Symbols& symbols);
 
+/// Whether the expanded polynomial \p p is >= 0 for every admissible point:
+/// every term has a positive coefficient and even powers of couplings.
+bool certainly_nonnegative(const GiNaC::ex& p, const Symbols& symbols);
+
 /// Whether the conditions "p REL 0" and "q REL 0" are the same: p/q is
 /// positive for every admissible parameter point (a positive rational times
 /// a product of positive symbols).

@@ -1,0 +1,89 @@
+#pragma once
+/// \file audit.hpp
+/// The paper's printed conditions (§4.1–§4.3) and claims in words against
+/// the symbolic derivation, with concrete parameter points solved exactly by
+/// the numeric backend.  The paper is data, not truth: each printed
+/// condition is found identical to the exact condition, identical at the
+/// asymptotic order, or different — and a "different" one comes with a
+/// parameter point (M positive semi-definite, in the asymptotic regime) where
+/// it disagrees with the exact solution while the derived condition agrees.
+
+#include <cln/rational.h>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "superball/cases/printed_conditions.hpp"
+
+namespace superball::verify {
+
+/// How the audit samples parameter points.
+struct AuditOptions {
+  cln::cl_RA epsilon = cln::cl_RA(1) / 1000;  ///< ε of the regime: m₁ = ε·m̃₁, K₁₄ = K̃₁₄/ε, others O(1)
+  int samples = 20000;                        ///< points tried per search
+  std::uint64_t seed = 1;                     ///< of the pseudo-random points (reproducible)
+};
+
+/// A parameter point and what each side says there.
+struct Witness {
+  std::vector<std::pair<std::string, cln::cl_RA>> point;  ///< ASCII name → exact value (a included)
+  std::string quantity;          ///< the numeric quantity decided, e.g. "R2_3 = -13/7" or "U1 - a = 1/9"
+  std::string actual_case;       ///< the case the exact (unforced) numeric solution takes there
+  bool printed = false;          ///< the printed condition holds
+  bool numeric = false;          ///< the condition holds for the exact solution of the case (numeric backend)
+  bool derived_exact = false;    ///< the derived exact condition holds
+  bool derived_asymptotic = false;  ///< the derived asymptotic condition holds
+};
+
+/// How a printed condition compares with the derivation.
+enum class Agreement { IdenticalExact, IdenticalAsymptotic, Different };
+const char* to_string(Agreement a);
+
+/// The audit of one printed condition.
+struct ConditionAudit {
+  PrintedCondition printed;
+  Agreement agreement = Agreement::Different;
+  std::string printed_text;       ///< the printed condition re-written in text notation
+  std::string exact_text;         ///< the derived exact condition (m₄ = ∞)
+  std::string asymptotic_text;    ///< the derived asymptotic condition
+  std::string printed_asymptotic_text;  ///< the dominant balance of the printed condition
+  std::vector<std::string> notes; ///< strictness differences, PSD look-alikes, transcription notes
+  std::optional<Witness> witness; ///< Different: printed ≠ numeric there, derived = numeric
+  int tried = 0;                  ///< points tried in the search
+};
+
+/// The audit of one claim in words.
+struct ClaimAudit {
+  PaperClaim claim;
+  bool supported = false;
+  std::string verdict;                    ///< one line: what was shown
+  std::vector<std::string> comparisons;   ///< per condition: same as the `like` pattern after renaming, or not
+  std::string superball_text;             ///< the derived exact superball condition of the claim's pattern
+  std::string certificate;                ///< "impossible" claims: the proof, when found
+  std::optional<Witness> example;         ///< a point with the case actual and U₁⁺ > a, when found
+  int tried = 0;
+  int hits = 0;                           ///< points where the case was actual and U₁⁺ > a
+};
+
+/// The whole audit.
+struct Audit {
+  AuditOptions options;
+  std::vector<ConditionAudit> conditions;
+  std::vector<ClaimAudit> claims;
+};
+
+/// Audit every printed condition and claim of \p data (paper §4.1–§4.3).
+/// Throws std::invalid_argument("audit_paper(): ...") when an entry names an
+/// unknown case, condition or symbol, or the scaling has non-integer orders.
+Audit audit_paper(const PrintedConditions& data, const AuditOptions& options = {});
+
+/// The audit as text for people (Unicode notation).
+std::string to_text(const Audit& audit);
+
+/// Exact decimal-free spelling of a rational ("-13/7").
+std::string to_string(const cln::cl_RA& x);
+
+}  // namespace superball::verify

@@ -1,0 +1,493 @@
+#include "superball/verify/audit.hpp"
+
+#include <cln/rational_io.h>
+#include <ginac/ginac.h>
+
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/collision.hpp"
+#include "superball/numeric/problem.hpp"
+#include "superball/symbolic/derivation.hpp"
+#include "superball/symbolic/format.hpp"
+
+namespace superball::verify {
+namespace detail {
+
+using cln::cl_RA;
+using namespace superball::symbolic;
+
+GiNaC::numeric to_ginac(const cl_RA& x) { return GiNaC::numeric(cln::cl_N(x)); }
+
+[[noreturn]] void fail(const std::string& what) { throw std::invalid_argument("audit_paper(): " + what); }
+
+std::string where(const PrintedCondition& c) { return "§" + c.section + " case " + c.case_name + " " + c.kind + " " + c.about; }
+
+/// A parameter point: the symbolic substitution and the same numbers for the numeric backend.
+struct Sample {
+  GiNaC::exmap values;
+  numeric::Problem<cl_RA> problem;
+  std::vector<std::pair<std::string, cl_RA>> named;
+};
+
+/// Random points of the asymptotic regime with M positive semi-definite.
+class Sampler {
+ public:
+  Sampler(const Deriver& deriver, const cl_RA& epsilon, std::uint64_t seed) : d_(deriver), eps_(epsilon), rng_(seed) {
+    for (const SymbolInfo& s : d_.symbols().all()) {
+      const GiNaC::numeric k = d_.scaling().order(d_.symbols(), s.symbol);
+      if (!k.is_integer()) fail("the audit needs integer orders in epsilon (" + s.ascii + ")");
+      order_[s.ascii] = k.to_int();
+    }
+  }
+
+  /// A point, or nullopt when 1000 draws in a row gave an M that is not positive semi-definite.
+  std::optional<Sample> draw() {
+    for (int attempt = 0; attempt < 1000; ++attempt) {
+      Sample s = candidate();
+      bool psd = true;
+      for (const Condition& c : d_.psd()) {
+        const GiNaC::ex v = c.exact.numerator.subs(s.values, GiNaC::subs_options::no_pattern);
+        psd = psd && GiNaC::is_a<GiNaC::numeric>(v) && !GiNaC::ex_to<GiNaC::numeric>(v).is_negative();
+      }
+      if (psd) return s;
+    }
+    return std::nullopt;
+  }
+
+ private:
+  cl_RA tenths(int lo, int hi) { return cl_RA(std::uniform_int_distribution<int>(lo, hi)(rng_)) / 10; }
+  cl_RA scaled(const std::string& name, const cl_RA& x) const { return x * cln::expt(eps_, order_.at(name)); }
+
+  Sample candidate() {
+    const Symbols& sy = d_.symbols();
+    const int n = sy.bodies();
+    Sample s;
+    auto& p = s.problem;
+    p.n = n;
+    p.fixed_bottom = sy.obstacle() == Obstacle::Infinite;
+    p.mass.assign(static_cast<std::size_t>(n), cl_RA(0));
+    p.unit = 1;
+    std::map<std::string, cl_RA> diagonal;
+    auto set = [&](const SymbolInfo& info, const cl_RA& v) {
+      s.values[info.symbol] = to_ginac(v);
+      s.named.emplace_back(info.ascii, v);
+    };
+    for (const SymbolInfo& info : sy.all()) {
+      switch (info.kind) {
+        case SymbolKind::Mass: {
+          const cl_RA m = scaled(info.ascii, tenths(1, 300));  // 0.1 .. 30
+          p.mass[static_cast<std::size_t>(info.body - 1)] = m;
+          set(info, m);
+          break;
+        }
+        case SymbolKind::Diagonal: {
+          const cl_RA k = scaled(info.ascii, tenths(1, 200));  // 0.1 .. 20
+          diagonal[info.first.name()] = k;
+          p.entries.push_back({info.first.i - 1, info.first.j - 1, info.first.i - 1, info.first.j - 1, k});
+          set(info, k);
+          break;
+        }
+        case SymbolKind::Coupling: {
+          // |c| <= sqrt(K_p K_q) for the 2×2 minor, and O(1): at most 20 before scaling.
+          const auto kp = diagonal.find(info.first.name()), kq = diagonal.find(info.second.name());
+          double bound = 20;
+          if (kp != diagonal.end() && kq != diagonal.end())
+            bound = std::min(bound, std::sqrt(cln::double_approx(kp->second * kq->second)) / cln::double_approx(cln::expt(eps_, order_.at(info.ascii))));
+          const cl_RA b = cl_RA(static_cast<long>(std::floor(bound * 10))) / 10;
+          const cl_RA c = scaled(info.ascii, b * cl_RA(std::uniform_int_distribution<int>(-20, 20)(rng_)) / 20);
+          p.entries.push_back({info.first.i - 1, info.first.j - 1, info.second.i - 1, info.second.j - 1, c});
+          set(info, c);
+          break;
+        }
+        case SymbolKind::FallSpeed: {
+          const cl_RA a = tenths(10, 50);  // 1 .. 5
+          set(info, a);
+          for (int i = 0; i < n; ++i) p.u.push_back(i + 1 < n ? cl_RA(-a) : cl_RA(0));
+          break;
+        }
+      }
+    }
+    return s;
+  }
+
+  const Deriver& d_;
+  cl_RA eps_;
+  std::mt19937_64 rng_;
+  std::map<std::string, int> order_;
+};
+
+bool holds(const GiNaC::ex& p, const GiNaC::exmap& at, bool strict) {
+  const GiNaC::ex v = p.subs(at, GiNaC::subs_options::no_pattern);
+  if (!GiNaC::is_a<GiNaC::numeric>(v)) throw std::logic_error("holds(): the condition is not a number at the point");
+  const GiNaC::numeric x = GiNaC::ex_to<GiNaC::numeric>(v);
+  return strict ? x.is_positive() : !x.is_negative();
+}
+
+/// What the exact numeric solution of the forced case says about (kind, about); the quantity decided.
+bool numeric_truth(const std::string& kind, const std::string& about, const Sample& s, const numeric::Solution<cl_RA>& sol, std::string& quantity) {
+  const cl_RA a = -s.problem.u.front();
+  if (kind == "superball") {
+    quantity = "U1 - a = " + to_string(sol.velocities_after[0] - a);
+    return sol.velocities_after[0] > a;
+  }
+  const Pair p = Pair::parse(about);
+  const auto i = static_cast<std::size_t>(p.i - 1), j = static_cast<std::size_t>(p.j - 1);
+  if (kind == "evolution") {
+    quantity = "U" + std::to_string(p.i) + " - U" + std::to_string(p.j) + " = " + to_string(sol.velocities_after[i] - sol.velocities_after[j]);
+    return sol.velocities_after[i] > sol.velocities_after[j];
+  }
+  quantity = "R" + std::to_string(p.i) + "_" + std::to_string(p.j) + " = " + to_string(sol.reactions[i]);
+  return sol.reactions[i] <= 0;
+}
+
+const Condition* find(const Derivation& d, const std::string& kind, const std::string& about) {
+  for (const Condition& c : d.conditions)
+    if (to_string(c.kind) == kind && c.about == about) return &c;
+  return nullptr;
+}
+
+GiNaC::ex parse(const Symbols& s, const std::string& text, const std::string& context) {
+  try {
+    GiNaC::parser reader(s.table(), true);
+    return reader(text);
+  } catch (const std::exception& e) {
+    fail(context + ": cannot read '" + text + "': " + e.what());
+  }
+}
+
+ContactSet named_case(const std::string& name, const std::string& context) {
+  try {
+    return Vocabulary::paper().named_case(name).closed;
+  } catch (const std::invalid_argument&) {
+    fail(context + ": no case '" + name + "'");
+  }
+}
+
+std::string ascii(const GiNaC::ex& e) {
+  std::ostringstream os;
+  os << e;
+  return os.str();
+}
+
+/// Deriver and derivations per pattern, shared by the entries.
+class Cache {
+ public:
+  const Deriver& deriver(const std::vector<int>& alphas) {
+    auto& slot = derivers_[alphas];
+    if (!slot) slot = std::make_unique<Deriver>(Pattern::paper(alphas), Obstacle::Infinite);
+    return *slot;
+  }
+  const Derivation& derivation(const std::vector<int>& alphas, const ContactSet& closed) {
+    const auto key = std::make_pair(alphas, closed.to_string());
+    auto it = derivations_.find(key);
+    if (it == derivations_.end()) it = derivations_.emplace(key, deriver(alphas).derive(closed)).first;
+    return it->second;
+  }
+
+ private:
+  std::map<std::vector<int>, std::unique_ptr<Deriver>> derivers_;
+  std::map<std::pair<std::vector<int>, std::string>, Derivation> derivations_;
+};
+
+ConditionAudit audit_condition(const PrintedCondition& pc, const AuditOptions& o, Cache& cache, std::uint64_t seed) {
+  const std::string ctx = where(pc);
+  ConditionAudit out;
+  out.printed = pc;
+  if (!pc.note.empty()) out.notes.push_back("transcription: " + pc.note);
+  const Deriver& deriver = cache.deriver(pc.alphas);
+  const Symbols& s = deriver.symbols();
+  const Derivation& d = cache.derivation(pc.alphas, named_case(pc.case_name, ctx));
+  const GiNaC::ex rhs = parse(s, pc.rhs, ctx);
+  if (pc.kind == "velocity") {
+    if (pc.lhs.size() < 2 || pc.lhs[0] != 'U') fail(ctx + ": a velocity formula reads U<i> = ...");
+    const int body = std::stoi(pc.lhs.substr(1));
+    if (body < 1 || body > s.bodies()) fail(ctx + ": no body " + pc.lhs.substr(1));
+    const Fraction& u = d.velocities[static_cast<std::size_t>(body - 1)];
+    const GiNaC::ex nd = GiNaC::numer_denom(rhs);
+    out.printed_text = velocity_name(body, Style::Text) + " = " + format_fraction(Fraction{nd.op(0), nd.op(1)}, s, Style::Text);
+    out.exact_text = velocity_name(body, Style::Text) + " = " + format_fraction(u, s, Style::Text);
+    out.asymptotic_text = out.exact_text;
+    out.agreement = GiNaC::normal(u.value() - rhs).is_zero() ? Agreement::IdenticalExact : Agreement::Different;
+    if (out.agreement == Agreement::Different) {
+      Sampler sampler(deriver, o.epsilon, seed);
+      numeric::CollisionSolver<cl_RA> solver;
+      for (out.tried = 0; out.tried < o.samples && !out.witness; ++out.tried) {
+        const auto sample = sampler.draw();
+        if (!sample) break;
+        numeric::Solution<cl_RA> sol;
+        solver.compute_case(sample->problem, d.closed, sol);
+        const GiNaC::ex printed = rhs.subs(sample->values, GiNaC::subs_options::no_pattern);
+        if (!printed.is_equal(to_ginac(sol.velocities_after[static_cast<std::size_t>(body - 1)]))) {
+          Witness w;
+          w.point = sample->named;
+          w.quantity = pc.lhs + " = " + to_string(sol.velocities_after[static_cast<std::size_t>(body - 1)]) + ", printed formula gives " + ascii(printed);
+          w.numeric = true;
+          w.derived_exact = w.derived_asymptotic = true;
+          out.witness = w;
+        }
+      }
+    }
+    return out;
+  }
+  const GiNaC::ex lhs = parse(s, pc.lhs, ctx);
+  const bool greater = pc.relation == ">" || pc.relation == ">=";
+  const bool strict = pc.relation == ">" || pc.relation == "<";
+  const GiNaC::ex q = GiNaC::expand(greater ? lhs - rhs : rhs - lhs);
+  const Relation rel = strict ? Relation::Greater : Relation::GreaterEqual;
+  const Condition* c = find(d, pc.kind, pc.about);
+  if (!c) fail(ctx + ": the case has no " + pc.kind + " condition about " + pc.about);
+  out.printed_text = format_condition(q, rel, s, Style::Text);
+  out.exact_text = format_condition(c->exact, c->relation, s, Style::Text);
+  out.asymptotic_text = format_condition(c->asymptotic, c->relation, s, Style::Text);
+  GiNaC::numeric printed_order;
+  const GiNaC::ex q_asymptotic = deriver.asymptotic(q, &printed_order);
+  out.printed_asymptotic_text = format_condition(q_asymptotic, rel, s, Style::Text);
+  if (same_condition(q, c->exact.numerator, s))
+    out.agreement = Agreement::IdenticalExact;
+  else if (same_condition(q_asymptotic, c->asymptotic.numerator, s))
+    out.agreement = Agreement::IdenticalAsymptotic;
+  else
+    out.agreement = Agreement::Different;
+  if (out.agreement != Agreement::Different && (rel != c->relation))
+    out.notes.push_back(std::string("the printed relation is ") + (strict ? "strict" : "not strict") + ", the derived one " +
+                        (c->relation == Relation::Greater ? "strict" : "not strict") + " (they differ only on the boundary)");
+  for (const Condition& m : deriver.psd())
+    if (m.about.find(',') != std::string::npos && same_condition(q, m.exact.numerator, s))
+      out.notes.push_back("the printed condition is the positive semi-definiteness minor of M on " + m.about + ": it holds at every admissible point");
+  if (out.agreement != Agreement::Different) return out;
+
+  // A point where the printed condition and the exact solution disagree; prefer one where the
+  // derived asymptotic condition agrees too (the derived exact one always does).
+  Sampler sampler(deriver, o.epsilon, seed);
+  numeric::CollisionSolver<cl_RA> solver;
+  for (out.tried = 0; out.tried < o.samples; ++out.tried) {
+    const auto sample = sampler.draw();
+    if (!sample) break;
+    numeric::Solution<cl_RA> sol;
+    solver.compute_case(sample->problem, d.closed, sol);
+    if (sol.status != numeric::Status::Success) continue;
+    Witness w;
+    w.numeric = numeric_truth(pc.kind, pc.about, *sample, sol, w.quantity);
+    w.printed = holds(q, sample->values, strict);
+    if (w.printed == w.numeric) continue;
+    w.derived_exact = holds(c->exact.numerator, sample->values, c->relation == Relation::Greater);
+    w.derived_asymptotic = holds(c->asymptotic.numerator, sample->values, c->relation == Relation::Greater);
+    w.point = sample->named;
+    numeric::Solution<cl_RA> actual;
+    solver.compute(sample->problem, actual);
+    w.actual_case = Vocabulary::paper().case_name(actual.closed);
+    const bool best = w.derived_exact == w.numeric && w.derived_asymptotic == w.numeric;
+    if (!out.witness || best) out.witness = w;
+    if (best) {
+      ++out.tried;
+      break;
+    }
+  }
+  return out;
+}
+
+/// Rename α_like → α_claim in the ASCII printing of \p e and read it in \p target's symbols.
+GiNaC::ex renamed(const GiNaC::ex& e, const std::vector<int>& from, const std::vector<int>& to, const Symbols& target) {
+  std::string text = ascii(e);
+  for (std::size_t k = 0; k < from.size() && k < to.size(); ++k) {
+    const std::string a = "alpha" + std::to_string(from[k]), b = "alpha" + std::to_string(to[k]);
+    for (std::size_t at = text.find(a); at != std::string::npos; at = text.find(a, at + b.size())) text.replace(at, a.size(), b);
+  }
+  GiNaC::parser reader(target.table(), true);
+  return reader(text);
+}
+
+/// −S = t·xᵀMx + (terms >= 0) for some x ∈ {−1, 0, 1}^pairs, t ∈ {1, 2}: then S <= 0 wherever M ⪰ 0.
+std::string impossibility_certificate(const GiNaC::ex& s_poly, const Symbols& sy) {
+  const std::vector<Pair> pairs = sy.pattern().pairs();
+  const std::size_t k = pairs.size();
+  if (k > 10) return "";
+  std::vector<int> x(k, -1);
+  for (;;) {
+    GiNaC::ex form = 0;
+    for (std::size_t r = 0; r < k; ++r)
+      for (std::size_t c = 0; c < k; ++c)
+        if (x[r] && x[c]) form += x[r] * x[c] * sy.entry(pairs[r], pairs[c]);
+    form = GiNaC::expand(form);
+    if (!form.is_zero())
+      for (int t : {1, 2}) {
+        const GiNaC::ex rest = GiNaC::expand(-s_poly - t * form);
+        if (certainly_nonnegative(rest, sy)) {
+          std::string v;
+          for (std::size_t r = 0; r < k; ++r)
+            if (x[r]) v += (v.empty() ? "" : ", ") + std::string(x[r] > 0 ? "+" : "-") + "e(" + pairs[r].name() + ")";
+          return "the superball condition reads S > 0 with -S = " + std::to_string(t) + "·xᵀMx + (" + format_polynomial(rest, sy, Style::Text) +
+                 "), x = " + v + ": every term of the bracket is >= 0 and xᵀMx >= 0 when M is positive semi-definite, so S <= 0";
+        }
+      }
+    std::size_t i = 0;
+    while (i < k && x[i] == 1) x[i++] = -1;
+    if (i == k) return "";
+    ++x[i];
+  }
+}
+
+ClaimAudit audit_claim(const PaperClaim& pc, const AuditOptions& o, Cache& cache, std::uint64_t seed) {
+  ClaimAudit out;
+  out.claim = pc;
+  const std::string ctx = "claim " + pc.id;
+  const ContactSet closed = named_case(pc.case_name, ctx);
+  const Deriver& deriver = cache.deriver(pc.alphas);
+  const Symbols& s = deriver.symbols();
+  const Derivation& d = cache.derivation(pc.alphas, closed);
+  const Condition* superball = find(d, "superball", "U1 > a");
+  out.superball_text = format_condition(superball->exact, superball->relation, s, Style::Text);
+  if (!pc.like.empty()) {
+    const Derivation& like = cache.derivation(pc.like, closed);
+    for (const Condition& c : d.conditions) {
+      if (c.kind == ConditionKind::Psd) continue;
+      const Condition* other = find(like, to_string(c.kind), c.about);
+      if (!other) continue;
+      const GiNaC::ex mapped = renamed(other->exact.numerator, pc.like, pc.alphas, s);
+      const GiNaC::ex mapped_as = renamed(other->asymptotic.numerator, pc.like, pc.alphas, s);
+      std::string line = std::string(to_string(c.kind)) + " " + c.about + ": ";
+      if (same_condition(mapped, c.exact.numerator, s))
+        line += "identical to the other pattern's exact condition after renaming";
+      else if (same_condition(mapped_as, c.asymptotic.numerator, s))
+        line += "identical at the asymptotic order after renaming (" + format_condition(c.asymptotic, c.relation, s, Style::Text) + ")";
+      else
+        line += "different: " + format_condition(c.asymptotic, c.relation, s, Style::Text) + " here, " +
+                format_condition(mapped_as, other->relation, s, Style::Text) + " renamed from the other pattern (asymptotic forms)";
+      out.comparisons.push_back(line);
+    }
+  }
+  if (pc.claim == "superball impossible") out.certificate = impossibility_certificate(superball->exact.numerator, s);
+  // Points where the case is the actual evolution and U1 > a.
+  Sampler sampler(deriver, o.epsilon, seed);
+  numeric::CollisionSolver<cl_RA> solver;
+  for (out.tried = 0; out.tried < o.samples; ++out.tried) {
+    const auto sample = sampler.draw();
+    if (!sample) break;
+    numeric::Solution<cl_RA> sol;
+    solver.compute(sample->problem, sol);
+    if (sol.status != numeric::Status::Success || sol.closed != closed) continue;
+    const cl_RA a = -sample->problem.u.front();
+    if (!(sol.velocities_after[0] > a)) continue;
+    ++out.hits;
+    if (!out.example) {
+      Witness w;
+      w.point = sample->named;
+      w.quantity = "U1 = " + to_string(sol.velocities_after[0]) + ", a = " + to_string(a);
+      w.actual_case = Vocabulary::paper().case_name(sol.closed);
+      w.numeric = true;
+      w.derived_exact = holds(superball->exact.numerator, sample->values, true);
+      w.derived_asymptotic = holds(superball->asymptotic.numerator, sample->values, true);
+      out.example = w;
+    }
+    if (pc.claim == "superball possible") {
+      ++out.tried;
+      break;
+    }
+  }
+  if (pc.claim == "superball possible") {
+    out.supported = out.example.has_value();
+    out.verdict = out.supported ? "supported: a point where case " + pc.case_name + " is the actual evolution and U1+ > a"
+                                : "not confirmed: no point with case " + pc.case_name + " actual and U1+ > a in " + std::to_string(out.tried) + " samples";
+  } else {
+    out.supported = !out.certificate.empty() && out.hits == 0;
+    out.verdict = !out.certificate.empty() ? "proved: U1+ > a is impossible in case " + pc.case_name + " for every M positive semi-definite"
+                                           : (out.hits ? "refuted: " + std::to_string(out.hits) + " sampled points have case " + pc.case_name + " actual and U1+ > a"
+                                                       : "not proved (no certificate); no counter-example in " + std::to_string(out.tried) + " samples");
+  }
+  return out;
+}
+
+}  // namespace detail
+
+const char* to_string(Agreement a) {
+  switch (a) {
+    case Agreement::IdenticalExact: return "identical to the exact condition";
+    case Agreement::IdenticalAsymptotic: return "identical at the asymptotic order";
+    case Agreement::Different: break;
+  }
+  return "different";
+}
+
+std::string to_string(const cln::cl_RA& x) {
+  std::ostringstream os;
+  cln::fprint(os, x);
+  return os.str();
+}
+
+Audit audit_paper(const PrintedConditions& data, const AuditOptions& options) {
+  if (!(options.epsilon > 0) || !(options.epsilon < 1)) throw std::invalid_argument("audit_paper(): epsilon must be in (0, 1)");
+  if (options.samples < 1) throw std::invalid_argument("audit_paper(): samples must be >= 1");
+  Audit audit;
+  audit.options = options;
+  detail::Cache cache;
+  std::uint64_t seed = options.seed;
+  for (const PrintedCondition& c : data.conditions) audit.conditions.push_back(detail::audit_condition(c, options, cache, seed++));
+  for (const PaperClaim& c : data.claims) audit.claims.push_back(detail::audit_claim(c, options, cache, seed++));
+  return audit;
+}
+
+std::string to_text(const Audit& audit) {
+  std::ostringstream os;
+  auto decimal = [](const cln::cl_RA& x) {
+    std::ostringstream d;
+    d.precision(6);
+    d << cln::double_approx(x);
+    return d.str();
+  };
+  auto point = [&](const Witness& w) {
+    std::string s;
+    for (const auto& [name, v] : w.point) s += (s.empty() ? "" : ", ") + name + " = " + to_string(v) + (cln::denominator(v) == 1 ? "" : " (" + decimal(v) + ")");
+    return s;
+  };
+  auto yes = [](bool b) { return b ? "holds" : "fails"; };
+  os << "superball audit: the paper's printed conditions against the derivation\n"
+     << "(bottom body fixed, m4 = inf; regime m1 ~ eps, K14 ~ 1/eps, others O(1); points sampled at eps = " << to_string(audit.options.epsilon)
+     << ", M positive semi-definite; the exact solution of each point is the numeric backend's, in rationals)\n\n";
+  int counts[3] = {0, 0, 0};
+  for (const ConditionAudit& c : audit.conditions) {
+    ++counts[static_cast<int>(c.agreement)];
+    os << "§" << c.printed.section << " case " << c.printed.case_name << ", " << c.printed.kind << " " << c.printed.about << " — " << c.printed.words << '\n';
+    os << "  printed:    " << c.printed_text << "      [paper: " << c.printed.printed << "]\n";
+    os << "  derived:    exact " << c.exact_text << '\n';
+    os << "              asymptotic " << c.asymptotic_text << '\n';
+    if (c.printed.kind != "velocity") os << "  printed, dominant balance: " << c.printed_asymptotic_text << '\n';
+    std::string verdict = to_string(c.agreement);
+    for (char& ch : verdict) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    os << "  verdict:    " << verdict << '\n';
+    for (const std::string& n : c.notes) os << "  note:       " << n << '\n';
+    if (c.agreement == Agreement::Different) {
+      if (c.witness) {
+        const Witness& w = *c.witness;
+        os << "  point:      " << point(w) << '\n';
+        os << "  there:      exact solution of case " << c.printed.case_name << ": " << w.quantity << " -> the condition " << yes(w.numeric)
+           << "; printed " << yes(w.printed) << " (disagrees); derived exact " << yes(w.derived_exact) << (w.derived_exact == w.numeric ? " (agrees)" : " (DISAGREES)")
+           << "; derived asymptotic " << yes(w.derived_asymptotic) << (w.derived_asymptotic == w.numeric ? " (agrees)" : " (disagrees)");
+        if (!w.actual_case.empty()) os << "; actual case there " << w.actual_case;
+        os << " [" << c.tried << " points tried]\n";
+      } else {
+        os << "  no disagreeing point in " << c.tried << " samples\n";
+      }
+    }
+    os << '\n';
+  }
+  for (const ClaimAudit& c : audit.claims) {
+    os << "claim (§" << c.claim.section << "): \"" << c.claim.text << "\"\n";
+    os << "  derived superball condition in case " << c.claim.case_name << ": " << c.superball_text << '\n';
+    for (const std::string& line : c.comparisons) os << "  vs the like pattern: " << line << '\n';
+    if (!c.certificate.empty()) os << "  certificate: " << c.certificate << '\n';
+    if (c.example) os << "  example:    " << point(*c.example) << " -> " << c.example->quantity << ", actual case " << c.example->actual_case << '\n';
+    os << "  verdict:    " << c.verdict << " (" << c.tried << " points tried, " << c.hits << " with the superball in the case)\n\n";
+  }
+  os << "summary: " << counts[0] << " printed conditions identical to the exact condition, " << counts[1] << " identical at the asymptotic order, "
+     << counts[2] << " different\n";
+  return os.str();
+}
+
+}  // namespace superball::verify
