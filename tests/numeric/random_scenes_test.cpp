@@ -31,7 +31,7 @@ TYPED_TEST_SUITE(RandomScenes, Scalars, ScalarNames);
 TYPED_TEST(RandomScenes, PhysicsHoldsAndAgreesWithTheExactSolution) {
   using S = TypeParam;
   const bool exact = ScalarTraits<S>::exact;
-  int undecidable = 0, finite = 0, fixed = 0, closed_contacts = 0, not_success = 0;
+  int undecidable = 0, finite = 0, fixed = 0, moving = 0, closed_contacts = 0, not_success = 0;
   cl_RA worst = 0;  // largest error / (n κ u)
   std::uint64_t worst_seed = 0;
   for (std::uint64_t seed = 1; seed <= kScenes; ++seed) {
@@ -54,6 +54,7 @@ TYPED_TEST(RandomScenes, PhysicsHoldsAndAgreesWithTheExactSolution) {
     not_success += ss.status != numeric::Status::Success;
     check_physics(ps, ss, tol, ScalarNames::GetName<S>(0));
     (ps.fixed_bottom ? fixed : finite) += 1;
+    moving += r.moving_obstacle;
     for (int c = 0; c + 1 < pe.n; ++c) closed_contacts += se.closed.closed(c);
     if (exact) {
       // The exact solve is the reference: nothing to compare, but the energy
@@ -74,6 +75,7 @@ TYPED_TEST(RandomScenes, PhysicsHoldsAndAgreesWithTheExactSolution) {
   // The generator covers both kinds of obstacle and both kinds of contact.
   EXPECT_GT(finite, static_cast<int>(kScenes) / 4);
   EXPECT_GT(fixed, static_cast<int>(kScenes) / 4);
+  EXPECT_GT(moving, static_cast<int>(kScenes) / 50);
   EXPECT_GT(closed_contacts, static_cast<int>(kScenes));
   EXPECT_LE(undecidable * 100, kMaxUndecidablePercent * static_cast<int>(kScenes));
   EXPECT_LE(not_success * 100, 10 * static_cast<int>(kScenes)) << "too many scenes the solver declined";
