@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "superball/cases/scene_file.hpp"
+#include "superball/numeric/certify.hpp"
 #include "superball/numeric/collision.hpp"
 
 namespace {
@@ -34,6 +35,34 @@ BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(20)->Name("solve/paper/digits:20");
 BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(50)->Name("solve/paper/digits:50");
 BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(100)->Name("solve/paper/digits:100");
 BENCHMARK_TEMPLATE(BM_Solve, cln::cl_RA)->Arg(0)->Name("solve/paper/exact");
+
+/// `--precision auto` on the paper scene: the double solve plus its
+/// certificate, on a converted problem (compare with solve/paper/double).
+void BM_SolveCertified(benchmark::State& state) {
+  const auto problem = numeric::Problem<double>::from(paper_scene());
+  numeric::CollisionSolver<double> solver;
+  numeric::Solution<double> out;
+  numeric::Certificate c;
+  for (auto _ : state) {
+    solver.compute(problem, out);
+    c = numeric::certify(problem, out);
+    benchmark::DoNotOptimize(c);
+  }
+  if (!c.case_certain) state.SkipWithError("not certified");
+  state.counters["bound"] = c.relative_error;
+}
+BENCHMARK(BM_SolveCertified)->Name("solve/paper/double+certificate");
+
+/// End to end from the exact scene: conversion, solve, certificate, and the
+/// escalation when needed (choose_precision), against conversion + solve.
+void BM_AutoEndToEnd(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(numeric::choose_precision(paper_scene(), numeric::default_rtol));
+}
+BENCHMARK(BM_AutoEndToEnd)->Name("end-to-end/paper/auto");
+void BM_DoubleEndToEnd(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(numeric::solve(numeric::Problem<double>::from(paper_scene())));
+}
+BENCHMARK(BM_DoubleEndToEnd)->Name("end-to-end/paper/double");
 
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "gnuplot.hpp"
+#include "superball/numeric/certify.hpp"
 #include "superball/cases/vocabulary.hpp"
 
 namespace superball::cli {
@@ -75,6 +76,15 @@ Presented solve_scene(const Scene& scene, const numeric::Precision& precision) {
   return p;
 }
 
+Presented solve_scene_auto(const Scene& scene, double rtol) {
+  const numeric::AutoChoice choice = numeric::choose_precision(numeric::ExactScene::from(scene), rtol);
+  Presented p = solve_scene(scene, choice.precision);
+  p.requested = "auto";
+  p.error_bound = choice.relative_error;
+  p.escalation = choice.tried;
+  return p;
+}
+
 void draw_flight(const Presented& p, const std::string& dir) {
   Plot plot{"Free flight after the collision (" + p.origin + ")", "time after the collision (s)", "height above the collision point (m)",
             false, false, "inside top right box opaque spacing 1.4", {}, {}};
@@ -91,6 +101,11 @@ nlohmann::json to_json(const Presented& p) {
   j["scene"] = p.origin;
   j["title"] = p.title;
   j["precision"] = p.precision;
+  if (!p.requested.empty()) {
+    j["precision_requested"] = p.requested;
+    j["error_bound"] = p.error_bound;
+    j["escalation"] = p.escalation;
+  }
   j["status"] = p.status;
   j["bodies"] = p.n;
   j["fixed_obstacle"] = p.fixed_bottom;
@@ -128,7 +143,9 @@ nlohmann::json to_json(const Presented& p) {
 std::string to_text(const Presented& p) {
   std::ostringstream os;
   os << p.origin << (p.title.empty() ? "" : ": " + p.title) << '\n';
-  os << "precision " << p.precision << ", status " << p.status << " (" << p.pivots << " pivots)\n\n";
+  os << "precision " << p.precision;
+  if (!p.requested.empty()) os << " (chosen by auto: certified relative velocity error <= " << numeric::to_string(p.error_bound, 3) << ")";
+  os << ", status " << p.status << " (" << p.pivots << " pivots)\n\n";
   os << "  body        mass (kg)      U- (m/s)      U+ (m/s)\n";
   for (int i = 0; i < p.n; ++i) {
     const auto k = static_cast<std::size_t>(i);

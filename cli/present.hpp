@@ -25,11 +25,17 @@ struct Presented {
   double residual_motion = 0, residual_complementarity = 0;
   bool exact = false;
   std::vector<numeric::BodyFlight> flight;  ///< only when the scene asks for it ([flight])
+  std::string requested;                    ///< "auto" when the precision was chosen by certification
+  double error_bound = -1;                  ///< certified relative velocity error (auto only)
+  std::vector<std::string> escalation;      ///< what auto tried
   double g = 9.81, flight_duration = 0;
 };
 
 /// Solve \p scene in \p precision and flatten the result.
 Presented solve_scene(const Scene& scene, const numeric::Precision& precision);
+/// Solve \p scene with `--precision auto`: the first of double, long double
+/// and exact whose result is certified to \p rtol (numeric/certify.hpp).
+Presented solve_scene_auto(const Scene& scene, double rtol);
 
 nlohmann::json to_json(const Presented& p);
 std::string to_text(const Presented& p);

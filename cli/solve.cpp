@@ -3,13 +3,15 @@
 
 #include "commands.hpp"
 #include "present.hpp"
+#include "superball/numeric/certify.hpp"
 #include "superball/cases/scene_file.hpp"
 
 namespace superball::cli {
 
 void add_solve(CLI::App& app, Action& action) {
   struct Options {
-    std::string scene, precision = "double", plot;
+    std::string scene, precision = "auto", plot;
+    double rtol = numeric::default_rtol;
     bool json = false;
   };
   auto o = std::make_shared<Options>();
@@ -25,17 +27,22 @@ void add_solve(CLI::App& app, Action& action) {
       "  superball solve cases/scenes/paper-4.4-flight.toml --plot out   # apex heights, out/trajectories.png");
   cmd->add_option("scene", o->scene, "Scene file (TOML)")->required();
   cmd->add_option("--precision,-p", o->precision,
-                  "Arithmetic: double (default), long-double, digits:N (CLN floats, N decimal digits), exact (CLN rationals)")
+                  "Arithmetic: auto (default: the cheapest of double, long-double, exact whose result is certified to --rtol), "
+                  "double, long-double, digits:N (CLN floats, N decimal digits), exact (CLN rationals)")
       ->capture_default_str();
+  cmd->add_option("--rtol", o->rtol, "With --precision auto: largest certified relative error of the velocities")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--json", o->json, "Print JSON for programs instead of text");
   cmd->add_option("--plot", o->plot, "Folder for the trajectory plot (scenes with a [flight] table)");
   cmd->callback([o, &action] {
     action = [o] {
-      const auto precision = numeric::Precision::parse(o->precision);
+      const bool automatic = o->precision == "auto";
+      const auto precision = automatic ? numeric::Precision{} : numeric::Precision::parse(o->precision);
       const Scene scene = load_scene(o->scene);
       if (!o->plot.empty() && !scene.flight.requested)
         throw std::invalid_argument("--plot: " + o->scene + " has no [flight] table, so there is no flight to draw");
-      const Presented p = solve_scene(scene, precision);
+      const Presented p = automatic ? solve_scene_auto(scene, o->rtol) : solve_scene(scene, precision);
       if (!o->plot.empty()) draw_flight(p, o->plot);
       if (o->json)
         std::cout << to_json(p).dump(2) << '\n';

@@ -1,0 +1,57 @@
+#pragma once
+/// \file certify.hpp
+/// Certified results (`--precision auto`): an a-posteriori bound on the
+/// error of a floating-point solution with respect to the exact solution of
+/// the exact scene, and the escalation double → long double → exact.
+///
+/// The bound.  For the case S of the solution, closed contacts tie bodies
+/// into clusters (Z the cluster incidence) and the velocities solve
+/// R V = Zᵀ b̃ with R = Zᵀ(diag(m) + DᵀMD)Z ⪰ Zᵀ diag(m) Z, so
+/// ‖R⁻¹‖₂ ≤ 1 / (smallest free cluster mass).  With ρ the exact residual of
+/// the computed V̂ (row residuals of the equations of motion summed over each
+/// cluster), ‖V − V̂‖∞ ≤ ‖ρ‖₂ / m_cluster,min =: E.  ρ is evaluated in the
+/// solve's arithmetic from the rounded data; the data rounding and the
+/// evaluation rounding add at most γ·Σ|terms| per row, γ = 4(b + 4)u (b the
+/// bandwidth of DᵀMD, u the unit roundoff), which the bound includes.  The
+/// case is certain when every open contact's gap exceeds 2E and every closed
+/// contact's reaction exceeds its own bound (its running sum of row bounds).
+
+#include <string>
+#include <vector>
+
+#include "superball/numeric/collision.hpp"
+#include "superball/numeric/precision.hpp"
+
+namespace superball::numeric {
+
+/// What certify() proved about a floating-point solution.
+struct Certificate {
+  bool case_certain = false;   ///< the evolution case is that of the exact solution
+  double velocity_error = 0;   ///< bound on max_i |U_i⁺ − exact U_i⁺| (solver units)
+  double relative_error = 0;   ///< velocity_error / max_i |U_i⁺|
+};
+
+/// Bound the error of \p solution of \p problem (see the file comment).
+/// Defined for double and long double.
+template <class S>
+Certificate certify(const Problem<S>& problem, const Solution<S>& solution);
+
+/// The outcome of `--precision auto`.
+struct AutoChoice {
+  Precision precision;               ///< the arithmetic whose result is certified
+  double relative_error = 0;         ///< its bound (0 for exact)
+  std::vector<std::string> tried;    ///< e.g. {"double: case not certain", "exact"}
+};
+
+/// Solve \p scene in double, then long double, then exact rationals, and
+/// stop at the first whose case is certain and whose velocity bound is at
+/// most \p rtol (relative to the largest velocity).  Exact always qualifies.
+AutoChoice choose_precision(const ExactScene& scene, double rtol);
+
+/// Default `--rtol`: six significant digits of every velocity, certified.
+inline constexpr double default_rtol = 1e-6;
+
+extern template Certificate certify(const Problem<double>&, const Solution<double>&);
+extern template Certificate certify(const Problem<long double>&, const Solution<long double>&);
+
+}  // namespace superball::numeric

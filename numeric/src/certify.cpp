@@ -1,0 +1,122 @@
+#include "superball/numeric/certify.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace superball::numeric {
+
+template <class S>
+Certificate certify(const Problem<S>& p, const Solution<S>& s) {
+  using std::fabs;
+  const int n = p.n, nc = n - 1, nf = p.fixed_bottom ? n - 1 : n;
+  const auto& W = s.velocities_after;
+  Certificate cert;
+  if (s.status != Status::Success) return cert;
+  int b = 0;
+  for (const Entry<S>& e : p.entries) b = std::max(b, std::max({e.i, e.j, e.k, e.l}) - std::min({e.i, e.j, e.k, e.l}));
+  const S gamma = S(4 * (b + 4)) * std::numeric_limits<S>::epsilon() / S(2);
+  // Row residuals rr_i = m_i (W_i − u_i) + (DᵀMD (W + u))_i, their sizes
+  // (Σ|terms|) and the row sums Σ_j |A_ij|.
+  std::vector<S> rr(static_cast<std::size_t>(n), S(0)), size(static_cast<std::size_t>(n), S(0)), row(static_cast<std::size_t>(n), S(0));
+  auto y = [&](int i) { return W[i] + p.u[i]; };
+  auto ay = [&](int i) { return fabs(W[i]) + fabs(p.u[i]); };
+  auto add = [&](int i, int j, const S& v, int k, int l) {
+    const S f = v * (y(k) - y(l)), sz = fabs(v) * (ay(k) + ay(l));
+    rr[i] += f, rr[j] -= f, size[i] += sz, size[j] += sz, row[i] += 2 * fabs(v), row[j] += 2 * fabs(v);
+  };
+  for (const Entry<S>& e : p.entries) {
+    add(e.i, e.j, e.value, e.k, e.l);
+    if (!e.diagonal()) add(e.k, e.l, e.value, e.i, e.j);
+  }
+  for (int i = 0; i < nf; ++i) {
+    rr[i] += p.mass[i] * (W[i] - p.u[i]);
+    size[i] += p.mass[i] * (fabs(W[i]) + fabs(p.u[i]));
+    row[i] += p.mass[i];
+  }
+  // Cluster residuals (free clusters only) and the smallest free cluster mass.
+  S rho2 = S(0), cluster_residual = S(0), cluster_size = S(0), cluster_mass = S(0);
+  S min_mass = std::numeric_limits<S>::infinity();
+  const bool bottom_cluster_fixed = p.fixed_bottom;
+  int top = 0;
+  for (int i = 0; i < n; ++i) {
+    const bool ends = i == n - 1 || !s.closed.closed(i);
+    if (i < nf) {
+      cluster_residual += rr[i];
+      cluster_size += size[i];
+      cluster_mass += p.mass[i];
+    }
+    if (!ends) continue;
+    const bool fixed_cluster = bottom_cluster_fixed && i == n - 1;
+    if (!fixed_cluster) {
+      const S bound = fabs(cluster_residual) + gamma * cluster_size;
+      rho2 += bound * bound;
+      min_mass = std::min(min_mass, cluster_mass * (1 - gamma));
+    }
+    cluster_residual = cluster_size = cluster_mass = S(0);
+    top = i + 1;
+  }
+  (void)top;
+  const S E = min_mass == std::numeric_limits<S>::infinity() ? S(0) : std::sqrt(rho2) / min_mass;
+  // The case: open gaps beyond 2E, closed reactions beyond their bounds.
+  bool certain = std::isfinite(static_cast<double>(E));
+  S lambda = S(0), lambda_bound = S(0);
+  for (int c = 0; c < nc && certain; ++c) {
+    if (!s.closed.closed(c)) {
+      lambda = lambda_bound = S(0);
+      if (!(W[c] - W[c + 1] > 2 * E)) certain = false;
+      continue;
+    }
+    lambda += rr[c];
+    lambda_bound += gamma * size[c] + row[c] * E;
+    if (!(lambda > lambda_bound)) certain = false;
+  }
+  S vmax = S(0);
+  for (int i = 0; i < n; ++i) vmax = std::max(vmax, S(fabs(W[i])));
+  cert.case_certain = certain;
+  cert.velocity_error = static_cast<double>(E);
+  cert.relative_error = vmax > 0 ? static_cast<double>(E / vmax) : static_cast<double>(E);
+  return cert;
+}
+
+template Certificate certify(const Problem<double>&, const Solution<double>&);
+template Certificate certify(const Problem<long double>&, const Solution<long double>&);
+
+namespace {
+
+template <class S>
+bool try_precision(const ExactScene& scene, double rtol, AutoChoice& choice) {
+  const auto problem = Problem<S>::from(scene);
+  const auto solution = solve(problem);
+  const Certificate c = certify(problem, solution);
+  const std::string name = ScalarTraits<S>::name();
+  if (!c.case_certain) {
+    choice.tried.push_back(name + ": case not certain (bound " + to_string(c.relative_error, 3) + ")");
+    return false;
+  }
+  if (!(c.relative_error <= rtol)) {
+    choice.tried.push_back(name + ": bound " + to_string(c.relative_error, 3) + " > rtol");
+    return false;
+  }
+  choice.tried.push_back(name + ": certified, bound " + to_string(c.relative_error, 3));
+  choice.relative_error = c.relative_error;
+  return true;
+}
+
+}  // namespace
+
+AutoChoice choose_precision(const ExactScene& scene, double rtol) {
+  AutoChoice choice;
+  if (try_precision<double>(scene, rtol, choice)) {
+    choice.precision = {Precision::Kind::Double, 0};
+  } else if (try_precision<long double>(scene, rtol, choice)) {
+    choice.precision = {Precision::Kind::LongDouble, 0};
+  } else {
+    choice.precision = {Precision::Kind::Exact, 0};
+    choice.relative_error = 0;
+    choice.tried.push_back("exact");
+  }
+  return choice;
+}
+
+}  // namespace superball::numeric
