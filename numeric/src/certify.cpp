@@ -90,6 +90,10 @@ bool try_precision(const ExactScene& scene, double rtol, AutoChoice& choice) {
   const auto solution = solve(problem);
   const Certificate c = certify(problem, solution);
   const std::string name = ScalarTraits<S>::name();
+  if (solution.status != Status::Success) {
+    choice.tried.push_back(name + ": " + to_string(solution.status) + " (residual check failed)");
+    return false;
+  }
   if (!c.case_certain) {
     choice.tried.push_back(name + ": case not certain (bound " + to_string(c.relative_error, 3) + ")");
     return false;
