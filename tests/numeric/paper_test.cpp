@@ -11,6 +11,11 @@
 #include "superball/numeric/sweep.hpp"
 #include "support.hpp"
 
+namespace superball::numeric {
+/// gtest prints a precision by its CLI name.
+inline void PrintTo(Precision::Kind k, std::ostream* os) { *os << Precision{k, k == Precision::Kind::Digits ? 30 : 0}.name(); }
+}  // namespace superball::numeric
+
 namespace superball::testing {
 namespace {
 
