@@ -10,6 +10,7 @@ PACKAGES=(
   libtomlplusplus-dev nlohmann-json3-dev libcli11-dev   # scene files, JSON, command line
   libgtest-dev libbenchmark-dev                         # tests and benchmarks
   texlive-latex-base gnuplot-nox python3-sympy          # LaTeX check, plots, the SymPy reference
+  clang libclang-rt-14-dev                              # libFuzzer (scripts/test.sh stage 3)
 )
 
 install_packages() {
@@ -25,7 +26,12 @@ install_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 }
 
+# configure_and_build [cmake options…] [--target T]: configure BUILD_DIR, build (T or everything).
 configure_and_build() {
-  cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "$@"
-  cmake --build "$BUILD_DIR" -j "$(nproc)"
+  local options=() target=()
+  while [ $# -gt 0 ]; do
+    if [ "$1" = "--target" ]; then target=(--target "$2"); shift 2; else options+=("$1"); shift; fi
+  done
+  cmake -S "$ROOT" -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release "${options[@]}"
+  cmake --build "$BUILD_DIR" -j "$(nproc)" "${target[@]}"
 }

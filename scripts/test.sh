@@ -1,7 +1,43 @@
 #!/usr/bin/env bash
-# Install, build and run every test (what CI runs).
+# Install, build and run every test (what CI runs), in three stages:
+#   1. the test suite (Release build, ctest)
+#   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer
+#   3. the libFuzzer target over scene parsing and solving, 60 s from tests/fuzz/corpus
+# STAGES="1" (or "1 2", …) runs a subset; FUZZ_SECONDS changes stage 3's length.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+STAGES="${STAGES:-1 2 3}"
+FUZZ_SECONDS="${FUZZ_SECONDS:-60}"
 install_packages
-configure_and_build -DSUPERBALL_BUILD_TESTS=ON
-cd "$BUILD_DIR"
-ctest --output-on-failure -j "$(nproc)"
+export LSAN_OPTIONS="suppressions=$ROOT/tests/lsan.supp"
+export UBSAN_OPTIONS="print_stacktrace=1"
+
+for stage in $STAGES; do
+  case "$stage" in
+    1)
+      echo "== stage 1: test suite"
+      configure_and_build -DSUPERBALL_BUILD_TESTS=ON
+      (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)")
+      ;;
+    2)
+      echo "== stage 2: test suite under AddressSanitizer + UndefinedBehaviorSanitizer"
+      BUILD_DIR="$ROOT/build-asan" configure_and_build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUPERBALL_BUILD_TESTS=ON \
+        -DSUPERBALL_BUILD_BENCH=OFF -DSUPERBALL_SANITIZE=address,undefined
+      (cd "$ROOT/build-asan" && ctest --output-on-failure -j "$(nproc)")
+      ;;
+    3)
+      echo "== stage 3: libFuzzer, ${FUZZ_SECONDS} s"
+      BUILD_DIR="$ROOT/build-fuzz" configure_and_build -DCMAKE_CXX_COMPILER=clang++ -DSUPERBALL_BUILD_FUZZ=ON \
+        -DSUPERBALL_SANITIZE=address,undefined -DSUPERBALL_BUILD_BENCH=OFF --target fuzz_scene
+      work="$(mktemp -d)"
+      trap 'rm -rf "$work"' EXIT
+      # New inputs go to the scratch folder; the committed corpus is only read.
+      "$ROOT/build-fuzz/tests/fuzz/fuzz_scene" "$work" "$ROOT/tests/fuzz/corpus" -max_total_time="$FUZZ_SECONDS" \
+        -artifact_prefix="$work/" -print_final_stats=1 2>&1 | tail -n 12
+      if ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* >/dev/null 2>&1; then
+        echo "fuzzing found a failing input:"; ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* 2>/dev/null
+        exit 1
+      fi
+      ;;
+    *) echo "unknown stage $stage" >&2; exit 2 ;;
+  esac
+done

@@ -91,13 +91,13 @@ class SceneReader {
   /// A number: TOML integer/float (exact as written) or a string "p/q".
   Number number(const toml::node& node, const std::string& field) const {
     std::string text;
-    if (node.is_integer() || node.is_floating_point()) {
-      if (node.is_floating_point()) {
-        const double v = *node.value<double>();
-        if (v != v || v - v != 0) fail(node, field, "must be a finite number (got " + spelling(node) + ")");
-      }
-      text = spelling(node);
-      if (text.empty()) text = node.is_integer() ? std::to_string(*node.value<long long>()) : std::to_string(*node.value<double>());
+    if (node.is_integer()) {
+      text = std::to_string(*node.value<long long>());  // exact whatever the base it was written in (0x10, 0o20, 0b10000)
+    } else if (node.is_floating_point()) {
+      const double v = *node.value<double>();
+      if (v != v || v - v != 0) fail(node, field, "must be a finite number (got " + spelling(node) + ")");
+      text = spelling(node);  // the decimal digits as written, read exactly below
+      if (text.empty()) text = std::to_string(v);
     } else if (node.is_string()) {
       text = *node.value<std::string>();
     } else {

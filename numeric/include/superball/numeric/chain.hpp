@@ -18,6 +18,7 @@
 
 #include <vector>
 
+#include "superball/numeric/cluster.hpp"
 #include "superball/numeric/collision.hpp"
 
 namespace superball::numeric {
@@ -40,20 +41,11 @@ class ChainSolver {
     return out;
   }
   /// The bandwidth b of DᵀMD for the last problem.
-  int bandwidth() const { return b_; }
+  int bandwidth() const { return system_.bandwidth(); }
 
  private:
-  S& A(int i, int d) { return A_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(d)]; }
-  S& R(int i, int d) { return R_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(d)]; }
-  void assemble(const Problem<S>& p);
-  bool solve_case(const Problem<S>& p, std::vector<S>& W);
-
   Settings<S> settings_ = Settings<S>::defaults();
-  int n_ = 0, nf_ = 0, nc_ = 0, b_ = 0;
-  std::vector<S> A_;       ///< lower band of diag(m) + DᵀMD over all n bodies: A(i, d) = A_{i, i−d}
-  std::vector<S> rhs_;     ///< b̃ on free bodies
-  std::vector<int> cluster_;
-  std::vector<S> R_, y_;   ///< the reduced banded system and its right side / solution
+  detail::ClusterSystem<S> system_;
   std::vector<S> lambda_;  ///< λ on closed contacts, 0 on open ones
   std::vector<char> closed_;
   detail::CheckWorkspace<S> check_;

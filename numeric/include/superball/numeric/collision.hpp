@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "superball/cases/model.hpp"
+#include "superball/numeric/cluster.hpp"
 #include "superball/numeric/problem.hpp"
 
 namespace superball::numeric {
@@ -125,6 +126,7 @@ class CollisionSolver {
   std::vector<char> basic_lambda_;  ///< contact c: λ_c basic (closed)
   std::vector<S> lambda_;           ///< λ on every contact, 0 where open
   detail::CheckWorkspace<S> check_;  ///< scratch of the residual check
+  detail::ClusterSystem<S> system_;  ///< the final answer, by clusters of the case found
 };
 
 /// The solution of \p problem with default settings, by the formulation that

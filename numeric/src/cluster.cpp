@@ -1,0 +1,147 @@
+#include "superball/numeric/cluster.hpp"
+
+#include <algorithm>
+
+namespace superball::numeric::detail {
+
+template <class S>
+void ClusterSystem<S>::assemble(const Problem<S>& p) {
+  n_ = p.n;
+  nf_ = p.fixed_bottom ? n_ - 1 : n_;
+  nc_ = n_ - 1;
+  b_ = 0;
+  for (const Entry<S>& e : p.entries) b_ = std::max(b_, std::max({e.i, e.j, e.k, e.l}) - std::min({e.i, e.j, e.k, e.l}));
+  A_.assign(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1), S(0));
+  // Symmetric lower-band storage: add(r, c, v) adds v to A_rc and A_cr.
+  auto add = [&](int r, int c, const S& v) {
+    if (r < c) std::swap(r, c);
+    A(r, r - c) += v;
+  };
+  for (const Entry<S>& e : p.entries) {
+    if (e.diagonal()) {  // v (e_i − e_j)(e_i − e_j)ᵀ
+      A(e.i, 0) += e.value;
+      A(e.j, 0) += e.value;
+      add(e.j, e.i, -e.value);
+      continue;
+    }
+    // v [(e_i − e_j)(e_k − e_l)ᵀ + transpose]
+    const int rows[2] = {e.i, e.j}, cols[2] = {e.k, e.l};
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 2; ++c) {
+        const S v = (a == c) ? e.value : S(-e.value);
+        if (rows[a] == cols[c])
+          A(rows[a], 0) += S(2) * v;
+        else
+          add(rows[a], cols[c], v);
+      }
+  }
+  // b̃ = m u − K u − [fixed] K_{·,n} u_n on free bodies (K u before the masses enter A).
+  rhs_.assign(static_cast<std::size_t>(nf_), S(0));
+  for (int i = 0; i < n_; ++i)
+    for (int d = 0; d <= b_ && d <= i; ++d) {
+      const int j = i - d;
+      const S a = A(i, d);
+      if (i < nf_) rhs_[i] -= a * p.u[j];
+      if (d > 0 && j < nf_) rhs_[j] -= a * p.u[i];
+    }
+  if (p.fixed_bottom)
+    for (int d = 1; d <= b_ && d <= n_ - 1; ++d) rhs_[n_ - 1 - d] -= A(n_ - 1, d) * p.u[n_ - 1];
+  for (int i = 0; i < nf_; ++i) {
+    rhs_[i] += p.mass[i] * p.u[i];
+    A(i, 0) += p.mass[i];
+  }
+}
+
+template <class S>
+bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& closed_, std::vector<S>& W, std::vector<S>& lambda_) {
+  cluster_.resize(static_cast<std::size_t>(n_));
+  R_.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1));
+  y_.resize(static_cast<std::size_t>(n_));
+  lambda_.resize(static_cast<std::size_t>(nc_));
+  W.resize(static_cast<std::size_t>(n_));
+  // Clusters: consecutive bodies joined by closed contacts; the one holding
+  // a fixed bottom body (if any) is last and has the known velocity u_n.
+  cluster_[0] = 0;
+  for (int c = 0; c < nc_; ++c) cluster_[c + 1] = cluster_[c] + (closed_[c] ? 0 : 1);
+  const int fixed = p.fixed_bottom ? cluster_[n_ - 1] : -1;
+  const int k = p.fixed_bottom ? fixed : cluster_[n_ - 1] + 1;
+  const S u_fixed = p.fixed_bottom ? p.u[n_ - 1] : S(0);
+  std::fill(R_.begin(), R_.begin() + static_cast<std::ptrdiff_t>(k) * (b_ + 1), S(0));
+  std::fill(y_.begin(), y_.begin() + k, S(0));
+  for (int i = 0; i < nf_; ++i) {
+    const int ci = cluster_[i];
+    if (ci == fixed) {  // columns of the fixed cluster move to the right side
+      for (int d = 1; d <= b_ && d <= i; ++d)
+        if (cluster_[i - d] != fixed) y_[cluster_[i - d]] -= A(i, d) * u_fixed;
+      continue;
+    }
+    y_[ci] += rhs_[i];
+    for (int d = 0; d <= b_ && d <= i; ++d) {
+      const int cj = cluster_[i - d];
+      R(ci, ci - cj) += A(i, d);
+      if (d > 0 && ci == cj) R(ci, 0) += A(i, d);
+    }
+  }
+  // Banded LDLᵀ in place, then the three triangular/diagonal solves.
+  for (int j = 0; j < k; ++j) {
+    const S dj = R(j, 0);
+    if (!(dj > S(0))) return false;
+    const int last = std::min(k - 1, j + b_);
+    for (int r = j + 1; r <= last; ++r) {
+      const S lrj = R(r, r - j) / dj;
+      for (int i = r; i <= last; ++i) R(i, i - r) -= R(i, i - j) * lrj;
+    }
+    for (int i = j + 1; i <= last; ++i) R(i, i - j) /= dj;
+  }
+  for (int i = 0; i < k; ++i)
+    for (int j = std::max(0, i - b_); j < i; ++j) y_[i] -= R(i, i - j) * y_[j];
+  for (int i = 0; i < k; ++i) y_[i] /= R(i, 0);
+  for (int i = k - 1; i >= 0; --i)
+    for (int j = i + 1; j <= std::min(k - 1, i + b_); ++j) y_[i] -= R(j, j - i) * y_[j];
+  for (int i = 0; i < n_; ++i) W[i] = cluster_[i] == fixed ? u_fixed : y_[cluster_[i]];
+  // Reactions.  Inside a cluster λ_c − λ_{c−1} = (A W − b̃)_c, so λ_c is the
+  // running sum of the row residuals from the top of the cluster, or minus
+  // the running sum from its bottom (the rows of a free cluster add up to
+  // its equation, 0).  Summing from both ends towards the row with the
+  // largest coefficients puts the cluster's own rounding residual on that
+  // row, where it is smallest relative to the row's terms.  A cluster on a
+  // fixed obstacle has no equation of its own: its sums run from the top.
+  auto row_residual = [&](int c) {
+    S r = -rhs_[c];
+    for (int d = 0; d <= b_ && d <= c; ++d) r += A(c, d) * W[c - d];
+    for (int d = 1; d <= b_ && c + d < nf_; ++d) r += A(c + d, d) * W[c + d];
+    return r;
+  };
+  auto row_size = [&](int c) {
+    S z = S(0);
+    for (int d = 0; d <= b_ && d <= c; ++d) z += A(c, d) < S(0) ? S(-A(c, d)) : A(c, d);
+    for (int d = 1; d <= b_ && c + d < n_; ++d) z += A(c + d, d) < S(0) ? S(-A(c + d, d)) : A(c + d, d);
+    return z;
+  };
+  for (int top = 0; top < n_;) {
+    int bottom = top;
+    while (bottom < nc_ && closed_[bottom]) ++bottom;  // bodies top..bottom form a cluster
+    if (bottom < nc_) lambda_[bottom] = S(0);          // the open contact below it
+    if (bottom > top) {
+      int pivot = bottom;  // the fixed cluster: sums from the top only
+      if (cluster_[top] != fixed) {
+        S largest = S(-1);
+        for (int k = top; k <= bottom; ++k)
+          if (const S z = row_size(k); z > largest) largest = z, pivot = k;
+      }
+      S sum = S(0);
+      for (int c = top; c < pivot; ++c) lambda_[c] = sum = sum + row_residual(c);
+      sum = S(0);
+      for (int c = bottom - 1; c >= pivot; --c) lambda_[c] = sum = sum - row_residual(c + 1);
+    }
+    top = bottom + 1;
+  }
+  return true;
+}
+
+template class ClusterSystem<double>;
+template class ClusterSystem<long double>;
+template class ClusterSystem<cln::cl_R>;
+template class ClusterSystem<cln::cl_RA>;
+
+}  // namespace superball::numeric::detail
