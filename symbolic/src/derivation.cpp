@@ -422,6 +422,8 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   for (int c = 0; c + 1 < n; ++c) out.reactions.push_back(closed.closed(c) ? normalise(-Lh[static_cast<std::size_t>(c)]) : Fraction{});
 
   // Check: substitute the normalised results into the unreduced equations.
+  // Everything is multiplied by D = det(ZᵀAZ) ≠ 0 first, so each identity is
+  // between polynomials, whose normal form is the expanded one.
   auto times_D = [&](const Fraction& f, const char* what) {
     GiNaC::ex q = 1;
     if (!f.denominator.is_equal(D) && !GiNaC::divide(D, f.denominator, q))
@@ -435,14 +437,14 @@ Derivation Deriver::derive(const ContactSet& closed) const {
     GiNaC::ex r = row(i, W);
     if (i + 1 < n) r -= L[static_cast<std::size_t>(i)];
     if (i > 0) r += L[static_cast<std::size_t>(i - 1)];
-    if (!GiNaC::normal(r).is_zero())
+    if (!GiNaC::expand(r).is_zero())
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the equation of motion of body " + std::to_string(i + 1) +
                              " is not satisfied by the solution (residual " + show(GiNaC::normal(r / D)) + ")");
   }
   for (int c = 0; c + 1 < n; ++c)
-    if (closed.closed(c) && !GiNaC::normal(W[static_cast<std::size_t>(c)] - W[static_cast<std::size_t>(c + 1)]).is_zero())
+    if (closed.closed(c) && !GiNaC::expand(W[static_cast<std::size_t>(c)] - W[static_cast<std::size_t>(c + 1)]).is_zero())
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": contact " + Pair{c + 1, c + 2}.name() + " does not stay closed");
-  if (fixed && !GiNaC::normal(W[static_cast<std::size_t>(n - 1)] - u_obstacle * D).is_zero())
+  if (fixed && !GiNaC::expand(W[static_cast<std::size_t>(n - 1)] - u_obstacle * D).is_zero())
     throw std::logic_error("Deriver::derive(): the fixed obstacle moves");
   out.check = "substituted back: the " + std::to_string(free_bodies) +
               " equations of motion with the reactions hold exactly (times det(Z^T A Z) they expand to 0), closed contacts keep equal "

@@ -135,9 +135,13 @@ class Deriver {
   /// All 2^(n−1) cases, mask order (bit c closes contact (c+1, c+2)).
   std::vector<Derivation> derive_all() const;
 
+  /// The symbols of the pattern (shared with every Derivation).
   const Symbols& symbols() const { return *symbols_; }
+  /// The same, shared.
   std::shared_ptr<const Symbols> shared_symbols() const { return symbols_; }
+  /// The regime of the asymptotic forms.
   const Scaling& scaling() const { return scaling_; }
+  /// Correction orders kept beyond the dominant balance.
   int order() const { return order_; }
   /// The positive semi-definiteness conditions of M for the pattern (§3):
   /// one principal minor >= 0 per connected set of pairs of the coupling

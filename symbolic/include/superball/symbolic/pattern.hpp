@@ -65,6 +65,7 @@ struct Pattern {
 
   /// Every pair that appears in the pattern (diagonal or coupled), sorted.
   std::vector<Pair> pairs() const;
+  /// Whether K_p is declared.
   bool has_diagonal(const Pair& p) const;
   /// "K: 1-2 1-3 …; couplings: 1-2/1-4 …".
   std::string describe() const;

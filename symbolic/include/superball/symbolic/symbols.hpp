@@ -45,8 +45,11 @@ class Symbols {
   /// Create the symbols of \p pattern (checked by Pattern::check()).
   Symbols(const Pattern& pattern, Obstacle obstacle);
 
+  /// The pattern the symbols were made for (checked and sorted).
   const Pattern& pattern() const { return pattern_; }
+  /// Fixed obstacle (no m_n) or finite mass m_n.
   Obstacle obstacle() const { return obstacle_; }
+  /// n, the number of bodies.
   int bodies() const { return pattern_.bodies; }
 
   /// m_i (1-based).  Throws std::invalid_argument("Symbols::mass(): ...")
