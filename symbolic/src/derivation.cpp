@@ -200,21 +200,21 @@ GiNaC::ex Deriver::asymptotic(const GiNaC::ex& p, GiNaC::numeric* leading) const
 }
 
 Condition Deriver::make_condition(ConditionKind kind, const std::string& about, Relation relation, const GiNaC::ex& raw,
-                                  const GiNaC::ex& determinant, const std::vector<GiNaC::ex>& parts) const {
+                                  const detail::Denominator& determinant, const std::vector<GiNaC::ex>& parts) const {
   const Symbols& sy = *symbols_;
   Condition c;
   c.kind = kind;
   c.about = about;
   c.relation = relation;
   // raw / det(ZᵀAZ) in lowest terms (at most one numer_denom per condition).
-  auto [numerator, denominator] = detail::lowest_terms(raw, determinant, sy);
+  auto [numerator, denominator] = determinant.lowest_terms(raw);
   ConditionForm form;
   if (GiNaC::is_a<GiNaC::numeric>(denominator)) {
     numerator = numerator * GiNaC::ex_to<GiNaC::numeric>(denominator).csgn();
     c.proof = "the denominator is a positive number";
-    if (!GiNaC::is_a<GiNaC::numeric>(determinant))
+    if (!GiNaC::is_a<GiNaC::numeric>(determinant.value()))
       c.proof = "det(Z^T A Z) cancels: no denominator is left";
-  } else if (GiNaC::ex q; denominator.is_equal(determinant) || GiNaC::divide(determinant, denominator, q)) {
+  } else if (GiNaC::ex q; denominator.is_equal(determinant.value()) || GiNaC::divide(determinant.value(), denominator, q)) {
     const GiNaC::numeric at_ref = detail::evaluate(denominator, reference_point(sy));
     if (at_ref.is_zero()) throw std::logic_error("Deriver::derive(): a factor of det(Z^T A Z) vanishes at the reference point");
     numerator = numerator * at_ref.csgn();
@@ -372,6 +372,7 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   }
   const GiNaC::ex D = detail::determinant(B);
   if (D.is_zero()) throw std::logic_error("Deriver::derive(): the reduced system of case " + closed.to_string() + " is singular");
+  const detail::Denominator denominator(D, sy);
   // Cramer's rule, fraction-free: V_c = det(B with column c replaced by rhs) / D.
   std::vector<GiNaC::ex> Wh(static_cast<std::size_t>(n));  // D · W
   std::vector<GiNaC::ex> Vh(static_cast<std::size_t>(k));
@@ -413,7 +414,7 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   out.free_clusters = k;
   const GiNaC::exmap ref = reference_point(sy);
   auto normalise = [&](const GiNaC::ex& numerator) {
-    const auto [num, den] = detail::lowest_terms(numerator, D, sy);
+    const auto [num, den] = denominator.lowest_terms(numerator);
     Fraction f{num, den};
     if (detail::evaluate(f.denominator, ref).is_negative()) f = {GiNaC::expand(-f.numerator), GiNaC::expand(-f.denominator)};
     return f;
@@ -451,16 +452,16 @@ Derivation Deriver::derive(const ContactSet& closed) const {
               "velocities" + std::string(fixed ? ", the obstacle stays at rest" : "");
 
   // Conditions (paper §4).
-  out.conditions.push_back(make_condition(ConditionKind::Superball, "U1 > a", Relation::Greater, Wh[0] - a * D, D, {Wh[0], a * D}));
+  out.conditions.push_back(make_condition(ConditionKind::Superball, "U1 > a", Relation::Greater, Wh[0] - a * D, denominator, {Wh[0], a * D}));
   for (int c = 0; c + 1 < n; ++c)
     if (!closed.closed(c))
       out.conditions.push_back(make_condition(ConditionKind::Evolution, Pair{c + 1, c + 2}.name(), Relation::Greater,
-                                              Wh[static_cast<std::size_t>(c)] - Wh[static_cast<std::size_t>(c + 1)], D,
+                                              Wh[static_cast<std::size_t>(c)] - Wh[static_cast<std::size_t>(c + 1)], denominator,
                                               {Wh[static_cast<std::size_t>(c)], Wh[static_cast<std::size_t>(c + 1)]}));
   for (int c = 0; c + 1 < n; ++c)
     if (closed.closed(c))
       out.conditions.push_back(make_condition(ConditionKind::Contact, Pair{c + 1, c + 2}.name(), Relation::GreaterEqual,
-                                              Lh[static_cast<std::size_t>(c)], D,
+                                              Lh[static_cast<std::size_t>(c)], denominator,
                                               {inertia[static_cast<std::size_t>(c)], dissipation[static_cast<std::size_t>(c)]}));
   out.conditions.insert(out.conditions.end(), psd_.begin(), psd_.end());
   return out;

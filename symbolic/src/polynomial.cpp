@@ -77,38 +77,46 @@ bool certainly_nonnegative(const GiNaC::ex& p, const Symbols& symbols) {
   return true;
 }
 
-bool coprime(const GiNaC::ex& p, const GiNaC::ex& q, const Symbols& symbols) {
-  const GiNaC::ex pe = GiNaC::expand(p), qe = GiNaC::expand(q);
-  if (pe.is_zero() || qe.is_zero()) return false;
-  if (GiNaC::is_a<GiNaC::numeric>(pe) || GiNaC::is_a<GiNaC::numeric>(qe)) return true;
-  std::vector<GiNaC::ex> shared;
-  for (const SymbolInfo& s : symbols.all())
-    if (pe.has(s.symbol) && qe.has(s.symbol)) shared.push_back(s.symbol);
+Denominator::Denominator(const GiNaC::ex& q, const Symbols& symbols) : q_(GiNaC::expand(q)) {
   static const int values[] = {3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97};
   constexpr int count = sizeof(values) / sizeof(values[0]);
-  for (const GiNaC::ex& x : shared) {
-    const GiNaC::ex lc = qe.lcoeff(x);
-    bool done = false;
-    for (int attempt = 0; attempt < 3 && !done; ++attempt) {
-      GiNaC::exmap point;
+  if (GiNaC::is_a<GiNaC::numeric>(q_)) return;
+  for (const SymbolInfo& s : symbols.all()) {
+    if (!q_.has(s.symbol)) continue;
+    const GiNaC::ex lc = q_.lcoeff(s.symbol);
+    bool found = false;
+    for (int attempt = 0; attempt < 3 && !found; ++attempt) {
+      Probe probe{s.symbol, {}, 0};
       int k = 0;
-      for (const SymbolInfo& s : symbols.all())
-        if (!s.symbol.is_equal(x)) point[s.symbol] = values[(k++ * 7 + attempt * 5 + 1) % count] + attempt;
-      if (lc.subs(point, GiNaC::subs_options::no_pattern).is_zero()) continue;
-      const GiNaC::ex g = GiNaC::gcd(GiNaC::expand(pe.subs(point, GiNaC::subs_options::no_pattern)),
-                                     GiNaC::expand(qe.subs(point, GiNaC::subs_options::no_pattern)));
-      if (g.degree(x) > 0) return false;
-      done = true;
+      for (const SymbolInfo& other : symbols.all())
+        if (!other.symbol.is_equal(s.symbol)) probe.point[other.symbol] = values[(k++ * 7 + attempt * 5 + 1) % count] + attempt;
+      if (lc.subs(probe.point, GiNaC::subs_options::no_pattern).is_zero()) continue;
+      probe.q_at = GiNaC::expand(q_.subs(probe.point, GiNaC::subs_options::no_pattern));
+      probes_.push_back(std::move(probe));
+      found = true;
     }
-    if (!done) return false;
+    if (!found) unprobed_.push_back(s.symbol);
+  }
+}
+
+bool Denominator::coprime_with(const GiNaC::ex& p) const {
+  const GiNaC::ex pe = GiNaC::expand(p);
+  if (pe.is_zero()) return false;
+  if (GiNaC::is_a<GiNaC::numeric>(pe) || GiNaC::is_a<GiNaC::numeric>(q_)) return true;
+  for (const GiNaC::ex& x : unprobed_)
+    if (pe.has(x)) return false;
+  for (const Probe& probe : probes_) {
+    if (!pe.has(probe.x)) continue;
+    const GiNaC::ex g = GiNaC::gcd(GiNaC::expand(pe.subs(probe.point, GiNaC::subs_options::no_pattern)), probe.q_at);
+    if (g.degree(probe.x) > 0) return false;
   }
   return true;
 }
 
-std::pair<GiNaC::ex, GiNaC::ex> lowest_terms(const GiNaC::ex& num, const GiNaC::ex& den, const Symbols& symbols) {
-  GiNaC::ex n = GiNaC::expand(num), d = GiNaC::expand(den);
+std::pair<GiNaC::ex, GiNaC::ex> Denominator::lowest_terms(const GiNaC::ex& num) const {
+  GiNaC::ex n = GiNaC::expand(num), d = q_;
   if (n.is_zero()) return {0, 1};
-  if (!coprime(n, d, symbols)) {
+  if (!coprime_with(n)) {
     const GiNaC::ex nd = GiNaC::numer_denom(n / d);
     n = GiNaC::expand(nd.op(0));
     d = GiNaC::expand(nd.op(1));
@@ -184,9 +192,7 @@ GiNaC::ex strip_positive_factors(const GiNaC::ex& p, const Symbols& symbols, GiN
     if (low > 0) monomial *= GiNaC::pow(s, low);
   }
   gone = (num / den) * monomial;
-  GiNaC::ex q;
-  if (!GiNaC::divide(e, gone, q)) throw std::logic_error("strip_positive_factors(): the content does not divide the polynomial");
-  e = GiNaC::expand(q);
+  e = GiNaC::expand(e / gone);  // term by term: a number times a monomial divides every term exactly
   // Irreducible factors that are positive for every admissible point
   // (factorisation only for small polynomials: it dominates the cost otherwise).
   if (GiNaC::is_a<GiNaC::add>(e) && e.nops() <= max_factor_terms) {

@@ -36,16 +36,33 @@ GiNaC::numeric evaluate(const GiNaC::ex& p, const GiNaC::exmap& point);
 /// couplings (then p >= 0 for every admissible point).
 bool certainly_nonnegative(const GiNaC::ex& p, const Symbols& symbols);
 
-/// Whether gcd(p, q) is a constant, proved by specialisation: for every
-/// symbol x of both, all other symbols are set to integers where the leading
-/// coefficient of q in x does not vanish; if the univariate gcd is then a
-/// constant, a common factor cannot involve x (it would keep its degree in
-/// x).  False means "not proved" (there may be a common factor).
-bool coprime(const GiNaC::ex& p, const GiNaC::ex& q, const Symbols& symbols);
+/// A fixed denominator q (det(ZᵀAZ) of a case) prepared for many
+/// coprimality tests: for every symbol x of q, a point for the other symbols
+/// where the leading coefficient of q in x does not vanish, and q there.
+class Denominator {
+ public:
+  Denominator(const GiNaC::ex& q, const Symbols& symbols);
+  /// q, expanded.
+  const GiNaC::ex& value() const { return q_; }
+  /// Whether gcd(p, q) is a constant, proved by specialisation: for every
+  /// symbol x of both, the univariate gcd at the probe point is a constant,
+  /// so a common factor cannot involve x (it would keep its degree in x
+  /// there, its leading coefficient dividing q's).  False means "not proved".
+  bool coprime_with(const GiNaC::ex& p) const;
+  /// \p num / q in lowest terms, both expanded: common polynomial factors
+  /// cancelled (GiNaC::numer_denom, once, unless coprime_with() proves there
+  /// are none) and the common rational content divided out.
+  std::pair<GiNaC::ex, GiNaC::ex> lowest_terms(const GiNaC::ex& num) const;
 
-/// \p num / \p den in lowest terms, both expanded: common polynomial
-/// factors cancelled (GiNaC::numer_denom, once, unless coprime() proves
-/// there are none) and the common rational content divided out.
-std::pair<GiNaC::ex, GiNaC::ex> lowest_terms(const GiNaC::ex& num, const GiNaC::ex& den, const Symbols& symbols);
+ private:
+  struct Probe {
+    GiNaC::ex x;
+    GiNaC::exmap point;
+    GiNaC::ex q_at;  ///< q at the point: a polynomial in x only
+  };
+  GiNaC::ex q_;
+  std::vector<Probe> probes_;
+  std::vector<GiNaC::ex> unprobed_;  ///< symbols of q without a usable point
+};
 
 }  // namespace superball::symbolic::detail

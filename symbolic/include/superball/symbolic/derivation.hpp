@@ -32,6 +32,10 @@
 
 namespace superball::symbolic {
 
+namespace detail {
+class Denominator;
+}  // namespace detail
+
 /// The order in a small ε of each parameter (paper §4: m₁ very small, m₄ and
 /// K₁₄ very large): parameter p behaves like ε^order(p); unlisted ones are O(1).
 class Scaling {
@@ -157,7 +161,7 @@ class Deriver {
 
  private:
   Condition make_condition(ConditionKind kind, const std::string& about, Relation relation, const GiNaC::ex& raw,
-                           const GiNaC::ex& determinant, const std::vector<GiNaC::ex>& parts) const;
+                           const detail::Denominator& determinant, const std::vector<GiNaC::ex>& parts) const;
   void build_psd();
 
   std::shared_ptr<const Symbols> symbols_;
