@@ -8,7 +8,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 STAGES="${STAGES:-1 2 3}"
 FUZZ_SECONDS="${FUZZ_SECONDS:-60}"
 install_packages
-export LSAN_OPTIONS="suppressions=$ROOT/tests/lsan.supp"
+export LSAN_OPTIONS="suppressions=$ROOT/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
 
 for stage in $STAGES; do
