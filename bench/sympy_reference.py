@@ -19,6 +19,7 @@ Usage:
 """
 import argparse
 import itertools
+import signal
 import sys
 import time
 
@@ -232,6 +233,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--only", action="append", help="run only this benchmark (repeatable): " + ", ".join(BENCHMARKS))
     parser.add_argument("--repeat", type=int, default=1, help="repetitions; the median is reported")
+    parser.add_argument("--timeout", type=int, default=0, help="give up a benchmark after this many seconds (0: never)")
     args = parser.parse_args()
     names = args.only or list(BENCHMARKS)
     for name in names:
@@ -241,14 +243,23 @@ def main():
     # Sanity: the paper's case 1 with alpha_2 (§4.1).
     v, _, conds = BENCHMARKS["case1_alpha2/fixed"]()
     print("case 1, alpha2: U1 =", v[0], "; superball:", conds[0][1][1], "> 0")
+    def give_up(signum, frame):
+        raise TimeoutError
+    signal.signal(signal.SIGALRM, give_up)
     for name in names:
         times = []
-        for _ in range(args.repeat):
-            t0 = time.perf_counter()
-            BENCHMARKS[name]()
-            times.append(time.perf_counter() - t0)
+        try:
+            for _ in range(args.repeat):
+                signal.alarm(args.timeout)
+                t0 = time.perf_counter()
+                BENCHMARKS[name]()
+                times.append(time.perf_counter() - t0)
+                signal.alarm(0)
+        except TimeoutError:
+            print(f"{name:28s} did not finish in {args.timeout} s", flush=True)
+            continue
         times.sort()
-        print(f"{name:28s} median {1000 * times[len(times) // 2]:12.1f} ms over {len(times)} run(s)")
+        print(f"{name:28s} median {1000 * times[len(times) // 2]:12.1f} ms over {len(times)} run(s)", flush=True)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,156 @@
+// `superball derive` and `superball audit` as a user runs them (the built
+// binary): the JSON schema of the issue with expressions any CAS parses, the
+// paper's case-1 formulas in the text output, bad input reported on one line.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <ginac/ginac.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+const std::string kExe = SUPERBALL_EXE;
+
+struct RunResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+RunResult run(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const std::string base = ::testing::TempDir() + "superball-derive-" + std::to_string(::getpid()) + "-" + std::to_string(++counter);
+  const std::string out = base + ".out", err = base + ".err";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> argv_s = {kExe};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  RunResult r;
+  pid_t pid = 0;
+  if (posix_spawn(&pid, kExe.c_str(), &actions, nullptr, argv.data(), environ) == 0) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+  posix_spawn_file_actions_destroy(&actions);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+/// A GiNaC reader knowing the symbols the JSON lists (plain symbols: any CAS reads the text).
+GiNaC::parser reader_for(const nlohmann::json& j) {
+  GiNaC::symtab table;
+  for (const auto& s : j.at("symbols")) table[s.at("name").get<std::string>()] = GiNaC::symbol(s.at("name").get<std::string>());
+  return GiNaC::parser(table, true);
+}
+
+TEST(CliDerive, JsonSchemaCase1Alpha2) {
+  const RunResult r = run({"derive", "--case", "1", "--alphas", "2", "--format", "json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("case"), "1");
+  EXPECT_EQ(j.at("closed_contacts"), nlohmann::json::array({"2-3", "3-4"}));
+  for (const char* key : {"symbols", "velocities_after", "reactions", "conditions"}) EXPECT_TRUE(j.contains(key)) << key;
+  GiNaC::parser reader = reader_for(j);
+  const GiNaC::ex u1 = reader(j.at("velocities_after").at("U1").get<std::string>());
+  EXPECT_TRUE(GiNaC::normal(u1 - reader("a*(K14+alpha2-m1)/(m1+K12+K13+K14+2*alpha2)")).is_zero());
+  EXPECT_TRUE(j.at("reactions").contains("2-3"));
+  EXPECT_TRUE(j.at("reactions").contains("3-4"));
+  const auto& superball = j.at("conditions").at(0);
+  EXPECT_EQ(superball.at("kind"), "superball");
+  EXPECT_EQ(superball.at("about"), "U1 > a");
+  EXPECT_EQ(superball.at("text"), "−α₂ > 2m₁ + K₁₂ + K₁₃");
+  EXPECT_EQ(superball.at("latex"), "-\\alpha_{2} > 2m_{1} + K_{12} + K_{13}");
+  const std::string exact = superball.at("exact");
+  ASSERT_GT(exact.size(), 4u);
+  EXPECT_EQ(exact.substr(exact.size() - 4), " > 0");
+  EXPECT_TRUE(GiNaC::normal(reader(exact.substr(0, exact.size() - 4)) - reader("-alpha2-2*m1-K12-K13")).is_zero());
+  for (const auto& c : j.at("conditions")) {
+    const std::string kind = c.at("kind");
+    EXPECT_TRUE(kind == "superball" || kind == "evolution" || kind == "contact" || kind == "psd") << kind;
+    for (const char* key : {"about", "exact", "asymptotic", "text", "latex"}) EXPECT_TRUE(c.contains(key)) << key;
+    for (const char* key : {"exact", "asymptotic"}) {
+      const std::string e = c.at(key);
+      const auto rel = e.rfind(e.find(">=") != std::string::npos ? " >= 0" : " > 0");
+      ASSERT_NE(rel, std::string::npos) << e;
+      EXPECT_NO_THROW(reader(e.substr(0, rel))) << e;
+    }
+  }
+}
+
+TEST(CliDerive, TextHasThePaperFormulas) {
+  const RunResult r = run({"derive", "--case", "1", "--alphas", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* s : {"U₁⁺ = a(K₁₄ + α₂ − m₁)/(m₁ + K₁₂ + K₁₃ + K₁₄ + 2α₂)", "−α₂ > 2m₁ + K₁₂ + K₁₃", "m₁ < K₁₄ + α₂",
+                        "m₂ + m₃ ≥ K₁₂ + K₁₃ + K₂₄ + K₃₄"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s;
+}
+
+TEST(CliDerive, GeneralCouplingNamesAndAllCases) {
+  const RunResult r = run({"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--closed", "2-3", "-f", "json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  std::vector<std::string> names;
+  for (const auto& s : j.at("symbols")) names.push_back(s.at("name"));
+  EXPECT_NE(std::find(names.begin(), names.end(), "c_12_13"), names.end());
+  EXPECT_EQ(std::find(names.begin(), names.end(), "m5"), names.end());  // fixed obstacle
+  const RunResult all = run({"derive", "--all", "--alphas", "1,6", "-f", "json", "--obstacle", "finite"});
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const nlohmann::json cases = nlohmann::json::parse(all.out);
+  ASSERT_TRUE(cases.is_array());
+  EXPECT_EQ(cases.size(), 8u);
+  EXPECT_TRUE(cases.at(0).at("conditions").at(0).contains("finite"));
+}
+
+TEST(CliDerive, BadInputIsOneLine) {
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"derive", "--case", "1", "--alphas", "9"}, {"derive", "--case", "7.7"}, {"derive", "--closed", "1-3"},
+        {"derive", "--case", "1", "--scaling", "m9=1"}, {"derive", "--case", "1", "--closed", "2-3"}, {"derive", "--bodies", "5", "--case", "1"}}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << args.back();
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_EQ(r.err.rfind("superball: ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+}
+
+TEST(CliAudit, JsonHasEveryPrintedCondition) {
+  const RunResult r = run({"audit", "--samples", "300", "--json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("conditions").size(), 14u);
+  EXPECT_EQ(j.at("claims").size(), 3u);
+  for (const auto& c : j.at("conditions")) {
+    const std::string v = c.at("verdict");
+    EXPECT_TRUE(v == "identical to the exact condition" || v == "identical at the asymptotic order" || v == "different") << v;
+  }
+}
+
+}  // namespace
