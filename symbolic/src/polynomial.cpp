@@ -142,6 +142,9 @@ bool certainly_nonnegative(const GiNaC::ex& p, const Symbols& symbols) { return 
 
 bool certainly_positive(const GiNaC::ex& p, const Symbols& symbols) {
   const GiNaC::ex e = GiNaC::expand(p);
+  // GiNaC decides sums and products of possymbols with positive coefficients
+  // itself; the term rule below also admits even powers of (real) couplings.
+  if (e.info(GiNaC::info_flags::positive)) return true;
   if (!detail::certainly_nonnegative(e, symbols)) return false;
   for (const detail::Term& t : detail::terms(e)) {
     bool free_of_couplings = true;
