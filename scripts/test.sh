@@ -10,26 +10,36 @@ FUZZ_SECONDS="${FUZZ_SECONDS:-60}"
 install_packages
 export LSAN_OPTIONS="suppressions=$ROOT/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
+summary="$(mktemp)"
+trap 'rm -f "$summary"' EXIT
+# run_ctest DIR LABEL: the suite in DIR; its closing line goes to the summary.
+run_ctest() {
+  local log
+  log="$(mktemp)"
+  (cd "$1" && ctest --output-on-failure -j "$(nproc)") 2>&1 | tee "$log"
+  grep -E "tests passed, [0-9]+ tests failed out of" "$log" | sed "s/^/$2: /" >> "$summary"
+  rm -f "$log"
+}
 
 for stage in $STAGES; do
   case "$stage" in
     1)
       echo "== stage 1: test suite"
       configure_and_build -DSUPERBALL_BUILD_TESTS=ON
-      (cd "$BUILD_DIR" && ctest --output-on-failure -j "$(nproc)")
+      run_ctest "$BUILD_DIR" "suite"
       ;;
     2)
       echo "== stage 2: test suite under AddressSanitizer + UndefinedBehaviorSanitizer"
       BUILD_DIR="$ROOT/build-asan" configure_and_build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUPERBALL_BUILD_TESTS=ON \
         -DSUPERBALL_BUILD_BENCH=OFF -DSUPERBALL_SANITIZE=address,undefined
-      (cd "$ROOT/build-asan" && ctest --output-on-failure -j "$(nproc)")
+      run_ctest "$ROOT/build-asan" "suite under ASan+UBSan"
       ;;
     3)
       echo "== stage 3: libFuzzer, ${FUZZ_SECONDS} s"
       BUILD_DIR="$ROOT/build-fuzz" configure_and_build -DCMAKE_CXX_COMPILER=clang++ -DSUPERBALL_BUILD_FUZZ=ON \
         -DSUPERBALL_SANITIZE=address,undefined -DSUPERBALL_BUILD_BENCH=OFF --target fuzz_scene
       work="$(mktemp -d)"
-      trap 'rm -rf "$work"' EXIT
+      trap 'rm -rf "$work" "$summary"' EXIT
       # New inputs go to the scratch folder; the committed corpus is only read.
       "$ROOT/build-fuzz/tests/fuzz/fuzz_scene" "$work" "$ROOT/tests/fuzz/corpus" -max_total_time="$FUZZ_SECONDS" \
         -artifact_prefix="$work/" -print_final_stats=1 2>&1 | tail -n 12
@@ -37,7 +47,14 @@ for stage in $STAGES; do
         echo "fuzzing found a failing input:"; ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* 2>/dev/null
         exit 1
       fi
+      echo "fuzz: ${FUZZ_SECONDS} s without a failing input" >> "$summary"
       ;;
     *) echo "unknown stage $stage" >&2; exit 2 ;;
   esac
 done
+
+echo "== summary"
+cat "$summary"
+# One plain closing line over every ctest stage.
+awk '/tests passed/ { for (i = 1; i <= NF; ++i) { if ($i == "failed") f += $(i - 2); if ($i == "of") t += $(i + 1) } }
+     END { printf "tests: %d passed, %d failed\n", t - f, f }' "$summary"
