@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 
+#include <cctype>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -239,6 +240,75 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
     throw InputError(os.str());
   }
   return SceneReader(text, origin).read(root);
+}
+
+namespace {
+
+/// A Number as a TOML value: the user's spelling when TOML reads it as a number, else "p/q".
+std::string toml_number(const Number& x) {
+  const std::string& t = x.text;
+  const bool plain = !t.empty() && t.find_first_not_of("+-0123456789.eE") == std::string::npos && t.find('/') == std::string::npos &&
+                     std::isdigit(static_cast<unsigned char>(t.back())) && (std::isdigit(static_cast<unsigned char>(t[0])) || t[0] == '-');
+  if (plain) {
+    try {
+      (void)toml::parse("x = " + t);
+      if (Number::parse(t).fraction() == x.fraction()) return t;
+    } catch (const std::exception&) {
+    }
+  }
+  return x.denominator == "1" ? x.numerator : "\"" + x.fraction() + "\"";
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string write_scene(const Scene& scene, const std::string& comment) {
+  std::ostringstream os;
+  std::istringstream lines(comment);
+  for (std::string line; std::getline(lines, line);) os << "# " << line << '\n';
+  if (!scene.title.empty()) os << "title = " << quoted(scene.title) << '\n';
+  if (scene.fall_speed) os << "fall_speed = " << toml_number(*scene.fall_speed) << '\n';
+  if (scene.drop_height) os << "drop_height = " << toml_number(*scene.drop_height) << '\n';
+  if (scene.g.fraction() != Number::parse("9.81").fraction()) os << "g = " << toml_number(scene.g) << '\n';
+  for (const Body& b : scene.bodies) {
+    os << "\n[[body]]\nmass = " << (b.infinite ? std::string("\"inf\"") : toml_number(b.mass)) << '\n';
+    if (b.velocity) os << "velocity = " << toml_number(*b.velocity) << '\n';
+  }
+  std::string diagonal, alphas, couplings;
+  const Vocabulary& v = Vocabulary::paper();
+  for (const MatrixEntry& e : scene.entries) {
+    if (e.diagonal()) {
+      diagonal += (diagonal.empty() ? "" : ", ") + quoted(e.first.name()) + " = " + toml_number(e.value);
+    } else if (const auto k = scene.size() == v.bodies() ? v.alpha_index(e.first, e.second) : std::nullopt) {
+      alphas += (alphas.empty() ? "" : ", ") + quoted(std::to_string(*k)) + " = " + toml_number(e.value);
+    } else {
+      couplings += (couplings.empty() ? "" : ",\n  ") + std::string("{ pairs = [") + quoted(e.first.name()) + ", " + quoted(e.second.name()) +
+                   "], value = " + toml_number(e.value) + " }";
+    }
+  }
+  if (!scene.entries.empty()) {
+    os << "\n[dissipation]\n";
+    if (!diagonal.empty()) os << "K = { " << diagonal << " }\n";
+    if (!alphas.empty()) os << "alpha = { " << alphas << " }\n";
+    if (!couplings.empty()) os << "coupling = [\n  " << couplings << "\n]\n";
+  }
+  if (scene.flight.requested) {
+    os << "\n[flight]\n";
+    if (scene.flight.duration) os << "duration = " << toml_number(*scene.flight.duration) << '\n';
+  }
+  return os.str();
 }
 
 Scene load_scene(const std::string& path) {

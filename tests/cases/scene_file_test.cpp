@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "superball/cases/scene_file.hpp"
@@ -217,6 +218,63 @@ TEST(SceneFile, MissingFileAndDirectory) {
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()).rfind(kGood, 0), 0u) << e.what();
   }
+}
+
+
+/// Two scenes state the same thing: same title, speeds, bodies and entries of M (in any order), values exactly equal.
+void expect_same_scene(const Scene& a, const Scene& b) {
+  EXPECT_EQ(a.title, b.title);
+  auto value = [](const std::optional<Number>& x) { return x ? x->fraction() : std::string("none"); };
+  EXPECT_EQ(value(a.fall_speed), value(b.fall_speed));
+  EXPECT_EQ(value(a.drop_height), value(b.drop_height));
+  EXPECT_EQ(a.g.fraction(), b.g.fraction());
+  ASSERT_EQ(a.size(), b.size());
+  for (int k = 0; k < a.size(); ++k) {
+    const Body &x = a.bodies[static_cast<std::size_t>(k)], &y = b.bodies[static_cast<std::size_t>(k)];
+    EXPECT_EQ(x.infinite, y.infinite) << "body " << k + 1;
+    if (!x.infinite) {
+      EXPECT_EQ(x.mass.fraction(), y.mass.fraction()) << "body " << k + 1;
+    }
+    EXPECT_EQ(value(x.velocity), value(y.velocity)) << "body " << k + 1;
+  }
+  ASSERT_EQ(a.entries.size(), b.entries.size());
+  for (const MatrixEntry& e : a.entries) {
+    const MatrixEntry* f = b.find(e.first, e.second);
+    ASSERT_NE(f, nullptr) << e.first.name() << "/" << e.second.name();
+    EXPECT_EQ(e.value.fraction(), f->value.fraction()) << e.first.name() << "/" << e.second.name();
+  }
+  EXPECT_EQ(a.flight.requested, b.flight.requested);
+  EXPECT_EQ(a.flight.duration.has_value(), b.flight.duration.has_value());
+}
+
+TEST(SceneFile, WriteSceneReadsBackTheSameScene) {
+  int files = 0;
+  for (const std::string& dir : {kScenes, kGood})
+    for (const auto& f : std::filesystem::directory_iterator(dir)) {
+      if (f.path().extension() != ".toml") continue;
+      ++files;
+      SCOPED_TRACE(f.path().string());
+      const Scene s = load_scene(f.path().string());
+      const std::string text = write_scene(s, "written back\nby the test");
+      EXPECT_EQ(text.rfind("# written back\n# by the test\n", 0), 0u);
+      expect_same_scene(s, parse_scene(text, "written.toml"));
+    }
+  EXPECT_GE(files, 10);
+}
+
+TEST(SceneFile, WriteSceneKeepsExactFractionsAndCouplings) {
+  Scene s = parse_scene(
+      "title = \"a \\\"quoted\\\" title\"\n"
+      "drop_height = \"1/3\"\ng = 10\n"
+      "[[body]]\nmass = \"2/7\"\n[[body]]\nmass = 1e-3\n[[body]]\nmass = \"inf\"\n"
+      "[dissipation]\nK = { \"1-2\" = 3, \"1-3\" = 0x10 }\n"
+      "coupling = [ { pairs = [\"1-2\", \"1-3\"], value = \"-5/2\" } ]\n[flight]\nduration = 2\n",
+      "fractions.toml");
+  const std::string text = write_scene(s);
+  EXPECT_NE(text.find("\"2/7\""), std::string::npos) << text;
+  EXPECT_NE(text.find("mass = 1e-3"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"1-3\" = 16"), std::string::npos) << text;  // a TOML hex integer is written in decimal
+  expect_same_scene(s, parse_scene(text, "written.toml"));
 }
 
 }  // namespace

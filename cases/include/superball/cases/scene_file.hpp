@@ -41,4 +41,11 @@ Scene load_scene(const std::string& path);
 /// Same as load_scene() for text already in memory; \p origin names it in messages.
 Scene parse_scene(const std::string& text, const std::string& origin);
 
+/// The TOML text of \p scene, in the format load_scene() reads: numbers as
+/// the user spelled them when that spelling is a TOML number, else as an exact
+/// fraction string "p/q"; couplings of n = 4 by their α names; \p comment
+/// (may be empty, may hold several lines) as leading '#' lines.  Reading the
+/// text back gives the same scene (same exact values, same entries).
+std::string write_scene(const Scene& scene, const std::string& comment = "");
+
 }  // namespace superball
