@@ -3,6 +3,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "polynomial.hpp"
+#include "superball/cases/error.hpp"
 #include "superball/cases/vocabulary.hpp"
 
 namespace superball::symbolic {
@@ -138,6 +140,21 @@ GiNaC::symtab Symbols::table() const {
   GiNaC::symtab t;
   for (const SymbolInfo& s : all_) t[s.ascii] = s.symbol;
   return t;
+}
+
+std::vector<Monomial> Symbols::monomials(const GiNaC::ex& p) const {
+  std::vector<Monomial> out;
+  try {
+    for (const detail::Term& t : detail::terms(GiNaC::expand(p))) {
+      Monomial m;
+      m.coefficient = t.coefficient;
+      for (const auto& [symbol, exponent] : t.powers) m.powers.emplace_back(info(symbol).rank, exponent);
+      out.push_back(std::move(m));
+    }
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("Symbols::monomials(): " + without_function_prefix(e.what()));
+  }
+  return out;
 }
 
 }  // namespace superball::symbolic

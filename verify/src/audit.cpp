@@ -23,128 +23,27 @@ namespace detail {
 using cln::cl_RA;
 using namespace superball::symbolic;
 
-GiNaC::numeric to_ginac(const cl_RA& x) { return GiNaC::numeric(cln::cl_N(x)); }
-
 [[noreturn]] void fail(const std::string& what) { throw std::invalid_argument("audit_paper(): " + what); }
 
 std::string where(const PrintedCondition& c) { return "§" + c.section + " case " + c.case_name + " " + c.kind + " " + c.about; }
 
-/// A parameter point: the symbolic substitution and the same numbers for the numeric backend.
-struct Sample {
-  GiNaC::exmap values;
-  numeric::Problem<cl_RA> problem;
-  std::vector<std::pair<std::string, cl_RA>> named;
-};
-
-/// Random points of the asymptotic regime with M positive semi-definite.
-class Sampler {
- public:
-  Sampler(const Deriver& deriver, const cl_RA& epsilon, std::uint64_t seed) : d_(deriver), eps_(epsilon), rng_(seed) {
-    for (const SymbolInfo& s : d_.symbols().all()) {
-      const GiNaC::numeric k = d_.scaling().order(d_.symbols(), s.symbol);
-      if (!k.is_integer()) fail("the audit needs integer orders in epsilon (" + s.ascii + ")");
-      order_[s.ascii] = k.to_int();
-    }
-  }
-
-  /// A point, or nullopt when 1000 draws in a row gave an M that is not positive semi-definite.
-  std::optional<Sample> draw() {
-    for (int attempt = 0; attempt < 1000; ++attempt) {
-      Sample s = candidate();
-      bool psd = true;
-      for (const Condition& c : d_.psd()) {
-        const GiNaC::ex v = c.exact.numerator.subs(s.values, GiNaC::subs_options::no_pattern);
-        psd = psd && GiNaC::is_a<GiNaC::numeric>(v) && !GiNaC::ex_to<GiNaC::numeric>(v).is_negative();
-      }
-      if (psd) return s;
-    }
-    return std::nullopt;
-  }
-
- private:
-  cl_RA tenths(int lo, int hi) { return cl_RA(std::uniform_int_distribution<int>(lo, hi)(rng_)) / 10; }
-  cl_RA scaled(const std::string& name, const cl_RA& x) const { return x * cln::expt(eps_, order_.at(name)); }
-
-  Sample candidate() {
-    const Symbols& sy = d_.symbols();
-    const int n = sy.bodies();
-    Sample s;
-    auto& p = s.problem;
-    p.n = n;
-    p.fixed_bottom = sy.obstacle() == Obstacle::Infinite;
-    p.mass.assign(static_cast<std::size_t>(n), cl_RA(0));
-    p.unit = 1;
-    std::map<std::string, cl_RA> diagonal;
-    auto set = [&](const SymbolInfo& info, const cl_RA& v) {
-      s.values[info.symbol] = to_ginac(v);
-      s.named.emplace_back(info.ascii, v);
-    };
-    for (const SymbolInfo& info : sy.all()) {
-      switch (info.kind) {
-        case SymbolKind::Mass: {
-          const cl_RA m = scaled(info.ascii, tenths(1, 300));  // 0.1 .. 30
-          p.mass[static_cast<std::size_t>(info.body - 1)] = m;
-          set(info, m);
-          break;
-        }
-        case SymbolKind::Diagonal: {
-          const cl_RA k = scaled(info.ascii, tenths(1, 200));  // 0.1 .. 20
-          diagonal[info.first.name()] = k;
-          p.entries.push_back({info.first.i - 1, info.first.j - 1, info.first.i - 1, info.first.j - 1, k});
-          set(info, k);
-          break;
-        }
-        case SymbolKind::Coupling: {
-          // |c| <= sqrt(K_p K_q) for the 2×2 minor, and O(1): at most 20 before scaling.
-          const auto kp = diagonal.find(info.first.name()), kq = diagonal.find(info.second.name());
-          double bound = 20;
-          if (kp != diagonal.end() && kq != diagonal.end())
-            bound = std::min(bound, std::sqrt(cln::double_approx(kp->second * kq->second)) / cln::double_approx(cln::expt(eps_, order_.at(info.ascii))));
-          const cl_RA b = cl_RA(static_cast<long>(std::floor(bound * 10))) / 10;
-          const cl_RA c = scaled(info.ascii, b * cl_RA(std::uniform_int_distribution<int>(-20, 20)(rng_)) / 20);
-          p.entries.push_back({info.first.i - 1, info.first.j - 1, info.second.i - 1, info.second.j - 1, c});
-          set(info, c);
-          break;
-        }
-        case SymbolKind::FallSpeed: {
-          const cl_RA a = tenths(10, 50);  // 1 .. 5
-          set(info, a);
-          for (int i = 0; i < n; ++i) p.u.push_back(i + 1 < n ? cl_RA(-a) : cl_RA(0));
-          break;
-        }
-      }
-    }
-    return s;
-  }
-
-  const Deriver& d_;
-  cl_RA eps_;
-  std::mt19937_64 rng_;
-  std::map<std::string, int> order_;
-};
-
-bool holds(const GiNaC::ex& p, const GiNaC::exmap& at, bool strict) {
-  const GiNaC::ex v = p.subs(at, GiNaC::subs_options::no_pattern);
-  if (!GiNaC::is_a<GiNaC::numeric>(v)) throw std::logic_error("holds(): the condition is not a number at the point");
-  const GiNaC::numeric x = GiNaC::ex_to<GiNaC::numeric>(v);
-  return strict ? x.is_positive() : !x.is_negative();
+/// The substitution symbol → value of the point \p x.
+GiNaC::exmap substitution(const Symbols& s, const Point& x) {
+  GiNaC::exmap m;
+  for (std::size_t k = 0; k < x.size(); ++k) m[s.all()[k].symbol] = GiNaC::numeric(cln::cl_N(x[k]));
+  return m;
 }
 
-/// What the exact numeric solution of the forced case says about (kind, about); the quantity decided.
-bool numeric_truth(const std::string& kind, const std::string& about, const Sample& s, const numeric::Solution<cl_RA>& sol, std::string& quantity) {
-  const cl_RA a = -s.problem.u.front();
-  if (kind == "superball") {
-    quantity = "U1 - a = " + to_string(sol.velocities_after[0] - a);
-    return sol.velocities_after[0] > a;
-  }
-  const Pair p = Pair::parse(about);
-  const auto i = static_cast<std::size_t>(p.i - 1), j = static_cast<std::size_t>(p.j - 1);
-  if (kind == "evolution") {
-    quantity = "U" + std::to_string(p.i) + " - U" + std::to_string(p.j) + " = " + to_string(sol.velocities_after[i] - sol.velocities_after[j]);
-    return sol.velocities_after[i] > sol.velocities_after[j];
-  }
-  quantity = "R" + std::to_string(p.i) + "_" + std::to_string(p.j) + " = " + to_string(sol.reactions[i]);
-  return sol.reactions[i] <= 0;
+/// Whether the polynomial \p p is > 0 (strict) or >= 0 at \p x.
+bool holds(const Polynomial& p, const Point& x, bool strict) {
+  const cl_RA v = p(x);
+  return strict ? cln::plusp(v) : !cln::minusp(v);
+}
+
+ConditionKind kind_of(const std::string& kind, const std::string& context) {
+  for (ConditionKind k : {ConditionKind::Superball, ConditionKind::Evolution, ConditionKind::Contact, ConditionKind::Psd})
+    if (kind == to_string(k)) return k;
+  fail(context + ": unknown condition kind '" + kind + "'");
 }
 
 const Condition* find(const Derivation& d, const std::string& kind, const std::string& about) {
@@ -184,6 +83,11 @@ class Cache {
     if (!slot) slot = std::make_unique<Deriver>(Pattern::paper(alphas), Obstacle::Infinite);
     return *slot;
   }
+  const ParameterSpace& space(const std::vector<int>& alphas) {
+    auto& slot = spaces_[alphas];
+    if (!slot) slot = std::make_unique<ParameterSpace>(deriver(alphas));
+    return *slot;
+  }
   const Derivation& derivation(const std::vector<int>& alphas, const ContactSet& closed) {
     const auto key = std::make_pair(alphas, closed.to_string());
     auto it = derivations_.find(key);
@@ -193,6 +97,7 @@ class Cache {
 
  private:
   std::map<std::vector<int>, std::unique_ptr<Deriver>> derivers_;
+  std::map<std::vector<int>, std::unique_ptr<ParameterSpace>> spaces_;
   std::map<std::pair<std::vector<int>, std::string>, Derivation> derivations_;
 };
 
@@ -216,17 +121,18 @@ ConditionAudit audit_condition(const PrintedCondition& pc, const AuditOptions& o
     out.asymptotic_text = out.exact_text;
     out.agreement = GiNaC::normal(u.value() - rhs).is_zero() ? Agreement::IdenticalExact : Agreement::Different;
     if (out.agreement == Agreement::Different) {
-      Sampler sampler(deriver, o.epsilon, seed);
+      const ParameterSpace& space = cache.space(pc.alphas);
+      RegimeSampler sampler(space, o.epsilon, seed);
       numeric::CollisionSolver<cl_RA> solver;
       for (out.tried = 0; out.tried < o.samples && !out.witness; ++out.tried) {
-        const auto sample = sampler.draw();
-        if (!sample) break;
+        const auto x = sampler.draw();
+        if (!x) break;
         numeric::Solution<cl_RA> sol;
-        solver.compute_case(sample->problem, d.closed, sol);
-        const GiNaC::ex printed = rhs.subs(sample->values, GiNaC::subs_options::no_pattern);
-        if (!printed.is_equal(to_ginac(sol.velocities_after[static_cast<std::size_t>(body - 1)]))) {
+        solver.compute_case(space.problem(*x), d.closed, sol);
+        const GiNaC::ex printed = rhs.subs(substitution(s, *x), GiNaC::subs_options::no_pattern);
+        if (!printed.is_equal(GiNaC::numeric(cln::cl_N(sol.velocities_after[static_cast<std::size_t>(body - 1)])))) {
           Witness w;
-          w.point = sample->named;
+          w.point = space.named(*x);
           w.quantity = pc.lhs + " = " + to_string(sol.velocities_after[static_cast<std::size_t>(body - 1)]) + ", printed formula gives " + ascii(printed);
           w.numeric = true;
           w.derived_exact = w.derived_asymptotic = true;
@@ -265,23 +171,27 @@ ConditionAudit audit_condition(const PrintedCondition& pc, const AuditOptions& o
 
   // A point where the printed condition and the exact solution disagree; prefer one where the
   // derived asymptotic condition agrees too (the derived exact one always does).
-  Sampler sampler(deriver, o.epsilon, seed);
+  const ParameterSpace& space = cache.space(pc.alphas);
+  const Polynomial printed_poly(q, s);
+  const CompiledCondition exact(*c, c->exact, s), asymptotic(*c, c->asymptotic, s);
+  RegimeSampler sampler(space, o.epsilon, seed);
   numeric::CollisionSolver<cl_RA> solver;
   for (out.tried = 0; out.tried < o.samples; ++out.tried) {
-    const auto sample = sampler.draw();
-    if (!sample) break;
+    const auto x = sampler.draw();
+    if (!x) break;
+    const numeric::Problem<cl_RA> problem = space.problem(*x);
     numeric::Solution<cl_RA> sol;
-    solver.compute_case(sample->problem, d.closed, sol);
+    solver.compute_case(problem, d.closed, sol);
     if (sol.status != numeric::Status::Success) continue;
     Witness w;
-    w.numeric = numeric_truth(pc.kind, pc.about, *sample, sol, w.quantity);
-    w.printed = holds(q, sample->values, strict);
+    w.numeric = condition_truth(kind_of(pc.kind, ctx), pc.about, problem, sol, &w.quantity);
+    w.printed = holds(printed_poly, *x, strict);
     if (w.printed == w.numeric) continue;
-    w.derived_exact = holds(c->exact.numerator, sample->values, c->relation == Relation::Greater);
-    w.derived_asymptotic = holds(c->asymptotic.numerator, sample->values, c->relation == Relation::Greater);
-    w.point = sample->named;
+    w.derived_exact = exact.holds(*x);
+    w.derived_asymptotic = asymptotic.holds(*x);
+    w.point = space.named(*x);
     numeric::Solution<cl_RA> actual;
-    solver.compute(sample->problem, actual);
+    solver.compute(problem, actual);
     w.actual_case = Vocabulary::paper().case_name(actual.closed);
     const bool best = w.derived_exact == w.numeric && w.derived_asymptotic == w.numeric;
     if (!out.witness || best) out.witness = w;
@@ -365,25 +275,28 @@ ClaimAudit audit_claim(const PaperClaim& pc, const AuditOptions& o, Cache& cache
   }
   if (pc.claim == "superball impossible") out.certificate = impossibility_certificate(superball->exact.numerator, s);
   // Points where the case is the actual evolution and U1 > a.
-  Sampler sampler(deriver, o.epsilon, seed);
+  const ParameterSpace& space = cache.space(pc.alphas);
+  const CompiledCondition exact(*superball, superball->exact, s), asymptotic(*superball, superball->asymptotic, s);
+  RegimeSampler sampler(space, o.epsilon, seed);
   numeric::CollisionSolver<cl_RA> solver;
   for (out.tried = 0; out.tried < o.samples; ++out.tried) {
-    const auto sample = sampler.draw();
-    if (!sample) break;
+    const auto x = sampler.draw();
+    if (!x) break;
+    const numeric::Problem<cl_RA> problem = space.problem(*x);
     numeric::Solution<cl_RA> sol;
-    solver.compute(sample->problem, sol);
+    solver.compute(problem, sol);
     if (sol.status != numeric::Status::Success || sol.closed != closed) continue;
-    const cl_RA a = -sample->problem.u.front();
+    const cl_RA a = -problem.u.front();
     if (!(sol.velocities_after[0] > a)) continue;
     ++out.hits;
     if (!out.example) {
       Witness w;
-      w.point = sample->named;
+      w.point = space.named(*x);
       w.quantity = "U1 = " + to_string(sol.velocities_after[0]) + ", a = " + to_string(a);
       w.actual_case = Vocabulary::paper().case_name(sol.closed);
       w.numeric = true;
-      w.derived_exact = holds(superball->exact.numerator, sample->values, true);
-      w.derived_asymptotic = holds(superball->asymptotic.numerator, sample->values, true);
+      w.derived_exact = exact.holds(*x);
+      w.derived_asymptotic = asymptotic.holds(*x);
       out.example = w;
     }
     if (pc.claim == "superball possible") {
@@ -415,11 +328,6 @@ const char* to_string(Agreement a) {
   return "different";
 }
 
-std::string to_string(const cln::cl_RA& x) {
-  std::ostringstream os;
-  cln::fprint(os, x);
-  return os.str();
-}
 
 Audit audit_paper(const PrintedConditions& data, const AuditOptions& options) {
   if (!(options.epsilon > 0) || !(options.epsilon < 1)) throw std::invalid_argument("audit_paper(): epsilon must be in (0, 1)");

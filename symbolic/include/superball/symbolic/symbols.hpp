@@ -37,6 +37,13 @@ struct SymbolInfo {
   const std::string& name(Style style) const { return style == Style::Ascii ? ascii : style == Style::Text ? text : latex; }
 };
 
+/// One term c · Π x_k^e_k of an expanded polynomial, x_k the k-th symbol of
+/// Symbols::all().
+struct Monomial {
+  GiNaC::numeric coefficient;              ///< rational, non-zero
+  std::vector<std::pair<int, int>> powers;  ///< (index k in Symbols::all(), exponent > 0)
+};
+
 /// The symbols of a pattern: m_1..m_n (m_n only for a finite obstacle),
 /// K_p for the declared diagonal entries, one symbol per declared coupling
 /// and the fall speed a.
@@ -74,6 +81,11 @@ class Symbols {
   const GiNaC::ex& by_name(const std::string& name) const;
   /// Name → symbol table, for GiNaC::parser.
   GiNaC::symtab table() const;
+  /// The terms of the polynomial \p p (expanded first) in these symbols, for
+  /// code that evaluates it without GiNaC.  Throws std::invalid_argument(
+  /// "Symbols::monomials(): ...") when p is not a polynomial with rational
+  /// coefficients in these symbols.
+  std::vector<Monomial> monomials(const GiNaC::ex& p) const;
 
  private:
   void add(SymbolInfo info);

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "superball/cases/printed_conditions.hpp"
+#include "superball/verify/space.hpp"
 
 namespace superball::verify {
 
@@ -82,8 +83,5 @@ Audit audit_paper(const PrintedConditions& data, const AuditOptions& options = {
 
 /// The audit as text for people (Unicode notation).
 std::string to_text(const Audit& audit);
-
-/// Exact decimal-free spelling of a rational ("-13/7").
-std::string to_string(const cln::cl_RA& x);
 
 }  // namespace superball::verify

@@ -1,0 +1,299 @@
+#include "superball/verify/space.hpp"
+
+#include <cln/rational_io.h>
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "superball/cases/error.hpp"
+#include "superball/numeric/scalar.hpp"
+
+namespace superball::verify {
+namespace detail {
+
+/// A copy of \p x that shares no heap object with it (CLN's copies share).
+cln::cl_RA deep_copy(const cln::cl_RA& x) { return numeric::parse_rational(to_string(x)); }
+
+GiNaC::numeric to_ginac(const cln::cl_RA& x) { return GiNaC::numeric(cln::cl_N(x)); }
+
+cln::cl_RA to_rational(const GiNaC::numeric& x) { return cln::rational(cln::the<cln::cl_RA>(x.to_cl_N())); }
+
+}  // namespace detail
+
+std::string to_string(const cln::cl_RA& x) {
+  std::ostringstream os;
+  cln::fprint(os, x);
+  return os.str();
+}
+
+// ---------------------------------------------------------------------------- Polynomial
+
+Polynomial::Polynomial(const GiNaC::ex& p, const symbolic::Symbols& symbols) {
+  try {
+    for (const symbolic::Monomial& m : symbols.monomials(p)) {
+      Term t;
+      t.coefficient = detail::to_rational(m.coefficient);
+      t.approx = cln::double_approx(t.coefficient);
+      t.powers = m.powers;
+      terms_.push_back(std::move(t));
+    }
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("Polynomial::Polynomial(): " + without_function_prefix(e.what()));
+  }
+}
+
+cln::cl_RA Polynomial::operator()(const Point& x) const {
+  cln::cl_RA sum = 0;
+  for (const Term& t : terms_) {
+    cln::cl_RA v = t.coefficient;
+    for (const auto& [k, e] : t.powers) v = v * cln::expt(x[static_cast<std::size_t>(k)], e);
+    sum = sum + v;
+  }
+  return sum;
+}
+
+double Polynomial::operator()(const std::vector<double>& x) const {
+  double sum = 0;
+  for (const Term& t : terms_) {
+    double v = t.approx;
+    for (const auto& [k, e] : t.powers) v *= std::pow(x[static_cast<std::size_t>(k)], e);
+    sum += v;
+  }
+  return sum;
+}
+
+Polynomial Polynomial::clone() const {
+  Polynomial out;
+  out.terms_.reserve(terms_.size());
+  for (const Term& t : terms_) out.terms_.push_back(Term{detail::deep_copy(t.coefficient), t.approx, t.powers});
+  return out;
+}
+
+// ---------------------------------------------------------------------------- CompiledCondition
+
+CompiledCondition::CompiledCondition(const symbolic::Condition& condition, const symbolic::ConditionForm& form,
+                                     const symbolic::Symbols& symbols)
+    : kind(condition.kind),
+      about(condition.about),
+      strict(condition.relation == symbolic::Relation::Greater),
+      numerator(form.numerator, symbols) {
+  if (!form.sign_proved()) denominator = Polynomial(form.denominator, symbols);
+}
+
+bool CompiledCondition::holds(const Point& x) const {
+  const cln::cl_RA n = numerator(x);
+  int sign = cln::signum(n) > 0 ? 1 : (cln::zerop(n) ? 0 : -1);
+  if (!denominator.is_zero()) {
+    const cln::cl_RA d = denominator(x);
+    if (cln::zerop(d)) return false;
+    if (cln::minusp(d)) sign = -sign;
+  }
+  return strict ? sign > 0 : sign >= 0;
+}
+
+double CompiledCondition::value(const std::vector<double>& x) const {
+  const double n = numerator(x);
+  if (denominator.is_zero()) return n;
+  const double d = denominator(x);
+  return d == 0 ? std::nan("") : n / d;
+}
+
+CompiledCondition CompiledCondition::clone() const {
+  CompiledCondition out;
+  out.kind = kind;
+  out.about = about;
+  out.strict = strict;
+  out.numerator = numerator.clone();
+  out.denominator = denominator.clone();
+  return out;
+}
+
+// ---------------------------------------------------------------------------- ParameterSpace
+
+ParameterSpace::ParameterSpace(const symbolic::Deriver& deriver) {
+  const symbolic::Symbols& sy = deriver.symbols();
+  bodies_ = sy.bodies();
+  fixed_bottom_ = sy.obstacle() == symbolic::Obstacle::Infinite;
+  std::map<std::string, int> diagonal;
+  for (const symbolic::SymbolInfo& s : sy.all()) {
+    Coordinate c;
+    c.kind = s.kind;
+    c.ascii = s.ascii;
+    c.text = s.text;
+    c.body = s.body;
+    c.first = s.first;
+    c.second = s.second;
+    const GiNaC::numeric k = deriver.scaling().order(sy, s.symbol);
+    if (!k.is_integer())
+      throw std::invalid_argument("ParameterSpace::ParameterSpace(): sampling needs integer orders in epsilon (" + s.ascii + ")");
+    c.order = k.to_int();
+    const int at = static_cast<int>(coordinates_.size());
+    if (s.kind == symbolic::SymbolKind::Diagonal) diagonal[s.first.name()] = at;
+    if (s.kind == symbolic::SymbolKind::FallSpeed) fall_speed_ = at;
+    coordinates_.push_back(std::move(c));
+  }
+  for (Coordinate& c : coordinates_) {
+    if (c.kind != symbolic::SymbolKind::Coupling) continue;
+    if (const auto it = diagonal.find(c.first.name()); it != diagonal.end()) c.first_diagonal = it->second;
+    if (const auto it = diagonal.find(c.second.name()); it != diagonal.end()) c.second_diagonal = it->second;
+  }
+  for (const symbolic::Condition& m : deriver.psd()) psd_.emplace_back(m.exact.numerator, sy);
+}
+
+int ParameterSpace::index(const std::string& ascii) const {
+  for (std::size_t k = 0; k < coordinates_.size(); ++k)
+    if (coordinates_[k].ascii == ascii) return static_cast<int>(k);
+  std::string list;
+  for (const Coordinate& c : coordinates_) list += (list.empty() ? "" : ", ") + c.ascii;
+  throw std::invalid_argument("ParameterSpace::index(): no parameter '" + ascii + "' in this pattern (it has " + list + ")");
+}
+
+bool ParameterSpace::admissible(const Point& x) const {
+  if (x.size() != coordinates_.size()) return false;
+  for (std::size_t k = 0; k < x.size(); ++k)
+    if (coordinates_[k].kind != symbolic::SymbolKind::Coupling && !cln::plusp(x[k])) return false;
+  for (const Polynomial& m : psd_)
+    if (cln::minusp(m(x))) return false;
+  return true;
+}
+
+numeric::Problem<cln::cl_RA> ParameterSpace::problem(const Point& x) const {
+  if (x.size() != coordinates_.size())
+    throw std::invalid_argument("ParameterSpace::problem(): the point has " + std::to_string(x.size()) + " values, the space " +
+                                std::to_string(coordinates_.size()));
+  numeric::Problem<cln::cl_RA> p;
+  p.n = bodies_;
+  p.fixed_bottom = fixed_bottom_;
+  p.mass.assign(static_cast<std::size_t>(bodies_), cln::cl_RA(0));
+  p.unit = 1;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const Coordinate& c = coordinates_[k];
+    switch (c.kind) {
+      case symbolic::SymbolKind::Mass: p.mass[static_cast<std::size_t>(c.body - 1)] = x[k]; break;
+      case symbolic::SymbolKind::Diagonal:
+      case symbolic::SymbolKind::Coupling:
+        p.entries.push_back({c.first.i - 1, c.first.j - 1, c.second.i - 1, c.second.j - 1, x[k]});
+        break;
+      case symbolic::SymbolKind::FallSpeed: break;
+    }
+  }
+  const cln::cl_RA& a = x[static_cast<std::size_t>(fall_speed_)];
+  for (int i = 0; i < bodies_; ++i) p.u.push_back(i + 1 < bodies_ ? cln::cl_RA(-a) : cln::cl_RA(0));
+  return p;
+}
+
+Scene ParameterSpace::scene(const Point& x, const std::string& title) const {
+  const numeric::Problem<cln::cl_RA> p = problem(x);
+  auto number = [](const cln::cl_RA& v) { return Number::parse(to_string(v)); };
+  Scene s;
+  s.title = title;
+  s.origin = title;
+  s.fall_speed = number(x[static_cast<std::size_t>(fall_speed_)]);
+  for (int i = 0; i < bodies_; ++i) {
+    Body b;
+    if (i + 1 == bodies_) {
+      b.velocity = Number::integer(0);
+      b.infinite = fixed_bottom_;
+    }
+    if (!b.infinite) b.mass = number(p.mass[static_cast<std::size_t>(i)]);
+    s.bodies.push_back(b);
+  }
+  for (const auto& e : p.entries) s.entries.push_back({Pair{e.i + 1, e.j + 1}, Pair{e.k + 1, e.l + 1}, number(e.value)});
+  return s;
+}
+
+std::vector<std::pair<std::string, cln::cl_RA>> ParameterSpace::named(const Point& x) const {
+  std::vector<std::pair<std::string, cln::cl_RA>> out;
+  for (std::size_t k = 0; k < coordinates_.size() && k < x.size(); ++k) out.emplace_back(coordinates_[k].ascii, x[k]);
+  return out;
+}
+
+ParameterSpace ParameterSpace::clone() const {
+  ParameterSpace out;
+  out.coordinates_ = coordinates_;
+  for (const Polynomial& m : psd_) out.psd_.push_back(m.clone());
+  out.bodies_ = bodies_;
+  out.fall_speed_ = fall_speed_;
+  out.fixed_bottom_ = fixed_bottom_;
+  return out;
+}
+
+// ---------------------------------------------------------------------------- RegimeSampler
+
+RegimeSampler::RegimeSampler(const ParameterSpace& space, const cln::cl_RA& epsilon, std::uint64_t seed)
+    : space_(space), epsilon_(detail::deep_copy(epsilon)), rng_(seed) {
+  if (!(epsilon_ > 0) || !(epsilon_ < 1)) throw std::invalid_argument("RegimeSampler::RegimeSampler(): epsilon must be in (0, 1)");
+}
+
+std::optional<Point> RegimeSampler::draw() {
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    Point x = candidate();
+    if (space_.admissible(x)) return x;
+  }
+  return std::nullopt;
+}
+
+Point RegimeSampler::candidate() {
+  auto tenths = [&](int lo, int hi) { return cln::cl_RA(std::uniform_int_distribution<int>(lo, hi)(rng_)) / 10; };
+  const auto& coords = space_.coordinates();
+  Point x(coords.size());
+  for (std::size_t k = 0; k < coords.size(); ++k) {
+    const Coordinate& c = coords[k];
+    const cln::cl_RA scale = cln::expt(epsilon_, c.order);
+    switch (c.kind) {
+      case symbolic::SymbolKind::Mass: x[k] = tenths(1, 300) * scale; break;
+      case symbolic::SymbolKind::Diagonal: x[k] = tenths(1, 200) * scale; break;
+      case symbolic::SymbolKind::Coupling: {
+        // |c| <= sqrt(K_p K_q) for the 2×2 minor, and O(1): at most 20 before scaling.
+        double bound = 20;
+        if (c.first_diagonal >= 0 && c.second_diagonal >= 0)
+          bound = std::min(bound, std::sqrt(cln::double_approx(x[static_cast<std::size_t>(c.first_diagonal)] *
+                                                               x[static_cast<std::size_t>(c.second_diagonal)])) /
+                                      cln::double_approx(scale));
+        const cln::cl_RA b = cln::cl_RA(static_cast<long>(std::floor(bound * 10))) / 10;
+        x[k] = scale * b * cln::cl_RA(std::uniform_int_distribution<int>(-20, 20)(rng_)) / 20;
+        break;
+      }
+      case symbolic::SymbolKind::FallSpeed: x[k] = tenths(10, 50); break;
+    }
+  }
+  return x;
+}
+
+// ---------------------------------------------------------------------------- truth
+
+bool condition_truth(symbolic::ConditionKind kind, const std::string& about, const numeric::Problem<cln::cl_RA>& problem,
+                     const numeric::Solution<cln::cl_RA>& forced, std::string* quantity) {
+  std::string q;
+  bool truth = false;
+  const auto& u = forced.velocities_after;
+  switch (kind) {
+    case symbolic::ConditionKind::Superball: {
+      const cln::cl_RA a = -problem.u.front();
+      q = "U1 - a = " + to_string(u[0] - a);
+      truth = u[0] > a;
+      break;
+    }
+    case symbolic::ConditionKind::Evolution:
+    case symbolic::ConditionKind::Contact: {
+      const Pair p = Pair::parse(about);
+      const auto i = static_cast<std::size_t>(p.i - 1), j = static_cast<std::size_t>(p.j - 1);
+      if (kind == symbolic::ConditionKind::Evolution) {
+        q = "U" + std::to_string(p.i) + " - U" + std::to_string(p.j) + " = " + to_string(u[i] - u[j]);
+        truth = u[i] > u[j];
+      } else {
+        q = "R" + std::to_string(p.i) + "_" + std::to_string(p.j) + " = " + to_string(forced.reactions[i]);
+        truth = forced.reactions[i] <= 0;
+      }
+      break;
+    }
+    case symbolic::ConditionKind::Psd:
+      throw std::invalid_argument("condition_truth(): a PSD condition is not a property of the solution");
+  }
+  if (quantity) *quantity = q;
+  return truth;
+}
+
+}  // namespace superball::verify
