@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "selection.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/symbolic/derivation.hpp"
@@ -16,24 +17,6 @@ namespace superball::cli {
 namespace {
 
 using namespace superball::symbolic;
-
-std::vector<int> parse_alphas(const std::string& text) {
-  std::vector<int> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    if (item.empty()) continue;
-    std::size_t used = 0;
-    int k = 0;
-    try {
-      k = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size()) throw std::invalid_argument("--alphas: '" + item + "' is not an index 1..7 (e.g. --alphas 1,6)");
-    out.push_back(k);
-  }
-  return out;
-}
 
 nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s) {
   nlohmann::ordered_json j;
@@ -91,9 +74,8 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
 
 void add_derive(CLI::App& app, Action& action) {
   struct Options {
-    int bodies = 4, order = 0;
-    std::string case_name, closed, alphas, coupling, pairs = "all", scene, obstacle = "infinite", scaling, format = "text", output;
-    bool all = false;
+    SelectionOptions selection;
+    std::string format = "text", output;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("derive", "Solve evolution cases symbolically: velocities, reactions and the conditions, exact and asymptotic");
@@ -121,63 +103,17 @@ void add_derive(CLI::App& app, Action& action) {
       "  superball derive --scene cases/scenes/paper-fig5-alpha5.toml --case 3.2 --obstacle finite\n\n"
       "Names (JSON and --scaling): m1..mn, K12 (K1_10 past 9 bodies), alpha1..alpha7 (n = 4), c_12_14 for a\n"
       "coupling of the pairs 1-2 and 1-4, a for the fall speed, U1.. for the velocities after.");
-  cmd->add_option("--bodies,-n", o->bodies, "Number of bodies n >= 2, the bottom one being the obstacle")->capture_default_str();
-  auto* g = cmd->add_option_group("case", "Which evolution case (one of)");
-  g->add_option("--case", o->case_name, "The paper's case name (n = 4): 0, 1, 2.1, 2.2, 3.1, 3.2, 3.3, 3.4");
-  g->add_option("--closed", o->closed, "The closed contacts, e.g. 2-3,3-4 (\"none\" for no closed contact)");
-  g->add_flag("--all", o->all, "Every one of the 2^(n-1) cases");
-  g->require_option(1);
-  cmd->add_option("--alphas", o->alphas, "The paper's couplings alpha_k in play (n = 4), e.g. 2 or 1,6");
-  cmd->add_option("--coupling", o->coupling, "Couplings of pairs, e.g. 1-2/1-4,2-3/2-4, or near2");
-  cmd->add_option("--pairs", o->pairs, "Pairs with a diagonal K: all, near, near2 or a list 1-2,2-3")->capture_default_str();
-  cmd->add_option("--scene", o->scene, "Take the pattern (declared entries of M) and n from a scene file");
-  cmd->add_option("--obstacle", o->obstacle, "infinite (m_n = infinity, default) or finite (m_n a symbol; the m_n = infinity limit is also given)")
-      ->check(CLI::IsMember({"infinite", "finite"}))
-      ->capture_default_str();
-  cmd->add_option("--scaling", o->scaling, "Orders in epsilon, e.g. m1=1,K14=-1 (default m1=1, K1n=-1, mn=-1 if finite; \"none\")");
-  cmd->add_option("--order", o->order, "Correction orders kept beyond the dominant balance")->check(CLI::Range(0, 20))->capture_default_str();
+  add_selection_options(cmd, o->selection);
   cmd->add_option("--format,-f", o->format, "text, latex (a complete document) or json")
       ->check(CLI::IsMember({"text", "latex", "json"}))
       ->capture_default_str();
   cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output");
   cmd->callback([o, &action] {
     action = [o] {
-      Pattern pattern;
-      if (!o->scene.empty()) {
-        if (!o->alphas.empty() || !o->coupling.empty()) throw std::invalid_argument("--scene gives the pattern: drop --alphas/--coupling");
-        pattern = Pattern::from_scene(load_scene(o->scene));
-      } else {
-        if (o->bodies < 2 || o->bodies > 64) throw std::invalid_argument("--bodies must be 2..64");
-        if (!o->alphas.empty()) {
-          if (o->bodies != Vocabulary::paper().bodies())
-            throw std::invalid_argument("--alphas names the paper's couplings of 4 bodies; use --coupling for " + std::to_string(o->bodies));
-          pattern = Pattern::paper(parse_alphas(o->alphas));
-        } else {
-          pattern.bodies = o->bodies;
-        }
-        pattern.diagonal = Pattern::parse_pairs(o->pairs, o->bodies);
-        if (!o->coupling.empty()) {
-          const auto more = Pattern::parse_couplings(o->coupling, o->bodies);
-          pattern.couplings.insert(pattern.couplings.end(), more.begin(), more.end());
-        }
-        pattern.check();
-      }
-      const int n = pattern.bodies;
-      const Obstacle obstacle = o->obstacle == "finite" ? Obstacle::Finite : Obstacle::Infinite;
-      const Symbols symbols(pattern, obstacle);
-      std::optional<Scaling> scaling;
-      if (!o->scaling.empty()) scaling = Scaling::parse(o->scaling, symbols);
-      const Deriver deriver(pattern, obstacle, scaling, o->order);
+      const Selection selection = resolve(o->selection);
+      const Deriver& deriver = *selection.deriver;
       std::vector<Derivation> results;
-      if (o->all) {
-        if (n > 16) throw std::invalid_argument("--all with " + std::to_string(n) + " bodies means 2^" + std::to_string(n - 1) + " cases; choose one with --closed");
-        results = deriver.derive_all();
-      } else if (!o->case_name.empty()) {
-        if (n != Vocabulary::paper().bodies()) throw std::invalid_argument("--case names the paper's cases of 4 bodies; use --closed");
-        results.push_back(deriver.derive(Vocabulary::paper().named_case(o->case_name).closed));
-      } else {
-        results.push_back(deriver.derive(ContactSet::parse(o->closed, n)));
-      }
+      for (const ContactSet& c : selection.cases) results.push_back(deriver.derive(c));
       std::string text;
       if (o->format == "json") {
         nlohmann::ordered_json j = nlohmann::ordered_json::array();

@@ -1,0 +1,91 @@
+#include "selection.hpp"
+
+#include <sstream>
+
+#include "superball/cases/scene_file.hpp"
+#include "superball/cases/vocabulary.hpp"
+
+namespace superball::cli {
+
+using namespace superball::symbolic;
+
+std::vector<int> parse_alphas(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    if (item.empty()) continue;
+    std::size_t used = 0;
+    int k = 0;
+    try {
+      k = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size()) throw std::invalid_argument("--alphas: '" + item + "' is not an index 1..7 (e.g. --alphas 1,6)");
+    out.push_back(k);
+  }
+  return out;
+}
+
+void add_selection_options(CLI::App* cmd, SelectionOptions& o, bool require_case) {
+  cmd->add_option("--bodies,-n", o.bodies, "Number of bodies n >= 2, the bottom one being the obstacle")->capture_default_str();
+  auto* g = cmd->add_option_group("case", "Which evolution case (one of)");
+  g->add_option("--case", o.case_name, "The paper's case name (n = 4): 0, 1, 2.1, 2.2, 3.1, 3.2, 3.3, 3.4");
+  g->add_option("--closed", o.closed, "The closed contacts, e.g. 2-3,3-4 (\"none\" for no closed contact)");
+  g->add_flag("--all", o.all, "Every one of the 2^(n-1) cases");
+  if (require_case)
+    g->require_option(1);
+  else
+    g->require_option(0, 1);
+  cmd->add_option("--alphas", o.alphas, "The paper's couplings alpha_k in play (n = 4), e.g. 2 or 1,6");
+  cmd->add_option("--coupling", o.coupling, "Couplings of pairs, e.g. 1-2/1-4,2-3/2-4, or near2");
+  cmd->add_option("--pairs", o.pairs, "Pairs with a diagonal K: all, near, near2 or a list 1-2,2-3")->capture_default_str();
+  cmd->add_option("--scene", o.scene, "Take the pattern (declared entries of M) and n from a scene file");
+  cmd->add_option("--obstacle", o.obstacle, "infinite (m_n = infinity, default) or finite (m_n a symbol; the m_n = infinity limit is also given)")
+      ->check(CLI::IsMember({"infinite", "finite"}))
+      ->capture_default_str();
+  cmd->add_option("--scaling", o.scaling, "Orders in epsilon, e.g. m1=1,K14=-1 (default m1=1, K1n=-1, mn=-1 if finite; \"none\")");
+  cmd->add_option("--order", o.order, "Correction orders kept beyond the dominant balance")->check(CLI::Range(0, 20))->capture_default_str();
+}
+
+Selection resolve(const SelectionOptions& o) {
+  Pattern pattern;
+  if (!o.scene.empty()) {
+    if (!o.alphas.empty() || !o.coupling.empty()) throw std::invalid_argument("--scene gives the pattern: drop --alphas/--coupling");
+    pattern = Pattern::from_scene(load_scene(o.scene));
+  } else {
+    if (o.bodies < 2 || o.bodies > 64) throw std::invalid_argument("--bodies must be 2..64");
+    if (!o.alphas.empty()) {
+      if (o.bodies != Vocabulary::paper().bodies())
+        throw std::invalid_argument("--alphas names the paper's couplings of 4 bodies; use --coupling for " + std::to_string(o.bodies));
+      pattern = Pattern::paper(parse_alphas(o.alphas));
+    } else {
+      pattern.bodies = o.bodies;
+    }
+    pattern.diagonal = Pattern::parse_pairs(o.pairs, o.bodies);
+    if (!o.coupling.empty()) {
+      const auto more = Pattern::parse_couplings(o.coupling, o.bodies);
+      pattern.couplings.insert(pattern.couplings.end(), more.begin(), more.end());
+    }
+    pattern.check();
+  }
+  const int n = pattern.bodies;
+  const Obstacle obstacle = o.obstacle == "finite" ? Obstacle::Finite : Obstacle::Infinite;
+  const Symbols symbols(pattern, obstacle);
+  std::optional<Scaling> scaling;
+  if (!o.scaling.empty()) scaling = Scaling::parse(o.scaling, symbols);
+  Selection s;
+  s.deriver = std::make_unique<Deriver>(pattern, obstacle, scaling, o.order);
+  if (o.all) {
+    if (n > 16) throw std::invalid_argument("--all with " + std::to_string(n) + " bodies means 2^" + std::to_string(n - 1) + " cases; choose one with --closed");
+    for (std::uint64_t mask = 0; mask < (std::uint64_t{1} << (n - 1)); ++mask) s.cases.push_back(ContactSet::from_mask(mask, n));
+  } else if (!o.case_name.empty()) {
+    if (n != Vocabulary::paper().bodies()) throw std::invalid_argument("--case names the paper's cases of 4 bodies; use --closed");
+    s.cases.push_back(Vocabulary::paper().named_case(o.case_name).closed);
+  } else if (!o.closed.empty()) {
+    s.cases.push_back(ContactSet::parse(o.closed, n));
+  }
+  return s;
+}
+
+}  // namespace superball::cli
