@@ -237,7 +237,7 @@ std::string Document::markdown() const {
 std::string Document::latex() const {
   std::ostringstream os;
   os << "\\documentclass[10pt,a4paper]{article}\n\\usepackage[utf8]{inputenc}\n\\usepackage{amsmath}\n"
-        "\\usepackage{graphicx}\n\\usepackage{array}\n\\usepackage{longtable}\n\\usepackage[margin=2cm]{geometry}\n\\setlength{\\emergencystretch}{3em}\n"
+        "\\usepackage{graphicx}\n\\usepackage{array}\n\\usepackage{longtable}\n\\usepackage[margin=2cm]{geometry}\n\\sloppy  % generated text: loose lines rather than lines past the margin\n"
      << "\\title{" << latex_text(title_) << "}\n\\date{}\n\\begin{document}\n\\maketitle\n\n";
   for (const Block& b : blocks_) {
     switch (b.kind) {
@@ -250,17 +250,20 @@ std::string Document::latex() const {
         os << "\\end{itemize}\n\n";
         break;
       case Kind::Table: {
-        os << "{\\small\n\\begin{longtable}{" << column_spec(b.rows, b.widths) << "}\n\\hline\n";
+        // Wrapping columns make tall tables: those break across pages (longtable); the others stay whole.
+        const std::string spec = column_spec(b.rows, b.widths);
+        const bool wraps = spec.find("p{") != std::string::npos;
+        os << (wraps ? "{\\small\n\\begin{longtable}{" : "\\begin{center}\\small\n\\begin{tabular}{") << spec << "}\n\\hline\n";
         for (std::size_t r = 0; r < b.rows.size(); ++r) {
           for (std::size_t c = 0; c < b.rows[r].size(); ++c) os << (c ? " & " : "") << latex_cell(b.rows[r][c]);
-          os << " \\\\\n" << (r == 0 ? "\\hline\n\\endhead\n" : "");
+          os << " \\\\\n" << (r > 0 ? "" : wraps ? "\\hline\n\\endhead\n" : "\\hline\n");
         }
-        os << "\\hline\n\\end{longtable}}\n\n";
+        os << (wraps ? "\\hline\n\\end{longtable}}\n\n" : "\\hline\n\\end{tabular}\n\\end{center}\n\n");
         break;
       }
-      case Kind::Figure:
-        os << "\\begin{figure}[tbp]\n\\centering\n\\includegraphics[width=0.8\\textwidth]{" << b.stem << ".png}\n\\caption{"
-           << latex_text(b.text) << "}\n\\end{figure}\n\n";
+      case Kind::Figure:  // in place, as in Markdown (a float could drift past a longtable, which breaks it)
+        os << "\\par\\noindent\\begin{minipage}{\\linewidth}\n\\centering\n\\includegraphics[width=0.8\\linewidth]{" << b.stem
+           << ".png}\\par\\smallskip\n{\\small\\itshape " << latex_text(b.text) << "\\par}\n\\end{minipage}\n\\medskip\n\n";
         break;
       case Kind::Verbatim: os << "\\begin{verbatim}\n" << b.text << (b.text.empty() || b.text.back() == '\n' ? "" : "\n") << "\\end{verbatim}\n\n"; break;
     }
