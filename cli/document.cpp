@@ -237,7 +237,7 @@ std::string Document::markdown() const {
 std::string Document::latex() const {
   std::ostringstream os;
   os << "\\documentclass[10pt,a4paper]{article}\n\\usepackage[utf8]{inputenc}\n\\usepackage{amsmath}\n"
-        "\\usepackage{graphicx}\n\\usepackage{array}\n\\usepackage{longtable}\n\\usepackage[margin=2cm]{geometry}\n\\sloppy  % generated text: loose lines rather than lines past the margin\n"
+        "\\usepackage{graphicx}\n\\usepackage{array}\n\\usepackage{longtable}\n\\usepackage[margin=2cm]{geometry}\n\\sloppy  % generated text: loose lines rather than lines past the margin\n\\renewcommand{\\labelitemi}{$\\bullet$}  % Computer Modern math, not a bitmap text-companion font\n"
      << "\\title{" << latex_text(title_) << "}\n\\date{}\n\\begin{document}\n\\maketitle\n\n";
   for (const Block& b : blocks_) {
     switch (b.kind) {
