@@ -287,6 +287,7 @@ void epsilon_family(const Run& run, Document& doc) {
 /// equal to the audit's, gives the LaTeX of exactly the audited formula.
 class Formulas {
  public:
+  /// Case \p case_name derived for the paper's couplings \p alphas, bottom body fixed (m4 = infinity), as audited.
   const symbolic::Derivation& derivation(const std::vector<int>& alphas, const std::string& case_name) {
     auto& deriver = derivers_[alphas];
     if (!deriver) deriver = std::make_unique<symbolic::Deriver>(symbolic::Pattern::paper(alphas), symbolic::Obstacle::Infinite);
@@ -335,6 +336,7 @@ Cell point_cell(const verify::Witness& w, const symbolic::Symbols& s) {
   return Cell(text, latex);
 }
 
+/// "holds" or "fails".
 std::string holds(bool b) { return b ? "holds" : "fails"; }
 
 /// What a condition says at a point and whether that is right: "printed: holds, **wrong**".
