@@ -494,7 +494,7 @@ void add_reproduce(CLI::App& app, Action& action) {
       "paper's printed conditions; the paper's printed numbers (cases/paper/printed-numbers.toml) are shown\n"
       "beside them for comparison only.  The section on the printed conditions is `superball audit`'s audit;\n"
       "--samples makes it faster (fewer points tried per search).  Needs gnuplot.\n\n"
-      "Examples:\n  superball reproduce --out report\n  superball reproduce --out /tmp/quick --samples 500");
+      "Examples:\n  superball reproduce --out report\n  superball reproduce --out report-quick --samples 500");
   cmd->add_option("--out,-o", o->out, "Report folder (created if missing)")->capture_default_str();
   cmd->add_option("--scenes", o->scenes, "Folder of the paper's scene files")->capture_default_str();
   cmd->add_option("--samples", o->samples, "Points tried per search of the audit of the printed conditions")
