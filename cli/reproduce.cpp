@@ -2,10 +2,14 @@
 // (report.md, report.tex, figures as PNG and SVG drawn by gnuplot).
 #include <sys/stat.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -14,9 +18,13 @@
 #include "gnuplot.hpp"
 #include "present.hpp"
 #include "superball/cases/printed.hpp"
+#include "superball/cases/printed_conditions.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/sweep.hpp"
+#include "superball/symbolic/derivation.hpp"
+#include "superball/symbolic/format.hpp"
+#include "superball/verify/audit.hpp"
 
 #ifndef SUPERBALL_SCENES_DIR
 #define SUPERBALL_SCENES_DIR "cases/scenes"
@@ -51,9 +59,10 @@ std::string fixed(double x, int decimals) {
 std::string decimal(const cln::cl_RA& x, int digits) { return numeric::to_decimal(x, digits); }
 std::string decimal(double x, int digits) { return numeric::to_string(x, digits); }
 
-/// A report run: where the scenes are, where the report goes.
+/// A report run: where the scenes are, where the report goes, how many points the audit tries.
 struct Run {
   std::string scenes, out;
+  int samples = verify::AuditOptions{}.samples;
   Scene scene(const std::string& file) const { return load_scene(scenes + "/" + file); }
 };
 
@@ -84,11 +93,11 @@ void eq16(const Run& run, Document& doc) {
       "Exact solves (CLN rationals) of two readings of §4.4: the coupling -100 on alpha_4 as printed "
       "(`paper-4.4-as-printed.toml`), and on alpha_2 (`paper-4.4-alpha2.toml`).  A velocity matches when it rounds to "
       "the paper's printed digits.");
-  std::vector<std::vector<std::string>> rows;
+  std::vector<std::vector<Cell>> rows;
   std::vector<int> matches(runs.size(), 0);
   for (std::size_t i = 0; i < printed.eq16_velocities.size(); ++i) {
     const Number& p = printed.eq16_velocities[i];
-    std::vector<std::string> row{"U" + std::to_string(i + 1) + "+ (m/s)", p.text};
+    std::vector<Cell> row{"U" + std::to_string(i + 1) + "+ (m/s)", p.text};
     for (std::size_t r = 0; r < runs.size(); ++r) {
       const bool ok = matches_printed(runs[r].after[i], p);
       matches[r] += ok;
@@ -97,7 +106,7 @@ void eq16(const Run& run, Document& doc) {
     }
     rows.push_back(row);
   }
-  std::vector<std::string> case_row{"case", printed.eq16_case};
+  std::vector<Cell> case_row{"case", printed.eq16_case};
   for (const auto& r : runs) {
     case_row.push_back(r.case_name);
     case_row.push_back(r.case_name == printed.eq16_case ? "yes" : "**no**");
@@ -121,7 +130,7 @@ void eq16(const Run& run, Document& doc) {
       scene.entries.erase(std::remove_if(scene.entries.begin(), scene.entries.end(), [](const MatrixEntry& e) { return !e.diagonal(); }),
                           scene.entries.end());
       Parameter::parse("alpha." + std::to_string(alpha.index), scene).set(scene, Number::parse(value));
-      std::vector<std::string> row{"alpha_" + std::to_string(alpha.index), value};
+      std::vector<Cell> row{"alpha_" + std::to_string(alpha.index), value};
       try {
         const Presented r = solve_scene(scene, exact_precision);
         int m = 0;
@@ -140,7 +149,7 @@ void fig5(const Run& run, Document& doc) {
   doc.heading("Fig. 5: U1+ against alpha_2 and against alpha_5, §4.3");
   Plot plot{"Fig. 5: velocity of ball 1 after the collision", "coupling alpha_k (kg)", "U_1^+ (m/s)", false, false,
             "inside bottom center box opaque spacing 1.4", {}, {}};
-  std::vector<std::vector<std::string>> rows;
+  std::vector<std::vector<Cell>> rows;
   double a = 0;
   for (const auto& [file, key, pair_a, pair_b] :
        {std::tuple<const char*, const char*, const char*, const char*>{"paper-fig5-alpha2.toml", "alpha.2", "K.1-2", "K.1-4"},
@@ -189,7 +198,7 @@ void fig7(const Run& run, Document& doc) {
   doc.heading("Fig. 7: where the evolution case changes along K34, §4.4");
   doc.paragraph("`superball sweep SCENE --vary K.3-4=0:20:401 --switch-points`: bisection on the exact solution between "
                 "sweep values of different cases, beside the values the paper reads off its Fig. 7.");
-  std::vector<std::vector<std::string>> rows;
+  std::vector<std::vector<Cell>> rows;
   for (const char* f : {"paper-4.4-as-printed.toml", "paper-4.4-alpha2.toml"}) {
     const Scene scene = run.scene(f);
     const Parameter k34 = Parameter::parse("K.3-4", scene);
@@ -208,7 +217,7 @@ void fig7(const Run& run, Document& doc) {
     }
     for (const auto& p : printed.switches) {
       plot.markers.push_back({p.value.approx(), "paper: " + p.value.text, true, true, 0.6, true});
-      std::vector<std::string> row{"`" + std::string(f) + "`", p.value.text + " (case " + p.case_name + ")"};
+      std::vector<Cell> row{"`" + std::string(f) + "`", p.value.text + " (case " + p.case_name + ")"};
       const numeric::SwitchPoint* found = nullptr;
       for (const auto& sw : switches)
         if (v.case_name(sw.below) == p.case_name || v.case_name(sw.above) == p.case_name) found = &sw;
@@ -237,7 +246,7 @@ void epsilon_family(const Run& run, Document& doc) {
   doc.heading("The epsilon family of §4.1 (case 1, alpha_2 = -1, m4 = infinity, a = 1)");
   doc.paragraph("K12 = -alpha2 (1 - eps + eps^2), K13 = -alpha2 eps^2, K14 = -alpha2 (1 + eps), m1 = -alpha2 eps^3; the other "
                 "parameters from `cases/scenes/paper-4.1-family.toml`.  Exact solves.");
-  std::vector<std::vector<std::string>> rows;
+  std::vector<std::vector<Cell>> rows;
   Plot plot{"Sec. 4.1: U_1^+/a against 1/(2 eps)", "1/(2 eps)", "U_1^+ / a", true, true, "inside top left box opaque spacing 1.4", {}, {}};
   Series computed{"U_1^+/a, exact solve", {}, {}, true}, claim_line{"U_1^+ = a/(2 eps) (paper)", {}, {}, false};
   for (int k = 1; k <= 6; ++k) {
@@ -272,11 +281,206 @@ void epsilon_family(const Run& run, Document& doc) {
                 "exactly a (1 - eps^2) / (eps (2 + eps)) = a/(2 eps) - a/4 + O(eps) on this family.");
 }
 
+/// The derivations behind the audit, printed in LaTeX.  The audit gives its
+/// formulas in text notation only; the same derivation (symbolic::Deriver of
+/// the same pattern and case) printed in both notations, its text checked
+/// equal to the audit's, gives the LaTeX of exactly the audited formula.
+class Formulas {
+ public:
+  /// Case \p case_name derived for the paper's couplings \p alphas, bottom body fixed (m4 = infinity), as audited.
+  const symbolic::Derivation& derivation(const std::vector<int>& alphas, const std::string& case_name) {
+    auto& deriver = derivers_[alphas];
+    if (!deriver) deriver = std::make_unique<symbolic::Deriver>(symbolic::Pattern::paper(alphas), symbolic::Obstacle::Infinite);
+    const auto key = std::make_pair(alphas, case_name);
+    auto it = derivations_.find(key);
+    if (it == derivations_.end()) it = derivations_.emplace(key, deriver->derive(Vocabulary::paper().named_case(case_name).closed)).first;
+    return it->second;
+  }
+
+  /// The condition (kind, about) of a derivation.
+  static const symbolic::Condition& condition(const symbolic::Derivation& d, const std::string& kind, const std::string& about) {
+    for (const symbolic::Condition& c : d.conditions)
+      if (symbolic::to_string(c.kind) == kind && c.about == about) return c;
+    throw std::logic_error("Formulas::condition(): case " + d.case_name + " has no " + kind + " condition about " + about);
+  }
+
+  /// A formula cell: \p text must be what the audit printed (\p audit_text).
+  static Cell cell(const std::string& audit_text, const std::string& text, const std::string& latex) {
+    if (text != audit_text) throw std::logic_error("Formulas::cell(): the derivation prints '" + text + "', the audit '" + audit_text + "'");
+    return Cell::math(text, latex);
+  }
+
+ private:
+  std::map<std::vector<int>, std::unique_ptr<symbolic::Deriver>> derivers_;
+  std::map<std::pair<std::vector<int>, std::string>, symbolic::Derivation> derivations_;
+};
+
+/// The couplings α_k of a pattern ("α₂, α₆"), in \p style.
+std::string pattern_name(const symbolic::Symbols& s, symbolic::Style style) {
+  std::string out;
+  for (const symbolic::SymbolInfo& info : s.all())
+    if (info.kind == symbolic::SymbolKind::Coupling) out += (out.empty() ? "" : ", ") + info.name(style);
+  return out;
+}
+
+/// A parameter point of the audit: "m₁ = 21/1250 (0.0168), …" and its LaTeX.
+Cell point_cell(const verify::Witness& w, const symbolic::Symbols& s) {
+  std::string text, latex;
+  for (const auto& [name, v] : w.point) {
+    const symbolic::SymbolInfo& info = s.info(s.by_name(name));
+    const std::string value = verify::to_string(v) + (cln::denominator(v) == 1 ? "" : " (" + decimal(v, 6) + ")");
+    text += (text.empty() ? "" : ", ") + info.text + " = " + value;
+    latex += (latex.empty() ? "" : ", ") + ("$" + info.latex + " = " + verify::to_string(v) + "$") +
+             (cln::denominator(v) == 1 ? "" : " (" + decimal(v, 6) + ")");
+  }
+  return Cell(text, latex);
+}
+
+/// "holds" or "fails".
+std::string holds(bool b) { return b ? "holds" : "fails"; }
+
+/// What a condition says at a point and whether that is right: "printed: holds, **wrong**".
+std::string judged(const std::string& who, bool says, bool truth) { return who + ": " + holds(says) + (says == truth ? ", right" : ", **wrong**"); }
+
+/// The paper's LaTeX with plain parentheses for \left( \right), so that a
+/// narrow table column may break the formula inside them.
+std::string breakable(std::string latex) {
+  for (const char* sized : {"\\left", "\\right"})
+    for (std::size_t at = latex.find(sized); at != std::string::npos; at = latex.find(sized, at)) latex.erase(at, std::string(sized).size());
+  return latex;
+}
+
+/// §4.1–§4.3: the paper's printed conditions and claims in words against the
+/// derivation, as audited by verify::audit_paper (the audit of `superball
+/// audit`): per case of the paper a table of the printed, derived exact and
+/// derived asymptotic conditions with the verdict, the parameter points where
+/// a printed condition disagrees with the exact solution, then the claims.
+void printed_conditions(const verify::Audit& audit, Document& doc) {
+  using symbolic::Style;
+  Formulas formulas;
+  int counts[3] = {0, 0, 0};
+  for (const auto& c : audit.conditions) ++counts[static_cast<int>(c.agreement)];
+  doc.heading("The printed conditions of §4.1–§4.3 against the derivation");
+  doc.paragraph(
+      "Every condition the paper prints for its cases 1, 2.1 and 3.2 (transcribed in `cases/paper/printed-conditions.toml`) beside "
+      "the condition derived symbolically for the same case and couplings: exact (bottom body fixed, m4 = infinity) and asymptotic "
+      "(its dominant balance for m1 ~ eps, K14 ~ 1/eps).  Verdict: identical to the exact condition, identical at the asymptotic "
+      "order, or different; a different one comes with a parameter point (M positive semi-definite, eps = " +
+      verify::to_string(audit.options.epsilon) + ", found among " + std::to_string(audit.options.samples) +
+      " pseudo-random points per search, seed " + std::to_string(audit.options.seed) +
+      ") where it disagrees with the exact solution of the case (numeric backend, rationals).  This run: " + std::to_string(counts[0]) +
+      " printed conditions identical to the exact condition, " + std::to_string(counts[1]) + " identical at the asymptotic order, " +
+      std::to_string(counts[2]) + " different.  The same audit as text: `superball audit --samples " +
+      std::to_string(audit.options.samples) + "`.");
+
+  // One group per (section, case, couplings), in the paper's order.
+  std::vector<std::vector<const verify::ConditionAudit*>> groups;
+  for (const auto& c : audit.conditions) {
+    auto same = [&](const std::vector<const verify::ConditionAudit*>& g) {
+      return g[0]->printed.section == c.printed.section && g[0]->printed.case_name == c.printed.case_name && g[0]->printed.alphas == c.printed.alphas;
+    };
+    auto it = std::find_if(groups.begin(), groups.end(), same);
+    if (it == groups.end())
+      groups.push_back({&c});
+    else
+      it->push_back(&c);
+  }
+  for (const auto& group : groups) {
+    const PrintedCondition& first = group[0]->printed;
+    const symbolic::Derivation& d = formulas.derivation(first.alphas, first.case_name);
+    const symbolic::Symbols& s = *d.symbols;
+    doc.subheading("§" + first.section + ", case " + first.case_name + ", coupling " + pattern_name(s, Style::Text) + " (the other couplings zero)");
+    std::vector<std::vector<Cell>> rows, points;
+    std::vector<std::string> notes;
+    for (const verify::ConditionAudit* c : group) {
+      const PrintedCondition& p = c->printed;
+      Cell title(""), exact(""), asymptotic("");
+      if (p.kind == "velocity") {
+        const int body = std::stoi(p.lhs.substr(1));
+        const symbolic::Fraction& u = d.velocities.at(static_cast<std::size_t>(body - 1));
+        auto formula = [&](Style style) { return symbolic::velocity_name(body, style) + " = " + symbolic::format_fraction(u, s, style); };
+        title = Cell("velocity " + symbolic::velocity_name(body, Style::Text), "velocity $" + symbolic::velocity_name(body, Style::Latex) + "$");
+        exact = Formulas::cell(c->exact_text, formula(Style::Text), formula(Style::Latex));
+        if (c->asymptotic_text != c->exact_text) throw std::logic_error("printed_conditions(): a velocity formula is audited exactly");
+        asymptotic = Cell("the exact formula (a velocity is compared exactly)");
+      } else {
+        const symbolic::Condition& k = Formulas::condition(d, p.kind, p.about);
+        auto form = [&](const symbolic::ConditionForm& f, Style style) { return symbolic::format_condition(f, k.relation, s, style); };
+        title = Cell(symbolic::condition_title(k, Style::Text), symbolic::condition_title(k, Style::Latex));
+        exact = Formulas::cell(c->exact_text, form(k.exact, Style::Text), form(k.exact, Style::Latex));
+        asymptotic = Formulas::cell(c->asymptotic_text, form(k.asymptotic, Style::Text), form(k.asymptotic, Style::Latex));
+      }
+      std::string verdict = verify::to_string(c->agreement);
+      if (c->agreement == verify::Agreement::Different) verdict = "**" + verdict + "**";
+      if (c->agreement != verify::Agreement::IdenticalExact && !c->printed_asymptotic_text.empty())
+        verdict += "; the printed one at leading order: " + c->printed_asymptotic_text;
+      rows.push_back({title, Cell::math(c->printed_text, breakable(p.printed)), exact, asymptotic, verdict});
+      for (const std::string& n : c->notes) notes.push_back(title.text + ": " + n + ".");
+      if (c->agreement != verify::Agreement::Different) continue;
+      if (!c->witness) {
+        points.push_back({title, "none found in " + std::to_string(c->tried) + " points", "-", "-", "-"});
+        continue;
+      }
+      const verify::Witness& w = *c->witness;
+      points.push_back({title, point_cell(w, s), w.quantity + ": the condition " + holds(w.numeric),
+                        judged("printed", w.printed, w.numeric) + "; " + judged("derived exact", w.derived_exact, w.numeric) + "; " +
+                            judged("derived asymptotic", w.derived_asymptotic, w.numeric),
+                        (w.actual_case.empty() ? "-" : w.actual_case) + " (point " + std::to_string(c->tried) + " of the search)"});
+    }
+    doc.table({"condition (what it ensures)", "printed (paper)", "derived exact", "derived asymptotic", "verdict"}, rows,
+              {0.16, 0.22, 0.30, 0.15, 0.17});
+    if (!notes.empty()) doc.bullets(notes);
+    if (!points.empty()) {
+      doc.paragraph("Where the printed condition is wrong: a parameter point of the regime for each different condition, the exact "
+                    "solution of case " + first.case_name + " there (forced: the case's closed contacts kept closed), and what each "
+                    "condition says.  The last column is the case the unforced exact solution takes.");
+      doc.table({"condition", "point", "exact solution of case " + first.case_name, "the conditions there", "actual case"}, points,
+                {0.15, 0.37, 0.18, 0.19, 0.11});
+    }
+  }
+
+  doc.subheading("The claims in words");
+  doc.paragraph("\"Superball possible\" is supported by a point where the case is the actual evolution with U1+ > a; \"superball "
+                "impossible\" needs a proof from M positive semi-definite.  The derived superball condition is the exact one of the "
+                "claim's couplings; the evidence follows the table.");
+  std::vector<std::vector<Cell>> rows;
+  std::vector<std::string> evidence;
+  for (const verify::ClaimAudit& c : audit.claims) {
+    const symbolic::Derivation& d = formulas.derivation(c.claim.alphas, c.claim.case_name);
+    const symbolic::Symbols& s = *d.symbols;
+    const symbolic::Condition& k = Formulas::condition(d, "superball", "U1 > a");
+    const std::string couplings = pattern_name(s, Style::Text);
+    rows.push_back({"§" + c.claim.section, "\"" + c.claim.text + "\"",
+                    Cell("case " + c.claim.case_name + ", " + couplings, "case " + c.claim.case_name + ", $" + pattern_name(s, Style::Latex) + "$"),
+                    Formulas::cell(c.superball_text, symbolic::format_condition(k.exact, k.relation, s, Style::Text),
+                                   symbolic::format_condition(k.exact, k.relation, s, Style::Latex)),
+                    (c.supported ? "" : "**") + c.verdict + (c.supported ? "" : "**") + " (" + std::to_string(c.tried) + " points tried, " +
+                        std::to_string(c.hits) + " with the superball in the case)"});
+    const std::string who = "Case " + c.claim.case_name + " with " + couplings;
+    if (!c.certificate.empty()) evidence.push_back(who + ", proof: " + c.certificate + ".");
+    if (c.example) evidence.push_back(who + ", example: " + point_cell(*c.example, s).text + ": " + c.example->quantity + ", actual case " + c.example->actual_case + ".");
+    for (const std::string& line : c.comparisons) evidence.push_back(who + " against " + pattern_name(*formulas.derivation(c.claim.like, c.claim.case_name).symbols, Style::Text) + ", " + line + ".");
+  }
+  doc.table({"", "the paper says", "case, couplings", "derived superball condition", "verdict"}, rows, {0.1, 0.28, 0.12, 0.26, 0.24});
+  doc.bullets(evidence);
+}
+
 /// cases/scenes below the working folder when there is one (paths in the
 /// report stay relative), else the source tree's.
 std::string default_scenes() {
   struct stat st {};
   return ::stat("cases/scenes", &st) == 0 && S_ISDIR(st.st_mode) ? "cases/scenes" : SUPERBALL_SCENES_DIR;
+}
+
+/// Create the report folder \p out if missing and make sure files can be
+/// written in it, before anything is computed: a bad --out is one line, exit 2,
+/// and leaves nothing behind.  Throws std::invalid_argument("--out ...").
+void prepare_folder(const std::string& out) {
+  if (::mkdir(out.c_str(), 0777) != 0 && errno != EEXIST)
+    throw std::invalid_argument("--out " + out + ": cannot create the folder (" + std::strerror(errno) + ")");
+  struct stat st {};
+  if (::stat(out.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) throw std::invalid_argument("--out " + out + ": not a folder");
+  if (::access(out.c_str(), W_OK | X_OK) != 0) throw std::invalid_argument("--out " + out + ": cannot write in the folder (" + std::strerror(errno) + ")");
 }
 
 }  // namespace
@@ -286,21 +490,30 @@ void add_reproduce(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("reproduce", "Recompute the paper's numbers and figures and write a report");
   cmd->footer(
       "Writes OUT/report.md, OUT/report.tex and the figures (PNG and SVG, with their gnuplot data and scripts).\n"
-      "Every number is computed by this run from the scene files in --scenes; the paper's printed numbers\n"
-      "(cases/paper/printed-numbers.toml) are shown beside them for comparison only.  Needs gnuplot.\n\n"
-      "Example:\n  superball reproduce --out report");
+      "Every number is computed by this run from the scene files in --scenes and the transcription of the\n"
+      "paper's printed conditions; the paper's printed numbers (cases/paper/printed-numbers.toml) are shown\n"
+      "beside them for comparison only.  The section on the printed conditions is `superball audit`'s audit;\n"
+      "--samples makes it faster (fewer points tried per search).  Needs gnuplot.\n\n"
+      "Examples:\n  superball reproduce --out report\n  superball reproduce --out report-quick --samples 500");
   cmd->add_option("--out,-o", o->out, "Report folder (created if missing)")->capture_default_str();
   cmd->add_option("--scenes", o->scenes, "Folder of the paper's scene files")->capture_default_str();
+  cmd->add_option("--samples", o->samples, "Points tried per search of the audit of the printed conditions")
+      ->check(CLI::Range(1, 10000000))
+      ->capture_default_str();
   cmd->callback([o, &action] {
     action = [o] {
-      if (::mkdir(o->out.c_str(), 0777) != 0 && errno != EEXIST)
-        throw std::invalid_argument("--out " + o->out + ": cannot create the folder");
+      prepare_folder(o->out);
       Document doc("superball reproduce: the paper's numbers recomputed");
       doc.paragraph("Paper: Collision of four balls aligned (Fremond's theory of collisions).  Scenes: `" + o->scenes + "`.");
       eq16(*o, doc);
       fig5(*o, doc);
       fig7(*o, doc);
       epsilon_family(*o, doc);
+      verify::AuditOptions audit;
+      audit.samples = o->samples;
+      printed_conditions(verify::audit_paper(PrintedConditions::paper(), audit), doc);
+      // The verification table and the single-alpha pattern table (`superball verify`, `superball explore`)
+      // come next, from a function taking their results as printed_conditions() takes the audit's.
       write_file_atomically(o->out + "/report.tex", doc.latex());
       write_file_atomically(o->out + "/report.md", doc.markdown());
       std::cout << doc.markdown() << "(written to " << o->out << "/report.md and report.tex)\n";

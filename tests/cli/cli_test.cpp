@@ -1,10 +1,7 @@
 // The `superball` command as a user runs it: the paper's scenes in text and
 // JSON, sweeps and switch points, every scene of the bad catalogue (exit 2,
 // one line on stderr, nothing on stdout) and bad command-line arguments.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cln/rational.h>
@@ -19,11 +16,10 @@
 #include <string>
 #include <vector>
 
-extern char** environ;
+#include "support/run.hpp"
 
 namespace {
 
-const std::string kExe = SUPERBALL_EXE;
 const std::string kScenes = std::string(SUPERBALL_CASES_DIR) + "/scenes/";
 const std::string kData = std::string(SUPERBALL_TEST_DATA_DIR) + "/";
 
@@ -31,66 +27,10 @@ const std::vector<std::string> kCatalogue = {
 #include "bad_scene_list.inc"
 };
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-  std::vector<std::string> err_lines() const {
-    std::vector<std::string> lines;
-    std::istringstream in(err);
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
-  }
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
-
-/// Run the tool with \p args, stdout and stderr captured in temporary files.
-RunResult run(const std::vector<std::string>& args) {
-  static int counter = 0;
-  const std::string base = ::testing::TempDir() + "superball-cli-" + std::to_string(::getpid()) + "-" + std::to_string(++counter);
-  const std::string out = base + ".out", err = base + ".err";
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<std::string> argv_s = {kExe};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  RunResult r;
-  pid_t pid = 0;
-  if (posix_spawn(&pid, kExe.c_str(), &actions, nullptr, argv.data(), environ) == 0) {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  }
-  posix_spawn_file_actions_destroy(&actions);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  std::remove(out.c_str());
-  std::remove(err.c_str());
-  return r;
-}
-
-std::string describe(const RunResult& r) { return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err; }
-
-/// Bad input: exit 2, exactly one line on stderr containing every piece of
-/// \p expected, nothing on stdout.
-void expect_bad_input(const RunResult& r, const std::vector<std::string>& expected) {
-  EXPECT_EQ(r.exit_code, 2) << describe(r);
-  EXPECT_TRUE(r.out.empty()) << describe(r);
-  const auto lines = r.err_lines();
-  ASSERT_EQ(lines.size(), 1u) << describe(r);
-  EXPECT_EQ(lines[0].rfind("superball: ", 0), 0u) << lines[0];
-  for (const auto& e : expected) EXPECT_NE(lines[0].find(e), std::string::npos) << "'" << e << "' not in: " << lines[0];
-  EXPECT_EQ(r.err.back(), '\n');
-}
+using superball::test::describe;
+using superball::test::expect_bad_input;
+using superball::test::run;
+using superball::test::RunResult;
 
 nlohmann::json json_of(const RunResult& r) {
   try {

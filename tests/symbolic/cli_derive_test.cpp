@@ -1,11 +1,7 @@
 // `superball derive` and `superball audit` as a user runs them (the built
 // binary): the JSON schema of the issue with expressions any CAS parses, the
 // paper's case-1 formulas in the text output, bad input reported on one line.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <ginac/ginac.h>
 
@@ -17,51 +13,12 @@
 #include <string>
 #include <vector>
 
-extern char** environ;
+#include "support/run.hpp"
 
 namespace {
 
-const std::string kExe = SUPERBALL_EXE;
-
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
-
-RunResult run(const std::vector<std::string>& args) {
-  static int counter = 0;
-  const std::string base = ::testing::TempDir() + "superball-derive-" + std::to_string(::getpid()) + "-" + std::to_string(++counter);
-  const std::string out = base + ".out", err = base + ".err";
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<std::string> argv_s = {kExe};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  RunResult r;
-  pid_t pid = 0;
-  if (posix_spawn(&pid, kExe.c_str(), &actions, nullptr, argv.data(), environ) == 0) {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  }
-  posix_spawn_file_actions_destroy(&actions);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  std::remove(out.c_str());
-  std::remove(err.c_str());
-  return r;
-}
+using superball::test::run;
+using superball::test::RunResult;
 
 /// A GiNaC reader knowing the symbols the JSON lists (plain symbols: any CAS reads the text).
 GiNaC::parser reader_for(const nlohmann::json& j) {

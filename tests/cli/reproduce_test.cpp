@@ -1,0 +1,150 @@
+// `superball reproduce` as a user runs it: a quick report (fewer audit
+// points) is complete (every section, every figure it references, no
+// temporary file left), its section on the printed conditions is the audit
+// of `superball audit` at the same settings, and report.tex compiles with a
+// real LaTeX (Debian's texlive-latex-base; skipped without pdflatex).  A bad
+// --out is one line, exit 2, and leaves nothing behind.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "support/run.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using superball::test::describe;
+using superball::test::expect_bad_input;
+using superball::test::run;
+using superball::test::RunResult;
+using superball::test::slurp;
+
+/// Audit points per search in the quick report (the default, 20000, is the full report).
+const std::string kSamples = "300";
+
+bool have(const char* program) { return std::system((std::string("command -v ") + program + " >/dev/null 2>&1").c_str()) == 0; }
+
+/// A fresh empty folder, removed with everything in it at the end of the test.
+class TempFolder {
+ public:
+  TempFolder() {
+    std::string tmpl = ::testing::TempDir() + "superball-reproduce-XXXXXX";
+    if (::mkdtemp(tmpl.data())) path_ = tmpl;
+  }
+  ~TempFolder() {
+    if (path_.empty()) return;
+    std::error_code ec;
+    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
+    fs::remove_all(path_, ec);
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+std::vector<std::string> files_in(const std::string& folder) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(folder)) names.push_back(e.path().filename().string());
+  return names;
+}
+
+TEST(Reproduce, QuickReportIsCompleteAndCompiles) {
+  const TempFolder tmp;
+  ASSERT_FALSE(tmp.path().empty());
+  const std::string out = tmp.path() + "/report";
+  const RunResult r = run({"reproduce", "--out", out, "--samples", kSamples});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(r.err.empty()) << r.err;
+
+  // Only the report, the figures and their data and scripts: no temporary file left.
+  const std::set<std::string> kinds = {".md", ".tex", ".png", ".svg", ".dat", ".gp"};
+  for (const std::string& name : files_in(out)) {
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
+    EXPECT_TRUE(kinds.count(fs::path(name).extension().string())) << name;
+  }
+
+  const std::string md = slurp(out + "/report.md"), tex = slurp(out + "/report.tex");
+  EXPECT_NE(r.out.find(md), std::string::npos) << "stdout shows the report";
+  for (const char* heading :
+       {"\n## Eq. (16): velocities after the collision", "\n## Fig. 5: U1+ against alpha_2 and against alpha_5",
+        "\n## Fig. 7: where the evolution case changes along K34", "\n## The epsilon family of §4.1",
+        "\n## The printed conditions of §4.1–§4.3 against the derivation", "\n### §4.1, case 1, coupling α₂",
+        "\n### §4.2, case 2.1, coupling α₁, α₆", "\n### §4.3, case 3.2, coupling α₅", "\n### The claims in words"})
+    EXPECT_NE(md.find(heading), std::string::npos) << heading;
+
+  // Every figure referenced exists, in both reports.
+  int figures = 0;
+  const std::regex png(R"(\\includegraphics\[[^\]]*\]\{([^}]+)\})"), svg(R"(!\[[^\]]*\]\(([^)]+)\))");
+  for (std::sregex_iterator it(tex.begin(), tex.end(), png), end; it != end; ++it, ++figures)
+    EXPECT_TRUE(fs::is_regular_file(out + "/" + (*it)[1].str())) << (*it)[1];
+  for (std::sregex_iterator it(md.begin(), md.end(), svg), end; it != end; ++it)
+    EXPECT_TRUE(fs::is_regular_file(out + "/" + (*it)[1].str())) << (*it)[1];
+  EXPECT_EQ(figures, 4);
+
+  // The section on the printed conditions is the audit at the same settings:
+  // every derived condition, verdict and disagreeing point of `superball audit`.
+  const RunResult a = run({"audit", "--samples", kSamples, "--json"});
+  ASSERT_EQ(a.exit_code, 0) << describe(a);
+  const nlohmann::json audit = nlohmann::json::parse(a.out);
+  ASSERT_EQ(audit.at("conditions").size(), 14u);
+  for (const auto& c : audit.at("conditions")) {
+    const std::string verdict = c.at("verdict");
+    EXPECT_NE(md.find("| " + c.at("derived_exact").get<std::string>() + " |"), std::string::npos) << c.at("derived_exact");
+    EXPECT_NE(md.find(verdict == "different" ? "**different**" : verdict), std::string::npos) << verdict;
+    if (c.contains("witness")) {
+      EXPECT_NE(md.find(c.at("witness").at("quantity").get<std::string>() + ": the condition "), std::string::npos) << c;
+    }
+  }
+  for (const auto& c : audit.at("claims")) {
+    EXPECT_NE(md.find(c.at("verdict").get<std::string>() + " (" + std::to_string(c.at("tried").get<int>()) + " points tried"), std::string::npos) << c;
+    EXPECT_NE(md.find("| " + c.at("derived_superball").get<std::string>() + " |"), std::string::npos) << c;
+  }
+  // The derived formulas are typeset as LaTeX math, not as Unicode text.
+  EXPECT_NE(tex.find("$-\\alpha_{2} > 2m_{1} + K_{12} + K_{13}$"), std::string::npos);
+  EXPECT_EQ(tex.find("α"), std::string::npos);
+  EXPECT_EQ(tex.find("₁"), std::string::npos);
+
+  if (!have("pdflatex")) GTEST_SKIP() << "no pdflatex (install texlive-latex-base)";
+  const std::string latex = "cd '" + out + "' && pdflatex -interaction=nonstopmode -halt-on-error report.tex >/dev/null 2>&1";
+  const int status = std::system((latex + " && " + latex.substr(latex.find("pdflatex"))).c_str());  // twice: longtable widths
+  const std::string log = slurp(out + "/report.log");
+  ASSERT_EQ(status, 0) << log.substr(log.size() > 3000 ? log.size() - 3000 : 0);
+  const std::string pdf = slurp(out + "/report.pdf");
+  EXPECT_EQ(pdf.rfind("%PDF", 0), 0u);
+  EXPECT_EQ(log.find("Overfull \\hbox"), std::string::npos) << "a line or table wider than the page";
+}
+
+TEST(Reproduce, OutThatCannotBeCreatedIsOneLineExitTwoAndNothingWritten) {
+  const TempFolder tmp;
+  ASSERT_FALSE(tmp.path().empty());
+  const std::string file = tmp.path() + "/a-file";
+  std::ofstream(file) << "not a folder\n";
+  expect_bad_input(run({"reproduce", "--out", file, "--samples", kSamples}), {"--out " + file, "not a folder"});
+  expect_bad_input(run({"reproduce", "--out", file + "/report", "--samples", kSamples}), {"--out " + file + "/report", "cannot create"});
+  expect_bad_input(run({"reproduce", "--out", tmp.path() + "/missing/report", "--samples", kSamples}), {"cannot create"});
+  EXPECT_EQ(slurp(file), "not a folder\n");
+  EXPECT_EQ(files_in(tmp.path()), std::vector<std::string>{"a-file"});
+}
+
+TEST(Reproduce, ReadOnlyOutIsOneLineExitTwoAndNothingWritten) {
+  if (::geteuid() == 0) GTEST_SKIP() << "running as root: a read-only folder is still writable";
+  const TempFolder tmp;
+  ASSERT_FALSE(tmp.path().empty());
+  const std::string locked = tmp.path() + "/locked";
+  ASSERT_EQ(::mkdir(locked.c_str(), 0555), 0);
+  expect_bad_input(run({"reproduce", "--out", locked, "--samples", kSamples}), {"--out " + locked, "cannot write"});
+  expect_bad_input(run({"reproduce", "--out", locked + "/report", "--samples", kSamples}), {"cannot create"});
+  EXPECT_TRUE(files_in(locked).empty());
+}
+
+}  // namespace

@@ -1,0 +1,96 @@
+#pragma once
+/// \file run.hpp
+/// The `superball` command as a user runs it, for the tests of the command:
+/// the built binary (its path in SUPERBALL_EXE, set by the test target) run
+/// with arguments, its exit code, standard output and standard error captured.
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifndef SUPERBALL_EXE
+#error "SUPERBALL_EXE (the path of the superball binary) must be defined by the test target"
+#endif
+
+extern char** environ;
+
+namespace superball::test {
+
+/// What a run of the binary gave.
+struct RunResult {
+  int exit_code = -1;  ///< 128 + signal when killed by a signal
+  std::string out, err;
+  /// Standard error, line by line.
+  std::vector<std::string> err_lines() const {
+    std::vector<std::string> lines;
+    std::istringstream in(err);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+  }
+};
+
+/// The whole content of the file \p path ("" when it cannot be read).
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+/// Run `superball ARGS...`, standard output and error captured through
+/// temporary files (removed afterwards).
+inline RunResult run(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const std::string exe = SUPERBALL_EXE;
+  const std::string base = ::testing::TempDir() + "superball-run-" + std::to_string(::getpid()) + "-" + std::to_string(++counter);
+  const std::string out = base + ".out", err = base + ".err";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  std::vector<std::string> argv_s = {exe};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  RunResult r;
+  pid_t pid = 0;
+  if (posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ) == 0) {
+    int status = 0;
+    waitpid(pid, &status, 0);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+  posix_spawn_file_actions_destroy(&actions);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  std::remove(out.c_str());
+  std::remove(err.c_str());
+  return r;
+}
+
+/// A run for failure messages: exit code, stdout and stderr.
+inline std::string describe(const RunResult& r) {
+  return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err;
+}
+
+/// Bad input: exit 2, exactly one line on stderr ("superball: ...")
+/// containing every piece of \p expected, nothing on stdout.
+inline void expect_bad_input(const RunResult& r, const std::vector<std::string>& expected) {
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  EXPECT_TRUE(r.out.empty()) << describe(r);
+  const auto lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 1u) << describe(r);
+  EXPECT_EQ(lines[0].rfind("superball: ", 0), 0u) << lines[0];
+  for (const auto& e : expected) EXPECT_NE(lines[0].find(e), std::string::npos) << "'" << e << "' not in: " << lines[0];
+  EXPECT_EQ(r.err.back(), '\n');
+}
+
+}  // namespace superball::test
