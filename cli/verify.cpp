@@ -14,6 +14,7 @@
 #include "selection.hpp"
 #include "superball/cases/number.hpp"
 #include "superball/cases/scene_file.hpp"
+#include "superball/cases/vocabulary.hpp"
 #include "superball/verify/verification.hpp"
 
 namespace superball::cli {
@@ -47,6 +48,12 @@ std::string file_part(const std::string& name) {
     if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-') out += c;
     else if (c == ',' || c == '/') out += '_';
   return out.empty() ? "none" : out;
+}
+
+/// \p k with leading zeros to 4 digits, so files list in run order.
+std::string numbered(std::size_t k) {
+  std::string s = std::to_string(k);
+  return std::string(s.size() < 4 ? 4 - s.size() : 0, '0') + s;
 }
 
 /// A progress bar on stderr, drawn only when stderr is a terminal and the
@@ -84,7 +91,7 @@ void add_verify(CLI::App& app, Action& action) {
   struct Options {
     SelectionOptions selection;
     std::string epsilons = "1e-2,1e-3,1e-4,1e-5,1e-6", out;
-    int samples = 400, boundary_pairs = 20, threads = 0;
+    int samples = 4000, boundary_pairs = 20, threads = 0;
     std::uint64_t seed = 1;
     bool json = false;
   };
@@ -131,12 +138,16 @@ void add_verify(CLI::App& app, Action& action) {
       options.boundary_pairs = o->boundary_pairs;
       options.seed = o->seed;
       options.threads = o->threads;
+      if (!o->out.empty() && std::filesystem::exists(o->out) && !std::filesystem::is_directory(o->out))
+        throw std::invalid_argument("--out " + o->out + ": exists and is not a folder");
       const Selection selection = resolve(o->selection);
       std::vector<verify::Verification> results;
       {
         Progress progress(static_cast<int>(selection.cases.size()));
         for (std::size_t k = 0; k < selection.cases.size(); ++k) {
-          options.progress = progress.for_task(static_cast<int>(k), selection.cases[k].to_string());
+          const std::string label = "case " + Vocabulary::paper().case_name(selection.cases[k]) +
+                                    (selection.cases.size() > 1 ? " (" + std::to_string(k + 1) + "/" + std::to_string(selection.cases.size()) + ")" : "");
+          options.progress = progress.for_task(static_cast<int>(k), label);
           results.push_back(verify::verify_case(*selection.deriver, selection.cases[k], options));
         }
       }
@@ -147,10 +158,14 @@ void add_verify(CLI::App& app, Action& action) {
         if (o->out.empty()) continue;
         for (std::size_t k = 0; k < v.disagreements.size(); ++k) {
           const verify::Disagreement& d = v.disagreements[k];
-          if (written == 0) std::filesystem::create_directories(o->out);
+          if (written == 0) {
+            std::error_code error;
+            std::filesystem::create_directories(o->out, error);
+            if (error) throw std::invalid_argument("--out " + o->out + ": cannot create the folder: " + error.message());
+          }
           const std::string path = (std::filesystem::path(o->out) /
                                     ("case-" + file_part(v.case_name) + "-eps-" + file_part(verify::epsilon_name(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon)) +
-                                     "-" + std::to_string(k + 1) + ".toml"))
+                                     "-" + numbered(k + 1) + ".toml"))
                                        .string();
           write_file_atomically(path, write_scene(d.scene, verify::describe(v, d) + "\nrerun: superball solve " + path + " --precision exact"));
           ++written;
