@@ -8,7 +8,6 @@
 #include <cmath>
 #include <limits>
 #include <random>
-#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <optional>
@@ -275,13 +274,6 @@ void merge(Tally& into, const Tally& from) {
   for (std::size_t c = 0; c < into.conditions.size(); ++c) merge(into.conditions[c], from.conditions[c]);
 }
 
-std::string percent(long long part, long long whole) {
-  if (whole == 0) return "-";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f%%", 100.0 * static_cast<double>(part) / static_cast<double>(whole));
-  return buf;
-}
-
 std::string pad(const std::string& s, std::size_t width, bool right = true) {
   // width in characters: count UTF-8 lead bytes only
   std::size_t n = 0;
@@ -497,31 +489,32 @@ std::string describe(const Verification& v, const Disagreement& d) {
 
 std::string to_text(const Verification& v) {
   using detail::pad;
-  using detail::percent;
   std::ostringstream os;
   os << "case " << v.case_name << " — " << v.pattern << ", obstacle " << v.obstacle << ", regime " << v.scaling << '\n';
   os << "conditions (exact" << (v.obstacle == "finite" ? ", finite m_n" : "") << " | asymptotic):\n";
   for (const VerifiedCondition& c : v.conditions)
     os << "  " << pad(detail::condition_name(c), 18, false) << ' ' << c.exact_text << "   |   " << c.asymptotic_text << '\n';
-  os << "points per eps: " << v.samples << " drawn + the ends of up to " << v.boundary_pairs
-     << " bisected segments per condition (bracket 2^-" << boundary_bracket_bits << "), seed " << v.seed << "\n\n";
-  os << "   eps  points  drawn  bound | exact agree         | asymptotic agree: drawn  near | exact: H&T   H&F   F&T   F&F | asymptotic: H&T   H&F   F&T   F&F\n";
+  os << "points per eps: " << v.samples << " drawn, then per condition up to " << v.boundary_pairs
+     << " segments across its boundary bisected to 2^-" << boundary_bracket_bits << " (both ends kept; a side short of drawn points is searched for), seed "
+     << v.seed << "\n\n";
+  auto ratio = [](long long part, long long whole) { return std::to_string(part) + "/" + std::to_string(whole); };
+  os << "   eps  points  drawn  bound |  exact agree |  asymptotic agree: drawn     near |  exact: H&T   H&F   F&T   F&F |  asymptotic: H&T   H&F   F&T   F&F\n";
   for (const EpsilonResult& e : v.epsilons) {
     const Tally t = e.all();
     os << pad(epsilon_name(e.epsilon), 6) << pad(std::to_string(t.exact.total()), 8) << pad(std::to_string(e.drawn.exact.total()), 7)
-       << pad(std::to_string(e.boundary.exact.total()), 7) << " | " << pad(std::to_string(t.exact.agree()) + "/" + std::to_string(t.exact.total()), 11, false)
-       << pad(percent(t.exact.agree(), t.exact.total()), 7) << " |                  " << pad(percent(e.drawn.asymptotic.agree(), e.drawn.asymptotic.total()), 6)
-       << pad(percent(e.boundary.asymptotic.agree(), e.boundary.asymptotic.total()), 7) << " | ";
+       << pad(std::to_string(e.boundary.exact.total()), 7) << " | " << pad(ratio(t.exact.agree(), t.exact.total()), 12) << " | "
+       << pad(ratio(e.drawn.asymptotic.agree(), e.drawn.asymptotic.total()), 23) << pad(ratio(e.boundary.asymptotic.agree(), e.boundary.asymptotic.total()), 9)
+       << " |";
     for (const Confusion* m : {&t.exact, &t.asymptotic})
-      os << (m == &t.exact ? "      " : "            ") << pad(std::to_string(m->holds_true), 4) << pad(std::to_string(m->holds_false), 6)
+      os << (m == &t.exact ? "     " : "           ") << pad(std::to_string(m->holds_true), 5) << pad(std::to_string(m->holds_false), 6)
          << pad(std::to_string(m->fails_true), 6) << pad(std::to_string(m->fails_false), 6) << (m == &t.exact ? " |" : "");
     if (t.undrawn || t.unsolved) os << "   (" << t.undrawn << " draws without an admissible point, " << t.unsolved << " unsolved)";
     os << '\n';
   }
-  os << "\nper condition (all eps): points on each side, of them near its boundary, agreement of each form;\n"
-     << "asymptotic agreement per eps on the drawn points / the points near its boundary\n";
-  os << "  condition            holds (near)    fails (near)  exact agree  | asymptotic:";
-  for (const EpsilonResult& e : v.epsilons) os << pad(epsilon_name(e.epsilon), 16);
+  os << "\nper condition (all eps): points on each side of it, of them near its boundary, agreement of its exact form;\n"
+     << "then per eps the points where its asymptotic form disagrees: among the drawn ones / among those near its boundary\n";
+  os << "  condition            holds (near)    fails (near)  exact agree  | asymptotic disagree:";
+  for (const EpsilonResult& e : v.epsilons) os << pad(epsilon_name(e.epsilon), 12);
   os << '\n';
   for (std::size_t c = 0; c < v.conditions.size(); ++c) {
     ConditionTally all;
@@ -530,12 +523,13 @@ std::string to_text(const Verification& v) {
       detail::merge(all, e.boundary.conditions[c]);
     }
     os << "  " << pad(detail::condition_name(v.conditions[c]), 18, false) << pad(std::to_string(all.holds) + " (" + std::to_string(all.near_holds) + ")", 15)
-       << pad(std::to_string(all.fails) + " (" + std::to_string(all.near_fails) + ")", 16) << pad(std::to_string(all.exact_agree) + "/" + std::to_string(all.points()), 13)
-       << "  |            ";
+       << pad(std::to_string(all.fails) + " (" + std::to_string(all.near_fails) + ")", 16) << pad(ratio(all.exact_agree, all.points()), 13)
+       << "  |                     ";
     for (const EpsilonResult& e : v.epsilons) {
       const ConditionTally& d = e.drawn.conditions[c];
       const ConditionTally& n = e.boundary.conditions[c];
-      os << pad(percent(d.asymptotic_agree, d.points()) + " / " + percent(n.near_asymptotic_agree, n.near_holds + n.near_fails), 16);
+      const long long near = n.near_holds + n.near_fails;
+      os << pad(std::to_string(d.points() - d.asymptotic_agree) + " / " + (near ? ratio(near - n.near_asymptotic_agree, near) : std::string("-")), 12);
     }
     for (bool side : {true, false}) {
       std::string where;
