@@ -426,7 +426,9 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
       Work w{e, static_cast<int>(c), {}, {}, false};
       std::vector<const Point*> hold, fails;
       for (std::size_t b = e * per_eps; b < (e + 1) * per_eps; ++b)
-        for (std::size_t i = 0; i < bulk[b].points.size(); ++i) (bulk[b].sides[i][c] ? hold : fails).push_back(&bulk[b].points[i]);
+        for (std::size_t i = 0; i < bulk[b].points.size(); ++i)
+          if (!detail::on_boundary(exact[c], bulk[b].points[i]))  // a segment's ends are strictly on a side
+            (bulk[b].sides[i][c] ? hold : fails).push_back(&bulk[b].points[i]);
       const std::size_t wanted = static_cast<std::size_t>(options.boundary_pairs);
       const std::size_t n = std::min({wanted, hold.size(), fails.size()});
       for (std::size_t i = 0; i < n; ++i) w.pairs.emplace_back(detail::deep_copy(*hold[i]), detail::deep_copy(*fails[i]));
