@@ -101,12 +101,13 @@ TEST(Verification, check_BothSidesAndNearBoundaryPointsAreReached) {
   const Deriver d(Pattern::paper({2}), Obstacle::Infinite);
   for (const std::string name : {"1", "3.3"}) {
     const Verification v = verify_case(d, named(name), small(200));
-    for (const EpsilonResult& e : v.epsilons)
+    for (const EpsilonResult& e : v.epsilons) {
+      const Tally all = e.all();
       for (std::size_t c = 0; c < v.conditions.size(); ++c) {
         // A condition whose asymptotic form always holds (case 1: evolution 1-2 reads K14 > 0, the exact
         // form m1 < K14 + alpha2 with |alpha2| <= sqrt(K12 K14) << K14) has no failing side in the regime.
         if (v.conditions[c].asymptotic_verdict != symbolic::Verdict::Depends) continue;
-        const ConditionTally& t = e.all().conditions[c];
+        const ConditionTally& t = all.conditions[c];
         const std::string what = "case " + name + " " + v.conditions[c].about + " eps " + epsilon_name(e.epsilon);
         EXPECT_GT(t.holds, 0) << what;
         EXPECT_GT(t.fails, 0) << what;
@@ -114,6 +115,7 @@ TEST(Verification, check_BothSidesAndNearBoundaryPointsAreReached) {
         EXPECT_GT(t.near_fails, 0) << what;
         EXPECT_EQ(t.near_holds, t.near_fails) << what;  // brackets come in pairs, one end per side
       }
+    }
   }
 }
 
