@@ -91,7 +91,7 @@ void add_verify(CLI::App& app, Action& action) {
   struct Options {
     SelectionOptions selection;
     std::string epsilons = "1e-2,1e-3,1e-4,1e-5,1e-6", out;
-    int samples = 4000, boundary_pairs = 20, threads = 0;
+    int samples = verify::VerifyOptions{}.samples, boundary_pairs = verify::VerifyOptions{}.boundary_pairs, threads = 0;
     std::uint64_t seed = 1;
     bool json = false;
   };
