@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -306,6 +307,85 @@ INSTANTIATE_TEST_SUITE_P(
         BadArgs{{"frobnicate"}, {"subcommand"}},
         BadArgs{{}, {"subcommand"}}),
     [](const auto& info) { return "case" + std::to_string(info.index); });
+
+// ---------------------------------------------------------------------------
+// verify
+
+TEST(Verify, TablesOverEpsilonAndExactAgreement) {
+  const RunResult r = run({"verify", "--case", "1", "--alphas", "2", "--samples", "100", "--epsilons", "1e-2,1/1000000", "--threads", "2"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(r.err.empty()) << r.err;  // no progress bar when stderr is not a terminal
+  for (const std::string piece : {"case 1", "−α₂ > 2m₁ + K₁₂ + K₁₃", "exact agree", "  1e-2 ", "  1e-6 ", "holds (near)", "(0 where an exact form disagrees)"})
+    EXPECT_NE(r.out.find(piece), std::string::npos) << "'" << piece << "' not in:\n" << r.out;
+}
+
+TEST(Verify, JsonIsTheSameWithOneAndTwoThreads) {
+  const std::vector<std::string> args = {"verify", "--case", "3.2", "--alphas", "5", "--samples", "80", "--epsilons", "1e-2,1e-4", "--json", "--threads"};
+  std::vector<std::string> one = args, two = args;
+  one.push_back("1");
+  two.push_back("2");
+  const RunResult a = run(one), b = run(two);
+  ASSERT_EQ(a.exit_code, 0) << describe(a);
+  EXPECT_EQ(a.out, b.out);
+  const nlohmann::json j = json_of(a);
+  EXPECT_EQ(j["case"], "3.2");
+  EXPECT_TRUE(j["exact_agrees"].get<bool>());
+  for (const auto& e : j["epsilons"]) {
+    EXPECT_EQ(e["all"]["exact"]["agree"], e["all"]["exact"]["total"]);
+    EXPECT_EQ(e["drawn"]["points"], 80);
+  }
+}
+
+/// Every disagreement is a scene file that loads; solving it exactly gives the case its comment states.
+TEST(Verify, DisagreementScenesRerunWithSolve) {
+  const std::string dir = ::testing::TempDir() + "superball-verify-" + std::to_string(::getpid());
+  const RunResult r = run({"verify", "--case", "1", "--alphas", "2", "--samples", "50", "--epsilons", "1e-2", "--out", dir});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) files.push_back(entry.path().string());
+  ASSERT_FALSE(files.empty()) << r.out;
+  EXPECT_NE(r.out.find(std::to_string(files.size()) + " scene files written to " + dir), std::string::npos) << r.out;
+  int checked = 0;
+  for (const std::string& file : files) {
+    const std::string text = slurp(file);
+    const std::string marker = "# the exact solution: case ";
+    const auto at = text.find(marker);
+    ASSERT_NE(at, std::string::npos) << text;
+    const std::string actual = text.substr(at + marker.size(), text.find(',', at) - at - marker.size());
+    EXPECT_NE(text.find("# rerun: superball solve " + file + " --precision exact"), std::string::npos) << text;
+    if (checked++ >= 5) continue;  // solving every file would only repeat the check
+    const RunResult s = run({"solve", file, "--precision", "exact"});
+    ASSERT_EQ(s.exit_code, 0) << describe(s);
+    EXPECT_NE(s.out.find("\ncase " + actual + " ("), std::string::npos) << "expected case " << actual << " in:\n" << s.out;
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Verify, NothingWrittenWithoutDisagreements) {
+  const std::string dir = ::testing::TempDir() + "superball-verify-none-" + std::to_string(::getpid());
+  const RunResult r = run({"verify", "--case", "0", "--alphas", "2", "--samples", "30", "--epsilons", "1e-6", "--out", dir});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_NE(r.out.find("disagreements: 0 points"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+/// Bad options: exit 2, one line naming what is wrong, nothing on stdout.
+TEST(Verify, BadOptionsGiveOneLineAndExitTwo) {
+  const std::vector<std::string> base = {"verify", "--alphas", "2"};
+  const std::vector<BadArgs> bad = {{{"--case", "1", "--epsilons", "2"}, {"--epsilons", "'2' is not in (0, 1)"}},
+                                    {{"--case", "1", "--epsilons", "1e-2,abc"}, {"--epsilons", "abc"}},
+                                    {{"--case", "1", "--epsilons", "0"}, {"--epsilons", "'0'"}},
+                                    {{"--case", "1", "--threads", "0"}, {"--threads"}},
+                                    {{"--case", "1", "--samples", "0"}, {"--samples"}},
+                                    {{"--case", "9"}, {"9"}},
+                                    {{"--case", "1", "--closed", "2-3"}, {"case"}},
+                                    {{}, {"case"}}};
+  for (const BadArgs& b : bad) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), b.args.begin(), b.args.end());
+    expect_bad_input(run(args), b.expected);
+  }
+}
 
 TEST(Cli, Version) {
   const RunResult r = run({"--version"});

@@ -1,0 +1,191 @@
+// `superball verify`: the derived conditions of evolution cases against
+// exact solutions over the asymptotic regime (superball::verify), with the
+// points where they disagree written as scene files.
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+#include "commands.hpp"
+#include "selection.hpp"
+#include "superball/cases/number.hpp"
+#include "superball/cases/scene_file.hpp"
+#include "superball/cases/vocabulary.hpp"
+#include "superball/verify/verification.hpp"
+
+namespace superball::cli {
+namespace {
+
+/// The progress bar is drawn only after this long, and redrawn at most this often.
+constexpr std::chrono::milliseconds progress_delay{1000}, progress_period{100};
+
+std::vector<cln::cl_RA> parse_epsilons(const std::string& text) {
+  std::vector<cln::cl_RA> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    Number n;
+    try {
+      n = Number::parse(item);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("--epsilons: '" + item + "': " + without_function_prefix(e.what()));
+    }
+    const cln::cl_RA x(n.fraction().c_str());
+    if (!(x > 0) || !(x < 1)) throw std::invalid_argument("--epsilons: '" + item + "' is not in (0, 1)");
+    out.push_back(x);
+  }
+  if (out.empty()) throw std::invalid_argument("--epsilons: no value (e.g. --epsilons 1e-2,1e-4)");
+  return out;
+}
+
+/// A file name for a case name ("3.2", "{2-3,3-4}").
+std::string file_part(const std::string& name) {
+  std::string out;
+  for (char c : name)
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-') out += c;
+    else if (c == ',' || c == '/') out += '_';
+  return out.empty() ? "none" : out;
+}
+
+/// \p k with leading zeros to 4 digits, so files list in run order.
+std::string numbered(std::size_t k) {
+  std::string s = std::to_string(k);
+  return std::string(s.size() < 4 ? 4 - s.size() : 0, '0') + s;
+}
+
+/// A progress bar on stderr, drawn only when stderr is a terminal and the
+/// run has lasted progress_delay; erased at the end.
+class Progress {
+ public:
+  explicit Progress(int tasks) : tasks_(tasks), terminal_(::isatty(STDERR_FILENO) == 1) {}
+  ~Progress() {
+    if (drawn_) std::cerr << "\r\033[K" << std::flush;
+  }
+  std::function<void(long long, long long)> for_task(int task, const std::string& label) {
+    if (!terminal_) return {};
+    return [this, task, label](long long done, long long planned) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - start_ < progress_delay || (drawn_ && now - last_ < progress_period && done < planned)) return;
+      last_ = now;
+      drawn_ = true;
+      const double f = (task + static_cast<double>(done) / static_cast<double>(std::max(planned, 1LL))) / tasks_;
+      constexpr int width = 30;
+      const int full = static_cast<int>(f * width);
+      std::cerr << "\rverify " << label << " [" << std::string(static_cast<std::size_t>(full), '#')
+                << std::string(static_cast<std::size_t>(width - full), ' ') << "] " << static_cast<int>(100 * f) << "%\033[K" << std::flush;
+    };
+  }
+
+ private:
+  int tasks_;
+  bool terminal_, drawn_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
+};
+
+}  // namespace
+
+void add_verify(CLI::App& app, Action& action) {
+  struct Options {
+    SelectionOptions selection;
+    std::string epsilons = "1e-2,1e-3,1e-4,1e-5,1e-6", out;
+    int samples = verify::VerifyOptions{}.samples, boundary_pairs = verify::VerifyOptions{}.boundary_pairs, threads = 0;
+    std::uint64_t seed = 1;
+    bool json = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("verify", "Check a case's derived conditions against exact solutions at sampled points, over epsilon");
+  cmd->footer(
+      "What it does.  For the case and pattern (chosen as in `derive`), parameter points of the paper's asymptotic\n"
+      "regime are drawn at each epsilon (m1 ~ eps, K1n ~ 1/eps, m_n ~ 1/eps for a finite obstacle, the rest O(1);\n"
+      "M positive semi-definite, exact rationals; a function of --seed only, whatever --threads).  Each point is\n"
+      "solved exactly by the numeric backend, and the derived conditions (superball, evolution, contact) are\n"
+      "compared with it, in their exact form (with --obstacle finite: the finite-m_n form) and asymptotic form.\n"
+      "Besides the drawn points, for each condition up to --boundary-pairs segments between drawn points on\n"
+      "opposite sides of it are bisected (exactly) down to 2^-20 of their length: both ends, one per side, are\n"
+      "points near its boundary.  When a side has fewer drawn points than that, points of the other side are moved\n"
+      "toward it (random moves of coordinates within the regime); a side still empty is said to be not reached,\n"
+      "with the reason when the asymptotic form always (or never) holds: that side vanishes as eps -> 0.\n\n"
+      "The table over eps.  The truth is \"the exact solution is in this case and U1+ > a\"; the conditions hold\n"
+      "(H) or fail (F) and the truth is true (T) or false (F): H&T and F&F agree, H&F and F&T disagree.  'exact\n"
+      "agree' must be every point (else the derivation has a defect: exit 4).  'asymptotic agree' on the drawn\n"
+      "points tends to every point as eps -> 0, since the asymptotic form is the limit of the exact one; on the\n"
+      "points near a boundary (within 2^-20) the two forms' boundaries are O(eps) apart, so there it agrees on\n"
+      "one side only (about half) until eps is well below 2^-20 (try --epsilons 1e-9).\n"
+      "Per condition.  Points on each side of it (decided by the exact solution with the case imposed), how many\n"
+      "of them are near its boundary, and the agreement of each form with that condition alone.\n"
+      "Every point where a form disagrees is written to --out as a scene file (its comment says what disagreed\n"
+      "and how to rerun it); nothing is written when there is none.  A progress bar is shown on a terminal for\n"
+      "runs longer than a second.\n\n"
+      "Examples:\n"
+      "  superball verify --case 1 --alphas 2                       the paper's §4.1 case\n"
+      "  superball verify --all --alphas 2 --threads 2\n"
+      "  superball verify --case 3.2 --alphas 5 --out disagreements  then: superball solve disagreements/FILE --precision exact\n"
+      "  superball verify --case 1 --alphas 2 --obstacle finite --epsilons 1/100,1/10000 --samples 2000 --seed 7\n"
+      "  superball verify --closed 2-3 --bodies 5 --pairs near2 --coupling near2 --json");
+  add_selection_options(cmd, o->selection);
+  cmd->add_option("--epsilons", o->epsilons, "Values of eps in (0, 1), comma-separated (decimals, 1e-3 or fractions 1/1000)")->capture_default_str();
+  cmd->add_option("--samples", o->samples, "Points drawn per eps")->check(CLI::Range(1, 100000000))->capture_default_str();
+  cmd->add_option("--boundary-pairs", o->boundary_pairs, "Segments bisected per condition and eps")->check(CLI::Range(0, 1000000))->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of the pseudo-random points")->capture_default_str();
+  cmd->add_option("--threads,-j", o->threads, "Worker threads (default: all cores, " + std::to_string(std::thread::hardware_concurrency()) + " here)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--out", o->out, "Write each disagreeing point as a scene file in this folder (created)");
+  cmd->add_flag("--json", o->json, "Print JSON for programs");
+  cmd->callback([o, &action] {
+    action = [o] {
+      verify::VerifyOptions options;
+      options.epsilons = parse_epsilons(o->epsilons);
+      options.samples = o->samples;
+      options.boundary_pairs = o->boundary_pairs;
+      options.seed = o->seed;
+      options.threads = o->threads;
+      if (!o->out.empty() && std::filesystem::exists(o->out) && !std::filesystem::is_directory(o->out))
+        throw std::invalid_argument("--out " + o->out + ": exists and is not a folder");
+      const Selection selection = resolve(o->selection);
+      std::vector<verify::Verification> results;
+      {
+        Progress progress(static_cast<int>(selection.cases.size()));
+        for (std::size_t k = 0; k < selection.cases.size(); ++k) {
+          const std::string label = "case " + Vocabulary::paper().case_name(selection.cases[k]) +
+                                    (selection.cases.size() > 1 ? " (" + std::to_string(k + 1) + "/" + std::to_string(selection.cases.size()) + ")" : "");
+          options.progress = progress.for_task(static_cast<int>(k), label);
+          results.push_back(verify::verify_case(*selection.deriver, selection.cases[k], options));
+        }
+      }
+      bool exact_agrees = true;
+      int written = 0;
+      for (const verify::Verification& v : results) {
+        exact_agrees = exact_agrees && v.exact_agrees();
+        if (o->out.empty()) continue;
+        for (std::size_t k = 0; k < v.disagreements.size(); ++k) {
+          const verify::Disagreement& d = v.disagreements[k];
+          if (written == 0) {
+            std::error_code error;
+            std::filesystem::create_directories(o->out, error);
+            if (error) throw std::invalid_argument("--out " + o->out + ": cannot create the folder: " + error.message());
+          }
+          const std::string path = (std::filesystem::path(o->out) /
+                                    ("case-" + file_part(v.case_name) + "-eps-" + file_part(verify::epsilon_name(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon)) +
+                                     "-" + numbered(k + 1) + ".toml"))
+                                       .string();
+          write_file_atomically(path, write_scene(d.scene, verify::describe(v, d) + "\nrerun: superball solve " + path + " --precision exact"));
+          ++written;
+        }
+      }
+      if (o->json) {
+        nlohmann::ordered_json j = nlohmann::ordered_json::array();
+        for (const verify::Verification& v : results) j.push_back(verify::to_json(v));
+        std::cout << (results.size() == 1 ? j[0] : j).dump(2) << '\n';
+      } else {
+        for (const verify::Verification& v : results) std::cout << verify::to_text(v) << '\n';
+        if (!o->out.empty()) std::cout << written << " scene files written to " << o->out << '\n';
+      }
+      return exact_agrees ? ok : internal_error;
+    };
+  });
+}
+
+}  // namespace superball::cli

@@ -1,0 +1,159 @@
+#pragma once
+/// \file verification.hpp
+/// The derived conditions of one evolution case against exact solutions
+/// (`superball verify`): parameter points of the paper's asymptotic regime
+/// (§4: m₁ ~ ε, K₁ₙ ~ 1/ε, m_n ~ 1/ε for a finite obstacle), M positive
+/// semi-definite, are solved exactly by the numeric backend (rationals) and
+/// compared, at several ε, with the exact and the asymptotic conditions of
+/// the case.  The exact conditions must agree at every point; the asymptotic
+/// ones only in the limit ε → 0, so their agreement is tabulated over ε.
+///
+/// The points: a bulk drawn by RegimeSampler, then a boundary stage that
+/// bisects, for each condition, segments between bulk points on opposite
+/// sides of it, so that both sides of every condition and points within
+/// 2^-boundary_bracket_bits (relative, along the segment) of its boundary
+/// are present.  When the bulk has fewer than boundary_pairs points on one
+/// side, a search moves points of the other side toward it (random moves of
+/// coordinates within the regime, kept when they bring the condition's value
+/// closer to that side); a side still empty is reported as not reached.
+/// The run is a function of the options and the seed only: the work is cut
+/// into blocks of fixed size, each with its own seed, merged in block order,
+/// whatever the number of threads.
+
+#include <nlohmann/json.hpp>
+
+#include <cln/rational.h>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "superball/cases/model.hpp"
+#include "superball/symbolic/derivation.hpp"
+
+namespace superball::verify {
+
+/// Bisection along a segment between two points on opposite sides of a
+/// condition stops when the bracket is at most 2^-boundary_bracket_bits of
+/// the segment: both ends are then "near the boundary".
+inline constexpr int boundary_bracket_bits = 20;
+/// When a condition has fewer than boundary_pairs drawn points on one side,
+/// up to this many random moves are tried per search for a point on it.
+inline constexpr int reach_steps = 400;
+/// Points of the bulk drawn per block of work (each block has its own seed).
+inline constexpr int verify_block_points = 50;
+
+/// What verify_case() does.
+struct VerifyOptions {
+  /// The values of ε (each in (0, 1)), exact; default 10⁻², …, 10⁻⁶.
+  std::vector<cln::cl_RA> epsilons = {cln::cl_RA(1) / 100, cln::cl_RA(1) / 1000, cln::cl_RA(1) / 10000, cln::cl_RA(1) / 100000,
+                                      cln::cl_RA(1) / 1000000};
+  int samples = 4000;         ///< bulk points per ε (case 1 of §4.1: about 5 s of CPU time)
+  int boundary_pairs = 20;    ///< segments bisected per condition and ε (fewer when a side has fewer bulk points)
+  std::uint64_t seed = 1;     ///< of every pseudo-random point (reproducible)
+  int threads = 0;            ///< worker threads; 0: std::thread::hardware_concurrency()
+  /// Called with (points evaluated, points planned) as the run goes, from the
+  /// worker threads one at a time (under a lock); may be empty.
+  std::function<void(long long, long long)> progress;
+};
+
+/// A 2×2 confusion table: the conditions (hold / fail) against the truth.
+struct Confusion {
+  long long holds_true = 0, holds_false = 0, fails_true = 0, fails_false = 0;
+  long long total() const { return holds_true + holds_false + fails_true + fails_false; }
+  long long agree() const { return holds_true + fails_false; }
+};
+
+/// One condition of the case (superball, evolution or contact; not PSD).
+struct VerifiedCondition {
+  symbolic::ConditionKind kind = symbolic::ConditionKind::Superball;
+  std::string about;
+  std::string exact_text;       ///< the form compared as exact (the finite-m_n one for a finite obstacle)
+  std::string asymptotic_text;
+  /// Always / Never: the asymptotic form holds / fails at every admissible
+  /// point, so one side of the condition vanishes as ε → 0 and may be out of reach.
+  symbolic::Verdict asymptotic_verdict = symbolic::Verdict::Depends;
+};
+
+/// The points of one ε seen by one condition.
+struct ConditionTally {
+  long long holds = 0, fails = 0;            ///< sides: the condition for the exact solution of the case (forced)
+  long long near_holds = 0, near_fails = 0;  ///< of them, ends of a bracket of this condition (width <= 2^-boundary_bracket_bits)
+  long long exact_agree = 0, asymptotic_agree = 0;  ///< the forms that agree with that truth
+  long long near_asymptotic_agree = 0;  ///< of the near points, those where the asymptotic form agrees
+  long long points() const { return holds + fails; }
+};
+
+/// The points of one stage at one ε.
+struct Tally {
+  long long points = 0;         ///< evaluated (solved or not)
+  long long found = 0;          ///< of them, found by the search for a side short of points
+  long long undrawn = 0;        ///< draws that found no admissible point
+  long long unsolved = 0;       ///< points where the exact solver did not report success (not counted below)
+  Confusion exact, asymptotic;  ///< the conjunction of the conditions against "case actual and U₁⁺ > a"
+  std::vector<ConditionTally> conditions;  ///< in the order of Verification::conditions
+};
+
+/// The results at one ε: the drawn points and the boundary stage apart (the
+/// asymptotic forms are expected to disagree within O(ε) of a boundary).
+struct EpsilonResult {
+  cln::cl_RA epsilon;
+  Tally drawn, boundary;
+  Tally all() const;  ///< both stages
+};
+
+/// A point where a form disagrees with the exact solution.
+struct Disagreement {
+  int epsilon_index = 0;
+  bool near = false;               ///< from the boundary stage
+  std::vector<std::pair<std::string, cln::cl_RA>> point;  ///< ASCII name → exact value
+  Scene scene;                     ///< the collision at the point (`superball solve` reproduces it)
+  std::string actual_case;         ///< the case of the exact unforced solution
+  std::string quantity;            ///< "U1 - a = 3/7" of the exact unforced solution
+  bool truth = false;              ///< case actual and U₁⁺ > a
+  bool exact = false, asymptotic = false;  ///< the conjunctions of the forms
+  bool exact_form = false;         ///< an exact form disagrees (the conjunction or one condition): a defect
+  std::vector<std::string> details;        ///< each condition form that disagrees, with the decided quantity
+};
+
+/// The verification of one case.
+struct Verification {
+  std::string case_name, pattern, obstacle, scaling;  ///< as derive prints them
+  std::vector<VerifiedCondition> conditions;
+  std::vector<EpsilonResult> epsilons;
+  std::vector<Disagreement> disagreements;  ///< in run order (ε, then stage, then block)
+  int samples = 0, boundary_pairs = 0;
+  std::uint64_t seed = 0;
+  /// Whether the exact conditions agree with the exact solution at every point (conjunction and each one).
+  bool exact_agrees() const;
+};
+
+/// Verify the case \p closed of \p deriver's pattern (paper §4) at each ε of
+/// \p options: per point, the exact unforced solution (CollisionSolver<cl_RA>::
+/// compute) decides the truth "the case is actual and U₁⁺ > a", and the exact
+/// solution of the imposed case (compute_case) decides each condition alone
+/// (condition_truth); both are compared with the derived exact forms (with a
+/// finite obstacle, Condition::finite) and asymptotic forms.  Everything
+/// symbolic happens in the calling thread; the workers get clones.  Throws
+/// std::invalid_argument("verify_case(): ...") for bad options or a
+/// pattern the sampler cannot handle (non-integer orders of ε).
+Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& closed, const VerifyOptions& options);
+
+/// The tables for people: per ε the samples, the agreement of the exact and
+/// asymptotic conjunctions and their confusion cells; per condition the
+/// sides reached and the agreement of each form; the disagreements.
+std::string to_text(const Verification& v);
+
+/// Every field, for programs (exact values as fractions).
+nlohmann::ordered_json to_json(const Verification& v);
+
+/// The comment of a disagreement's scene file: the case, ε, what disagreed
+/// and what the exact solution says (several lines, no '#').
+std::string describe(const Verification& v, const Disagreement& d);
+
+/// \p text of ε as a power of ten when it is one ("1e-3"), else the fraction.
+std::string epsilon_name(const cln::cl_RA& epsilon);
+
+}  // namespace superball::verify

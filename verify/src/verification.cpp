@@ -1,0 +1,622 @@
+#include "superball/verify/verification.hpp"
+
+#include <cln/integer.h>
+#include <cln/rational_io.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "superball/cases/error.hpp"
+#include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/collision.hpp"
+#include "superball/numeric/scalar.hpp"
+#include "superball/symbolic/format.hpp"
+#include "superball/verify/space.hpp"
+
+namespace superball::verify {
+namespace detail {
+namespace {
+
+using cln::cl_RA;
+
+[[noreturn]] void fail(const std::string& what) { throw std::invalid_argument("verify_case(): " + what); }
+
+/// Run the blocks [0, \p blocks) on \p threads threads (the caller's one
+/// included): work(block, worker) returns the block's result, stored at the
+/// block's index whatever thread ran it.  The first exception thrown by a
+/// block stops the hand-out of blocks and is re-thrown here after every
+/// thread has joined.
+template <class Result, class Work>
+std::vector<Result> run_blocks(std::size_t blocks, int threads, Work work) {
+  std::vector<Result> results(blocks);
+  std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(threads));
+  auto loop = [&](int worker) {
+    try {
+      for (std::size_t b = next++; b < blocks; b = next++) results[b] = work(b, worker);
+    } catch (...) {
+      errors[static_cast<std::size_t>(worker)] = std::current_exception();
+      next = blocks;
+    }
+  };
+  std::vector<std::thread> pool;
+  try {
+    for (int t = 1; t < threads; ++t) pool.emplace_back(loop, t);
+  } catch (...) {
+    next = blocks;
+    for (std::thread& t : pool) t.join();
+    throw;
+  }
+  loop(0);
+  for (std::thread& t : pool) t.join();
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
+  return results;
+}
+
+/// SplitMix64: the seed of a block from the run's seed, the ε index and the block index.
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+std::uint64_t block_seed(std::uint64_t seed, std::size_t epsilon, std::size_t block) {
+  return mix(mix(seed) ^ mix((static_cast<std::uint64_t>(epsilon) << 40) + block));
+}
+
+cl_RA deep_copy(const cl_RA& x) { return numeric::parse_rational(to_string(x)); }
+Point deep_copy(const Point& x) {
+  Point out;
+  for (const cl_RA& v : x) out.push_back(deep_copy(v));
+  return out;
+}
+
+/// Everything a worker thread touches: its own copies, sharing no CLN object.
+struct Context {
+  ParameterSpace space;
+  std::vector<CompiledCondition> exact, asymptotic;
+  std::vector<cl_RA> epsilons;
+  ContactSet closed;
+  std::string title;
+  numeric::CollisionSolver<cl_RA> solver{};
+  numeric::Solution<cl_RA> actual{}, forced{};
+};
+
+/// What one block of work found, merged in block order.
+struct BlockResult {
+  std::size_t epsilon = 0;
+  Tally tally;
+  std::vector<Disagreement> disagreements;
+  std::vector<Point> points;              ///< bulk: the points drawn
+  std::vector<std::vector<bool>> sides;   ///< bulk: per point, per condition, whether the exact form holds
+};
+
+const char* yes(bool b) { return b ? "holds" : "fails"; }
+
+std::string condition_name(const VerifiedCondition& c) {
+  return std::string(symbolic::to_string(c.kind)) + " " + c.about;
+}
+
+/// The role of a point in evaluate(): drawn, found by reach(), or (>= 0) an
+/// end of a bracket of that condition.
+constexpr int drawn_point = -1, found_point = -2;
+
+/// Solve the point \p x both ways and compare; \p near: its role.
+void evaluate(Context& ctx, const std::vector<VerifiedCondition>& names, const Point& x, int near, BlockResult& out) {
+  Tally& t = out.tally;
+  ++t.points;
+  t.found += near == found_point;
+  const numeric::Problem<cl_RA> problem = ctx.space.problem(x);
+  ctx.solver.compute(problem, ctx.actual);
+  ctx.solver.compute_case(problem, ctx.closed, ctx.forced);
+  if (ctx.actual.status != numeric::Status::Success || ctx.forced.status != numeric::Status::Success) {
+    ++t.unsolved;
+    return;
+  }
+  const cl_RA a = -problem.u.front();
+  const bool truth = ctx.actual.closed == ctx.closed && ctx.actual.velocities_after[0] > a;
+  bool exact = true, asymptotic = true, exact_form = false;
+  std::vector<std::string> details;
+  std::vector<bool> sides;
+  for (std::size_t c = 0; c < ctx.exact.size(); ++c) {
+    std::string quantity;
+    const bool truth_c = condition_truth(ctx.exact[c].kind, ctx.exact[c].about, problem, ctx.forced, &quantity);
+    const bool e = ctx.exact[c].holds(x), s = ctx.asymptotic[c].holds(x);
+    exact = exact && e;
+    asymptotic = asymptotic && s;
+    sides.push_back(e);
+    ConditionTally& ct = t.conditions[c];
+    (truth_c ? ct.holds : ct.fails) += 1;
+    if (near == static_cast<int>(c)) {
+      (truth_c ? ct.near_holds : ct.near_fails) += 1;
+      ct.near_asymptotic_agree += s == truth_c;
+    }
+    ct.exact_agree += e == truth_c;
+    exact_form = exact_form || e != truth_c;
+    ct.asymptotic_agree += s == truth_c;
+    for (const auto& [form, holds] : {std::pair<const char*, bool>{"exact", e}, {"asymptotic", s}})
+      if (holds != truth_c)
+        details.push_back(std::string(form) + " form of " + condition_name(names[c]) + " " + yes(holds) + "; the exact solution of the case: " +
+                          quantity + " (" + yes(truth_c) + ")");
+  }
+  auto count = [truth](Confusion& m, bool holds) {
+    (holds ? (truth ? m.holds_true : m.holds_false) : (truth ? m.fails_true : m.fails_false)) += 1;
+  };
+  count(t.exact, exact);
+  count(t.asymptotic, asymptotic);
+  if (near == drawn_point) {
+    out.points.push_back(x);
+    out.sides.push_back(std::move(sides));
+  }
+  if (exact == truth && asymptotic == truth && details.empty()) return;
+  Disagreement d;
+  d.epsilon_index = static_cast<int>(out.epsilon);
+  d.near = near >= 0;
+  d.point = ctx.space.named(x);
+  d.scene = ctx.space.scene(x, ctx.title + " at eps = " + epsilon_name(ctx.epsilons[out.epsilon]));
+  d.actual_case = Vocabulary::paper().case_name(ctx.actual.closed);
+  d.quantity = "U1 - a = " + to_string(ctx.actual.velocities_after[0] - a);
+  d.truth = truth;
+  d.exact = exact;
+  d.asymptotic = asymptotic;
+  d.exact_form = exact_form || exact != truth;
+  d.details = std::move(details);
+  out.disagreements.push_back(std::move(d));
+}
+
+/// Whether \p c is exactly on its boundary at \p x (numerator or denominator zero).
+bool on_boundary(const CompiledCondition& c, const Point& x) {
+  return cln::zerop(c.numerator(x)) || (!c.denominator.is_zero() && cln::zerop(c.denominator(x)));
+}
+
+/// Bisect the segment from \p hold (the exact form of condition \p c holds)
+/// to \p fails (it fails) down to a bracket of 2^-boundary_bracket_bits of
+/// it, and evaluate both ends.  A split point exactly on the boundary is
+/// moved (1/3, 1/4, … of the bracket) so both ends are strictly on a side.
+void bisect(Context& ctx, const std::vector<VerifiedCondition>& names, const Point& hold, const Point& fails, int c, BlockResult& out) {
+  constexpr int max_split = 16;
+  const CompiledCondition& cond = ctx.exact[static_cast<std::size_t>(c)];
+  const cl_RA width = cl_RA(1) / cln::expt(cl_RA(2), boundary_bracket_bits);
+  Point direction(hold.size());
+  for (std::size_t k = 0; k < hold.size(); ++k) direction[k] = fails[k] - hold[k];
+  auto at = [&](const cl_RA& t) {
+    Point x(hold.size());
+    for (std::size_t k = 0; k < hold.size(); ++k) x[k] = hold[k] + t * direction[k];
+    return x;
+  };
+  cl_RA lo = 0, hi = 1;
+  while (hi - lo > width) {
+    std::optional<bool> side;
+    cl_RA t;
+    for (int j = 2; j <= max_split && !side; ++j) {
+      t = lo + (hi - lo) / j;
+      const Point x = at(t);
+      if (!ctx.space.admissible(x)) return;  // cannot happen: the admissible set is convex
+      if (!on_boundary(cond, x)) side = cond.holds(x);
+    }
+    if (!side) return;
+    (*side ? lo : hi) = t;
+  }
+  evaluate(ctx, names, at(lo), c, out);
+  evaluate(ctx, names, at(hi), c, out);
+}
+
+/// How far \p c is toward the side \p holds at \p x: its value in double,
+/// with the sign of that side (-inf where the denominator vanishes).
+double toward(const CompiledCondition& c, const Point& x, bool holds) {
+  std::vector<double> d;
+  for (const cl_RA& v : x) d.push_back(cln::double_approx(v));
+  const double f = c.value(d);
+  return std::isnan(f) ? -std::numeric_limits<double>::infinity() : (holds ? f : -f);
+}
+
+/// From \p start, look for an admissible point of the regime where the exact
+/// form of condition \p c is on the side \p want_holds: up to reach_steps
+/// random moves of one or two coordinates to values drawn in the regime at
+/// the same ε, each kept when the point stays admissible and moves toward
+/// that side (toward() increases).
+std::optional<Point> reach(Context& ctx, const Point& start, int c, bool want_holds, std::size_t e, std::uint64_t seed) {
+  const CompiledCondition& cond = ctx.exact[static_cast<std::size_t>(c)];
+  RegimeSampler sampler(ctx.space, ctx.epsilons[e], seed);
+  std::mt19937_64 rng(mix(seed));
+  std::uniform_int_distribution<int> coordinate(0, ctx.space.size() - 1);
+  Point x = start;
+  double fx = toward(cond, x, want_holds);
+  for (int step = 0; step < reach_steps; ++step) {
+    const std::optional<Point> y = sampler.draw();
+    if (!y) return std::nullopt;
+    Point z = x;
+    for (int m = 0; m <= step % 2; ++m) {
+      const auto k = static_cast<std::size_t>(coordinate(rng));
+      z[k] = (*y)[k];
+    }
+    if (!ctx.space.admissible(z)) continue;
+    const double fz = toward(cond, z, want_holds);
+    if (!(fz > fx)) continue;
+    x = std::move(z);
+    fx = fz;
+    if (!on_boundary(cond, x) && cond.holds(x) == want_holds) return x;
+  }
+  return std::nullopt;
+}
+
+void merge(ConditionTally& a, const ConditionTally& b) {
+  a.holds += b.holds;
+  a.fails += b.fails;
+  a.near_holds += b.near_holds;
+  a.near_fails += b.near_fails;
+  a.exact_agree += b.exact_agree;
+  a.asymptotic_agree += b.asymptotic_agree;
+  a.near_asymptotic_agree += b.near_asymptotic_agree;
+}
+
+void merge(Tally& into, const Tally& from) {
+  into.points += from.points;
+  into.found += from.found;
+  into.undrawn += from.undrawn;
+  into.unsolved += from.unsolved;
+  for (auto [m, n] : {std::pair{&into.exact, &from.exact}, {&into.asymptotic, &from.asymptotic}}) {
+    m->holds_true += n->holds_true;
+    m->holds_false += n->holds_false;
+    m->fails_true += n->fails_true;
+    m->fails_false += n->fails_false;
+  }
+  for (std::size_t c = 0; c < into.conditions.size(); ++c) merge(into.conditions[c], from.conditions[c]);
+}
+
+std::string pad(const std::string& s, std::size_t width, bool right = true) {
+  // width in characters: count UTF-8 lead bytes only
+  std::size_t n = 0;
+  for (unsigned char ch : s) n += (ch & 0xC0) != 0x80;
+  const std::string fill(n < width ? width - n : 0, ' ');
+  return right ? fill + s : s + fill;
+}
+
+}  // namespace
+}  // namespace detail
+
+std::string epsilon_name(const cln::cl_RA& epsilon) {
+  if (cln::numerator(epsilon) == 1) {
+    cln::cl_I d = cln::denominator(epsilon);
+    int k = 0;
+    while (k < 100 && cln::zerop(cln::mod(d, 10)) && d > 1) {
+      d = cln::exquo(d, 10);
+      ++k;
+    }
+    if (d == 1 && k > 0) return "1e-" + std::to_string(k);
+  }
+  return to_string(epsilon);
+}
+
+Tally EpsilonResult::all() const {
+  Tally t = drawn;
+  detail::merge(t, boundary);
+  return t;
+}
+
+bool Verification::exact_agrees() const {
+  for (const EpsilonResult& e : epsilons) {
+    const Tally t = e.all();
+    if (t.exact.agree() != t.exact.total()) return false;
+    for (const ConditionTally& c : t.conditions)
+      if (c.exact_agree != c.points()) return false;
+  }
+  return true;
+}
+
+Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& closed, const VerifyOptions& options) {
+  using detail::BlockResult;
+  using detail::Context;
+  using cln::cl_RA;
+  if (options.epsilons.empty()) detail::fail("no value of epsilon");
+  for (const cl_RA& e : options.epsilons)
+    if (!(e > 0) || !(e < 1)) detail::fail("epsilon " + to_string(e) + " is not in (0, 1)");
+  if (options.samples < 1) detail::fail("samples must be >= 1");
+  if (options.boundary_pairs < 0) detail::fail("boundary pairs must be >= 0");
+  if (options.threads < 0) detail::fail("threads must be >= 0");
+  const int threads = options.threads > 0 ? options.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+
+  // Everything symbolic, in this thread.
+  const symbolic::Symbols& sy = deriver.symbols();
+  const symbolic::Derivation d = deriver.derive(closed);
+  Verification v;
+  v.case_name = d.case_name;
+  v.pattern = sy.pattern().describe();
+  v.obstacle = sy.obstacle() == symbolic::Obstacle::Infinite ? "infinite" : "finite";
+  v.scaling = deriver.scaling().describe(sy, symbolic::Style::Text);
+  v.samples = options.samples;
+  v.boundary_pairs = options.boundary_pairs;
+  v.seed = options.seed;
+  ParameterSpace space = [&] {
+    try {
+      return ParameterSpace(deriver);
+    } catch (const std::invalid_argument& e) {
+      detail::fail(without_function_prefix(e.what()));
+    }
+  }();
+  std::vector<CompiledCondition> exact, asymptotic;
+  for (const symbolic::Condition& c : d.conditions) {
+    if (c.kind == symbolic::ConditionKind::Psd) continue;
+    const symbolic::ConditionForm& form = c.finite ? *c.finite : c.exact;
+    v.conditions.push_back({c.kind, c.about, symbolic::format_condition(form, c.relation, sy, symbolic::Style::Text),
+                            symbolic::format_condition(c.asymptotic, c.relation, sy, symbolic::Style::Text), c.asymptotic.verdict});
+    exact.emplace_back(c, form, sy);
+    asymptotic.emplace_back(c, c.asymptotic, sy);
+  }
+  const std::string title = "superball verify: case " + d.case_name + ", " + v.pattern;
+  std::vector<Context> contexts;
+  for (int t = 0; t < threads; ++t) {
+    Context ctx{space.clone(), {}, {}, {}, closed, title};
+    for (std::size_t c = 0; c < exact.size(); ++c) {
+      ctx.exact.push_back(exact[c].clone());
+      ctx.asymptotic.push_back(asymptotic[c].clone());
+    }
+    for (const cl_RA& e : options.epsilons) ctx.epsilons.push_back(detail::deep_copy(e));
+    contexts.push_back(std::move(ctx));
+  }
+  const std::size_t n_eps = options.epsilons.size(), n_cond = exact.size();
+  auto fresh = [&](std::size_t e) {
+    BlockResult r;
+    r.epsilon = e;
+    r.tally.conditions.resize(n_cond);
+    return r;
+  };
+  for (const cl_RA& e : options.epsilons) {
+    EpsilonResult r;
+    r.epsilon = e;
+    r.drawn.conditions.resize(n_cond);
+    r.boundary.conditions.resize(n_cond);
+    v.epsilons.push_back(std::move(r));
+  }
+
+  // Progress, reported under a lock by whichever worker finishes a block.
+  std::mutex progress_lock;
+  long long done = 0;
+  const long long planned = static_cast<long long>(n_eps) * (options.samples + 2LL * options.boundary_pairs * static_cast<long long>(n_cond));
+  auto report = [&](long long points) {
+    if (!options.progress) return;
+    std::lock_guard<std::mutex> lock(progress_lock);
+    done += points;
+    options.progress(std::min(done, planned), planned);
+  };
+
+  // Stage 1: the bulk, blocks of verify_block_points per ε.
+  const std::size_t per_eps = static_cast<std::size_t>((options.samples + verify_block_points - 1) / verify_block_points);
+  const auto bulk = detail::run_blocks<BlockResult>(n_eps * per_eps, threads, [&](std::size_t block, int worker) {
+    Context& ctx = contexts[static_cast<std::size_t>(worker)];
+    const std::size_t e = block / per_eps, k = block % per_eps;
+    BlockResult r = fresh(e);
+    const int count = std::min<int>(verify_block_points, options.samples - static_cast<int>(k) * verify_block_points);
+    RegimeSampler sampler(ctx.space, ctx.epsilons[e], detail::block_seed(options.seed, e, k));
+    for (int i = 0; i < count; ++i) {
+      const std::optional<Point> x = sampler.draw();
+      if (x)
+        detail::evaluate(ctx, v.conditions, *x, detail::drawn_point, r);
+      else
+        ++r.tally.undrawn;
+    }
+    report(count);
+    return r;
+  });
+
+  // Stage 2, one block per ε and condition: pair the drawn points where the
+  // exact form holds with those where it fails (in run order) and bisect
+  // between them; when a side has fewer than boundary_pairs points, search
+  // for more of it from the other side's points nearest to it.
+  struct Work {
+    std::size_t epsilon;
+    int condition;
+    std::vector<std::pair<Point, Point>> pairs;  ///< (holds, fails)
+    std::vector<Point> starts;                   ///< points to search from, best first
+    bool want_holds = false;                     ///< the side searched for
+  };
+  std::vector<Work> work;
+  for (std::size_t e = 0; e < n_eps; ++e) {
+    for (std::size_t c = 0; c < n_cond; ++c) {
+      Work w{e, static_cast<int>(c), {}, {}, false};
+      std::vector<const Point*> hold, fails;
+      for (std::size_t b = e * per_eps; b < (e + 1) * per_eps; ++b)
+        for (std::size_t i = 0; i < bulk[b].points.size(); ++i)
+          if (!detail::on_boundary(exact[c], bulk[b].points[i]))  // a segment's ends are strictly on a side
+            (bulk[b].sides[i][c] ? hold : fails).push_back(&bulk[b].points[i]);
+      const std::size_t wanted = static_cast<std::size_t>(options.boundary_pairs);
+      const std::size_t n = std::min({wanted, hold.size(), fails.size()});
+      for (std::size_t i = 0; i < n; ++i) w.pairs.emplace_back(detail::deep_copy(*hold[i]), detail::deep_copy(*fails[i]));
+      if (n < wanted && (hold.size() < wanted || fails.size() < wanted)) {
+        w.want_holds = hold.size() < fails.size();
+        std::vector<std::pair<double, const Point*>> from;
+        for (const Point* x : w.want_holds ? fails : hold) from.emplace_back(-detail::toward(exact[c], *x, w.want_holds), x);
+        std::stable_sort(from.begin(), from.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (std::size_t i = 0; i < from.size() && i < wanted - n; ++i) w.starts.push_back(detail::deep_copy(*from[i].second));
+      }
+      work.push_back(std::move(w));
+    }
+  }
+  const auto boundary = detail::run_blocks<BlockResult>(work.size(), threads, [&](std::size_t block, int worker) {
+    Context& ctx = contexts[static_cast<std::size_t>(worker)];
+    const Work& w = work[block];
+    BlockResult r = fresh(w.epsilon);
+    for (const auto& [hold, fails] : w.pairs) detail::bisect(ctx, v.conditions, hold, fails, w.condition, r);
+    for (std::size_t i = 0; i < w.starts.size(); ++i) {
+      const std::optional<Point> found =
+          detail::reach(ctx, w.starts[i], w.condition, w.want_holds, w.epsilon, detail::block_seed(options.seed, w.epsilon, (block << 20) + i));
+      if (!found) break;  // the side is out of reach (or empty): do not spend the budget again
+      detail::evaluate(ctx, v.conditions, *found, detail::found_point, r);
+      detail::bisect(ctx, v.conditions, w.want_holds ? *found : w.starts[i], w.want_holds ? w.starts[i] : *found, w.condition, r);
+    }
+    report(2 * static_cast<long long>(w.pairs.size() + w.starts.size()));
+    return r;
+  });
+  if (options.progress) options.progress(planned, planned);
+
+  // Merge in run order: per ε, the bulk blocks then the boundary blocks.
+  for (std::size_t e = 0; e < n_eps; ++e) {
+    for (std::size_t b = e * per_eps; b < (e + 1) * per_eps; ++b) {
+      detail::merge(v.epsilons[e].drawn, bulk[b].tally);
+      v.disagreements.insert(v.disagreements.end(), bulk[b].disagreements.begin(), bulk[b].disagreements.end());
+    }
+    for (const BlockResult& r : boundary) {
+      if (r.epsilon != e) continue;
+      detail::merge(v.epsilons[e].boundary, r.tally);
+      v.disagreements.insert(v.disagreements.end(), r.disagreements.begin(), r.disagreements.end());
+    }
+  }
+  return v;
+}
+
+std::string describe(const Verification& v, const Disagreement& d) {
+  std::ostringstream os;
+  os << "superball verify: case " << v.case_name << " (" << v.pattern << ", obstacle " << v.obstacle << "), eps = "
+     << epsilon_name(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon) << (d.near ? ", a point near a boundary" : "") << '\n';
+  os << "the exact solution: case " << d.actual_case << ", " << d.quantity << " -> case " << v.case_name << " with U1+ > a "
+     << (d.truth ? "TRUE" : "FALSE") << '\n';
+  os << "the exact conditions " << (d.exact ? "hold" : "fail") << (d.exact == d.truth ? " (agree)" : " (DISAGREE)") << "; the asymptotic conditions "
+     << (d.asymptotic ? "hold" : "fail") << (d.asymptotic == d.truth ? " (agree)" : " (disagree)") << '\n';
+  for (const std::string& s : d.details) os << s << '\n';
+  std::string point;
+  for (const auto& [name, x] : d.point) point += (point.empty() ? "" : ", ") + name + " = " + to_string(x);
+  os << "point: " << point;
+  return os.str();
+}
+
+std::string to_text(const Verification& v) {
+  using detail::pad;
+  std::ostringstream os;
+  os << "case " << v.case_name << " — " << v.pattern << ", obstacle " << v.obstacle << ", regime " << v.scaling << '\n';
+  os << "conditions (exact" << (v.obstacle == "finite" ? ", finite m_n" : "") << " | asymptotic):\n";
+  for (const VerifiedCondition& c : v.conditions)
+    os << "  " << pad(detail::condition_name(c), 18, false) << ' ' << c.exact_text << "   |   " << c.asymptotic_text << '\n';
+  os << "points per eps: " << v.samples << " drawn, then per condition up to " << v.boundary_pairs
+     << " segments across its boundary bisected to 2^-" << boundary_bracket_bits << " (both ends kept; a side short of drawn points is searched for), seed "
+     << v.seed << "\n\n";
+  auto ratio = [](long long part, long long whole) { return std::to_string(part) + "/" + std::to_string(whole); };
+  os << "   eps  points  drawn  bound |  exact agree |  asymptotic agree: drawn     near |  exact: H&T   H&F   F&T   F&F |  asymptotic: H&T   H&F   F&T   F&F\n";
+  for (const EpsilonResult& e : v.epsilons) {
+    const Tally t = e.all();
+    os << pad(epsilon_name(e.epsilon), 6) << pad(std::to_string(t.exact.total()), 8) << pad(std::to_string(e.drawn.exact.total()), 7)
+       << pad(std::to_string(e.boundary.exact.total()), 7) << " | " << pad(ratio(t.exact.agree(), t.exact.total()), 12) << " | "
+       << pad(ratio(e.drawn.asymptotic.agree(), e.drawn.asymptotic.total()), 23) << pad(ratio(e.boundary.asymptotic.agree(), e.boundary.asymptotic.total()), 9)
+       << " |";
+    for (const Confusion* m : {&t.exact, &t.asymptotic})
+      os << (m == &t.exact ? "     " : "           ") << pad(std::to_string(m->holds_true), 5) << pad(std::to_string(m->holds_false), 6)
+         << pad(std::to_string(m->fails_true), 6) << pad(std::to_string(m->fails_false), 6) << (m == &t.exact ? " |" : "");
+    if (t.undrawn || t.unsolved) os << "   (" << t.undrawn << " draws without an admissible point, " << t.unsolved << " unsolved)";
+    os << '\n';
+  }
+  os << "\nper condition (all eps): points on each side of it, of them near its boundary, agreement of its exact form;\n"
+     << "then per eps the points where its asymptotic form disagrees: among the drawn ones / among those near its boundary\n";
+  os << "  condition            holds (near)    fails (near)  exact agree  | asymptotic disagree:";
+  for (const EpsilonResult& e : v.epsilons) os << pad(epsilon_name(e.epsilon), 12);
+  os << '\n';
+  for (std::size_t c = 0; c < v.conditions.size(); ++c) {
+    ConditionTally all;
+    for (const EpsilonResult& e : v.epsilons) {
+      detail::merge(all, e.drawn.conditions[c]);
+      detail::merge(all, e.boundary.conditions[c]);
+    }
+    os << "  " << pad(detail::condition_name(v.conditions[c]), 18, false) << pad(std::to_string(all.holds) + " (" + std::to_string(all.near_holds) + ")", 15)
+       << pad(std::to_string(all.fails) + " (" + std::to_string(all.near_fails) + ")", 16) << pad(ratio(all.exact_agree, all.points()), 13)
+       << "  |                     ";
+    for (const EpsilonResult& e : v.epsilons) {
+      const ConditionTally& d = e.drawn.conditions[c];
+      const ConditionTally& n = e.boundary.conditions[c];
+      const long long near = n.near_holds + n.near_fails;
+      os << pad(std::to_string(d.points() - d.asymptotic_agree) + " / " + (near ? ratio(near - n.near_asymptotic_agree, near) : std::string("-")), 12);
+    }
+    for (bool side : {true, false}) {
+      std::string where;
+      for (const EpsilonResult& e : v.epsilons) {
+        const ConditionTally& t = e.drawn.conditions[c];
+        const ConditionTally& n = e.boundary.conditions[c];
+        if ((side ? t.holds + n.holds : t.fails + n.fails) == 0) where += (where.empty() ? "" : ",") + epsilon_name(e.epsilon);
+      }
+      if (where.empty()) continue;
+      const symbolic::Verdict verdict = v.conditions[c].asymptotic_verdict;
+      os << "   (" << (side ? "holds" : "fails") << " side not reached at eps " << where;
+      if (verdict != symbolic::Verdict::Depends) os << ": its asymptotic form " << (verdict == symbolic::Verdict::Always ? "always holds" : "never holds");
+      os << ")";
+    }
+    os << '\n';
+  }
+  const auto exact = std::count_if(v.disagreements.begin(), v.disagreements.end(), [](const Disagreement& d) { return d.exact_form; });
+  os << "\ndisagreements: " << v.disagreements.size() << " points (" << exact << " where an exact form disagrees)\n";
+  for (const Disagreement& d : v.disagreements)
+    if (d.exact_form) os << "  EXACT FORM DISAGREES: " << describe(v, d) << '\n';
+  return os.str();
+}
+
+nlohmann::ordered_json to_json(const Verification& v) {
+  using nlohmann::ordered_json;
+  ordered_json j;
+  j["case"] = v.case_name;
+  j["pattern"] = v.pattern;
+  j["obstacle"] = v.obstacle;
+  j["scaling"] = v.scaling;
+  j["samples"] = v.samples;
+  j["boundary_pairs"] = v.boundary_pairs;
+  j["boundary_bracket"] = "2^-" + std::to_string(boundary_bracket_bits);
+  j["seed"] = v.seed;
+  j["exact_agrees"] = v.exact_agrees();
+  ordered_json conditions = ordered_json::array();
+  for (const VerifiedCondition& c : v.conditions)
+    conditions.push_back({{"kind", symbolic::to_string(c.kind)},
+                          {"about", c.about},
+                          {"exact", c.exact_text},
+                          {"asymptotic", c.asymptotic_text},
+                          {"asymptotic_verdict", symbolic::to_string(c.asymptotic_verdict)}});
+  j["conditions"] = conditions;
+  auto confusion = [](const Confusion& m) {
+    return ordered_json{{"holds_true", m.holds_true}, {"holds_false", m.holds_false}, {"fails_true", m.fails_true}, {"fails_false", m.fails_false},
+                        {"agree", m.agree()}, {"total", m.total()}};
+  };
+  auto tally = [&](const Tally& t) {
+    ordered_json x;
+    x["points"] = t.points;
+    x["undrawn"] = t.undrawn;
+    x["unsolved"] = t.unsolved;
+    x["exact"] = confusion(t.exact);
+    x["asymptotic"] = confusion(t.asymptotic);
+    ordered_json per = ordered_json::array();
+    for (std::size_t c = 0; c < t.conditions.size(); ++c) {
+      const ConditionTally& k = t.conditions[c];
+      per.push_back({{"condition", detail::condition_name(v.conditions[c])}, {"holds", k.holds}, {"fails", k.fails}, {"near_holds", k.near_holds},
+                     {"near_fails", k.near_fails}, {"exact_agree", k.exact_agree}, {"asymptotic_agree", k.asymptotic_agree},
+                     {"near_asymptotic_agree", k.near_asymptotic_agree}});
+    }
+    x["conditions"] = per;
+    return x;
+  };
+  ordered_json eps = ordered_json::array();
+  for (const EpsilonResult& e : v.epsilons)
+    eps.push_back({{"epsilon", to_string(e.epsilon)}, {"all", tally(e.all())}, {"drawn", tally(e.drawn)}, {"boundary", tally(e.boundary)}});
+  j["epsilons"] = eps;
+  ordered_json dis = ordered_json::array();
+  for (const Disagreement& d : v.disagreements) {
+    ordered_json point = ordered_json::object();
+    for (const auto& [name, x] : d.point) point[name] = to_string(x);
+    dis.push_back({{"epsilon", to_string(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon)},
+                   {"near_boundary", d.near},
+                   {"point", point},
+                   {"actual_case", d.actual_case},
+                   {"quantity", d.quantity},
+                   {"truth", d.truth},
+                   {"exact_holds", d.exact},
+                   {"asymptotic_holds", d.asymptotic},
+                   {"exact_form_disagrees", d.exact_form},
+                   {"details", d.details}});
+  }
+  j["disagreements"] = dis;
+  return j;
+}
+
+}  // namespace superball::verify
