@@ -32,6 +32,7 @@ using superball::test::describe;
 using superball::test::expect_bad_input;
 using superball::test::run;
 using superball::test::RunResult;
+using superball::test::slurp;
 
 nlohmann::json json_of(const RunResult& r) {
   try {
