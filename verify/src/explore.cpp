@@ -287,10 +287,39 @@ bool next_signs(std::vector<int>& x) {
   return true;
 }
 
+/// The form Σ_c μ_c·(K_p + K_q ± 2c) over the couplings c (of pairs p, q)
+/// that cancels every term of \p p linear in a coupling: μ_c = |P_c|/2 with
+/// P_c the coefficient of c¹ in p, when P_c has one certain sign (then each
+/// μ_c >= 0 and each bracket is a quadratic form of the 2×2 minor of M on
+/// p, q, >= 0 when M is positive semi-definite).  nullopt when some P_c has
+/// no certain sign or the pattern has no coupling.
+std::optional<std::pair<GiNaC::ex, std::string>> minor_multiples(const GiNaC::ex& p, const Symbols& sy) {
+  GiNaC::ex value = 0;
+  std::string text;
+  for (const PairCoupling& c : sy.pattern().couplings) {
+    if (!sy.pattern().has_diagonal(c.first) || !sy.pattern().has_diagonal(c.second)) return std::nullopt;
+    const GiNaC::ex& alpha = sy.coupling(c.first, c.second);
+    const GiNaC::ex linear = GiNaC::expand(p.coeff(alpha, 1));
+    if (linear.is_zero()) continue;
+    int sign = 0;
+    if (certainly_nonnegative(linear, sy)) sign = 1;
+    else if (certainly_nonnegative(GiNaC::expand(-linear), sy)) sign = -1;
+    else return std::nullopt;
+    const GiNaC::ex mu = GiNaC::expand(sign * linear / 2);
+    const GiNaC::ex bracket = sy.diagonal(c.first) + sy.diagonal(c.second) + 2 * sign * alpha;
+    value += mu * bracket;
+    text += (text.empty() ? "" : " + ") + std::string("(") + format_polynomial(mu, sy, Style::Text) + ")·(" +
+            format_polynomial(GiNaC::expand(bracket), sy, Style::Text) + ")";
+  }
+  if (text.empty()) return std::nullopt;
+  return std::make_pair(GiNaC::expand(value), text);
+}
+
 /// Search weights w ∈ {0, 1, 2} on the case's conditions (superball last, so
 /// a clash without it, which proves the case never actual, comes first) and
-/// t·xᵀMx (t ∈ {0, 1, 2}, x ∈ {−1, 0, 1} on the coupled pairs up to sign)
-/// with −Σ wᵢNᵢ − t·xᵀMx certainly nonnegative and some strict condition weighted.
+/// a form Q >= 0 on M ⪰ 0 — t·xᵀMx (t ∈ {0, 1, 2}, x ∈ {−1, 0, 1} on the
+/// coupled pairs up to sign) or minor_multiples() — with −Σ wᵢNᵢ − Q
+/// certainly nonnegative and some strict condition weighted.
 std::optional<Clash> find_clash(const Derivation& d, const Symbols& sy, bool asymptotic) {
   std::vector<Usable> usable;
   for (const Condition& c : d.conditions) {
@@ -307,17 +336,16 @@ std::optional<Clash> find_clash(const Derivation& d, const Symbols& sy, bool asy
   std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.name() < b.name(); });
   struct Form {
     GiNaC::ex value;
-    int t;
-    std::vector<int> x;
+    std::string text;  ///< "" for 0, else "t·xᵀMx, x = …"
   };
-  std::vector<Form> forms{{GiNaC::ex(0), 0, {}}};
+  std::vector<Form> forms{{GiNaC::ex(0), ""}};
   if (!pairs.empty() && pairs.size() <= 8) {
     std::vector<int> x(pairs.size(), -1);
     do {
       const auto first = std::find_if(x.begin(), x.end(), [](int v) { return v != 0; });
       if (first == x.end() || *first < 0) continue;  // x and −x give the same form
       const GiNaC::ex q = quadratic_form(x, pairs, sy);
-      for (int t : {1, 2}) forms.push_back({GiNaC::expand(t * q), t, x});
+      for (int t : {1, 2}) forms.push_back({GiNaC::expand(t * q), std::to_string(t) + "·xᵀMx, x = " + signed_pairs(x, pairs)});
     } while (next_signs(x));
   }
   const std::size_t n = usable.size();
@@ -348,7 +376,9 @@ std::optional<Clash> find_clash(const Derivation& d, const Symbols& sy, bool asy
       }
     if (!strict) continue;
     sum = GiNaC::expand(sum);
-    for (const Form& q : forms) {
+    std::vector<Form> candidates = forms;
+    if (const auto m = minor_multiples(-sum, sy)) candidates.push_back({m->first, m->second});
+    for (const Form& q : candidates) {
       const GiNaC::ex rest = GiNaC::expand(-sum - q.value);
       if (!certainly_nonnegative(rest, sy)) continue;
       Clash clash;
@@ -363,12 +393,11 @@ std::optional<Clash> find_clash(const Derivation& d, const Symbols& sy, bool asy
                                    format_condition(*usable[i].form, c.relation, sy, Style::Text));
         names += (names.empty() ? "" : " + ") + (wt[i] > 1 ? std::to_string(wt[i]) + "·" : "") + name;
       }
-      clash.identity = "with each Nᵢ the condition's polynomial (Nᵢ > 0 or >= 0 as stated): −(" + names + ") = ";
-      if (q.t) clash.identity += std::to_string(q.t) + "·xᵀMx + ";
-      clash.identity += "(" + format_polynomial(rest, sy, Style::Text) + ")";
-      if (q.t) clash.identity += ", x = " + signed_pairs(q.x, pairs);
-      clash.identity += "; every term of the bracket is >= 0" + std::string(q.t ? " and xᵀMx >= 0 when M is positive semi-definite" : "") +
-                        ", so " + names + " <= 0, while the conditions make it > 0";
+      clash.identity = "with each Nᵢ the condition's polynomial (Nᵢ > 0 or >= 0 as stated): −(" + names + ") = " +
+                       (q.text.empty() ? "" : "Q + ") + "(" + format_polynomial(rest, sy, Style::Text) + ")" +
+                       (q.text.empty() ? "" : ", Q = " + q.text) + "; every term of the bracket is >= 0" +
+                       (q.text.empty() ? "" : " and Q >= 0 when M is positive semi-definite") + ", so " + names +
+                       " <= 0, while the conditions make it > 0";
       return clash;
     }
   }
@@ -532,6 +561,7 @@ PatternTable explore_all_patterns(const ExploreOptions& options) {
 
 std::string cell_text(const ExploreResult& r) {
   if (r.reach == Reach::Yes) return "yes U₁⁺/a = " + detail::decimal(cln::double_approx(r.ratio), 4);
+  if (r.reach == Reach::NotFound && !r.witness.empty()) return "not found (best U₁⁺/a = " + detail::decimal(cln::double_approx(r.ratio), 6) + ")";
   return to_string(r.reach);
 }
 

@@ -28,9 +28,12 @@
 ///
 /// The proof.  If the case's conditions Nᵢ > 0 (or >= 0; denominators of
 /// proved sign cleared) and the superball condition S > 0 are weighted by
-/// wᵢ ∈ {0, 1, 2} and −Σ wᵢNᵢ = t·xᵀMx + R with x ∈ {−1, 0, 1} on the
-/// coupled pairs, t ∈ {0, 1, 2} and every term of R certainly nonnegative
-/// (symbolic::certainly_nonnegative), then Σ wᵢNᵢ <= 0 wherever M ⪰ 0: the
+/// wᵢ ∈ {0, 1, 2} and −Σ wᵢNᵢ = Q + R with every term of R certainly
+/// nonnegative (symbolic::certainly_nonnegative) and Q >= 0 wherever M ⪰ 0 —
+/// Q = t·xᵀMx with x ∈ {−1, 0, 1} on the coupled pairs and t ∈ {0, 1, 2}, or
+/// Q = Σ μ_c·(K_p + K_q ± 2c) over the couplings c of pairs p, q, with μ_c
+/// a polynomial of certain sign chosen to cancel the terms linear in c
+/// (a 2×2 minor's quadratic form times a multiplier) — then Σ wᵢNᵢ <= 0: the
 /// weighted conditions cannot hold together when one of them is strict.
 /// Without the superball condition that proves the case never actual.  The
 /// same search on the leading-order (asymptotic) forms says whether the
@@ -133,7 +136,8 @@ std::vector<std::vector<int>> table_patterns();
 /// vocabulary, with \p options for each cell.
 PatternTable explore_all_patterns(const ExploreOptions& options = {});
 
-/// The cell text: "yes U₁⁺/a = 12.3", "no (proved)", "case impossible", "not found".
+/// The cell text: "yes U₁⁺/a = 12.3", "no (proved)", "case impossible", "not found"
+/// (with the best U₁⁺/a at a point where the case is actual, when there is one).
 std::string cell_text(const ExploreResult& r);
 
 /// One result for people: verdict, witness, exact U₁⁺/a, statistics, clashes.
