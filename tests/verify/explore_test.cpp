@@ -111,7 +111,7 @@ TEST(Explore, exam_Alpha1Alpha6Case1IsProvedImpossible) {
 /// Every proof of the table's first rows is sound: at sampled admissible
 /// points where the case is the actual evolution (exact solve), U₁⁺ <= a.
 TEST(Explore, check_ProofsHoldAtSampledPoints) {
-  for (const std::vector<int>& alphas : {std::vector<int>{1}, std::vector<int>{1, 6}, std::vector<int>{4}}) {
+  for (const std::vector<int>& alphas : {std::vector<int>{1}, std::vector<int>{1, 6}, std::vector<int>{4}, std::vector<int>{7}}) {
     const Deriver d(Pattern::paper(alphas), Obstacle::Infinite);
     const ParameterSpace space(d);
     numeric::CollisionSolver<cl_RA> solver;
@@ -134,6 +134,18 @@ TEST(Explore, check_ProofsHoldAtSampledPoints) {
       }
     }
   }
+}
+
+/// A clash that needs polynomial multipliers (the linear programme): α₇ in
+/// case 2.1, the superball against R₁₂ <= 0 and the opening of contact 2-3.
+TEST(Explore, exam_Alpha7Case2_1NeedsPolynomialMultipliers) {
+  const Deriver d(Pattern::paper({7}), Obstacle::Infinite);
+  const ExploreResult r = explore_case(d, named("2.1"), quick());
+  ASSERT_EQ(r.reach, Reach::Impossible) << to_text(r);
+  ASSERT_TRUE(r.clash);
+  EXPECT_TRUE(r.clash->superball);
+  EXPECT_GE(r.clash->conditions.size(), 2u);
+  EXPECT_NE(r.clash->identity.find(")·N"), std::string::npos) << r.clash->identity;
 }
 
 TEST(Explore, exam_SameSeedSameResult) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -40,6 +41,12 @@ constexpr double log_step = 0.5, coupling_step = 0.3;
 constexpr double simplex_collapse = 1e-10;
 /// Feasible local results tried by the exact confirmation, best first.
 constexpr int confirmations = 6;
+/// The certificate's linear programme: pivot tolerance, pivot limit, and the
+/// rounding of its solution to fractions (denominator, distance).
+constexpr double simplex_tolerance = 1e-9;
+constexpr int simplex_max_pivots = 20000;
+constexpr long rational_denominator = 1000;
+constexpr double rational_tolerance = 1e-7;
 
 [[noreturn]] void fail(const std::string& what) { throw std::invalid_argument("explore_case(): " + what); }
 
@@ -315,11 +322,217 @@ std::optional<std::pair<GiNaC::ex, std::string>> minor_multiples(const GiNaC::ex
   return std::make_pair(GiNaC::expand(value), text);
 }
 
-/// Search weights w ∈ {0, 1, 2} on the case's conditions (superball last, so
-/// a clash without it, which proves the case never actual, comes first) and
-/// a form Q >= 0 on M ⪰ 0 — t·xᵀMx (t ∈ {0, 1, 2}, x ∈ {−1, 0, 1} on the
-/// coupled pairs up to sign) or minor_multiples() — with −Σ wᵢNᵢ − Q
-/// certainly nonnegative and some strict condition weighted.
+/// The clash of the conditions \p usable weighted by \p multipliers (0 for
+/// unused ones; numbers or polynomials >= 0), with −Σ multiplierᵢ·Nᵢ = Q + rest.
+Clash make_clash(const std::vector<Usable>& usable, const std::vector<GiNaC::ex>& multipliers, const std::string& q_text,
+                 const GiNaC::ex& rest, bool asymptotic, const Symbols& sy) {
+  Clash clash;
+  clash.asymptotic = asymptotic;
+  std::string names;
+  for (std::size_t i = 0; i < usable.size(); ++i) {
+    if (multipliers[i].is_zero()) continue;
+    const Condition& c = *usable[i].condition;
+    clash.superball = clash.superball || c.kind == ConditionKind::Superball;
+    const std::string name = "N" + std::to_string(clash.conditions.size() + 1);
+    const bool number = GiNaC::is_a<GiNaC::numeric>(multipliers[i]);
+    const std::string factor = format_polynomial(multipliers[i], sy, Style::Text);
+    clash.conditions.push_back(name + " (" + (number ? "weight " : "multiplier ") + factor + "), " + condition_title(c, Style::Text) + ": " +
+                               format_condition(*usable[i].form, c.relation, sy, Style::Text));
+    const bool one = number && (multipliers[i] - 1).is_zero();
+    names += (names.empty() ? "" : " + ") + (one ? "" : number ? factor + "·" : "(" + factor + ")·") + name;
+  }
+  clash.identity = "with each Nᵢ the condition's polynomial (Nᵢ > 0 or >= 0 as stated): −(" + names + ") = " + (q_text.empty() ? "" : "Q + ") +
+                   "(" + format_polynomial(rest, sy, Style::Text) + ")" + (q_text.empty() ? "" : ", Q = " + q_text) +
+                   "; every term of the bracket is >= 0" + (q_text.empty() ? "" : " and Q >= 0 when M is positive semi-definite") +
+                   ", each multiplier is >= 0, so " + names + " <= 0, while the conditions make it > 0";
+  return clash;
+}
+
+/// Phase one of the simplex method (dense tableau, Bland's rule): some x >= 0
+/// with eq·x = b and le·x <= 0 (rows over \p n unknowns), or nullopt.
+std::optional<std::vector<double>> feasible_point(std::vector<std::vector<double>> eq, std::vector<double> b,
+                                                  const std::vector<std::vector<double>>& le, std::size_t n) {
+  const std::size_t m_eq = eq.size(), m = m_eq + le.size();
+  const std::size_t slack0 = n, art0 = n + le.size(), rhs = art0 + m_eq, cols = rhs + 1;
+  std::vector<std::vector<double>> t(m + 1, std::vector<double>(cols, 0.0));  // row m: reduced costs
+  std::vector<std::size_t> basis(m);
+  for (std::size_t r = 0; r < m_eq; ++r) {
+    const double sign = b[r] < 0 ? -1 : 1;
+    for (std::size_t j = 0; j < n; ++j) t[r][j] = sign * eq[r][j];
+    t[r][art0 + r] = 1;
+    t[r][rhs] = sign * b[r];
+    basis[r] = art0 + r;
+    for (std::size_t j = 0; j < cols; ++j)
+      if (j < art0 || j == rhs) t[m][j] -= t[r][j];
+  }
+  for (std::size_t r = 0; r < le.size(); ++r) {
+    for (std::size_t j = 0; j < n; ++j) t[m_eq + r][j] = le[r][j];
+    t[m_eq + r][slack0 + r] = 1;
+    basis[m_eq + r] = slack0 + r;
+  }
+  for (int pivots = 0; pivots < simplex_max_pivots; ++pivots) {
+    std::size_t enter = art0;
+    for (std::size_t j = 0; j < art0 && enter == art0; ++j)
+      if (t[m][j] < -simplex_tolerance) enter = j;
+    if (enter == art0) break;
+    std::size_t leave = m;
+    double best = 0;
+    for (std::size_t r = 0; r < m; ++r) {
+      if (t[r][enter] <= simplex_tolerance) continue;
+      const double ratio = t[r][rhs] / t[r][enter];
+      if (leave == m || ratio < best - simplex_tolerance || (ratio <= best + simplex_tolerance && basis[r] < basis[leave])) {
+        leave = r;
+        best = ratio;
+      }
+    }
+    if (leave == m) return std::nullopt;  // unbounded cannot happen in phase one; treat as failure
+    const double pivot = t[leave][enter];
+    for (double& v : t[leave]) v /= pivot;
+    for (std::size_t r = 0; r <= m; ++r) {
+      if (r == leave || t[r][enter] == 0) continue;
+      const double f = t[r][enter];
+      for (std::size_t j = 0; j < cols; ++j) t[r][j] -= f * t[leave][j];
+    }
+    basis[leave] = enter;
+  }
+  if (-t[m][rhs] > simplex_tolerance) return std::nullopt;
+  std::vector<double> x(n, 0.0);
+  for (std::size_t r = 0; r < m; ++r)
+    if (basis[r] < n) x[basis[r]] = std::max(0.0, t[r][rhs]);
+  return x;
+}
+
+/// \p v as a fraction of denominator at most rational_denominator (continued
+/// fractions), or nullopt when none is within rational_tolerance.
+std::optional<GiNaC::numeric> small_fraction(double v) {
+  if (std::fabs(v) < rational_tolerance) return GiNaC::numeric(0);
+  long p0 = 0, q0 = 1, p1 = 1, q1 = 0;
+  double x = v;
+  for (int k = 0; k < 40; ++k) {
+    const double a = std::floor(x);
+    const long p2 = static_cast<long>(a) * p1 + p0, q2 = static_cast<long>(a) * q1 + q0;
+    if (q2 > rational_denominator) break;
+    p0 = p1, q0 = q1, p1 = p2, q1 = q2;
+    if (std::fabs(v - static_cast<double>(p1) / static_cast<double>(q1)) < rational_tolerance) return GiNaC::numeric(p1, q1);
+    if (x - a < 1e-300) break;
+    x = 1 / (x - a);
+  }
+  return std::nullopt;
+}
+
+/// The certificate of find_clash() with polynomial multipliers, as a linear
+/// programme: unknowns λ >= 0 on the products μ·Nᵢ (μ = 1 or one positive
+/// symbol) and μ·(K_p + K_q ± 2c) (the 2×2 minor forms of the couplings c);
+/// −Σ λ·products must have a zero coefficient on every monomial with an odd
+/// power of a coupling and a nonnegative one elsewhere, and the strict
+/// conditions' λ sum to 1.  The double solution is rounded to small fractions
+/// and the identity checked exactly (certainly_nonnegative); nullopt otherwise.
+std::optional<Clash> lp_clash(const std::vector<Usable>& usable, bool asymptotic, bool with_superball, const Symbols& sy) {
+  std::vector<GiNaC::ex> mus{GiNaC::ex(1)};
+  for (const SymbolInfo& i : sy.all())
+    if (i.kind != SymbolKind::Coupling && i.kind != SymbolKind::FallSpeed) mus.push_back(i.symbol);
+  struct Product {
+    GiNaC::ex value, mu;
+    int condition;  ///< index in usable, or −1 for a minor form
+    bool strict;
+    std::string bracket;  ///< minor form: "K₁₂ + K₁₃ + 2α₁"
+    GiNaC::ex form;
+  };
+  std::vector<Product> products;
+  bool any_strict = false, has_superball = false;
+  for (std::size_t i = 0; i < usable.size(); ++i) {
+    const bool superball = usable[i].condition->kind == ConditionKind::Superball;
+    if (superball && !with_superball) continue;
+    has_superball = has_superball || superball;
+    const bool strict = usable[i].condition->relation == Relation::Greater;
+    any_strict = any_strict || strict;
+    for (const GiNaC::ex& mu : mus) products.push_back({GiNaC::expand(mu * usable[i].form->numerator), mu, static_cast<int>(i), strict, "", 0});
+  }
+  if (!any_strict || (with_superball && !has_superball)) return std::nullopt;
+  for (const PairCoupling& c : sy.pattern().couplings) {
+    if (!sy.pattern().has_diagonal(c.first) || !sy.pattern().has_diagonal(c.second)) continue;
+    for (int sign : {1, -1}) {
+      const GiNaC::ex form = sy.diagonal(c.first) + sy.diagonal(c.second) + 2 * sign * sy.coupling(c.first, c.second);
+      for (const GiNaC::ex& mu : mus)
+        products.push_back({GiNaC::expand(mu * form), mu, -1, false, format_polynomial(GiNaC::expand(form), sy, Style::Text), form});
+    }
+  }
+  // Rows: one per monomial; a product enters with its coefficient.
+  std::map<std::vector<std::pair<int, int>>, std::vector<double>> rows;
+  for (std::size_t j = 0; j < products.size(); ++j)
+    for (const Monomial& m : sy.monomials(products[j].value)) {
+      auto& row = rows[m.powers];
+      row.resize(products.size(), 0.0);
+      row[j] += m.coefficient.to_double();
+    }
+  std::vector<std::vector<double>> eq, le;
+  std::vector<double> b;
+  for (auto& [powers, row] : rows) {
+    row.resize(products.size(), 0.0);
+    bool odd = false;
+    for (const auto& [k, e] : powers) odd = odd || (sy.all()[static_cast<std::size_t>(k)].kind == SymbolKind::Coupling && e % 2);
+    if (odd) {
+      eq.push_back(row);
+      b.push_back(0);
+    } else {
+      le.push_back(row);  // Σ λ·coefficient <= 0: the negation's coefficient is >= 0
+    }
+  }
+  std::vector<double> normal(products.size(), 0.0);
+  // Normalisation: the strict conditions' λ sum to 1 (a nonzero multiplier is a sum of positive terms, so > 0).
+  for (std::size_t j = 0; j < products.size(); ++j) normal[j] = products[j].strict ? 1 : 0;
+  eq.push_back(normal);
+  b.push_back(1);
+  const auto x = feasible_point(eq, b, le, products.size());
+  if (!x) return std::nullopt;
+  // Exact check with the rounded multipliers, scaled to integers.
+  std::vector<GiNaC::numeric> lambdas;
+  GiNaC::numeric common = 1;
+  for (std::size_t j = 0; j < products.size(); ++j) {
+    const auto lambda = small_fraction((*x)[j]);
+    if (!lambda || *lambda < 0) return std::nullopt;
+    lambdas.push_back(*lambda);
+    common = GiNaC::lcm(common, lambda->denom());
+  }
+  std::vector<GiNaC::ex> multipliers(usable.size(), GiNaC::ex(0));
+  std::map<std::string, std::pair<GiNaC::ex, GiNaC::ex>> forms;  // bracket text → (its multiplier, the bracket)
+  GiNaC::ex sum = 0, q = 0;
+  for (std::size_t j = 0; j < products.size(); ++j) {
+    const GiNaC::numeric lambda_j = lambdas[j] * common;
+    const GiNaC::numeric* lambda = &lambda_j;
+    if (lambda->is_zero()) continue;
+    const Product& p = products[j];
+    if (p.condition >= 0) {
+      multipliers[static_cast<std::size_t>(p.condition)] += *lambda * p.mu;
+      sum += *lambda * p.value;
+    } else {
+      auto& slot = forms[p.bracket];
+      slot.first += *lambda * p.mu;
+      slot.second = p.form;
+      q += *lambda * p.value;
+    }
+  }
+  bool strict = false;
+  for (std::size_t i = 0; i < usable.size(); ++i) {
+    multipliers[i] = GiNaC::expand(multipliers[i]);
+    strict = strict || (usable[i].condition->relation == Relation::Greater && certainly_positive(multipliers[i], sy));
+  }
+  // A strict condition with a multiplier > 0 (nonzero sum of 1 and positive symbols) makes the sum > 0.
+  if (!strict) return std::nullopt;
+  const GiNaC::ex rest = GiNaC::expand(-sum - q);
+  if (!certainly_nonnegative(rest, sy)) return std::nullopt;
+  std::string q_text;
+  for (const auto& [bracket, f] : forms)
+    q_text += (q_text.empty() ? "" : " + ") + std::string("(") + format_polynomial(GiNaC::expand(f.first), sy, Style::Text) + ")·(" + bracket + ")";
+  return make_clash(usable, multipliers, q_text, rest, asymptotic, sy);
+}
+
+/// Search weights w ∈ {0, 1, 2} on the case's conditions and a form Q >= 0
+/// on M ⪰ 0 — t·xᵀMx (t ∈ {0, 1, 2}, x ∈ {−1, 0, 1} on the coupled pairs up
+/// to sign) or minor_multiples() — with −Σ wᵢNᵢ − Q certainly nonnegative
+/// and some strict condition weighted; then lp_clash() (polynomial
+/// multipliers).  Without the superball condition first: a clash there
+/// proves the case never actual.
 std::optional<Clash> find_clash(const Derivation& d, const Symbols& sy, bool asymptotic) {
   std::vector<Usable> usable;
   for (const Condition& c : d.conditions) {
@@ -366,40 +579,29 @@ std::optional<Clash> find_clash(const Derivation& d, const Symbols& sy, bool asy
     return std::make_tuple(superball, used, total);
   };
   std::stable_sort(weights.begin(), weights.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
-  for (const std::vector<int>& wt : weights) {
-    bool strict = false;
-    GiNaC::ex sum = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      if (wt[i]) {
-        sum += wt[i] * usable[i].form->numerator;
-        strict = strict || usable[i].condition->relation == Relation::Greater;
+  // Without the superball condition first: a clash there proves the case never actual.
+  for (const bool with_superball : {false, true}) {
+    for (const std::vector<int>& wt : weights) {
+      if (std::get<0>(key(wt)) != with_superball) continue;
+      bool strict = false;
+      GiNaC::ex sum = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (wt[i]) {
+          sum += wt[i] * usable[i].form->numerator;
+          strict = strict || usable[i].condition->relation == Relation::Greater;
+        }
+      if (!strict) continue;
+      sum = GiNaC::expand(sum);
+      std::vector<Form> candidates = forms;
+      if (const auto m = minor_multiples(-sum, sy)) candidates.push_back({m->first, m->second});
+      for (const Form& q : candidates) {
+        const GiNaC::ex rest = GiNaC::expand(-sum - q.value);
+        if (!certainly_nonnegative(rest, sy)) continue;
+        std::vector<GiNaC::ex> multipliers(wt.begin(), wt.end());
+        return make_clash(usable, multipliers, q.text, rest, asymptotic, sy);
       }
-    if (!strict) continue;
-    sum = GiNaC::expand(sum);
-    std::vector<Form> candidates = forms;
-    if (const auto m = minor_multiples(-sum, sy)) candidates.push_back({m->first, m->second});
-    for (const Form& q : candidates) {
-      const GiNaC::ex rest = GiNaC::expand(-sum - q.value);
-      if (!certainly_nonnegative(rest, sy)) continue;
-      Clash clash;
-      clash.asymptotic = asymptotic;
-      std::string names;
-      for (std::size_t i = 0; i < n; ++i) {
-        if (!wt[i]) continue;
-        const Condition& c = *usable[i].condition;
-        clash.superball = clash.superball || c.kind == ConditionKind::Superball;
-        const std::string name = "N" + std::to_string(clash.conditions.size() + 1);
-        clash.conditions.push_back(name + " (weight " + std::to_string(wt[i]) + "), " + condition_title(c, Style::Text) + ": " +
-                                   format_condition(*usable[i].form, c.relation, sy, Style::Text));
-        names += (names.empty() ? "" : " + ") + (wt[i] > 1 ? std::to_string(wt[i]) + "·" : "") + name;
-      }
-      clash.identity = "with each Nᵢ the condition's polynomial (Nᵢ > 0 or >= 0 as stated): −(" + names + ") = " +
-                       (q.text.empty() ? "" : "Q + ") + "(" + format_polynomial(rest, sy, Style::Text) + ")" +
-                       (q.text.empty() ? "" : ", Q = " + q.text) + "; every term of the bracket is >= 0" +
-                       (q.text.empty() ? "" : " and Q >= 0 when M is positive semi-definite") + ", so " + names +
-                       " <= 0, while the conditions make it > 0";
-      return clash;
     }
+    if (auto clash = lp_clash(usable, asymptotic, with_superball, sy)) return clash;
   }
   return std::nullopt;
 }

@@ -35,6 +35,11 @@
 /// a polynomial of certain sign chosen to cancel the terms linear in c
 /// (a 2×2 minor's quadratic form times a multiplier) — then Σ wᵢNᵢ <= 0: the
 /// weighted conditions cannot hold together when one of them is strict.
+/// When no such weights exist, the weights become polynomial multipliers
+/// (nonnegative combinations of 1 and single masses and K's) on the
+/// conditions and on the 2×2 minor forms, found by a linear programme (the
+/// coefficients of −Σ must be >= 0, and 0 on odd powers of couplings),
+/// rounded to fractions and checked exactly.
 /// Without the superball condition that proves the case never actual.  The
 /// same search on the leading-order (asymptotic) forms says whether the
 /// paper's asymptotic conditions clash too.
