@@ -460,7 +460,8 @@ std::optional<Clash> lp_clash(const std::vector<Usable>& usable, bool asymptotic
   // Rows: one per monomial; a product enters with its coefficient.
   std::map<std::vector<std::pair<int, int>>, std::vector<double>> rows;
   for (std::size_t j = 0; j < products.size(); ++j)
-    for (const Monomial& m : sy.monomials(products[j].value)) {
+    for (Monomial& m : sy.monomials(products[j].value)) {
+      std::sort(m.powers.begin(), m.powers.end());  // GiNaC's order of the factors varies between runs
       auto& row = rows[m.powers];
       row.resize(products.size(), 0.0);
       row[j] += m.coefficient.to_double();
@@ -763,8 +764,11 @@ PatternTable explore_all_patterns(const ExploreOptions& options) {
 
 std::string cell_text(const ExploreResult& r) {
   if (r.reach == Reach::Yes) return "yes U₁⁺/a = " + detail::decimal(cln::double_approx(r.ratio), 4);
-  if (r.reach == Reach::NotFound && !r.witness.empty()) return "not found (best U₁⁺/a = " + detail::decimal(cln::double_approx(r.ratio), 6) + ")";
-  return to_string(r.reach);
+  if (r.reach != Reach::NotFound) return to_string(r.reach);
+  std::string notes;
+  if (!r.witness.empty()) notes = "best U₁⁺/a = " + detail::decimal(cln::double_approx(r.ratio), 6);
+  if (r.asymptotic_clash) notes += std::string(notes.empty() ? "" : "; ") + "leading order clashes";
+  return notes.empty() ? "not found" : "not found (" + notes + ")";
 }
 
 std::string to_text(const ExploreResult& r) {

@@ -61,8 +61,8 @@ namespace superball::verify {
 /// How explore_case() searches.
 struct ExploreOptions {
   std::uint64_t seed = 1;  ///< of the starting points (the search is deterministic given it)
-  int starts = 12;         ///< local searches: half from the paper's regime, half uniform in the box
-  int evaluations = 400;   ///< objective evaluations per local search (Nelder–Mead)
+  int starts = 24;         ///< local searches: half from the paper's regime, half uniform in the box
+  int evaluations = 1000;  ///< objective evaluations per local search (Nelder–Mead)
   double box_low = 1e-3;   ///< every mass and K in [box_low, box_high]
   double box_high = 1e3;
 };
@@ -142,7 +142,8 @@ std::vector<std::vector<int>> table_patterns();
 PatternTable explore_all_patterns(const ExploreOptions& options = {});
 
 /// The cell text: "yes U₁⁺/a = 12.3", "no (proved)", "case impossible", "not found"
-/// (with the best U₁⁺/a at a point where the case is actual, when there is one).
+/// (with the best U₁⁺/a at a point where the case is actual, when there is
+/// one, and whether the leading-order conditions clash).
 std::string cell_text(const ExploreResult& r);
 
 /// One result for people: verdict, witness, exact U₁⁺/a, statistics, clashes.
