@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -410,6 +409,7 @@ std::optional<GiNaC::numeric> small_fraction(double v) {
   double x = v;
   for (int k = 0; k < 40; ++k) {
     const double a = std::floor(x);
+    if (std::fabs(a) > static_cast<double>(rational_denominator) * 1e6) break;  // also keeps the casts in range
     const long p2 = static_cast<long>(a) * p1 + p0, q2 = static_cast<long>(a) * q1 + q0;
     if (q2 > rational_denominator) break;
     p0 = p1, q0 = q1, p1 = p2, q1 = q2;

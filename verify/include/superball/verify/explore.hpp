@@ -83,8 +83,8 @@ const char* to_string(Reach r);
 struct Clash {
   bool asymptotic = false;              ///< the leading-order forms (else the exact ones)
   bool superball = false;               ///< the superball condition is among them
-  std::vector<std::string> conditions;  ///< "1 × superball (U₁⁺ > a): −α₆ > …", one per weighted condition
-  std::string identity;                 ///< "−(Σ wᵢNᵢ) = t·xᵀMx + (…), x = …" and why that is <= 0
+  std::vector<std::string> conditions;  ///< "N1 (weight 1), superball (U₁⁺ > a): −2α₁ > …", one per weighted condition
+  std::string identity;                 ///< "−(N1 + …) = Q + (…), Q = …" and why that is <= 0
 };
 
 /// The search's effort and what it met.
