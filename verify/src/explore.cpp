@@ -639,7 +639,7 @@ std::string impossibility_certificate(const GiNaC::ex& s_poly, const symbolic::S
 
 std::string describe_box(const ExploreOptions& o) {
   return "every mass and K in [" + detail::decimal(o.box_low) + ", " + detail::decimal(o.box_high) +
-         "] (log scale), each coupling t·√(K_p K_q) with t in [-1, 1], a = 1, m4 = inf";
+         "] (log scale), each coupling t·√(K_p K_q) with t in [-1, 1], a = 1, bottom body fixed";
 }
 
 const char* to_string(Reach r) {
