@@ -148,6 +148,37 @@ TEST(Explore, exam_Alpha7Case2_1NeedsPolynomialMultipliers) {
   EXPECT_NE(r.clash->identity.find(")·N"), std::string::npos) << r.clash->identity;
 }
 
+/// The table's shape (rows: α₁..α₇ and {α₁, α₆}; columns: the paper's 8
+/// cases) and its cells: a proof wherever it says so, a witness wherever it
+/// says yes, whatever the (here tiny) budget.
+TEST(Explore, exam_TableOfAllPatterns) {
+  ExploreOptions o;
+  o.starts = 2;
+  o.evaluations = 60;
+  const PatternTable t = explore_all_patterns(o);
+  ASSERT_EQ(t.patterns.size(), 8u);
+  EXPECT_EQ(t.patterns.back(), (std::vector<int>{1, 6}));
+  ASSERT_EQ(t.cases.size(), 8u);
+  ASSERT_EQ(t.cells.size(), 8u);
+  for (const auto& row : t.cells) {
+    ASSERT_EQ(row.size(), 8u);
+    for (const ExploreResult& c : row) {
+      if (c.reach == Reach::Impossible || c.reach == Reach::CaseImpossible) {
+        EXPECT_TRUE(c.clash);
+      }
+      if (c.reach == Reach::Yes) {
+        EXPECT_GT(c.ratio, 1);
+        EXPECT_TRUE(c.scene);
+      }
+    }
+  }
+  // Case 0 (nothing bounces) never gives the superball: U1+ = 0.
+  for (const auto& row : t.cells) EXPECT_EQ(row.back().reach, Reach::Impossible) << row.back().pattern;
+  const std::string text = to_text(t);
+  EXPECT_NE(text.find("| α₁, α₆ |"), std::string::npos) << text;
+  EXPECT_EQ(to_json(t)["rows"].size(), 8u);
+}
+
 TEST(Explore, exam_SameSeedSameResult) {
   const Deriver d(Pattern::paper({5}), Obstacle::Infinite);
   const ExploreResult a = explore_case(d, named("3.2"), quick()), b = explore_case(d, named("3.2"), quick());
