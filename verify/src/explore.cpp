@@ -19,7 +19,7 @@
 
 namespace superball::verify {
 namespace detail {
-namespace {  // internal linkage: the audit has helpers of the same names
+namespace {  // internal linkage: audit.cpp has functions of the same names
 
 using cln::cl_RA;
 using namespace superball::symbolic;
