@@ -24,6 +24,7 @@ void add_reproduce(CLI::App& app, Action& action);
 void add_derive(CLI::App& app, Action& action);
 void add_audit(CLI::App& app, Action& action);
 void add_verify(CLI::App& app, Action& action);
+void add_explore(CLI::App& app, Action& action);
 
 /// Write \p text to \p path through a temporary file in the same folder and
 /// a rename, so an interrupted run never leaves a half-written file.

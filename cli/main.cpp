@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
       "  superball sweep SCENE --vary K.3-4=0:20:401 --switch-points   where the evolution case changes\n"
       "  superball derive --case 1 --alphas 2                          conditions of a case, symbolically\n"
       "  superball audit                                               the paper's printed conditions, checked\n"
-      "  superball verify --case 1 --alphas 2                          a case's conditions against exact solutions\n",
+      "  superball verify --case 1 --alphas 2                          a case's conditions against exact solutions\n"
+      "  superball explore --alphas 3 --case 1                         is the superball reachable? witness or proof\n",
       "superball"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "superball 0.1.0");
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   add_derive(app, action);
   add_audit(app, action);
   add_verify(app, action);
+  add_explore(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

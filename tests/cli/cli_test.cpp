@@ -388,6 +388,61 @@ TEST(Verify, BadOptionsGiveOneLineAndExitTwo) {
   }
 }
 
+// ---------------------------------------------------------------------------
+// explore
+
+/// A witness of `superball explore` solves, in `superball solve --precision
+/// exact`, to the case and the U1+ the explore report gives.
+TEST(Explore, WitnessFileSolvesToTheReportedCase) {
+  const std::string dir = ::testing::TempDir() + "superball-explore-" + std::to_string(::getpid());
+  const RunResult r = run({"explore", "--alphas", "3", "--case", "1", "--starts", "4", "--json", "--out", dir});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const nlohmann::json j = json_of(r);
+  EXPECT_EQ(j.at("reach"), "yes");
+  EXPECT_GT(rational(j.at("ratio").get<std::string>()), 1.0);
+  const std::string file = dir + "/explore_alpha3_case1.toml";
+  EXPECT_NE(slurp(file).find("# Found by `superball explore --alphas 3 --case 1"), std::string::npos);
+  const RunResult s = run({"solve", file, "--json", "--precision", "exact"});
+  ASSERT_EQ(s.exit_code, 0) << describe(s);
+  const nlohmann::json x = json_of(s);
+  EXPECT_EQ(x.at("case"), "1");
+  EXPECT_EQ(x.at("superball"), true);
+  EXPECT_EQ(x.at("velocities_after_exact")[0], j.at("U1"));
+  std::remove(file.c_str());
+  std::remove(dir.c_str());
+}
+
+TEST(Explore, ImpossibleCaseShowsTheClash) {
+  const RunResult r = run({"explore", "--alphas", "1,6", "--case", "1", "--starts", "4"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_NE(r.out.find("verdict: no (proved)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("clash of the exact conditions"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("superball (U₁⁺ > a)"), std::string::npos) << r.out;
+}
+
+TEST(Explore, SameSeedSameOutput) {
+  const std::vector<std::string> args = {"explore", "--alphas", "7", "--case", "3.2", "--starts", "4", "--seed", "5"};
+  const RunResult a = run(args), b = run(args);
+  ASSERT_EQ(a.exit_code, 0) << describe(a);
+  EXPECT_EQ(a.out, b.out);
+}
+
+/// Bad options: exit 2, one line on stderr naming the option, nothing on stdout.
+TEST(Explore, BadOptionsAreOneLine) {
+  const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
+      {{"explore", "--alphas", "3"}, {"--case", "--all-patterns"}},
+      {{"explore", "--all-patterns", "--case", "1"}, {"--all-patterns", "drop"}},
+      {{"explore", "--alphas", "3", "--case", "1", "--box", "5:1"}, {"--box", "LOW < HIGH"}},
+      {{"explore", "--alphas", "3", "--case", "1", "--box", "wide"}, {"--box", "LOW:HIGH"}},
+      {{"explore", "--alphas", "3", "--case", "1", "--starts", "0"}, {"--starts"}},
+      {{"explore", "--alphas", "3", "--case", "1", "--obstacle", "finite"}, {"fixed obstacle"}},
+      {{"explore", "--alphas", "9", "--case", "1"}, {"9"}}};
+  for (const auto& [args, expected] : cases) {
+    SCOPED_TRACE(args.back());
+    expect_bad_input(run(args), expected);
+  }
+}
+
 TEST(Cli, Version) {
   const RunResult r = run({"--version"});
   EXPECT_EQ(r.exit_code, 0) << describe(r);

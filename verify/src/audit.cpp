@@ -16,6 +16,7 @@
 #include "superball/numeric/problem.hpp"
 #include "superball/symbolic/derivation.hpp"
 #include "superball/symbolic/format.hpp"
+#include "superball/verify/explore.hpp"
 
 namespace superball::verify {
 namespace detail {
@@ -212,36 +213,6 @@ GiNaC::ex renamed(const GiNaC::ex& e, const std::vector<int>& from, const std::v
   }
   GiNaC::parser reader(target.table(), true);
   return reader(text);
-}
-
-/// −S = t·xᵀMx + (terms >= 0) for some x ∈ {−1, 0, 1}^pairs, t ∈ {1, 2}: then S <= 0 wherever M ⪰ 0.
-std::string impossibility_certificate(const GiNaC::ex& s_poly, const Symbols& sy) {
-  const std::vector<Pair> pairs = sy.pattern().pairs();
-  const std::size_t k = pairs.size();
-  if (k > 10) return "";
-  std::vector<int> x(k, -1);
-  for (;;) {
-    GiNaC::ex form = 0;
-    for (std::size_t r = 0; r < k; ++r)
-      for (std::size_t c = 0; c < k; ++c)
-        if (x[r] && x[c]) form += x[r] * x[c] * sy.entry(pairs[r], pairs[c]);
-    form = GiNaC::expand(form);
-    if (!form.is_zero())
-      for (int t : {1, 2}) {
-        const GiNaC::ex rest = GiNaC::expand(-s_poly - t * form);
-        if (certainly_nonnegative(rest, sy)) {
-          std::string v;
-          for (std::size_t r = 0; r < k; ++r)
-            if (x[r]) v += (v.empty() ? "" : ", ") + std::string(x[r] > 0 ? "+" : "-") + "e(" + pairs[r].name() + ")";
-          return "the superball condition reads S > 0 with -S = " + std::to_string(t) + "·xᵀMx + (" + format_polynomial(rest, sy, Style::Text) +
-                 "), x = " + v + ": every term of the bracket is >= 0 and xᵀMx >= 0 when M is positive semi-definite, so S <= 0";
-        }
-      }
-    std::size_t i = 0;
-    while (i < k && x[i] == 1) x[i++] = -1;
-    if (i == k) return "";
-    ++x[i];
-  }
 }
 
 ClaimAudit audit_claim(const PaperClaim& pc, const AuditOptions& o, Cache& cache, std::uint64_t seed) {

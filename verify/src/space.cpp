@@ -2,6 +2,7 @@
 
 #include <cln/rational_io.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -39,6 +40,11 @@ Polynomial::Polynomial(const GiNaC::ex& p, const symbolic::Symbols& symbols) {
       t.powers = m.powers;
       terms_.push_back(std::move(t));
     }
+    // A fixed order of the terms and factors (GiNaC's order of a sum or a
+    // product is not reproducible between runs), so the double evaluation
+    // rounds the same every time.
+    for (Term& t : terms_) std::sort(t.powers.begin(), t.powers.end());
+    std::sort(terms_.begin(), terms_.end(), [](const Term& a, const Term& b) { return a.powers < b.powers; });
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("Polynomial::Polynomial(): " + without_function_prefix(e.what()));
   }

@@ -1,0 +1,146 @@
+// `superball explore`: is the superball reachable for a pattern of M in an
+// evolution case?  A witness found by a search on the derived conditions and
+// confirmed by an exact solve, or a proof that the conditions clash
+// (superball::verify::explore_case); --all-patterns gives the table of every
+// single alpha_k and {alpha_1, alpha_6} against every case of n = 4.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "commands.hpp"
+#include "selection.hpp"
+#include "superball/verify/explore.hpp"
+
+namespace superball::cli {
+namespace {
+
+/// "1e-3:1e3" into (low, high); throws std::invalid_argument naming --box.
+std::pair<double, double> parse_box(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  auto number = [&](const std::string& s) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(s, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (s.empty() || used != s.size()) throw std::invalid_argument("--box: '" + text + "' is not LOW:HIGH (e.g. --box 1e-3:1e3)");
+    return v;
+  };
+  if (colon == std::string::npos) throw std::invalid_argument("--box: '" + text + "' is not LOW:HIGH (e.g. --box 1e-3:1e3)");
+  const double low = number(text.substr(0, colon)), high = number(text.substr(colon + 1));
+  if (!(low > 0) || !(high > low) || !(high < 1e100)) throw std::invalid_argument("--box: need 0 < LOW < HIGH, got '" + text + "'");
+  return {low, high};
+}
+
+/// The file name of a witness: explore_alpha1_alpha6_case2.1.toml.
+std::string witness_name(const verify::ExploreResult& r) {
+  std::string pattern = r.pattern_ascii;
+  for (char& c : pattern)
+    if (c == ',') c = '_';
+  return "explore_" + pattern + "_case" + r.case_name + ".toml";
+}
+
+}  // namespace
+
+void add_explore(CLI::App& app, Action& action) {
+  struct Options {
+    SelectionOptions selection;
+    bool all_patterns = false, json = false;
+    std::string box = "1e-3:1e3", out, output;
+    verify::ExploreOptions explore;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("explore", "Is the superball reachable for a pattern of M in a case? A witness checked exactly, or a proof that it is not");
+  cmd->footer(
+      "What it does.  For a pattern of M (which couplings are in play) and an evolution case (paper §4), it looks\n"
+      "for parameters where the case is the actual evolution and U1+ > a.  The derived exact conditions of the\n"
+      "case (each open contact opens, each closed contact's reaction <= 0) and the minors of M (positive\n"
+      "semi-definite) define the feasible set; the search maximises U1+/a there (the derived velocity formula).\n"
+      "It is a penalty method: each condition's value is normalised by the sum of the absolute values of its\n"
+      "terms, any violation makes a point worse than every feasible one; Nelder-Mead runs from --starts points\n"
+      "(half from the paper's regime m1 ~ eps, K14 ~ 1/eps at eps = 1/100, half uniform in the box).  The best\n"
+      "points are rounded to rationals (7 significant digits) and solved exactly (rationals, the case NOT\n"
+      "imposed): the case must come out as the actual evolution; if not, the search steps inward (larger margins\n"
+      "on the conditions) and retries.  Same seed, same result.\n\n"
+      "The box.  a = 1 (the velocities after are linear in a) and the bottom body fixed (m_n = infinity); every\n"
+      "mass and K in [LOW, HIGH] of --box on a log scale; each coupling t * sqrt(K_p K_q) with t in [-1, 1], so\n"
+      "its 2x2 minor of M holds.  \"Largest U1+/a found\" is a statement about that box: in the paper's regime\n"
+      "U1+/a is unbounded (§4.1 gets a/(2 eps)), so a wider box gives a larger number.\n\n"
+      "Without a witness it tries to prove impossibility: nonnegative weights in {0, 1, 2} on the conditions'\n"
+      "polynomials N_i and Q = t * x^T M x (t in {0, 1, 2}, x in {-1, 0, 1} on the coupled pairs) such that\n"
+      "-(sum w_i N_i) - Q has only nonnegative terms (even powers of couplings): then the weighted conditions\n"
+      "cannot hold together when M is positive semi-definite.  Failing that, the weights become polynomial\n"
+      "multipliers (nonnegative combinations of 1, m_i, K_p) on the N_i and on the 2x2 minor forms\n"
+      "K_p + K_q +- 2 alpha, found by a linear programme and checked exactly.  It prints the clashing\n"
+      "inequalities and the identity, for the exact conditions and for their leading-order (asymptotic) forms.\n"
+      "Verdicts: yes (a witness), no (proved), case impossible (the case is never actual, proved), not found\n"
+      "(with the best U1+/a seen where the case is actual, and whether the leading-order conditions clash).\n"
+      "--all-patterns (64 cells) takes about 10 s with the default budget.\n\n"
+      "Examples:\n"
+      "  superball explore --alphas 3 --case 1                the §4.1 remark: alpha_3 alone, like alpha_2\n"
+      "  superball explore --alphas 1,6 --case 1              proved impossible, with the clash\n"
+      "  superball explore --alphas 4 --case 3.3 --out witnesses   writes the witness scene file\n"
+      "  superball explore --alphas 5 --all --json            every case of one pattern, for programs\n"
+      "  superball explore --all-patterns                     the table: each alpha_k and {alpha_1, alpha_6} x every case\n"
+      "  superball explore --alphas 2 --case 1 --box 1e-2:1e2 --starts 40 --seed 7\n"
+      "Check a witness: superball solve FILE --precision exact");
+  add_selection_options(cmd, o->selection, false);
+  cmd->add_flag("--all-patterns", o->all_patterns, "Every single alpha_k (k = 1..7) and {alpha_1, alpha_6} against every case of n = 4, as one table");
+  cmd->add_option("--seed", o->explore.seed, "Seed of the starting points")->capture_default_str();
+  cmd->add_option("--starts", o->explore.starts, "Local searches (Nelder-Mead) per case")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--evaluations", o->explore.evaluations, "Objective evaluations per local search")->check(CLI::Range(10, 10000000))->capture_default_str();
+  cmd->add_option("--box", o->box, "LOW:HIGH, the range of every mass and K (log scale)")->capture_default_str();
+  cmd->add_option("--out", o->out, "Write each witness scene file into this folder (created if missing)");
+  cmd->add_flag("--json", o->json, "Print JSON for programs");
+  cmd->add_option("--output,-o", o->output, "Write the report to this file instead of standard output");
+  cmd->callback([o, &action] {
+    action = [o] {
+      std::tie(o->explore.box_low, o->explore.box_high) = parse_box(o->box);
+      const SelectionOptions& sel = o->selection;
+      std::ostringstream command;
+      command << "superball explore";
+      std::vector<verify::ExploreResult> results;
+      std::string text;
+      if (o->all_patterns) {
+        if (!sel.case_name.empty() || !sel.closed.empty() || sel.all || !sel.alphas.empty() || !sel.coupling.empty() || !sel.scene.empty())
+          throw std::invalid_argument("--all-patterns chooses the patterns and cases: drop --case/--closed/--all/--alphas/--coupling/--scene");
+        const verify::PatternTable t = verify::explore_all_patterns(o->explore);
+        for (const auto& row : t.cells) results.insert(results.end(), row.begin(), row.end());
+        command << " --all-patterns";
+        text = o->json ? verify::to_json(t).dump(2) + "\n" : verify::to_text(t);
+      } else {
+        const Selection selection = resolve(sel);
+        if (selection.cases.empty()) throw std::invalid_argument("give a case (--case, --closed or --all) or --all-patterns");
+        for (const ContactSet& c : selection.cases) results.push_back(verify::explore_case(*selection.deriver, c, o->explore));
+        command << (sel.alphas.empty() ? "" : " --alphas " + sel.alphas) << (sel.coupling.empty() ? "" : " --coupling " + sel.coupling)
+                << (sel.scene.empty() ? "" : " --scene " + sel.scene) << (sel.case_name.empty() ? "" : " --case " + sel.case_name)
+                << (sel.closed.empty() ? "" : " --closed " + sel.closed) << (sel.all ? " --all" : "");
+        if (o->json) {
+          nlohmann::ordered_json j = nlohmann::ordered_json::array();
+          for (const auto& r : results) j.push_back(verify::to_json(r));
+          text = (results.size() == 1 ? j[0] : j).dump(2) + "\n";
+        } else {
+          for (const auto& r : results) text += verify::to_text(r) + "\n";
+        }
+      }
+      command << " --seed " << o->explore.seed << " --starts " << o->explore.starts << " --evaluations " << o->explore.evaluations << " --box " << o->box;
+      if (!o->out.empty()) {
+        std::error_code error;
+        std::filesystem::create_directories(o->out, error);
+        if (error) throw std::invalid_argument("--out: cannot create folder '" + o->out + "': " + error.message());
+        for (const auto& r : results)
+          if (r.scene) write_file_atomically((std::filesystem::path(o->out) / witness_name(r)).string(), verify::witness_file(r, command.str()));
+      }
+      if (o->output.empty())
+        std::cout << text;
+      else
+        write_file_atomically(o->output, text);
+      return ok;
+    };
+  });
+}
+
+}  // namespace superball::cli
