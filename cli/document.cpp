@@ -30,7 +30,7 @@ const char* math_symbol(const std::string& s) {
   static const std::pair<const char*, const char*> table[] = {
       {"->", "\\to"}, {"<=", "\\le"}, {">=", "\\ge"}, {"<", "<"}, {">", ">"}, {"≤", "\\le"}, {"≥", "\\ge"}, {"−", "-"},
       {"·", "\\cdot"}, {"→", "\\to"}, {"∞", "\\infty"}, {"⪰", "\\succeq"}, {"∈", "\\in"}, {"≠", "\\ne"}, {"α", "\\alpha"},
-      {"ε", "\\varepsilon"}, {"λ", "\\lambda"}};
+      {"ε", "\\varepsilon"}, {"λ", "\\lambda"}, {"√", "\\surd"}};
   for (const auto& [from, to] : table)
     if (s == from) return to;
   return nullptr;

@@ -62,7 +62,7 @@ TEST(Reproduce, QuickReportIsCompleteAndCompiles) {
   const TempFolder tmp;
   ASSERT_FALSE(tmp.path().empty());
   const std::string out = tmp.path() + "/report";
-  const RunResult r = run({"reproduce", "--out", out, "--samples", kSamples});
+  const RunResult r = run({"reproduce", "--out", out, "--samples", kSamples, "--verify-samples", "100", "--explore-starts", "2"});
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_TRUE(r.err.empty()) << r.err;
 
@@ -79,8 +79,22 @@ TEST(Reproduce, QuickReportIsCompleteAndCompiles) {
        {"\n## Eq. (16): velocities after the collision", "\n## Fig. 5: U1+ against alpha_2 and against alpha_5",
         "\n## Fig. 7: where the evolution case changes along K34", "\n## The epsilon family of §4.1",
         "\n## The printed conditions of §4.1–§4.3 against the derivation", "\n### §4.1, case 1, coupling α₂",
-        "\n### §4.2, case 2.1, coupling α₁, α₆", "\n### §4.3, case 3.2, coupling α₅", "\n### The claims in words"})
+        "\n### §4.2, case 2.1, coupling α₁, α₆", "\n### §4.3, case 3.2, coupling α₅", "\n### The claims in words",
+        "\n## The derived conditions against exact solutions, and the alpha-patterns", "\n### Case 1, coupling alpha_2",
+        "\n### Case 2.1, coupling alpha_1, alpha_6", "\n### Case 3.2, coupling alpha_5", "\n### Case 3.3, coupling alpha_4",
+        "\n### Which coupling gives the superball in which case"})
     EXPECT_NE(md.find(heading), std::string::npos) << heading;
+
+  // The verification runs: the exact conditions of each of the paper's four cases agree with the exact
+  // solution at every point; the pattern table has a row per pattern of `superball explore --all-patterns`.
+  std::size_t agree = 0;
+  for (std::size_t at = md.find("The exact conditions agree with the exact solution at every point"); at != std::string::npos;
+       at = md.find("The exact conditions agree with the exact solution at every point", at + 1))
+    ++agree;
+  EXPECT_EQ(agree, 4u);
+  EXPECT_EQ(md.find("DISAGREE"), std::string::npos);
+  for (const char* row : {"\n| α₁ |", "\n| α₂ |", "\n| α₃ |", "\n| α₄ |", "\n| α₅ |", "\n| α₆ |", "\n| α₇ |", "\n| α₁, α₆ |"})
+    EXPECT_NE(md.find(row), std::string::npos) << row;
 
   // Every figure referenced exists, in both reports.
   int figures = 0;

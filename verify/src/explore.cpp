@@ -763,7 +763,13 @@ PatternTable explore_all_patterns(const ExploreOptions& options) {
 }
 
 std::string cell_text(const ExploreResult& r) {
-  if (r.reach == Reach::Yes) return "yes U₁⁺/a = " + detail::decimal(cln::double_approx(r.ratio), 4);
+  if (r.reach == Reach::Yes) {
+    // Four significant digits, more when fewer would round the ratio (> 1) to 1.
+    const double ratio = cln::double_approx(r.ratio);
+    int digits = 4;
+    while (digits < 17 && std::stod(detail::decimal(ratio, digits)) <= 1) ++digits;
+    return "yes U₁⁺/a = " + detail::decimal(ratio, digits);
+  }
   if (r.reach != Reach::NotFound) return to_string(r.reach);
   std::string notes;
   if (!r.witness.empty()) notes = "best U₁⁺/a = " + detail::decimal(cln::double_approx(r.ratio), 6);
