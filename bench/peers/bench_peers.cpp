@@ -8,6 +8,8 @@
 //    open and q; when a pivot is needed the LDLᵀ of A, N and Murty pivoting;
 //    the velocities by clusters of the case and the independent residual check).
 //  - ours/exact:   the same in CLN exact rationals; it is the reference.
+//  - ours/double-chain: ChainSolver<double>::compute, the banded formulation
+//    (clusters of a guessed case, block principal pivoting; no N).
 //  - siconos/...:  one call of the Siconos solver on (N, q) ONLY.  N and q are
 //    built once, outside the timed loop, in double by our solver itself
 //    (CollisionSolver::lcp, the operations compute() uses); leaving that
@@ -50,6 +52,7 @@
 
 #include "superball/cases/parameter.hpp"
 #include "superball/cases/scene_file.hpp"
+#include "superball/numeric/chain.hpp"
 #include "superball/numeric/collision.hpp"
 
 // Siconos numerics, C API.
@@ -252,6 +255,25 @@ void set_accuracy(benchmark::State& state, double rel_err, double ok, bool conve
 }
 
 // ---------------------------------------------------------------- our solve
+
+/// Our double solve by the banded formulation (ChainSolver, chain.hpp): the
+/// cluster system of a guessed case, block principal pivoting, no N at all.
+/// numeric::solve() picks it for long banded chains (n > 64); here it runs
+/// on every instance.
+void bm_ours_chain(benchmark::State& state, const Instance* in) {
+  numeric::ChainSolver<double> solver(numeric::Settings<double>::defaults());
+  numeric::Solution<double> out;
+  solver.compute(in->pd, out);
+  for (auto _ : state) {
+    solver.compute(in->pd, out);
+    benchmark::DoNotOptimize(out.velocities_after.data());
+    benchmark::ClobberMemory();
+  }
+  std::vector<double> lambda;
+  for (const auto& r : out.reactions) lambda.push_back(-r);
+  set_accuracy(state, relative_error(*in, out.velocities_after), case_ok(*in, lambda, out.velocities_after),
+               out.status == numeric::Status::Success, out.pivots);
+}
 
 template <class S>
 void bm_ours(benchmark::State& state, const Instance* in) {
@@ -557,6 +579,7 @@ int main(int argc, char** argv) {
     const std::string prefix = "peers/" + in.name + "/";
     benchmark::RegisterBenchmark((prefix + "ours/double").c_str(), bm_ours<double>, &in)->Unit(benchmark::kNanosecond);
     benchmark::RegisterBenchmark((prefix + "ours/exact").c_str(), bm_ours<cl_RA>, &in)->Unit(benchmark::kNanosecond);
+    benchmark::RegisterBenchmark((prefix + "ours/double-chain").c_str(), bm_ours_chain, &in)->Unit(benchmark::kNanosecond);
     benchmark::RegisterBenchmark((prefix + "ours/double-no-pivots").c_str(), bm_ours_no_pivots, &in)->Unit(benchmark::kNanosecond);
     benchmark::RegisterBenchmark((prefix + "ours/lcp-build").c_str(), bm_ours_lcp_build, &in)->Unit(benchmark::kNanosecond);
     for (const SiconosSolver& s : solvers)
