@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/parallel.hpp"
 #include "superball/numeric/sweep.hpp"
 
 namespace superball::cli {
@@ -62,6 +63,7 @@ void add_sweep(CLI::App& app, Action& action) {
   struct Options {
     std::string scene, vary, precision = "double";
     bool csv = false, switches = false;
+    int threads = numeric::thread_count(0);
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("sweep", "Velocities after the collision along one parameter, and where the case changes");
@@ -69,7 +71,8 @@ void add_sweep(CLI::App& app, Action& action) {
       "KEY names a parameter: K.i-j, alpha.k (n = 4), coupling.i-j/k-l, mass.i, velocity.i, drop_height,\n"
       "fall_speed, g.  FROM and TO are numbers or fractions (exact); STEPS counts the values, ends included.\n"
       "--switch-points bisects on the exact solution (CLN rationals) between sweep values whose evolution\n"
-      "case differs, to 64 bits below the step.\n\n"
+      "case differs, to 64 bits below the step.  The values are solved on --threads threads (default: all\n"
+      "cores); the output does not depend on the number of threads.\n\n"
       "Examples:\n"
       "  superball sweep cases/scenes/paper-4.4-alpha2.toml --vary K.3-4=0:20:401 --csv\n"
       "  superball sweep cases/scenes/paper-4.4-alpha2.toml --vary K.3-4=0:20:41 --switch-points");
@@ -78,17 +81,20 @@ void add_sweep(CLI::App& app, Action& action) {
   cmd->add_option("--precision,-p", o->precision, "Arithmetic of the sweep values (see solve)")->capture_default_str();
   cmd->add_flag("--csv", o->csv, "Print CSV: the parameter, U1..Un, the case");
   cmd->add_flag("--switch-points", o->switches, "Print only the parameter values where the evolution case changes");
+  cmd->add_option("--threads,-j", o->threads, "Worker threads (default: all cores)")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
   cmd->callback([o, &action] {
     action = [o] {
       const Scene scene = load_scene(o->scene);
       const Range r = parse_vary(o->vary, scene);
       const auto precision = numeric::Precision::parse(o->precision);
-      const auto points = numeric::sweep(scene, r.parameter, numeric::linspace(r.from, r.to, r.steps), precision);
+      const auto points = numeric::sweep(scene, r.parameter, numeric::linspace(r.from, r.to, r.steps), precision, o->threads);
       const Vocabulary& v = Vocabulary::paper();
       std::ostringstream os;
       int failures = 0;
       if (o->switches) {
-        const auto switches = numeric::switch_points(scene, r.parameter, points);
+        const auto switches = numeric::switch_points(scene, r.parameter, points, 64, o->threads);
         if (switches.empty()) os << "no change of evolution case for " << r.parameter.key() << " in the range\n";
         for (const auto& s : switches)
           os << r.parameter.key() << " = " << decimal((s.low + s.high) / 2) << "  (bracket width "

@@ -4,13 +4,16 @@
 //
 // What is timed (median of the repetitions, per solve):
 //  - ours/double:  CollisionSolver<double>::compute on the Problem: the FULL
-//    solve (assembly of K = DᵀMD and A, LDLᵀ of A, N and q, Murty pivoting,
-//    the velocities and the independent residual check).
+//    solve (assembly of A = diag(m) + DᵀMD and b̃, the case with every contact
+//    open and q; when a pivot is needed the LDLᵀ of A, N and Murty pivoting;
+//    the velocities by clusters of the case and the independent residual check).
 //  - ours/exact:   the same in CLN exact rationals; it is the reference.
+//  - ours/double-chain: ChainSolver<double>::compute, the banded formulation
+//    (clusters of a guessed case, block principal pivoting; no N).
 //  - siconos/...:  one call of the Siconos solver on (N, q) ONLY.  N and q are
-//    built once, outside the timed loop, in double by the same operations as
-//    our solver (q is checked to be bit for bit ours); leaving that build out
-//    favours Siconos.  z is reset to 0 before each call (a cold start, as for
+//    built once, outside the timed loop, in double by our solver itself
+//    (CollisionSolver::lcp, the operations compute() uses); leaving that
+//    build out favours Siconos.  z is reset to 0 before each call (a cold start, as for
 //    a new instance); the solver options are created once, outside the loop.
 //
 // Accuracy (benchmark counters, so they are in the same run's output):
@@ -49,6 +52,7 @@
 
 #include "superball/cases/parameter.hpp"
 #include "superball/cases/scene_file.hpp"
+#include "superball/numeric/chain.hpp"
 #include "superball/numeric/collision.hpp"
 
 // Siconos numerics, C API.
@@ -133,10 +137,9 @@ Scene chain_scene(int n, std::uint64_t seed) {
 
 // ------------------------------------------------- the LCP (N, q) in double
 
-/// The LCP our solver builds, w = q + Nλ, in double, by the same operations
-/// in the same order as CollisionSolver<double> (assemble, LDLᵀ without
-/// pivoting, G = A⁻¹C_Fᵀ, W0 = A⁻¹b, N = CG, q = CW0 − fixed velocity), and
-/// the map back from λ to the velocities, W = W0 + Gλ.
+/// The LCP our solver builds, w = q + Nλ, in double: CollisionSolver's own
+/// lcp() (the same operations compute() uses), N in Siconos' column-major
+/// dense storage, and the map back from λ to the velocities, W = W0 + Gλ.
 struct Lcp {
   int n = 0, nf = 0, nc = 0;
   bool fixed_bottom = false;
@@ -153,59 +156,12 @@ struct Lcp {
     l.nf = p.fixed_bottom ? p.n - 1 : p.n;
     l.nc = p.n - 1;
     l.u_fixed = p.u[static_cast<std::size_t>(p.n - 1)];
-    const int n = l.n, nf = l.nf, nc = l.nc;
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
-    for (const auto& e : p.entries) {
-      K(e.i, e.k) += e.value;
-      K(e.i, e.l) -= e.value;
-      K(e.j, e.k) -= e.value;
-      K(e.j, e.l) += e.value;
-      if (!e.diagonal()) {
-        K(e.k, e.i) += e.value;
-        K(e.l, e.i) -= e.value;
-        K(e.k, e.j) -= e.value;
-        K(e.l, e.j) += e.value;
-      }
-    }
-    Eigen::VectorXd rhs(nf);
-    for (int i = 0; i < nf; ++i) {
-      double r = p.mass[i] * p.u[i];
-      for (int j = 0; j < n; ++j) r -= K(i, j) * p.u[j];
-      if (p.fixed_bottom) r -= K(i, n - 1) * p.u[n - 1];
-      rhs(i) = r;
-    }
-    Eigen::MatrixXd A = K.topLeftCorner(nf, nf);
-    for (int i = 0; i < nf; ++i) A(i, i) += p.mass[i];
-    for (int k = 0; k < nf; ++k) {
-      const double d = A(k, k);
-      for (int j = k + 1; j < nf; ++j) {
-        const double ljk = A(j, k) / d;
-        for (int i = j; i < nf; ++i) A(i, j) -= A(i, k) * ljk;
-      }
-      for (int i = k + 1; i < nf; ++i) A(i, k) /= d;
-    }
-    auto solve_in_place = [&](auto&& x) {
-      for (int i = 1; i < nf; ++i)
-        for (int k = 0; k < i; ++k) x(i) -= A(i, k) * x(k);
-      for (int i = 0; i < nf; ++i) x(i) /= A(i, i);
-      for (int i = nf - 2; i >= 0; --i)
-        for (int k = i + 1; k < nf; ++k) x(i) -= A(k, i) * x(k);
-    };
-    l.W0 = rhs;
-    solve_in_place(l.W0);
-    l.G = Eigen::MatrixXd::Zero(nf, nc);
-    for (int c = 0; c < nc; ++c) {
-      l.G(c, c) = 1;
-      if (c + 1 < nf) l.G(c + 1, c) = -1;
-      solve_in_place(l.G.col(c));
-    }
-    l.N.assign(static_cast<std::size_t>(nc * nc), 0.0);
-    l.q.assign(static_cast<std::size_t>(nc), 0.0);
-    for (int c = 0; c < nc; ++c) {
-      for (int j = 0; j < nc; ++j)
-        l.N[static_cast<std::size_t>(j * nc + c)] = c + 1 < nf ? l.G(c, j) - l.G(c + 1, j) : l.G(c, j);
-      l.q[static_cast<std::size_t>(c)] = c + 1 < nf ? l.W0(c) - l.W0(c + 1) : l.W0(c) - p.u[n - 1];
-    }
+    numeric::CollisionSolver<double> solver(numeric::Settings<double>::defaults());
+    const auto lcp = solver.lcp(p);
+    l.G = lcp.G;
+    l.W0 = lcp.W0;
+    l.N.assign(lcp.N.data(), lcp.N.data() + lcp.N.size());  // Eigen's default storage is column-major too
+    l.q.assign(lcp.q.data(), lcp.q.data() + lcp.q.size());
     return l;
   }
 
@@ -283,14 +239,6 @@ Instance make_instance(const std::string& name, const Scene& scene) {
     in.degenerate += cln::zerop(lambda) && cln::zerop(exact.gaps[static_cast<std::size_t>(c)]);
   }
   in.exact_pivots = exact.pivots;
-  // q must be bit for bit the constant column our double solver starts from:
-  // with every contact imposed open, its gaps are exactly that column.
-  numeric::CollisionSolver<double> solver(numeric::Settings<double>::defaults());
-  numeric::Solution<double> open;
-  solver.compute_case(in.pd, ContactSet(in.pd.n), open);
-  for (int c = 0; c < in.lcp.nc; ++c)
-    if (open.gaps[static_cast<std::size_t>(c)] != in.lcp.q[static_cast<std::size_t>(c)])
-      throw std::runtime_error(name + ": the bench's q differs from the solver's");
   return in;
 }
 
@@ -307,6 +255,25 @@ void set_accuracy(benchmark::State& state, double rel_err, double ok, bool conve
 }
 
 // ---------------------------------------------------------------- our solve
+
+/// Our double solve by the banded formulation (ChainSolver, chain.hpp): the
+/// cluster system of a guessed case, block principal pivoting, no N at all.
+/// numeric::solve() picks it for long banded chains (n > 64); here it runs
+/// on every instance.
+void bm_ours_chain(benchmark::State& state, const Instance* in) {
+  numeric::ChainSolver<double> solver(numeric::Settings<double>::defaults());
+  numeric::Solution<double> out;
+  solver.compute(in->pd, out);
+  for (auto _ : state) {
+    solver.compute(in->pd, out);
+    benchmark::DoNotOptimize(out.velocities_after.data());
+    benchmark::ClobberMemory();
+  }
+  std::vector<double> lambda;
+  for (const auto& r : out.reactions) lambda.push_back(-r);
+  set_accuracy(state, relative_error(*in, out.velocities_after), case_ok(*in, lambda, out.velocities_after),
+               out.status == numeric::Status::Success, out.pivots);
+}
 
 template <class S>
 void bm_ours(benchmark::State& state, const Instance* in) {
@@ -340,9 +307,9 @@ void bm_ours(benchmark::State& state, const Instance* in) {
 }
 
 /// Our double solve with every contact imposed open (compute_case): the
-/// assembly, LDLᵀ, N and q, the velocities and the residual check, without
-/// pivoting.  ours/double minus this is roughly our LCP part, the part the
-/// Siconos timings cover.
+/// assembly, the velocities of that case (whose gaps are q) and the residual
+/// check: the part of ours/double that is no LCP at all, paid on any
+/// instance.  N is not formed.
 void bm_ours_no_pivots(benchmark::State& state, const Instance* in) {
   numeric::CollisionSolver<double> solver(numeric::Settings<double>::defaults());
   numeric::Solution<double> out;
@@ -351,6 +318,18 @@ void bm_ours_no_pivots(benchmark::State& state, const Instance* in) {
   for (auto _ : state) {
     solver.compute_case(in->pd, open, out);
     benchmark::DoNotOptimize(out.velocities_after.data());
+    benchmark::ClobberMemory();
+  }
+}
+
+/// Building the LCP our solver solves, what Siconos gets for free: the
+/// assembly, q, the LDLᵀ of A, G = A⁻¹C_Fᵀ and N (CollisionSolver::lcp,
+/// including the copies of N, q, G and W0 it returns).
+void bm_ours_lcp_build(benchmark::State& state, const Instance* in) {
+  numeric::CollisionSolver<double> solver(numeric::Settings<double>::defaults());
+  for (auto _ : state) {
+    auto lcp = solver.lcp(in->pd);
+    benchmark::DoNotOptimize(lcp.N.data());
     benchmark::ClobberMemory();
   }
 }
@@ -600,7 +579,9 @@ int main(int argc, char** argv) {
     const std::string prefix = "peers/" + in.name + "/";
     benchmark::RegisterBenchmark((prefix + "ours/double").c_str(), bm_ours<double>, &in)->Unit(benchmark::kNanosecond);
     benchmark::RegisterBenchmark((prefix + "ours/exact").c_str(), bm_ours<cl_RA>, &in)->Unit(benchmark::kNanosecond);
+    benchmark::RegisterBenchmark((prefix + "ours/double-chain").c_str(), bm_ours_chain, &in)->Unit(benchmark::kNanosecond);
     benchmark::RegisterBenchmark((prefix + "ours/double-no-pivots").c_str(), bm_ours_no_pivots, &in)->Unit(benchmark::kNanosecond);
+    benchmark::RegisterBenchmark((prefix + "ours/lcp-build").c_str(), bm_ours_lcp_build, &in)->Unit(benchmark::kNanosecond);
     for (const SiconosSolver& s : solvers)
       benchmark::RegisterBenchmark((prefix + "siconos/" + s.name).c_str(), bm_siconos, &in, s)->Unit(benchmark::kNanosecond);
   }

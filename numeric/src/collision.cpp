@@ -27,41 +27,51 @@ Settings<S> Settings<S>::defaults(int digits) {
 }
 
 template <class S>
-void CollisionSolver<S>::assemble(const Problem<S>& p) {
+void CollisionSolver<S>::start(const Problem<S>& p, Solution<S>& out) {
+  // A = diag(m) + DᵀMD and b̃, once, in the band storage of the cluster
+  // system; then the case with every contact open (one cluster per body,
+  // A W = b̃), whose gaps are the constant column q of the LCP.
   n_ = p.n;
   nf_ = p.fixed_bottom ? n_ - 1 : n_;
   nc_ = n_ - 1;
-  K_.resize(n_, n_);
-  K_.setZero();
-  for (const Entry<S>& e : p.entries) {
-    // v (e_i − e_j)(e_k − e_l)ᵀ, and its transpose off the diagonal of M.
-    K_(e.i, e.k) += e.value;
-    K_(e.i, e.l) -= e.value;
-    K_(e.j, e.k) -= e.value;
-    K_(e.j, e.l) += e.value;
-    if (!e.diagonal()) {
-      K_(e.k, e.i) += e.value;
-      K_(e.l, e.i) -= e.value;
-      K_(e.k, e.j) -= e.value;
-      K_(e.l, e.j) += e.value;
-    }
+  system_.assemble(p);
+  basic_lambda_.assign(static_cast<std::size_t>(nc_), 0);
+  A_.resize(nf_, nf_);  // sized now, so that forming N later does not allocate
+  G_.resize(nf_, nc_);
+  T_.resize(nc_, nc_);
+  W0_.resize(nf_);
+  t_.resize(nc_);
+  factorized_ = tableau_ = false;
+  answered_ = system_.solve(p, basic_lambda_, out.velocities_after, lambda_);
+  if (answered_) {
+    for (int i = 0; i < nf_; ++i) W0_(i) = out.velocities_after[static_cast<std::size_t>(i)];
+  } else {  // rounding broke the definiteness of A: the dense factors say what they can
+    factorize();
+    for (int i = 0; i < nf_; ++i) W0_(i) = system_.rhs()[static_cast<std::size_t>(i)];
+    solve_in_place(W0_);
   }
-  A_.resize(nf_, nf_);
-  rhs_.resize(nf_);
-  for (int i = 0; i < nf_; ++i) {
-    S r = p.mass[i] * p.u[i];
-    for (int j = 0; j < n_; ++j) r -= K_(i, j) * p.u[j];
-    if (p.fixed_bottom) r -= K_(i, n_ - 1) * p.u[n_ - 1];
-    rhs_(i) = r;
-  }
-  A_ = K_.topLeftCorner(nf_, nf_);
-  for (int i = 0; i < nf_; ++i) A_(i, i) += p.mass[i];
+  for (int c = 0; c < nc_; ++c) t_(c) = c + 1 < nf_ ? S(W0_(c) - W0_(c + 1)) : S(W0_(c) - p.u[n_ - 1]);
 }
 
 template <class S>
-void CollisionSolver<S>::factorize_and_reduce(const Problem<S>& p) {
-  // LDLᵀ of A in place, no pivoting (A is symmetric positive definite:
-  // positive masses plus DᵀMD with M positive semi-definite).
+template <class V>
+void CollisionSolver<S>::solve_in_place(V&& x) const {
+  // x := A⁻¹x with the LDLᵀ factors held in A_.
+  for (int i = 1; i < nf_; ++i)
+    for (int k = 0; k < i; ++k) x(i) -= A_(i, k) * x(k);
+  for (int i = 0; i < nf_; ++i) x(i) /= A_(i, i);
+  for (int i = nf_ - 2; i >= 0; --i)
+    for (int k = i + 1; k < nf_; ++k) x(i) -= A_(k, i) * x(k);
+}
+
+template <class S>
+void CollisionSolver<S>::factorize() {
+  // The lower triangle of A on the free bodies from the band, then its LDLᵀ
+  // in place, no pivoting (A is symmetric positive definite: positive
+  // masses plus DᵀMD with M positive semi-definite).
+  const int b = system_.bandwidth();
+  for (int i = 0; i < nf_; ++i)
+    for (int j = 0; j <= i; ++j) A_(i, j) = i - j <= b ? system_.band(i, i - j) : S(0);
   for (int k = 0; k < nf_; ++k) {
     const S d = A_(k, k);
     for (int j = k + 1; j < nf_; ++j) {
@@ -70,40 +80,41 @@ void CollisionSolver<S>::factorize_and_reduce(const Problem<S>& p) {
     }
     for (int i = k + 1; i < nf_; ++i) A_(i, k) /= d;
   }
-  auto solve_in_place = [&](auto&& x) {
-    for (int i = 1; i < nf_; ++i)
-      for (int k = 0; k < i; ++k) x(i) -= A_(i, k) * x(k);
-    for (int i = 0; i < nf_; ++i) x(i) /= A_(i, i);
-    for (int i = nf_ - 2; i >= 0; --i)
-      for (int k = i + 1; k < nf_; ++k) x(i) -= A_(k, i) * x(k);
-  };
-  W0_ = rhs_;
-  solve_in_place(W0_);
-  G_.resize(nf_, nc_);
+  factorized_ = true;
+}
+
+template <class S>
+void CollisionSolver<S>::form_tableau() {
+  // G = A⁻¹ C_Fᵀ, one solve per contact, and the tableau T = N = C G.
+  if (!factorized_) factorize();
   G_.setZero();
   for (int c = 0; c < nc_; ++c) {
     G_(c, c) = S(1);
     if (c + 1 < nf_) G_(c + 1, c) = S(-1);
     solve_in_place(G_.col(c));
   }
-  T_.resize(nc_, nc_);
-  t_.resize(nc_);
   for (int c = 0; c < nc_; ++c) {
-    if (c + 1 < nf_) {
+    if (c + 1 < nf_)
       T_.row(c) = G_.row(c) - G_.row(c + 1);
-      t_(c) = W0_(c) - W0_(c + 1);
-    } else {
+    else
       T_.row(c) = G_.row(c);
-      t_(c) = W0_(c) - p.u[n_ - 1];
-    }
   }
+  tableau_ = true;
+}
+
+template <class S>
+typename CollisionSolver<S>::Lcp CollisionSolver<S>::lcp(const Problem<S>& p) {
+  check(p);
+  Solution<S> open;
+  start(p, open);
+  form_tableau();
+  return {T_, t_, G_, W0_};
 }
 
 template <class S>
 int CollisionSolver<S>::pivot() {
   // Murty's least-index principal pivoting: exchange w_p and λ_p for the
   // smallest p whose basic variable is negative.  Terminates for P-matrices.
-  basic_lambda_.assign(static_cast<std::size_t>(nc_), 0);
   S scale = S(0);
   for (int c = 0; c < nc_; ++c) scale = std::max(scale, detail::abs_value<S>(t_(c)));
   const S tol = settings_.feasibility * scale;
@@ -123,6 +134,8 @@ template <class S>
 bool CollisionSolver<S>::pivot_on(int p) {
   // Principal pivot transform on (p, p): exchange the basic and non-basic
   // variables of contact p, an O(nc²) update of the tableau.
+    if (!tableau_) form_tableau();
+    answered_ = false;
     const S piv = T_(p, p);
     if (!(piv > S(0))) return false;
     for (int i = 0; i < nc_; ++i) {
@@ -146,9 +159,9 @@ template <class S>
 void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out, bool imposed) {
   // The pivoting decided the case; the answer comes from the cluster system
   // of that case, so that bodies in contact share one velocity exactly and
-  // the accuracy does not depend on the conditioning of the tableau.
-  system_.assemble(p);
-  if (!system_.solve(p, basic_lambda_, out.velocities_after, lambda_)) out.status = Status::NumericalIssue;
+  // the accuracy does not depend on the conditioning of the tableau.  With
+  // no pivot the case is every contact open, solved already by start().
+  if (!answered_ && !system_.solve(p, basic_lambda_, out.velocities_after, lambda_)) out.status = Status::NumericalIssue;
   detail::complete_solution(p, lambda_, basic_lambda_, imposed, settings_, check_, out);
 }
 
@@ -168,8 +181,7 @@ void CollisionSolver<S>::check(const Problem<S>& p) const {
 template <class S>
 void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
   check(p);
-  assemble(p);
-  factorize_and_reduce(p);
+  start(p, out);
   const int pivots = pivot();
   out.status = pivots == -1 ? Status::NoConvergence : pivots == -2 ? Status::NumericalIssue : Status::Success;
   out.pivots = std::max(pivots, 0);
@@ -182,9 +194,7 @@ void CollisionSolver<S>::compute_case(const Problem<S>& p, const ContactSet& clo
   if (closed.bodies() != p.n)
     throw std::invalid_argument("CollisionSolver::compute_case(): the case is for " + std::to_string(closed.bodies()) +
                                 " bodies, the problem has " + std::to_string(p.n));
-  assemble(p);
-  factorize_and_reduce(p);
-  basic_lambda_.assign(static_cast<std::size_t>(nc_), 0);
+  start(p, out);
   out.status = Status::Success;
   out.pivots = 0;
   for (int c = 0; c < nc_; ++c)

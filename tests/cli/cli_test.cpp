@@ -211,6 +211,34 @@ TEST(Sweep, CsvAlongK34) {
   EXPECT_EQ(cases[2], 14);  // 13.5 .. 20
 }
 
+TEST(Sweep, TheOutputDoesNotDependOnTheThreads) {
+  const std::string scene = kScenes + "paper-4.4-alpha2.toml";
+  const std::vector<std::vector<std::string>> sweeps = {
+      {"--vary", "K.3-4=0:20:401", "--csv"},
+      {"--vary", "K.3-4=0:20:41", "--precision", "exact"},
+      {"--vary", "K.3-4=0:20:41", "--switch-points"},
+      {"--vary", "alpha.2=-30:0:21", "--precision", "digits:30", "--csv"}};
+  for (const auto& args : sweeps) {
+    std::vector<std::string> base = {"sweep", scene};
+    base.insert(base.end(), args.begin(), args.end());
+    auto with = [&](const std::string& threads) {
+      std::vector<std::string> a = base;
+      a.insert(a.end(), {"--threads", threads});
+      return run(a);
+    };
+    const RunResult one = with("1");
+    ASSERT_EQ(one.exit_code, 0) << describe(one);
+    EXPECT_GT(one.out.size(), 100u);
+    for (const std::string threads : {"2", "3"}) {
+      const RunResult many = with(threads);
+      EXPECT_EQ(many.exit_code, 0) << describe(many);
+      EXPECT_EQ(many.out, one.out) << args[1] << " on " << threads << " threads";
+    }
+    const RunResult all = run(base);  // default: all cores
+    EXPECT_EQ(all.out, one.out) << args[1] << " on all cores";
+  }
+}
+
 // ---------------------------------------------------------------------------
 // bad input
 
@@ -303,6 +331,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadArgs{{"sweep", kPaper, "--vary", "mass.1=-1:1:3"}, {"must be > 0"}},
         BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:5", "--precision", "quad"}, {"quad"}},
         BadArgs{{"sweep", kPaper}, {"--vary"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:5", "--threads", "0"}, {"--threads"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:5", "--threads", "many"}, {"--threads"}},
         BadArgs{{"solve"}, {"scene"}},
         BadArgs{{"solve", kPaper, "--bogus"}, {"--bogus"}},
         BadArgs{{"frobnicate"}, {"subcommand"}},

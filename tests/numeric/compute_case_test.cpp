@@ -1,7 +1,8 @@
 // compute_case(): the collision solved with an evolution case imposed (the
 // paper's way, §4.1).  For the actual case it is compute(); for every other
 // case some sign condition fails (a gap < 0 on an open contact or a reaction
-// > 0 on a closed one) — the uniqueness of the solution.
+// > 0 on a closed one) — the uniqueness of the solution.  lcp(): the LCP
+// the solver builds is the one the exact solution solves.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -107,6 +108,46 @@ TEST(ComputeCase, RejectsACaseForAnotherNumberOfBodies) {
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()).rfind("CollisionSolver::compute_case(): ", 0), 0u) << e.what();
   }
+}
+
+TEST(Lcp, TheExactSolutionSolvesTheLcpTheSolverReturns) {
+  // lcp() gives w = q + Nλ and W = W0 + Gλ; in exact rationals the solution
+  // satisfies both exactly, with w the gaps and λ = −R, and N is symmetric
+  // with positive leading principal minors (positive definite).
+  numeric::CollisionSolver<cl_RA> solver;
+  int pivoted = 0;
+  for (std::uint64_t seed = kFirstSeed; seed < kFirstSeed + kSeeds; ++seed) {
+    const RandomScene r = random_scene(seed, {2, 8});
+    SCOPED_TRACE(r.describe());
+    const auto p = problem_of<cl_RA>(r.scene());
+    const auto s = solver.compute(p);
+    const auto lcp = solver.lcp(p);
+    const int nc = p.n - 1, nf = p.fixed_bottom ? p.n - 1 : p.n;
+    ASSERT_EQ(lcp.N.rows(), nc);
+    ASSERT_EQ(lcp.q.size(), nc);
+    ASSERT_EQ(lcp.G.rows(), nf);
+    pivoted += s.pivots > 0;
+    for (int c = 0; c < nc; ++c) {
+      cl_RA w = lcp.q(c);
+      for (int d = 0; d < nc; ++d) {
+        w = w - lcp.N(c, d) * s.reactions[static_cast<std::size_t>(d)];
+        EXPECT_TRUE(lcp.N(c, d) == lcp.N(d, c));
+      }
+      EXPECT_TRUE(w == s.gaps[static_cast<std::size_t>(c)]) << "contact " << c;
+    }
+    for (int i = 0; i < nf; ++i) {
+      cl_RA W = lcp.W0(i);
+      for (int d = 0; d < nc; ++d) W = W - lcp.G(i, d) * s.reactions[static_cast<std::size_t>(d)];
+      EXPECT_TRUE(W == s.velocities_after[static_cast<std::size_t>(i)]) << "body " << i;
+    }
+    Eigen::Matrix<cl_RA, Eigen::Dynamic, Eigen::Dynamic> L = lcp.N;  // Gaussian elimination: positive pivots
+    for (int k = 0; k < nc; ++k) {
+      ASSERT_TRUE(L(k, k) > 0) << "pivot " << k;
+      for (int i = k + 1; i < nc; ++i)
+        for (int j = k + 1; j < nc; ++j) L(i, j) = L(i, j) - L(i, k) * L(k, j) / L(k, k);
+    }
+  }
+  EXPECT_GT(pivoted, 10);  // cases with closed contacts, not only q >= 0
 }
 
 TEST(Compute, RejectsInconsistentProblems) {

@@ -27,6 +27,12 @@ class ClusterSystem {
   /// pivot of the reduced system is not positive (rounding broke definiteness).
   bool solve(const Problem<S>& p, const std::vector<char>& closed, std::vector<S>& W, std::vector<S>& lambda);
   int bandwidth() const { return b_; }
+  /// A_{i, i−d} (0 <= d <= bandwidth(), d <= i), as assembled.
+  const S& band(int i, int d) const {
+    return A_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(d)];
+  }
+  /// b̃ on the free bodies, as assembled.
+  const std::vector<S>& rhs() const { return rhs_; }
 
  private:
   S& A(int i, int d) { return A_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(d)]; }

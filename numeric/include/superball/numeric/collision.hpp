@@ -13,7 +13,10 @@
 /// which has exactly one solution.  It is solved by Murty's least-index
 /// principal pivoting, each pivot an O(n²) update of the tableau (no
 /// refactorisation), then checked independently against the equations of
-/// motion and the complementarity conditions.
+/// motion and the complementarity conditions.  The tableau N is formed only
+/// when a pivot is needed: the case with every contact open is solved first
+/// (A W = b̃, by the banded cluster system); its gaps are q, and when q ≥ 0
+/// it is the answer, without forming N.
 
 #include <Eigen/Core>
 #include <vector>
@@ -106,9 +109,26 @@ class CollisionSolver {
   void compute_case(const Problem<S>& problem, const ContactSet& closed, Solution<S>& out);
   const Settings<S>& settings() const { return settings_; }
 
+  /// The linear complementarity problem w = q + Nλ of \p problem exactly
+  /// as compute() builds it (same operations, same rounding), before any
+  /// pivot: N = C A⁻¹ Cᵀ, q = C A⁻¹ b̃ (minus the obstacle's velocity on the
+  /// last contact when it is fixed), and the map back to the velocities of
+  /// the free bodies, W = W0 + Gλ with G = A⁻¹ C_Fᵀ, W0 = A⁻¹ b̃.  For
+  /// comparing other LCP solvers on the same instance.
+  struct Lcp {
+    Matrix N;
+    Vector q;
+    Matrix G;
+    Vector W0;
+  };
+  Lcp lcp(const Problem<S>& problem);
+
  private:
-  void assemble(const Problem<S>& p);
-  void factorize_and_reduce(const Problem<S>& p);
+  void start(const Problem<S>& p, Solution<S>& out);
+  void factorize();
+  void form_tableau();
+  template <class V>
+  void solve_in_place(V&& x) const;
   void check(const Problem<S>& p) const;
   int pivot();
   bool pivot_on(int p);
@@ -116,17 +136,18 @@ class CollisionSolver {
 
   Settings<S> settings_ = Settings<S>::defaults();
   int n_ = 0, nf_ = 0, nc_ = 0;
-  Matrix K_;          ///< DᵀMD, n × n
-  Matrix A_;          ///< diag(m) + K on free bodies, then its LDLᵀ factors in place
-  Vector rhs_;        ///< diag(m)u − K u − K_{·,fixed} u_fixed on free bodies
+  Matrix A_;          ///< LDLᵀ factors of diag(m) + DᵀMD on free bodies (lower triangle; formed at the first pivot)
   Matrix G_;          ///< A⁻¹ C_Fᵀ, nf × nc
-  Vector W0_;         ///< A⁻¹ rhs
-  Matrix T_;          ///< the pivoting tableau (starts as N)
+  Vector W0_;         ///< A⁻¹ b̃, b̃ = diag(m)u − K u − K_{·,fixed} u_fixed on free bodies: every contact open
+  Matrix T_;          ///< the pivoting tableau (starts as N; formed at the first pivot)
+  bool factorized_ = false;  ///< whether A_ holds the factors for the current problem
+  bool tableau_ = false;     ///< whether G_ and T_ are formed for the current problem
+  bool answered_ = false;    ///< whether the output holds the cluster answer of the current case
   Vector t_;          ///< its constant column (starts as q)
   std::vector<char> basic_lambda_;  ///< contact c: λ_c basic (closed)
   std::vector<S> lambda_;           ///< λ on every contact, 0 where open
   detail::CheckWorkspace<S> check_;  ///< scratch of the residual check
-  detail::ClusterSystem<S> system_;  ///< the final answer, by clusters of the case found
+  detail::ClusterSystem<S> system_;  ///< A and b̃ (band), and the answer by clusters of a case
 };
 
 /// The solution of \p problem with default settings, by the formulation that

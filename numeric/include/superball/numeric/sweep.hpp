@@ -31,9 +31,12 @@ struct SweepPoint {
   Status status = Status::Success;
 };
 
-/// Solve \p scene at each of \p values of \p parameter in \p precision.
+/// Solve \p scene at each of \p values of \p parameter in \p precision,
+/// on \p threads threads (0: all cores; parallel.hpp).  Each point is solved
+/// on its own from the scene, so the result does not depend on \p threads,
+/// bit for bit.
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
-                              const Precision& precision);
+                              const Precision& precision, int threads = 1);
 
 /// The exact solution (CLN rationals) of a scene at one parameter value.
 struct ExactPoint {
@@ -56,8 +59,12 @@ struct LabelChange {
 /// Locate every change of \p label between consecutive \p values by bisection
 /// on the exact solution until the bracket is narrower than 2^-bits of the
 /// step.  Where a third label appears inside a bracket, the nearer change is kept.
+/// The labels at \p values, then the bisections, run on \p threads threads
+/// (0: all cores); with more than one, \p label is called on several threads
+/// at once and must not share a CLN object between calls (no captured
+/// cl_RA); the result does not depend on \p threads.
 std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
-                                       const Label& label, int bits = 64);
+                                       const Label& label, int bits = 64, int threads = 1);
 
 /// A change of evolution case between two parameter values: the case is
 /// `below` for values in [low, …) up to the switch and `above` after it;
@@ -69,8 +76,9 @@ struct SwitchPoint {
 
 /// Locate every case change between consecutive \p points by bisection on
 /// the exact solution (CLN rationals) until the bracket is narrower than
-/// 2^-bits of the sweep step (default: 64 bits, beyond double precision).
+/// 2^-bits of the sweep step (default: 64 bits, beyond double precision),
+/// on \p threads threads (0: all cores) as label_changes().
 std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<SweepPoint>& points,
-                                       int bits = 64);
+                                       int bits = 64, int threads = 1);
 
 }  // namespace superball::numeric

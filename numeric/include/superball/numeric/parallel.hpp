@@ -1,0 +1,87 @@
+#pragma once
+/// \file parallel.hpp
+/// Independent tasks on several threads, with per-thread state and results
+/// in task order: the one mechanism by which sweeps (and anything else that
+/// solves many scenes) use several cores.
+///
+/// CLN (and GiNaC) objects are not thread-safe: their reference counts are
+/// not atomic, so two threads must never hold the same object, not even
+/// through a copy.  parallel_map() gives each thread its own state, built on
+/// that thread; a task must read only plain data shared with other tasks
+/// (a Scene, strings, numbers), never a CLN object another thread can reach.
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <system_error>
+#include <thread>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace superball::numeric {
+
+/// The number of threads for a request: \p requested when it is positive,
+/// else std::thread::hardware_concurrency() (all cores; 1 when unknown).
+inline int thread_count(int requested) {
+  if (requested > 0) return requested;
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+/// r[i] = task(state, i) for every i in [0, count), on thread_count(threads)
+/// threads (never more than count; with one, on the calling thread).
+///
+/// - Each thread calls make_state() once, on that thread, before its first
+///   task, and destroys the state before it ends; task gets it as `State&`.
+/// - Tasks are handed out in increasing i; the results come back in task
+///   order, whatever the number of threads, so a task whose result depends
+///   only on i gives the same results on any number of threads.
+/// - When tasks throw, the exception of the smallest such i is rethrown here
+///   once every thread has stopped (tasks above it may not run), as in a
+///   loop on one thread.  The results are handed over only after every
+///   thread has ended, so they may share CLN objects with the states.
+template <class MakeState, class Task>
+auto parallel_map(std::size_t count, int threads, MakeState make_state, Task task) {
+  using State = std::decay_t<decltype(make_state())>;
+  using Result = std::decay_t<decltype(task(std::declval<State&>(), std::size_t{}))>;
+  std::vector<std::optional<Result>> slots(count);
+  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> failed_at{count};  // smallest index whose task threw
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto work = [&] {
+    std::optional<State> state;
+    for (std::size_t i; (i = next.fetch_add(1)) < failed_at.load();) {
+      try {
+        if (!state) state.emplace(make_state());
+        slots[i].emplace(task(*state, i));
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (i < failed_at.load()) failed_at = i, error = std::current_exception();
+      }
+    }
+  };
+  const auto n = std::min(count, static_cast<std::size_t>(thread_count(threads)));
+  if (n <= 1) {
+    work();
+  } else {
+    std::vector<std::thread> pool;
+    pool.reserve(n - 1);
+    try {
+      for (std::size_t t = 1; t < n; ++t) pool.emplace_back(work);
+    } catch (const std::system_error&) {  // no more threads: run with those started
+    }
+    work();
+    for (auto& t : pool) t.join();
+  }
+  if (error) std::rethrow_exception(error);
+  std::vector<Result> results;
+  results.reserve(count);
+  for (auto& r : slots) results.push_back(std::move(*r));
+  return results;
+}
+
+}  // namespace superball::numeric
