@@ -13,11 +13,11 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
 #include "superball/cases/error.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/collision.hpp"
+#include "superball/numeric/parallel.hpp"
 #include "superball/numeric/scalar.hpp"
 #include "superball/symbolic/format.hpp"
 #include "superball/verify/space.hpp"
@@ -29,39 +29,6 @@ namespace {
 using cln::cl_RA;
 
 [[noreturn]] void fail(const std::string& what) { throw std::invalid_argument("verify_case(): " + what); }
-
-/// Run the blocks [0, \p blocks) on \p threads threads (the caller's one
-/// included): work(block, worker) returns the block's result, stored at the
-/// block's index whatever thread ran it.  The first exception thrown by a
-/// block stops the hand-out of blocks and is re-thrown here after every
-/// thread has joined.
-template <class Result, class Work>
-std::vector<Result> run_blocks(std::size_t blocks, int threads, Work work) {
-  std::vector<Result> results(blocks);
-  std::atomic<std::size_t> next{0};
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(threads));
-  auto loop = [&](int worker) {
-    try {
-      for (std::size_t b = next++; b < blocks; b = next++) results[b] = work(b, worker);
-    } catch (...) {
-      errors[static_cast<std::size_t>(worker)] = std::current_exception();
-      next = blocks;
-    }
-  };
-  std::vector<std::thread> pool;
-  try {
-    for (int t = 1; t < threads; ++t) pool.emplace_back(loop, t);
-  } catch (...) {
-    next = blocks;
-    for (std::thread& t : pool) t.join();
-    throw;
-  }
-  loop(0);
-  for (std::thread& t : pool) t.join();
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
-  return results;
-}
 
 /// SplitMix64: the seed of a block from the run's seed, the ε index and the block index.
 std::uint64_t mix(std::uint64_t x) {
@@ -324,7 +291,7 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
   if (options.samples < 1) detail::fail("samples must be >= 1");
   if (options.boundary_pairs < 0) detail::fail("boundary pairs must be >= 0");
   if (options.threads < 0) detail::fail("threads must be >= 0");
-  const int threads = options.threads > 0 ? options.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  const int threads = numeric::thread_count(options.threads);
 
   // Everything symbolic, in this thread.
   const symbolic::Symbols& sy = deriver.symbols();
@@ -392,8 +359,11 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
 
   // Stage 1: the bulk, blocks of verify_block_points per ε.
   const std::size_t per_eps = static_cast<std::size_t>((options.samples + verify_block_points - 1) / verify_block_points);
-  const auto bulk = detail::run_blocks<BlockResult>(n_eps * per_eps, threads, [&](std::size_t block, int worker) {
-    Context& ctx = contexts[static_cast<std::size_t>(worker)];
+  // Each worker thread takes one of the contexts cloned above (its state in numeric::parallel_map).
+  std::atomic<std::size_t> taken{0};
+  auto context = [&] { return &contexts.at(taken++); };
+  const auto bulk = numeric::parallel_map(n_eps * per_eps, threads, context, [&](Context* worker, std::size_t block) {
+    Context& ctx = *worker;
     const std::size_t e = block / per_eps, k = block % per_eps;
     BlockResult r = fresh(e);
     const int count = std::min<int>(verify_block_points, options.samples - static_cast<int>(k) * verify_block_points);
@@ -442,8 +412,9 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
       work.push_back(std::move(w));
     }
   }
-  const auto boundary = detail::run_blocks<BlockResult>(work.size(), threads, [&](std::size_t block, int worker) {
-    Context& ctx = contexts[static_cast<std::size_t>(worker)];
+  taken = 0;
+  const auto boundary = numeric::parallel_map(work.size(), threads, context, [&](Context* worker, std::size_t block) {
+    Context& ctx = *worker;
     const Work& w = work[block];
     BlockResult r = fresh(w.epsilon);
     for (const auto& [hold, fails] : w.pairs) detail::bisect(ctx, v.conditions, hold, fails, w.condition, r);
