@@ -249,9 +249,13 @@ Condition Deriver::make_condition(ConditionKind kind, const std::string& about, 
   } else {
     c.exact = form;
   }
-  // Asymptotic form of the exact (m_n = ∞) condition.
-  c.asymptotic.denominator = c.exact.denominator.is_equal(1) ? GiNaC::ex(1) : asymptotic(c.exact.denominator);
-  c.asymptotic.numerator = asymptotic(c.exact.numerator, &c.leading_order);
+  // Asymptotic form of the condition of the regime: with a finite obstacle
+  // m_n is itself an ε-order (Scaling::paper: m_n ~ 1/ε), so the dominant
+  // balance is taken in the condition with m_n, not in its limit m_n → ∞.
+  // An unproved denominator gets its own dominant balance.
+  const ConditionForm& regime = c.finite ? *c.finite : c.exact;
+  c.asymptotic.denominator = regime.denominator.is_equal(1) ? GiNaC::ex(1) : asymptotic(regime.denominator);
+  c.asymptotic.numerator = asymptotic(regime.numerator, &c.leading_order);
   c.asymptotic.verdict = c.asymptotic.sign_proved() ? verdict_of(c.asymptotic.numerator, relation, sy) : Verdict::Depends;
   c.orders_kept = 1 + order_;
   // Did the leading orders of the parts cancel (the paper's superball condition)?

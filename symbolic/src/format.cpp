@@ -10,12 +10,6 @@
 namespace superball::symbolic {
 namespace {
 
-std::string ascii(const GiNaC::ex& e) {
-  std::ostringstream os;  // local stream: GiNaC's default (ASCII) printing
-  os << e;
-  return os.str();
-}
-
 std::string subscript_digits(const std::string& digits) {
   static const char* const sub[] = {"₀", "₁", "₂", "₃", "₄", "₅", "₆", "₇", "₈", "₉"};
   std::string out;
@@ -46,22 +40,29 @@ std::string number_text(const GiNaC::numeric& c, Style style) {
   return os.str();
 }
 
-/// A term with a positive coefficient |c|: "2m₁K₁₂", "α₂²", "a".
+/// A term with a positive coefficient |c|: "2m₁K₁₂", "α₂²", "a" (text),
+/// "2*m1*K12", "alpha2^2" (ASCII, readable by GiNaC::parser).
 std::string term_text(const detail::Term& t, const Symbols& symbols, Style style) {
   std::vector<std::pair<int, std::string>> factors;  // (print order, text)
   for (const auto& [s, e] : t.powers) {
     const SymbolInfo& info = symbols.info(s);
     std::string f = info.name(style);
-    if (e != 1) f = style == Style::Latex ? f + "^{" + std::to_string(e) + "}" : f + superscript_digits(e);
+    if (e != 1)
+      f += style == Style::Latex ? "^{" + std::to_string(e) + "}" : style == Style::Ascii ? "^" + std::to_string(e) : superscript_digits(e);
     // a first in a product (a(K₁₄ + …)), then masses, K's, couplings.
     factors.emplace_back(info.kind == SymbolKind::FallSpeed ? -1 : info.rank, f);
   }
   std::sort(factors.begin(), factors.end());
   const GiNaC::numeric c = GiNaC::abs(t.coefficient);
   std::string out = c.is_equal(1) && !factors.empty() ? "" : number_text(c, style);
-  // LaTeX: "2m_{1}", "K_{12} K_{14}" (a space between two symbols only).
-  for (const auto& f : factors)
-    out += (style == Style::Latex && !out.empty() && !(out.back() >= '0' && out.back() <= '9') ? " " : "") + f.second;
+  // LaTeX: "2m_{1}", "K_{12} K_{14}" (a space between two symbols only); ASCII: "2*m1*K12".
+  for (const auto& f : factors) {
+    if (style == Style::Ascii)
+      out += out.empty() ? "" : "*";
+    else if (style == Style::Latex && !out.empty() && !(out.back() >= '0' && out.back() <= '9'))
+      out += " ";
+    out += f.second;
+  }
   return out;
 }
 
@@ -210,14 +211,13 @@ std::string prose(const std::string& s, Style style) {
 }  // namespace
 
 std::string format_polynomial(const GiNaC::ex& p, const Symbols& symbols, Style style) {
-  if (style == Style::Ascii) return ascii(GiNaC::expand(p));
   return join(sorted_terms(p, symbols), symbols, style);
 }
 
 std::string format_fraction(const Fraction& f, const Symbols& symbols, Style style) {
   if (style == Style::Ascii) {
-    if (f.denominator.is_equal(1)) return ascii(f.numerator);
-    return "(" + ascii(f.numerator) + ")/(" + ascii(f.denominator) + ")";
+    if (f.denominator.is_equal(1)) return format_polynomial(f.numerator, symbols, style);
+    return "(" + format_polynomial(f.numerator, symbols, style) + ")/(" + format_polynomial(f.denominator, symbols, style) + ")";
   }
   bool single_num = true, single_den = true;
   const std::string num = factored(f.numerator, symbols, style, &single_num);
@@ -228,7 +228,7 @@ std::string format_fraction(const Fraction& f, const Symbols& symbols, Style sty
 }
 
 std::string format_condition(const GiNaC::ex& p, Relation relation, const Symbols& symbols, Style style) {
-  if (style == Style::Ascii) return ascii(GiNaC::expand(p)) + " " + relation_text(relation, false, style) + " 0";
+  if (style == Style::Ascii) return format_polynomial(p, symbols, style) + " " + relation_text(relation, false, style) + " 0";
   const auto ts = sorted_terms(p, symbols);
   std::vector<detail::Term> pos, neg;
   for (const detail::Term& t : ts) (t.coefficient.is_positive() ? pos : neg).push_back(t);
@@ -358,7 +358,10 @@ std::string report(const Derivation& d, const Deriver& deriver, Style style) {
   }
   line("check:", prose(d.check, style));
   const std::string infinity = tex ? "m_{" + std::to_string(n) + "} = \\infty" : "m" + subscript_digits(std::to_string(n)) + " = ∞";
-  line("conditions:", "exact with " + math(infinity, style) + "; asymptotic for " + math(deriver.scaling().describe(sy, style), style) +
+  const bool finite = sy.obstacle() == Obstacle::Finite;
+  line("conditions:", std::string(finite ? "finite obstacle with " + math(sy.info(sy.mass(n)).name(style), style) + ", " : "") +
+                          "exact with " + math(infinity, style) + (finite ? " (the limit)" : "") + "; asymptotic" +
+                          (finite ? " of the finite-obstacle form" : "") + " for " + math(deriver.scaling().describe(sy, style), style) +
                           ", " + std::to_string(deriver.order() + 1) + " order(s) of " + math(tex ? "\\varepsilon" : "ε", style) + " kept");
   for (const Condition& c : d.conditions) {
     if (tex)

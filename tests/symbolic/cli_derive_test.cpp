@@ -1,6 +1,7 @@
 // `superball derive` and `superball audit` as a user runs them (the built
 // binary): the JSON schema of the issue with expressions any CAS parses, the
-// paper's case-1 formulas in the text output, bad input reported on one line.
+// paper's case-1 formulas in the text output, the same output from run to
+// run, bad input reported on one line.
 #include <gtest/gtest.h>
 
 #include <ginac/ginac.h>
@@ -49,6 +50,8 @@ TEST(CliDerive, JsonSchemaCase1Alpha2) {
   ASSERT_GT(exact.size(), 4u);
   EXPECT_EQ(exact.substr(exact.size() - 4), " > 0");
   EXPECT_TRUE(GiNaC::normal(reader(exact.substr(0, exact.size() - 4)) - reader("-alpha2-2*m1-K12-K13")).is_zero());
+  // The canonical term order of every style: masses, K's, couplings.
+  EXPECT_EQ(exact, "-2*m1 - K12 - K13 - alpha2 > 0");
   for (const auto& c : j.at("conditions")) {
     const std::string kind = c.at("kind");
     EXPECT_TRUE(kind == "superball" || kind == "evolution" || kind == "contact" || kind == "psd") << kind;
@@ -84,6 +87,20 @@ TEST(CliDerive, GeneralCouplingNamesAndAllCases) {
   ASSERT_TRUE(cases.is_array());
   EXPECT_EQ(cases.size(), 8u);
   EXPECT_TRUE(cases.at(0).at("conditions").at(0).contains("finite"));
+}
+
+/// GiNaC's term order depends on the process (symbol serials, hashes); the
+/// printed JSON must not: two runs in separate processes give the same bytes.
+TEST(CliDerive, JsonIsTheSameFromRunToRun) {
+  const std::vector<std::string> args{"derive", "--all", "--alphas", "2", "--format", "json"};
+  const RunResult first = run(args), second = run(args);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_GT(first.out.size(), 1000u);
+  EXPECT_EQ(first.out, second.out);
+  const RunResult finite = run({"derive", "--all", "--alphas", "1,6", "--obstacle", "finite", "-f", "json"});
+  ASSERT_EQ(finite.exit_code, 0) << finite.err;
+  EXPECT_EQ(finite.out, run({"derive", "--all", "--alphas", "1,6", "--obstacle", "finite", "-f", "json"}).out);
 }
 
 TEST(CliDerive, BadInputIsOneLine) {

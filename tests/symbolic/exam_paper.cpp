@@ -132,5 +132,29 @@ TEST(ExamPaper, FiniteObstacleTendsToTheFixedOne) {
   }
 }
 
+/// A finite obstacle in the paper's regime (m₄ ~ 1/ε like K₁₄): the
+/// asymptotic form is the dominant balance of the condition with m₄, not
+/// that of its limit m₄ → ∞.
+TEST(ExamPaper, FiniteObstacleAsymptoticKeepsTheObstacleMass) {
+  const Deriver deriver(Pattern::paper({2}), Obstacle::Finite);
+  const Derivation d = deriver.derive(named("1"));
+  const Symbols& s = deriver.symbols();
+  const Condition& superball = find(d, ConditionKind::Superball, "U1 > a");
+  ASSERT_TRUE(superball.finite.has_value());
+  ASSERT_TRUE(superball.asymptotic.sign_proved());
+  // m₄(−α₂ − K₁₂ − K₁₃) > (m₂ + m₃)K₁₄, not the limit −α₂ > K₁₂ + K₁₃.
+  EXPECT_TRUE(same_condition(superball.asymptotic.numerator, parse(s, "m4*(-alpha2-K12-K13)-(m2+m3)*K14"), s))
+      << superball.asymptotic.numerator;
+  EXPECT_FALSE(same_condition(superball.asymptotic.numerator, parse(s, "-alpha2-K12-K13"), s));
+  // m₄α₂ and m₂K₁₄ are of order ε^-1 (m₁m₄, m₁K₁₄ of order ε⁰ are dropped).
+  EXPECT_EQ(superball.leading_order, -1);
+  EXPECT_EQ(format_condition(superball.asymptotic, superball.relation, s, Style::Text), "−m₄α₂ > m₂K₁₄ + m₃K₁₄ + m₄K₁₂ + m₄K₁₃");
+  // The limit form is unchanged: the fixed-obstacle condition.
+  EXPECT_TRUE(same_condition(superball.exact.numerator, parse(s, "-alpha2-2*m1-K12-K13"), s));
+  // The finite form is of the same order as its dominant balance; the limit form is not.
+  EXPECT_EQ(epsilon_order(superball.finite->numerator, s, deriver.scaling()), superball.leading_order);
+  EXPECT_EQ(epsilon_order(superball.exact.numerator, s, deriver.scaling()), 0);
+}
+
 }  // namespace
 }  // namespace superball::symbolic

@@ -92,9 +92,9 @@ struct Condition {
   Relation relation = Relation::Greater;
   ConditionForm exact;                 ///< m_n = ∞ (for a finite obstacle: the limit m_n → ∞)
   std::optional<ConditionForm> finite; ///< finite obstacle: the condition with m_n
-  ConditionForm asymptotic;            ///< the dominant balance (plus --order corrections)
+  ConditionForm asymptotic;            ///< the dominant balance (plus --order corrections) of `finite` when set, else of `exact`
   GiNaC::numeric leading_order = 0;    ///< power of ε of the dominant balance
-  GiNaC::numeric descended = 0;        ///< orders of ε lost because the leading terms of the parts cancel
+  GiNaC::numeric descended = 0;        ///< orders of ε lost because the leading terms of the parts cancel (in the same form)
   int orders_kept = 1;                 ///< number of orders of ε kept in `asymptotic`
   std::string proof;                   ///< how the denominator's sign was proved, or "sign not proved: ..."
   GiNaC::ex removed = 1;               ///< positive factor divided out of the numerator

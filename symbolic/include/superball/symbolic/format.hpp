@@ -5,8 +5,10 @@
 /// (−α₂ > 2m₁ + K₁₂ + K₁₃), a velocity a fraction with its common factor in
 /// front (a(K₁₄ + α₂ − m₁)/(m₁ + …)).  Text uses Unicode subscripts, LaTeX is
 /// written here term by term (GiNaC would print relations literally), ASCII
-/// is GiNaC's default printing with the names m1, K12, alpha2, c_12_14, a.
-/// Every function prints to a local stream: no global print state changes.
+/// is GiNaC's input syntax with the names m1, K12, alpha2, c_12_14, a.  All
+/// three styles print the terms in one canonical order (GiNaC's own term
+/// order is not reproducible between processes), so every output is the same
+/// from run to run.  No global print state changes.
 
 #include <ginac/ginac.h>
 
@@ -20,7 +22,7 @@ namespace superball::symbolic {
 
 /// The expanded polynomial \p p in \p style: terms with positive
 /// coefficients first, each group in the order masses, K's, couplings, a.
-/// ASCII is GiNaC's default printing.  Throws std::invalid_argument
+/// ASCII: "2*m1*K12^2 - alpha2", readable by GiNaC::parser.  Throws std::invalid_argument
 /// ("format_polynomial(): ...") when \p p is not a polynomial in \p symbols.
 std::string format_polynomial(const GiNaC::ex& p, const Symbols& symbols, Style style);
 
@@ -33,7 +35,7 @@ std::string format_fraction(const Fraction& f, const Symbols& symbols, Style sty
 /// right; when the right side is the shorter one (or as short and holding
 /// the couplings) the sides swap and the relation turns (m₁ < K₁₄ + α₂);
 /// when no term is positive the couplings stay on the left with their sign
-/// (−α₂ > 2m₁ + K₁₂ + K₁₃).  ASCII gives "EXPR > 0" (GiNaC printing).
+/// (−α₂ > 2m₁ + K₁₂ + K₁₃).  ASCII gives "EXPR > 0" (EXPR as format_polynomial).
 std::string format_condition(const GiNaC::ex& p, Relation relation, const Symbols& symbols, Style style);
 
 /// A condition form, with its unproved denominator if it has one
