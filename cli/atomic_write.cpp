@@ -1,5 +1,6 @@
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 #include <stdexcept>
 #include <unistd.h>
 
@@ -23,6 +24,13 @@ void write_file_atomically(const std::string& path, const std::string& text) {
     std::remove(tmp.c_str());
     throw std::runtime_error("write_file_atomically(): " + path + ": cannot rename the temporary file into place");
   }
+}
+
+void write_output(const std::string& path, const std::string& text) {
+  if (path.empty())
+    std::cout << text;
+  else
+    write_file_atomically(path, text);
 }
 
 }  // namespace superball::cli

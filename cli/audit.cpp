@@ -110,10 +110,7 @@ void add_audit(CLI::App& app, Action& action) {
       options.seed = o->seed;
       const verify::Audit a = verify::audit_paper(PrintedConditions::paper(), options);
       const std::string text = o->json ? audit_json(a).dump(2) + "\n" : verify::to_text(a);
-      if (o->output.empty())
-        std::cout << text;
-      else
-        write_file_atomically(o->output, text);
+      write_output(o->output, text);
       return ok;
     };
   });

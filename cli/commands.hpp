@@ -31,4 +31,8 @@ void add_explore(CLI::App& app, Action& action);
 /// Throws std::runtime_error("write_file_atomically(): PATH: why").
 void write_file_atomically(const std::string& path, const std::string& text);
 
+/// A command's result: \p text on standard output when \p path is empty,
+/// else into the file \p path (write_file_atomically()).
+void write_output(const std::string& path, const std::string& text);
+
 }  // namespace superball::cli

@@ -124,10 +124,7 @@ void add_derive(CLI::App& app, Action& action) {
       } else {
         for (const Derivation& d : results) text += report(d, deriver, Style::Text) + "\n";
       }
-      if (o->output.empty())
-        std::cout << text;
-      else
-        write_file_atomically(o->output, text);
+      write_output(o->output, text);
       return ok;
     };
   });

@@ -134,10 +134,7 @@ void add_explore(CLI::App& app, Action& action) {
         for (const auto& r : results)
           if (r.scene) write_file_atomically((std::filesystem::path(o->out) / witness_name(r)).string(), verify::witness_file(r, command.str()));
       }
-      if (o->output.empty())
-        std::cout << text;
-      else
-        write_file_atomically(o->output, text);
+      write_output(o->output, text);
       return ok;
     };
   });
