@@ -3,7 +3,6 @@
 // the exact numeric solution (superball::verify).
 #include <nlohmann/json.hpp>
 
-#include <iostream>
 #include <memory>
 
 #include "commands.hpp"

@@ -2,7 +2,6 @@
 // and print the velocities, reactions and conditions as text, LaTeX or JSON.
 #include <nlohmann/json.hpp>
 
-#include <iostream>
 #include <memory>
 #include <sstream>
 

@@ -4,7 +4,6 @@
 // (superball::verify::explore_case); --all-patterns gives the table of every
 // single alpha_k and {alpha_1, alpha_6} against every case of n = 4.
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <sstream>
 
