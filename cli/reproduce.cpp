@@ -521,7 +521,7 @@ void verification_and_patterns(const std::vector<verify::Verification>& runs, co
     doc.bullets(notes);
   }
   doc.subheading("Which coupling gives the superball in which case");
-  doc.paragraph("`superball explore --all-patterns`: each single alpha_k and the pair {alpha_1, alpha_6} of §4.1's remark against every "
+  doc.paragraph("`superball explore --all-patterns`: each single α_k and the pair {α₁, α₆} of §4.1's remark against every "
                 "case.  \"yes\" is a witness confirmed by an exact solve (the case is the actual evolution and U1+ > a; the ratio is the "
                 "largest U1+/a found in the box " + table.cells.front().front().box + ", a lower bound that depends on the box and the search budget: " +
                 std::to_string(table.options.starts) + " local searches of " + std::to_string(table.options.evaluations) +
@@ -549,12 +549,12 @@ void verification_and_patterns(const std::vector<verify::Verification>& runs, co
     const char* case_name;
     const char* paper;
     bool possible;
-  } said[] = {{{2}, "1", "§4.1: alpha_2 gives the superball in case 1", true},
-              {{3}, "1", "§4.1: alpha_3 alone gives it in case 1, like alpha_2", true},
-              {{1, 6}, "1", "§4.1: alpha_1 with alpha_6 cannot give it in case 1", false},
-              {{5}, "3.2", "§4.3: alpha_5 gives it in case 3.2", true},
-              {{7}, "3.2", "§4.3: alpha_7 gives it in case 3.2, like alpha_5", true},
-              {{4}, "3.3", "§4.4: alpha_4 gives it in case 3.3", true}};
+  } said[] = {{{2}, "1", "§4.1: α₂ gives the superball in case 1", true},
+              {{3}, "1", "§4.1: α₃ alone gives it in case 1, like α₂", true},
+              {{1, 6}, "1", "§4.1: α₁ with α₆ cannot give it in case 1", false},
+              {{5}, "3.2", "§4.3: α₅ gives it in case 3.2", true},
+              {{7}, "3.2", "§4.3: α₇ gives it in case 3.2, like α₅", true},
+              {{4}, "3.3", "§4.4: α₄ gives it in case 3.3", true}};
   for (const auto& c : said) {
     const verify::ExploreResult& r = cell(c.pattern, c.case_name);
     const bool agrees = c.possible ? r.reach == verify::Reach::Yes : r.reach == verify::Reach::Impossible || r.reach == verify::Reach::CaseImpossible;
