@@ -70,9 +70,9 @@ Verdict judge(const ExactScene& scene, int digits, const Problem<cl_RA>& pe, con
   cl_RA abs_err = 0;
   for (std::size_t i = 0; i < W.size(); ++i) abs_err = max_q(abs_err, abs_q(W[i] - se.velocities_after[i]));
   const bool right_case = s.closed == se.closed;
-  const std::string what = std::string(right_case ? "right case" : "WRONG case") + ", error " + sci(approx(rel));
+  const std::string what = std::string(right_case ? "right" : "WRONG case") + ", " + sci(approx(rel));
   if (s.status != numeric::Status::Success) {
-    v.cell = std::string("declines (") + numeric::to_string(s.status) + "; " + what + ")";
+    v.cell = std::string("declines: ") + numeric::to_string(s.status) + " (" + what + ")";
     v.escalation = "status";
     return v;
   }
@@ -83,14 +83,14 @@ Verdict judge(const ExactScene& scene, int digits, const Problem<cl_RA>& pe, con
   std::optional<numeric::Certificate> cert;
   if constexpr (std::is_same<S, double>::value || std::is_same<S, long double>::value) cert = numeric::certify(p, s);
   if (cert && !cert->case_certain) {
-    v.cell = "success, case not certified (" + what + ")";
+    v.cell = what + "; not certified";
     v.escalation = "certificate";
     return v;
   }
   if (cert) {
     EXPECT_TRUE(abs_err <= rational_of(cert->velocity_error))
         << "error " << approx(abs_err) << " above the certified bound " << cert->velocity_error;
-    v.cell = what + ", certified " + sci(cert->relative_error);
+    v.cell = what + "; certified " + sci(cert->relative_error);
     if (!(cert->relative_error <= numeric::default_rtol)) v.escalation = "rtol";
   } else {
     v.cell = what;
