@@ -85,12 +85,12 @@ std::string float_near_switch(const ExactScene& scene, const Problem<cl_RA>& pe,
   SCOPED_TRACE(ScalarTraits<S>::name());
   const auto p = Problem<S>::from(scene);
   const auto s = numeric::solve(p);
-  if (s.status != numeric::Status::Success) return "status";
+  if (s.status != numeric::Status::Success) return std::string("flagged (status ") + numeric::to_string(s.status) + ")";
   const cl_RA rel = relative_velocity_error(exact_vector(s.velocities_after), se.velocities_after, pe.u);
   const cl_RA bound = unit_roundoff<S>() * rational_of(kForwardErrorFactor * p.n * static_cast<double>(condition_number(p)));
   EXPECT_TRUE(rel <= bound) << "velocity error " << approx(rel) << " above 8 n kappa(A) u = " << approx(bound);
   const numeric::Certificate cert = numeric::certify(p, s);
-  if (!cert.case_certain) return "certificate";
+  if (!cert.case_certain) return "flagged (case not certain)";
   EXPECT_EQ(s.closed, se.closed) << "certified case " << s.closed.to_string() << ", exact " << se.closed.to_string();
   cl_RA abs_err = 0;
   for (std::size_t i = 0; i < se.velocities_after.size(); ++i)
@@ -179,7 +179,7 @@ void check_switch(const SwitchCase& sc) {
   const numeric::AutoChoice choice = numeric::choose_precision(at_star, numeric::default_rtol);
   std::string tried;
   for (const auto& t : choice.tried) tried += (tried.empty() ? "" : "; ") + t;
-  std::cout << "[ info ] at the point: double " << d << ", long double " << ld << "; auto: " << tried << "\n";
+  std::cout << "[ info ]   at the point: double " << d << ", long double " << ld << "; auto tried: " << tried << "\n";
   if (d != "right" && ld != "right") {
     EXPECT_EQ(choice.precision.kind, numeric::Precision::Kind::Exact);
   }
