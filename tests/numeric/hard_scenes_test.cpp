@@ -67,8 +67,7 @@ Verdict judge(const ExactScene& scene, int digits, const Problem<cl_RA>& pe, con
                        u * rational_of(kForwardErrorFactor * p.n * static_cast<double>(condition_number(p)))};
   const std::vector<cl_RA> W = exact_vector(s.velocities_after);
   const cl_RA rel = relative_velocity_error(W, se.velocities_after, pe.u);
-  cl_RA abs_err = 0;
-  for (std::size_t i = 0; i < W.size(); ++i) abs_err = max_q(abs_err, abs_q(W[i] - se.velocities_after[i]));
+  const cl_RA abs_err = max_difference(W, se.velocities_after);
   const bool right_case = s.closed == se.closed;
   const std::string what = std::string(right_case ? "right" : "WRONG case") + ", " + sci(approx(rel));
   if (s.status != numeric::Status::Success) {
@@ -149,8 +148,8 @@ INSTANTIATE_TEST_SUITE_P(Catalogue, HardScene, ::testing::ValuesIn(kCatalogue), 
 // The catalogue covers what issue 6 lists, computed from the scenes
 // themselves (not from their names).
 
-/// M on the declared pairs, exact, and the pairs' order.
-std::vector<std::vector<cl_RA>> matrix_of(const ExactScene& s) {
+/// M on the declared pairs (in the order they first appear), exact.
+Matrix matrix_of(const ExactScene& s) {
   std::vector<std::pair<int, int>> pairs;
   auto index = [&](int i, int j) {
     const auto it = std::find(pairs.begin(), pairs.end(), std::make_pair(i, j));
@@ -159,34 +158,13 @@ std::vector<std::vector<cl_RA>> matrix_of(const ExactScene& s) {
     return pairs.size() - 1;
   };
   for (const auto& e : s.entries) index(e.i, e.j), index(e.k, e.l);
-  std::vector<std::vector<cl_RA>> M(pairs.size(), std::vector<cl_RA>(pairs.size(), 0));
+  Matrix M(pairs.size(), std::vector<cl_RA>(pairs.size(), 0));
   for (const auto& e : s.entries) {
     const std::size_t a = index(e.i, e.j), b = index(e.k, e.l);
     M[a][b] = e.value;
     M[b][a] = e.value;
   }
   return M;
-}
-
-/// The determinant of the principal submatrix of \p M on \p rows, exact.
-cl_RA principal_minor(const std::vector<std::vector<cl_RA>>& M, const std::vector<std::size_t>& rows) {
-  const std::size_t k = rows.size();
-  std::vector<std::vector<cl_RA>> a(k, std::vector<cl_RA>(k));
-  for (std::size_t i = 0; i < k; ++i)
-    for (std::size_t j = 0; j < k; ++j) a[i][j] = M[rows[i]][rows[j]];
-  cl_RA det = 1;
-  for (std::size_t c = 0; c < k; ++c) {
-    std::size_t p = c;
-    while (p < k && cln::zerop(a[p][c])) ++p;
-    if (p == k) return 0;
-    if (p != c) std::swap(a[p], a[c]), det = -det;
-    det = det * a[c][c];
-    for (std::size_t r = c + 1; r < k; ++r) {
-      const cl_RA f = a[r][c] / a[c][c];
-      for (std::size_t j = c; j < k; ++j) a[r][j] = a[r][j] - f * a[c][j];
-    }
-  }
-  return det;
 }
 
 TEST(HardSceneCatalogue, IsCompleteAndCoversTheIssue) {
@@ -215,15 +193,16 @@ TEST(HardSceneCatalogue, IsCompleteAndCoversTheIssue) {
     // A singular principal minor of M whose own principal minors are positive:
     // M sits exactly on the boundary of the positive semi-definite cone.
     const auto M = matrix_of(s);
-    const std::size_t m = M.size();
-    for (std::size_t a = 0; a < m; ++a)
-      for (std::size_t b = a + 1; b < m; ++b) {
-        const bool positive_diagonal = cln::plusp(M[a][a]) && cln::plusp(M[b][b]);
-        if (positive_diagonal && !cln::zerop(M[a][b]) && cln::zerop(principal_minor(M, {a, b}))) singular2 = true;
-        for (std::size_t c = b + 1; c < m; ++c) {
-          const bool minors_positive = positive_diagonal && cln::plusp(M[c][c]) && cln::plusp(principal_minor(M, {a, b})) &&
-                                       cln::plusp(principal_minor(M, {a, c})) && cln::plusp(principal_minor(M, {b, c}));
-          if (minors_positive && cln::zerop(principal_minor(M, {a, b, c}))) singular3 = true;
+    const int m = static_cast<int>(M.size());
+    auto minor = [&](const std::vector<int>& idx) { return determinant(principal(M, idx)); };
+    for (int a = 0; a < m; ++a)
+      for (int b = a + 1; b < m; ++b) {
+        const bool positive_diagonal = cln::plusp(minor({a})) && cln::plusp(minor({b}));
+        if (positive_diagonal && cln::zerop(minor({a, b}))) singular2 = true;
+        for (int c = b + 1; c < m; ++c) {
+          const bool minors_positive = positive_diagonal && cln::plusp(minor({c})) && cln::plusp(minor({a, b})) &&
+                                       cln::plusp(minor({a, c})) && cln::plusp(minor({b, c}));
+          if (minors_positive && cln::zerop(minor({a, b, c}))) singular3 = true;
         }
       }
   }

@@ -57,12 +57,6 @@ std::optional<numeric::Certificate> certificate_of(const Problem<S>& p, const So
   }
 }
 
-/// max_i |W_i − exact W_i| (solver units), exact.
-inline cl_RA absolute_velocity_error(const std::vector<cl_RA>& W, const std::vector<cl_RA>& exact) {
-  cl_RA err = 0;
-  for (std::size_t i = 0; i < exact.size(); ++i) err = max_q(err, abs_q(W[i] - exact[i]));
-  return err;
-}
 
 /// The evolution case is compared only when the exact solution is strictly
 /// complementary by more than this multiple of the forward error bound (a
@@ -131,7 +125,7 @@ TYPED_TEST(RandomScenes, PhysicsHoldsAndAgreesWithTheExactSolution) {
     if (cert && cert->case_certain) {
       ++certified;
       EXPECT_EQ(ss.closed, se.closed) << "certified case " << ss.closed.to_string() << ", exact " << se.closed.to_string();
-      const cl_RA abs_err = absolute_velocity_error(exact_vector(ss.velocities_after), se.velocities_after);
+      const cl_RA abs_err = max_difference(exact_vector(ss.velocities_after), se.velocities_after);
       EXPECT_TRUE(abs_err <= rational_of(cert->velocity_error))
           << "error " << approx(abs_err) << " above the certified bound " << cert->velocity_error;
       if (cert->velocity_error > 0) worst_certified = std::max(worst_certified, approx(abs_err) / cert->velocity_error);

@@ -501,6 +501,45 @@ inline cl_RA complementarity_margin(const Problem<cl_RA>& p, const Solution<cl_R
   return margin;
 }
 
+/// Max absolute difference of two vectors, exact.
+inline cl_RA max_difference(const std::vector<cl_RA>& a, const std::vector<cl_RA>& b) {
+  cl_RA d = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) d = max_q(d, abs_q(a[i] - b[i]));
+  return d;
+}
+
+// ---------------------------------------------------------------------------
+// Exact matrices (M of a scene, its principal minors).
+
+using Matrix = std::vector<std::vector<cl_RA>>;
+
+/// Determinant by exact Gaussian elimination.
+inline cl_RA determinant(Matrix a) {
+  const std::size_t m = a.size();
+  cl_RA det = 1;
+  for (std::size_t k = 0; k < m; ++k) {
+    std::size_t pivot = k;
+    while (pivot < m && cln::zerop(a[pivot][k])) ++pivot;
+    if (pivot == m) return 0;
+    if (pivot != k) std::swap(a[pivot], a[k]), det = -det;
+    det = det * a[k][k];
+    for (std::size_t i = k + 1; i < m; ++i) {
+      const cl_RA f = a[i][k] / a[k][k];
+      for (std::size_t j = k; j < m; ++j) a[i][j] = a[i][j] - f * a[k][j];
+    }
+  }
+  return det;
+}
+
+/// The principal submatrix of \p M on the rows and columns \p idx.
+inline Matrix principal(const Matrix& M, const std::vector<int>& idx) {
+  Matrix out(idx.size(), std::vector<cl_RA>(idx.size()));
+  for (std::size_t i = 0; i < idx.size(); ++i)
+    for (std::size_t j = 0; j < idx.size(); ++j)
+      out[i][j] = M[static_cast<std::size_t>(idx[i])][static_cast<std::size_t>(idx[j])];
+  return out;
+}
+
 /// Max relative difference of two velocity vectors, relative to the largest
 /// velocity before or after.
 inline cl_RA relative_velocity_error(const std::vector<cl_RA>& W, const std::vector<cl_RA>& exact, const std::vector<cl_RA>& u) {

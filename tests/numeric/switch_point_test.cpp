@@ -71,13 +71,6 @@ cl_RA moebius_root(const cl_RA p[3], const cl_RA g[3]) {
   return -alpha / beta;
 }
 
-/// max_i |a_i − b_i|.
-cl_RA max_difference(const std::vector<cl_RA>& a, const std::vector<cl_RA>& b) {
-  cl_RA d = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) d = max_q(d, abs_q(a[i] - b[i]));
-  return d;
-}
-
 /// A floating-point solve near the switch: the right answer within its
 /// bound, or flagged (status not Success, or the certificate not certain).
 template <class S>
@@ -92,9 +85,7 @@ std::string float_near_switch(const ExactScene& scene, const Problem<cl_RA>& pe,
   const numeric::Certificate cert = numeric::certify(p, s);
   if (!cert.case_certain) return "flagged (case not certain)";
   EXPECT_EQ(s.closed, se.closed) << "certified case " << s.closed.to_string() << ", exact " << se.closed.to_string();
-  cl_RA abs_err = 0;
-  for (std::size_t i = 0; i < se.velocities_after.size(); ++i)
-    abs_err = max_q(abs_err, abs_q(exact_value(s.velocities_after[i]) - se.velocities_after[i]));
+  const cl_RA abs_err = max_difference(exact_vector(s.velocities_after), se.velocities_after);
   EXPECT_TRUE(abs_err <= rational_of(cert.velocity_error)) << "error " << approx(abs_err) << " above the certificate";
   return "right";
 }
