@@ -79,8 +79,7 @@ Verdict judge(const ExactScene& scene, int digits, const Problem<cl_RA>& pe, con
   EXPECT_TRUE(right_case) << "status Success with case " << s.closed.to_string() << ", exact " << se.closed.to_string();
   EXPECT_TRUE(rel <= tol.forward) << "relative velocity error " << approx(rel) << " above 8 n kappa(A) u = " << approx(tol.forward);
   check_physics(p, s, tol, name);
-  std::optional<numeric::Certificate> cert;
-  if constexpr (std::is_same<S, double>::value || std::is_same<S, long double>::value) cert = numeric::certify(p, s);
+  const std::optional<numeric::Certificate> cert = certificate_of(p, s);
   if (cert && !cert->case_certain) {
     v.cell = what + "; not certified";
     v.escalation = "certificate";

@@ -15,11 +15,9 @@
 #include <cstdint>
 #include <cstdlib>
 #include <iostream>
-#include <optional>
 #include <stdexcept>
 #include <string>
 
-#include "superball/numeric/certify.hpp"
 #include "support.hpp"
 
 namespace superball::testing {
@@ -40,23 +38,6 @@ std::uint64_t property_scenes() {
     throw std::invalid_argument("property_scenes(): SUPERBALL_PROPERTY_SCENES must be a positive integer, got '" + s + "'");
   return std::stoull(s);
 }
-
-/// Whether numeric::certify() is defined for \p S (double and long double).
-template <class S>
-constexpr bool kHasCertificate = std::is_same<S, double>::value || std::is_same<S, long double>::value;
-
-/// What the certificate (numeric/certify.hpp) says of a solution; nullopt for
-/// the arithmetics that have none.
-template <class S>
-std::optional<numeric::Certificate> certificate_of(const Problem<S>& p, const Solution<S>& s) {
-  if constexpr (kHasCertificate<S>) {
-    return numeric::certify(p, s);
-  } else {
-    (void)p, (void)s;
-    return std::nullopt;
-  }
-}
-
 
 /// The evolution case is compared only when the exact solution is strictly
 /// complementary by more than this multiple of the forward error bound (a

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -27,6 +28,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "superball/cases/scene_file.hpp"
+#include "superball/numeric/certify.hpp"
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/problem.hpp"
 
@@ -499,6 +501,22 @@ inline cl_RA complementarity_margin(const Problem<cl_RA>& p, const Solution<cl_R
     if (m < margin) margin = m;
   }
   return margin;
+}
+
+/// Whether numeric::certify() is defined for \p S (double and long double).
+template <class S>
+inline constexpr bool kHasCertificate = std::is_same<S, double>::value || std::is_same<S, long double>::value;
+
+/// What the certificate (numeric/certify.hpp) says of a solution; nullopt for
+/// the arithmetics that have none.
+template <class S>
+std::optional<numeric::Certificate> certificate_of(const Problem<S>& p, const Solution<S>& s) {
+  if constexpr (kHasCertificate<S>) {
+    return numeric::certify(p, s);
+  } else {
+    (void)p, (void)s;
+    return std::nullopt;
+  }
 }
 
 /// Max absolute difference of two vectors, exact.
