@@ -59,9 +59,13 @@ void complete_solution(const Problem<S>& p, const std::vector<S>& lambda, const 
     if (i > 0) r[k] += lambda[k - 1], size[k] += abs_value<S>(lambda[k - 1]);
     if (!(r[k] == S(0))) motion = std::max(motion, to_double(abs_value<S>(r[k])) / std::max(to_double(size[k]), 1e-300));
   }
+  // Gaps relative to the largest velocity; reactions relative to the largest
+  // row of the equations of motion (momenta, percussions and reactions), so
+  // that a reaction at rounding level whose sign came out wrong, where all
+  // reactions are about 0, is not taken for a violation.
   double comp = 0, vscale = 0, lscale = 0;
   for (int i = 0; i < n; ++i) vscale = std::max({vscale, std::fabs(to_double(W[i])), std::fabs(to_double(p.u[i]))});
-  for (int c = 0; c < nc; ++c) lscale = std::max(lscale, std::fabs(to_double(lambda[static_cast<std::size_t>(c)])));
+  for (int i = 0; i < nf; ++i) lscale = std::max(lscale, to_double(size[static_cast<std::size_t>(i)]));
   for (int c = 0; c < nc; ++c) {
     const auto k = static_cast<std::size_t>(c);
     const double w = to_double(out.gaps[k]), l = to_double(lambda[k]);

@@ -103,12 +103,6 @@ Solution<cl_RA> exact_at(const Scene& scene, const Parameter& k34, const cl_RA& 
   return numeric::solve(Problem<cl_RA>::from(ExactScene::from(numeric::with_value(scene, k34, value))));
 }
 
-cl_RA max_difference(const std::vector<cl_RA>& a, const std::vector<cl_RA>& b) {
-  cl_RA d = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) d = max_q(d, abs_q(a[i] - b[i]));
-  return d;
-}
-
 class Fig7 : public ::testing::TestWithParam<numeric::Precision::Kind> {};
 
 TEST_P(Fig7, TwoSwitchPointsAlongK34) {

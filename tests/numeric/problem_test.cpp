@@ -14,34 +14,6 @@
 namespace superball::testing {
 namespace {
 
-using Matrix = std::vector<std::vector<cl_RA>>;
-
-/// Determinant by exact Gaussian elimination.
-cl_RA determinant(Matrix a) {
-  const std::size_t m = a.size();
-  cl_RA det = 1;
-  for (std::size_t k = 0; k < m; ++k) {
-    std::size_t pivot = k;
-    while (pivot < m && cln::zerop(a[pivot][k])) ++pivot;
-    if (pivot == m) return 0;
-    if (pivot != k) std::swap(a[pivot], a[k]), det = -det;
-    det = det * a[k][k];
-    for (std::size_t i = k + 1; i < m; ++i) {
-      const cl_RA f = a[i][k] / a[k][k];
-      for (std::size_t j = k; j < m; ++j) a[i][j] = a[i][j] - f * a[k][j];
-    }
-  }
-  return det;
-}
-
-Matrix principal(const Matrix& M, const std::vector<int>& idx) {
-  Matrix out(idx.size(), std::vector<cl_RA>(idx.size()));
-  for (std::size_t i = 0; i < idx.size(); ++i)
-    for (std::size_t j = 0; j < idx.size(); ++j)
-      out[i][j] = M[static_cast<std::size_t>(idx[i])][static_cast<std::size_t>(idx[j])];
-  return out;
-}
-
 /// Positive semi-definite by definition: every principal minor >= 0.
 bool psd_by_minors(const Matrix& M) {
   const int m = static_cast<int>(M.size());

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -27,6 +28,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "superball/cases/scene_file.hpp"
+#include "superball/numeric/certify.hpp"
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/problem.hpp"
 
@@ -499,6 +501,61 @@ inline cl_RA complementarity_margin(const Problem<cl_RA>& p, const Solution<cl_R
     if (m < margin) margin = m;
   }
   return margin;
+}
+
+/// Whether numeric::certify() is defined for \p S (double and long double).
+template <class S>
+inline constexpr bool kHasCertificate = std::is_same<S, double>::value || std::is_same<S, long double>::value;
+
+/// What the certificate (numeric/certify.hpp) says of a solution; nullopt for
+/// the arithmetics that have none.
+template <class S>
+std::optional<numeric::Certificate> certificate_of(const Problem<S>& p, const Solution<S>& s) {
+  if constexpr (kHasCertificate<S>) {
+    return numeric::certify(p, s);
+  } else {
+    (void)p, (void)s;
+    return std::nullopt;
+  }
+}
+
+/// Max absolute difference of two vectors, exact.
+inline cl_RA max_difference(const std::vector<cl_RA>& a, const std::vector<cl_RA>& b) {
+  cl_RA d = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) d = max_q(d, abs_q(a[i] - b[i]));
+  return d;
+}
+
+// ---------------------------------------------------------------------------
+// Exact matrices (M of a scene, its principal minors).
+
+using Matrix = std::vector<std::vector<cl_RA>>;
+
+/// Determinant by exact Gaussian elimination.
+inline cl_RA determinant(Matrix a) {
+  const std::size_t m = a.size();
+  cl_RA det = 1;
+  for (std::size_t k = 0; k < m; ++k) {
+    std::size_t pivot = k;
+    while (pivot < m && cln::zerop(a[pivot][k])) ++pivot;
+    if (pivot == m) return 0;
+    if (pivot != k) std::swap(a[pivot], a[k]), det = -det;
+    det = det * a[k][k];
+    for (std::size_t i = k + 1; i < m; ++i) {
+      const cl_RA f = a[i][k] / a[k][k];
+      for (std::size_t j = k; j < m; ++j) a[i][j] = a[i][j] - f * a[k][j];
+    }
+  }
+  return det;
+}
+
+/// The principal submatrix of \p M on the rows and columns \p idx.
+inline Matrix principal(const Matrix& M, const std::vector<int>& idx) {
+  Matrix out(idx.size(), std::vector<cl_RA>(idx.size()));
+  for (std::size_t i = 0; i < idx.size(); ++i)
+    for (std::size_t j = 0; j < idx.size(); ++j)
+      out[i][j] = M[static_cast<std::size_t>(idx[i])][static_cast<std::size_t>(idx[j])];
+  return out;
 }
 
 /// Max relative difference of two velocity vectors, relative to the largest
