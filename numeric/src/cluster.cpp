@@ -9,6 +9,7 @@ void ClusterSystem<S>::assemble(const Problem<S>& p) {
   n_ = p.n;
   nf_ = p.fixed_bottom ? n_ - 1 : n_;
   nc_ = n_ - 1;
+  definite_ = -1;
   b_ = 0;
   for (const Entry<S>& e : p.entries) b_ = std::max(b_, std::max({e.i, e.j, e.k, e.l}) - std::min({e.i, e.j, e.k, e.l}));
   A_.assign(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1), S(0));
@@ -53,6 +54,31 @@ void ClusterSystem<S>::assemble(const Problem<S>& p) {
 }
 
 template <class S>
+bool ClusterSystem<S>::factor(int k) {
+  for (int j = 0; j < k; ++j) {
+    const S dj = R(j, 0);
+    if (!(dj > S(0))) return false;
+    const int last = std::min(k - 1, j + b_);
+    for (int r = j + 1; r <= last; ++r) {
+      const S lrj = R(r, r - j) / dj;
+      for (int i = r; i <= last; ++i) R(i, i - r) -= R(i, i - j) * lrj;
+    }
+    for (int i = j + 1; i <= last; ++i) R(i, i - j) /= dj;
+  }
+  return true;
+}
+
+template <class S>
+bool ClusterSystem<S>::definite() {
+  if (definite_ < 0) {  // not known from an all-open solve: factor A on the free bodies
+    R_.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1));
+    std::copy(A_.begin(), A_.begin() + static_cast<std::ptrdiff_t>(nf_) * (b_ + 1), R_.begin());
+    definite_ = factor(nf_) ? 1 : 0;
+  }
+  return definite_ == 1;
+}
+
+template <class S>
 bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& closed_, std::vector<S>& W, std::vector<S>& lambda_) {
   cluster_.resize(static_cast<std::size_t>(n_));
   R_.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1));
@@ -82,17 +108,12 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
       if (d > 0 && ci == cj) R(ci, 0) += A(i, d);
     }
   }
-  // Banded LDLᵀ in place, then the three triangular/diagonal solves.
-  for (int j = 0; j < k; ++j) {
-    const S dj = R(j, 0);
-    if (!(dj > S(0))) return false;
-    const int last = std::min(k - 1, j + b_);
-    for (int r = j + 1; r <= last; ++r) {
-      const S lrj = R(r, r - j) / dj;
-      for (int i = r; i <= last; ++i) R(i, i - r) -= R(i, i - j) * lrj;
-    }
-    for (int i = j + 1; i <= last; ++i) R(i, i - j) /= dj;
-  }
+  // Banded LDLᵀ in place, then the three triangular/diagonal solves.  With
+  // every contact open the reduced system is A itself: its factorization
+  // decides definite() too.
+  const bool factored = factor(k);
+  if (k == nf_) definite_ = factored ? 1 : 0;
+  if (!factored) return false;
   for (int i = 0; i < k; ++i)
     for (int j = std::max(0, i - b_); j < i; ++j) y_[i] -= R(i, i - j) * y_[j];
   for (int i = 0; i < k; ++i) y_[i] /= R(i, 0);

@@ -6,8 +6,9 @@
 namespace superball::numeric::detail {
 
 template <class S>
-void complete_solution(const Problem<S>& p, const std::vector<S>& lambda, const std::vector<char>& active, bool imposed,
-                       const Settings<S>& settings, CheckWorkspace<S>& work, Solution<S>& out) {
+void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std::vector<S>& lambda,
+                       const std::vector<char>& active, bool imposed, const Settings<S>& settings, CheckWorkspace<S>& work,
+                       Solution<S>& out) {
   const int n = p.n, nc = n - 1, nf = p.fixed_bottom ? n - 1 : n;
   const auto& W = out.velocities_after;
   out.reactions.resize(static_cast<std::size_t>(nc));
@@ -75,16 +76,16 @@ void complete_solution(const Problem<S>& p, const std::vector<S>& lambda, const 
   out.residual_motion = motion;
   out.residual_complementarity = comp;
   const double tol = to_double(settings.residual);
-  if (out.status == Status::Success && (motion > tol || comp > tol)) out.status = Status::NumericalIssue;
+  if (out.status == Status::Success && (motion > tol || comp > tol || !system.definite())) out.status = Status::NumericalIssue;
 }
 
-template void complete_solution(const Problem<double>&, const std::vector<double>&, const std::vector<char>&, bool,
+template void complete_solution(const Problem<double>&, ClusterSystem<double>&, const std::vector<double>&, const std::vector<char>&, bool,
                                 const Settings<double>&, CheckWorkspace<double>&, Solution<double>&);
-template void complete_solution(const Problem<long double>&, const std::vector<long double>&, const std::vector<char>&, bool,
+template void complete_solution(const Problem<long double>&, ClusterSystem<long double>&, const std::vector<long double>&, const std::vector<char>&, bool,
                                 const Settings<long double>&, CheckWorkspace<long double>&, Solution<long double>&);
-template void complete_solution(const Problem<cln::cl_R>&, const std::vector<cln::cl_R>&, const std::vector<char>&, bool,
+template void complete_solution(const Problem<cln::cl_R>&, ClusterSystem<cln::cl_R>&, const std::vector<cln::cl_R>&, const std::vector<char>&, bool,
                                 const Settings<cln::cl_R>&, CheckWorkspace<cln::cl_R>&, Solution<cln::cl_R>&);
-template void complete_solution(const Problem<cln::cl_RA>&, const std::vector<cln::cl_RA>&, const std::vector<char>&, bool,
+template void complete_solution(const Problem<cln::cl_RA>&, ClusterSystem<cln::cl_RA>&, const std::vector<cln::cl_RA>&, const std::vector<char>&, bool,
                                 const Settings<cln::cl_RA>&, CheckWorkspace<cln::cl_RA>&, Solution<cln::cl_RA>&);
 
 }  // namespace superball::numeric::detail
