@@ -70,10 +70,33 @@ bool ClusterSystem<S>::factor(int k) {
 
 template <class S>
 bool ClusterSystem<S>::definite() {
-  if (definite_ < 0) {  // not known from an all-open solve: factor A on the free bodies
-    R_.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1));
-    std::copy(A_.begin(), A_.begin() + static_cast<std::ptrdiff_t>(nf_) * (b_ + 1), R_.begin());
-    definite_ = factor(nf_) ? 1 : 0;
+  if (definite_ >= 0) return definite_ == 1;
+  // Not known from an all-open solve: the pivots of the LDLᵀ of A on the
+  // free bodies, streamed through a window of the Schur complement on
+  // rows j … j+b (one division per row; L is not kept), so that the check
+  // costs a fraction of one solve.  win_(r, c) = W[r·(b+1) + c], c <= r.
+  const int w = b_ + 1;
+  win_.assign(static_cast<std::size_t>(w * w + w), S(0));  // and the eliminated column
+  auto W = [&](int r, int c) -> S& { return win_[static_cast<std::size_t>(r * w + c)]; };
+  auto load = [&](int r, int row) {  // window row r <- A's row `row` (columns j … row)
+    for (int c = 0; c <= r; ++c) W(r, c) = row < nf_ ? A(row, r - c) : S(0);
+  };
+  for (int r = 0; r < w; ++r) load(r, r);
+  definite_ = 1;
+  for (int j = 0; j < nf_; ++j) {
+    const S d = W(0, 0);
+    if (!(d > S(0))) {
+      definite_ = 0;
+      break;
+    }
+    const S inv = S(1) / d;
+    S* col = win_.data() + w * w;
+    for (int r = 1; r < w; ++r) col[r] = W(r, 0);
+    for (int r = 1; r < w; ++r) {
+      const S f = col[r] * inv;
+      for (int c = 1; c <= r; ++c) W(r - 1, c - 1) = W(r, c) - f * col[c];
+    }
+    load(b_, j + w);
   }
   return definite_ == 1;
 }

@@ -53,6 +53,7 @@ class ClusterSystem {
   std::vector<S> rhs_;    ///< b̃ on free bodies
   std::vector<int> cluster_;
   std::vector<S> R_, y_;  ///< the reduced banded system and its right side / solution
+  std::vector<S> win_;    ///< definite(): a window of the Schur complement
 };
 
 extern template class ClusterSystem<double>;
