@@ -72,13 +72,14 @@ template <class S>
 bool ClusterSystem<S>::definite() {
   if (definite_ >= 0) return definite_ == 1;
   // Not known from an all-open solve: the pivots of the LDLᵀ of A on the
-  // free bodies, streamed through a window of the Schur complement on
-  // rows j … j+b (one division per row; L is not kept), so that the check
-  // costs a fraction of one solve.  win_(r, c) = W[r·(b+1) + c], c <= r.
+  // free bodies, streamed through a window of the Schur complement on rows
+  // j … j+b (L is not kept, A is not copied), so that the check costs a
+  // fraction of one solve.  The operations are factor()'s, in its order, so
+  // both give the same verdict.  win_(r, c) = W[r·(b+1) + c], c <= r.
   const int w = b_ + 1;
-  win_.assign(static_cast<std::size_t>(w * w + w), S(0));  // and the eliminated column
+  win_.assign(static_cast<std::size_t>(w * w + 2 * w), S(0));  // and the eliminated column, and it over the pivot
   auto W = [&](int r, int c) -> S& { return win_[static_cast<std::size_t>(r * w + c)]; };
-  auto load = [&](int r, int row) {  // window row r <- A's row `row` (columns j … row)
+  auto load = [&](int r, int row) {  // window row r <- A_{row, row−r … row} (0 below the free bodies)
     for (int c = 0; c <= r; ++c) W(r, c) = row < nf_ ? A(row, r - c) : S(0);
   };
   for (int r = 0; r < w; ++r) load(r, r);
@@ -89,13 +90,11 @@ bool ClusterSystem<S>::definite() {
       definite_ = 0;
       break;
     }
-    const S inv = S(1) / d;
     S* col = win_.data() + w * w;
-    for (int r = 1; r < w; ++r) col[r] = W(r, 0);
-    for (int r = 1; r < w; ++r) {
-      const S f = col[r] * inv;
-      for (int c = 1; c <= r; ++c) W(r - 1, c - 1) = W(r, c) - f * col[c];
-    }
+    S* l = col + w;
+    for (int r = 1; r < w; ++r) col[r] = W(r, 0), l[r] = col[r] / d;
+    for (int r = 1; r < w; ++r)
+      for (int c = 1; c <= r; ++c) W(r - 1, c - 1) = W(r, c) - col[r] * l[c];
     load(b_, j + w);
   }
   return definite_ == 1;
