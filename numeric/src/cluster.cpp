@@ -9,6 +9,7 @@ void ClusterSystem<S>::assemble(const Problem<S>& p) {
   n_ = p.n;
   nf_ = p.fixed_bottom ? n_ - 1 : n_;
   nc_ = n_ - 1;
+  definite_ = -1;
   b_ = 0;
   for (const Entry<S>& e : p.entries) b_ = std::max(b_, std::max({e.i, e.j, e.k, e.l}) - std::min({e.i, e.j, e.k, e.l}));
   A_.assign(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1), S(0));
@@ -53,6 +54,53 @@ void ClusterSystem<S>::assemble(const Problem<S>& p) {
 }
 
 template <class S>
+bool ClusterSystem<S>::factor(int k) {
+  for (int j = 0; j < k; ++j) {
+    const S dj = R(j, 0);
+    if (!(dj > S(0))) return false;
+    const int last = std::min(k - 1, j + b_);
+    for (int r = j + 1; r <= last; ++r) {
+      const S lrj = R(r, r - j) / dj;
+      for (int i = r; i <= last; ++i) R(i, i - r) -= R(i, i - j) * lrj;
+    }
+    for (int i = j + 1; i <= last; ++i) R(i, i - j) /= dj;
+  }
+  return true;
+}
+
+template <class S>
+bool ClusterSystem<S>::definite() {
+  if (definite_ >= 0) return definite_ == 1;
+  // Not known from an all-open solve: the pivots of the LDLᵀ of A on the
+  // free bodies, streamed through a window of the Schur complement on rows
+  // j … j+b (L is not kept, A is not copied), so that the check costs a
+  // fraction of one solve.  The operations are factor()'s, in its order, so
+  // both give the same verdict.  win_(r, c) = W[r·(b+1) + c], c <= r.
+  const int w = b_ + 1;
+  win_.assign(static_cast<std::size_t>(w * w + 2 * w), S(0));  // and the eliminated column, and it over the pivot
+  auto W = [&](int r, int c) -> S& { return win_[static_cast<std::size_t>(r * w + c)]; };
+  auto load = [&](int r, int row) {  // window row r <- A_{row, row−r … row} (0 below the free bodies)
+    for (int c = 0; c <= r; ++c) W(r, c) = row < nf_ ? A(row, r - c) : S(0);
+  };
+  for (int r = 0; r < w; ++r) load(r, r);
+  definite_ = 1;
+  for (int j = 0; j < nf_; ++j) {
+    const S d = W(0, 0);
+    if (!(d > S(0))) {
+      definite_ = 0;
+      break;
+    }
+    S* col = win_.data() + w * w;
+    S* l = col + w;
+    for (int r = 1; r < w; ++r) col[r] = W(r, 0), l[r] = col[r] / d;
+    for (int r = 1; r < w; ++r)
+      for (int c = 1; c <= r; ++c) W(r - 1, c - 1) = W(r, c) - col[r] * l[c];
+    load(b_, j + w);
+  }
+  return definite_ == 1;
+}
+
+template <class S>
 bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& closed_, std::vector<S>& W, std::vector<S>& lambda_) {
   cluster_.resize(static_cast<std::size_t>(n_));
   R_.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1));
@@ -82,17 +130,12 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
       if (d > 0 && ci == cj) R(ci, 0) += A(i, d);
     }
   }
-  // Banded LDLᵀ in place, then the three triangular/diagonal solves.
-  for (int j = 0; j < k; ++j) {
-    const S dj = R(j, 0);
-    if (!(dj > S(0))) return false;
-    const int last = std::min(k - 1, j + b_);
-    for (int r = j + 1; r <= last; ++r) {
-      const S lrj = R(r, r - j) / dj;
-      for (int i = r; i <= last; ++i) R(i, i - r) -= R(i, i - j) * lrj;
-    }
-    for (int i = j + 1; i <= last; ++i) R(i, i - j) /= dj;
-  }
+  // Banded LDLᵀ in place, then the three triangular/diagonal solves.  With
+  // every contact open the reduced system is A itself: its factorization
+  // decides definite() too.
+  const bool factored = factor(k);
+  if (k == nf_) definite_ = factored ? 1 : 0;
+  if (!factored) return false;
   for (int i = 0; i < k; ++i)
     for (int j = std::max(0, i - b_); j < i; ++j) y_[i] -= R(i, i - j) * y_[j];
   for (int i = 0; i < k; ++i) y_[i] /= R(i, 0);

@@ -162,7 +162,7 @@ void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out, bool impo
   // the accuracy does not depend on the conditioning of the tableau.  With
   // no pivot the case is every contact open, solved already by start().
   if (!answered_ && !system_.solve(p, basic_lambda_, out.velocities_after, lambda_)) out.status = Status::NumericalIssue;
-  detail::complete_solution(p, lambda_, basic_lambda_, imposed, settings_, check_, out);
+  detail::complete_solution(p, system_, lambda_, basic_lambda_, imposed, settings_, check_, out);
 }
 
 template <class S>

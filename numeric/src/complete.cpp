@@ -5,9 +5,29 @@
 
 namespace superball::numeric::detail {
 
+namespace {
+/// Whether every row of A (free bodies, from \p system's band) has a
+/// positive diagonal exceeding the sum of its |off-diagonal| entries by more
+/// than the rounding of that sum (|error| <= 2b·u·sum): then A is positive
+/// definite (Gershgorin), with no factorization.  O(n b), no division.
 template <class S>
-void complete_solution(const Problem<S>& p, const std::vector<S>& lambda, const std::vector<char>& active, bool imposed,
-                       const Settings<S>& settings, CheckWorkspace<S>& work, Solution<S>& out) {
+bool diagonally_dominant(const ClusterSystem<S>& system, int nf, const S& u) {
+  const int b = system.bandwidth();
+  const S margin = S(4 * (b + 1)) * u;
+  for (int i = 0; i < nf; ++i) {
+    S off = S(0);
+    for (int d = 1; d <= b && d <= i; ++d) off += abs_value<S>(system.band(i, d));
+    for (int d = 1; d <= b && i + d < nf; ++d) off += abs_value<S>(system.band(i + d, d));
+    if (!(S(system.band(i, 0) - off) > margin * off)) return false;
+  }
+  return true;
+}
+}  // namespace
+
+template <class S>
+void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std::vector<S>& lambda,
+                       const std::vector<char>& active, bool imposed, const Settings<S>& settings, CheckWorkspace<S>& work,
+                       Solution<S>& out) {
   const int n = p.n, nc = n - 1, nf = p.fixed_bottom ? n - 1 : n;
   const auto& W = out.velocities_after;
   out.reactions.resize(static_cast<std::size_t>(nc));
@@ -80,15 +100,18 @@ void complete_solution(const Problem<S>& p, const std::vector<S>& lambda, const 
   out.residual_complementarity = comp;
   const double tol = to_double(settings.residual);
   if (out.status == Status::Success && (motion > tol || comp > tol)) out.status = Status::NumericalIssue;
+  if (out.status == Status::Success && !diagonally_dominant(system, nf, ScalarTraits<S>::unit_roundoff(p.digits)) &&
+      !system.definite())
+    out.status = Status::NumericalIssue;
 }
 
-template void complete_solution(const Problem<double>&, const std::vector<double>&, const std::vector<char>&, bool,
+template void complete_solution(const Problem<double>&, ClusterSystem<double>&, const std::vector<double>&, const std::vector<char>&, bool,
                                 const Settings<double>&, CheckWorkspace<double>&, Solution<double>&);
-template void complete_solution(const Problem<long double>&, const std::vector<long double>&, const std::vector<char>&, bool,
+template void complete_solution(const Problem<long double>&, ClusterSystem<long double>&, const std::vector<long double>&, const std::vector<char>&, bool,
                                 const Settings<long double>&, CheckWorkspace<long double>&, Solution<long double>&);
-template void complete_solution(const Problem<cln::cl_R>&, const std::vector<cln::cl_R>&, const std::vector<char>&, bool,
+template void complete_solution(const Problem<cln::cl_R>&, ClusterSystem<cln::cl_R>&, const std::vector<cln::cl_R>&, const std::vector<char>&, bool,
                                 const Settings<cln::cl_R>&, CheckWorkspace<cln::cl_R>&, Solution<cln::cl_R>&);
-template void complete_solution(const Problem<cln::cl_RA>&, const std::vector<cln::cl_RA>&, const std::vector<char>&, bool,
+template void complete_solution(const Problem<cln::cl_RA>&, ClusterSystem<cln::cl_RA>&, const std::vector<cln::cl_RA>&, const std::vector<char>&, bool,
                                 const Settings<cln::cl_RA>&, CheckWorkspace<cln::cl_RA>&, Solution<cln::cl_RA>&);
 
 }  // namespace superball::numeric::detail

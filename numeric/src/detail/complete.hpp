@@ -26,9 +26,17 @@ double to_double(const S& x) {
 /// alone (the declared entries of M, not the solver's matrices):
 ///   m(W − u) + DᵀMD(W + u) − Cᵀλ = 0 on the free bodies, and complementarity
 /// (skipped where \p imposed: the case was imposed, not solved for).
-/// Sets out.status to NumericalIssue when a residual exceeds settings.residual.
+/// Sets out.status to NumericalIssue when a residual exceeds settings.residual,
+/// or when A = diag(m) + DᵀMD (\p system, assembled for \p p) is not positive
+/// definite in S: the residual check measures a backward error, which a
+/// solution of the rounded problem passes even when rounding has made that
+/// problem a different one (hard-eps-1e-8.toml in double: A₁₁ = 2e-16
+/// exactly, 1e-24 after the O(1) terms of DᵀMD cancel in double; the answer
+/// satisfies the rounded equations to 1e-17 and is off by 2e8).
+/// Every solver calls this, so every path runs the same checks.
 template <class S>
-void complete_solution(const Problem<S>& p, const std::vector<S>& lambda, const std::vector<char>& active, bool imposed,
-                       const Settings<S>& settings, CheckWorkspace<S>& work, Solution<S>& out);
+void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std::vector<S>& lambda,
+                       const std::vector<char>& active, bool imposed, const Settings<S>& settings, CheckWorkspace<S>& work,
+                       Solution<S>& out);
 
 }  // namespace superball::numeric::detail
