@@ -38,8 +38,8 @@ struct CheckWorkspace {
 
 /// How a solve ended (Eigen style: numerical outcomes are a status).
 enum class Status {
-  Success,         ///< converged and the independent residual check passed
-  NumericalIssue,  ///< converged but the residual check failed at the stated tolerances
+  Success,         ///< converged, A = diag(m) + DᵀMD positive definite in the solve's arithmetic, and the independent residual check passed
+  NumericalIssue,  ///< A not positive definite once rounded, or the residual check failed at the stated tolerances
   NoConvergence,   ///< the pivoting did not terminate within Settings::max_pivots
 };
 const char* to_string(Status s);
