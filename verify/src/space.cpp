@@ -14,14 +14,18 @@
 namespace superball::verify {
 namespace detail {
 
-/// A copy of \p x that shares no heap object with it (CLN's copies share).
-cln::cl_RA deep_copy(const cln::cl_RA& x) { return numeric::parse_rational(to_string(x)); }
-
-GiNaC::numeric to_ginac(const cln::cl_RA& x) { return GiNaC::numeric(cln::cl_N(x)); }
-
 cln::cl_RA to_rational(const GiNaC::numeric& x) { return cln::rational(cln::the<cln::cl_RA>(x.to_cl_N())); }
 
 }  // namespace detail
+
+cln::cl_RA deep_copy(const cln::cl_RA& x) { return numeric::parse_rational(to_string(x)); }
+
+Point deep_copy(const Point& x) {
+  Point out;
+  out.reserve(x.size());
+  for (const cln::cl_RA& v : x) out.push_back(deep_copy(v));
+  return out;
+}
 
 std::string to_string(const cln::cl_RA& x) {
   std::ostringstream os;
@@ -73,7 +77,7 @@ double Polynomial::operator()(const std::vector<double>& x) const {
 Polynomial Polynomial::clone() const {
   Polynomial out;
   out.terms_.reserve(terms_.size());
-  for (const Term& t : terms_) out.terms_.push_back(Term{detail::deep_copy(t.coefficient), t.approx, t.powers});
+  for (const Term& t : terms_) out.terms_.push_back(Term{deep_copy(t.coefficient), t.approx, t.powers});
   return out;
 }
 
@@ -229,7 +233,7 @@ ParameterSpace ParameterSpace::clone() const {
 // ---------------------------------------------------------------------------- RegimeSampler
 
 RegimeSampler::RegimeSampler(const ParameterSpace& space, const cln::cl_RA& epsilon, std::uint64_t seed)
-    : space_(space), epsilon_(detail::deep_copy(epsilon)), rng_(seed) {
+    : space_(space), epsilon_(deep_copy(epsilon)), rng_(seed) {
   if (!(epsilon_ > 0) || !(epsilon_ < 1)) throw std::invalid_argument("RegimeSampler::RegimeSampler(): epsilon must be in (0, 1)");
 }
 

@@ -18,7 +18,6 @@
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/parallel.hpp"
-#include "superball/numeric/scalar.hpp"
 #include "superball/symbolic/format.hpp"
 #include "superball/verify/space.hpp"
 
@@ -39,13 +38,6 @@ std::uint64_t mix(std::uint64_t x) {
 }
 std::uint64_t block_seed(std::uint64_t seed, std::size_t epsilon, std::size_t block) {
   return mix(mix(seed) ^ mix((static_cast<std::uint64_t>(epsilon) << 40) + block));
-}
-
-cl_RA deep_copy(const cl_RA& x) { return numeric::parse_rational(to_string(x)); }
-Point deep_copy(const Point& x) {
-  Point out;
-  for (const cl_RA& v : x) out.push_back(deep_copy(v));
-  return out;
 }
 
 /// Everything a worker thread touches: its own copies, sharing no CLN object.
@@ -328,7 +320,7 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
       ctx.exact.push_back(exact[c].clone());
       ctx.asymptotic.push_back(asymptotic[c].clone());
     }
-    for (const cl_RA& e : options.epsilons) ctx.epsilons.push_back(detail::deep_copy(e));
+    for (const cl_RA& e : options.epsilons) ctx.epsilons.push_back(deep_copy(e));
     contexts.push_back(std::move(ctx));
   }
   const std::size_t n_eps = options.epsilons.size(), n_cond = exact.size();
@@ -401,13 +393,13 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
             (bulk[b].sides[i][c] ? hold : fails).push_back(&bulk[b].points[i]);
       const std::size_t wanted = static_cast<std::size_t>(options.boundary_pairs);
       const std::size_t n = std::min({wanted, hold.size(), fails.size()});
-      for (std::size_t i = 0; i < n; ++i) w.pairs.emplace_back(detail::deep_copy(*hold[i]), detail::deep_copy(*fails[i]));
+      for (std::size_t i = 0; i < n; ++i) w.pairs.emplace_back(deep_copy(*hold[i]), deep_copy(*fails[i]));
       if (n < wanted && (hold.size() < wanted || fails.size() < wanted)) {
         w.want_holds = hold.size() < fails.size();
         std::vector<std::pair<double, const Point*>> from;
         for (const Point* x : w.want_holds ? fails : hold) from.emplace_back(-detail::toward(exact[c], *x, w.want_holds), x);
         std::stable_sort(from.begin(), from.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (std::size_t i = 0; i < from.size() && i < wanted - n; ++i) w.starts.push_back(detail::deep_copy(*from[i].second));
+        for (std::size_t i = 0; i < from.size() && i < wanted - n; ++i) w.starts.push_back(deep_copy(*from[i].second));
       }
       work.push_back(std::move(w));
     }

@@ -159,6 +159,12 @@ class RegimeSampler {
 bool condition_truth(symbolic::ConditionKind kind, const std::string& about, const numeric::Problem<cln::cl_RA>& problem,
                      const numeric::Solution<cln::cl_RA>& forced, std::string* quantity = nullptr);
 
+/// A copy of \p x that shares no heap object with it (a CLN copy shares its
+/// bignum and counts the reference without atomics): for another thread.
+cln::cl_RA deep_copy(const cln::cl_RA& x);
+/// The same for every value of a point.
+Point deep_copy(const Point& x);
+
 /// Exact decimal-free spelling of a rational ("-13/7").
 std::string to_string(const cln::cl_RA& x);
 
