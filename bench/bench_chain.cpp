@@ -13,16 +13,18 @@ using namespace superball::numeric;
 /// A falling stack of light bodies: masses 0.001 … 0.007 repeating, K = 1
 /// on (i, i+1), 1/2 on (i, i+2), a coupling 1/4 between (i, i+1) and
 /// (i+1, i+2) (M diagonally dominant, so positive definite); the bodies fall
-/// at speeds between 1 and 1.9 (−1 − (37 i mod 10)/10) onto a fixed
-/// obstacle.  For n ≥ 1000 the top 20 contacts open and the top body leaves
-/// at 2.87 (a superball chain); the rest stays on the obstacle.
+/// onto a fixed obstacle, the top fastest: speeds step down from 1.9 to 1.0
+/// m/s in tenths (−1.9 + ⌊10 i/(n−1)⌋/10), so every contact closes, as the
+/// collision law requires.  For n ≥ 2000 every contact stays closed and the
+/// chain stops on the obstacle (the active set is found without an
+/// iteration); for n = 32 24 of the 31 contacts stay closed.
 Problem<double> chain(int n) {
   Problem<double> p;
   p.n = n;
   p.fixed_bottom = true;
   for (int i = 0; i < n; ++i) {
     p.mass.push_back(i + 1 == n ? 0.0 : 0.001 * (1 + i % 7));
-    p.u.push_back(i + 1 == n ? 0.0 : -1.0 - ((37 * i) % 10) / 10.0);
+    p.u.push_back(i + 1 == n ? 0.0 : -1.9 + (10 * i / (n - 1)) / 10.0);  // the top falls fastest
   }
   for (int i = 0; i + 1 < n; ++i) {
     p.entries.push_back({i, i + 1, i, i + 1, 1.0});

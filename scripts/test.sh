@@ -3,10 +3,11 @@
 #   1. the test suite (Release build, ctest)
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer
 #   3. the libFuzzer target over scene parsing and solving, 60 s from tests/fuzz/corpus
-# STAGES="1" (or "1 2", …) runs a subset; FUZZ_SECONDS changes stage 3's length.
+# STAGES="1" (or "1 2", …) runs a subset; FUZZ_SECONDS changes stage 3's length, FUZZ_SEED its seed.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 STAGES="${STAGES:-1 2 3}"
 FUZZ_SECONDS="${FUZZ_SECONDS:-60}"
+FUZZ_SEED="${FUZZ_SEED:-1}"
 install_packages
 export LSAN_OPTIONS="suppressions=$ROOT/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
@@ -41,10 +42,20 @@ for stage in $STAGES; do
       work="$(mktemp -d)"
       trap 'rm -rf "$work" "$summary"' EXIT
       # New inputs go to the scratch folder; the committed corpus is only read.
-      "$ROOT/build-fuzz/tests/fuzz/fuzz_scene" "$work" "$ROOT/tests/fuzz/corpus" -max_total_time="$FUZZ_SECONDS" \
-        -artifact_prefix="$work/" -print_final_stats=1 2>&1 | tail -n 12
-      if ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* >/dev/null 2>&1; then
-        echo "fuzzing found a failing input:"; ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* 2>/dev/null
+      # The seed is fixed (FUZZ_SEED) so that a run is reproducible: a slower
+      # machine runs a prefix of the same sequence of inputs.
+      status=0
+      "$ROOT/build-fuzz/tests/fuzz/fuzz_scene" "$work" "$ROOT/tests/fuzz/corpus" -seed="$FUZZ_SEED" \
+        -max_total_time="$FUZZ_SECONDS" -artifact_prefix="$work/" -print_final_stats=1 > "$work/log" 2>&1 || status=$?
+      tail -n 8 "$work/log"
+      if [ "$status" -ne 0 ] || ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* >/dev/null 2>&1; then
+        echo "fuzzing found a failing input (libFuzzer exit $status, seed $FUZZ_SEED); its report:"
+        sed -n '/^fuzz_scene: finding\|^==[0-9]*==\|deadly signal\|^INFO: Running with/,$p' "$work/log" | grep -v "^#[0-9]" | head -n 80
+        for f in "$work"/crash-* "$work"/leak-* "$work"/timeout-*; do
+          [ -e "$f" ] || continue
+          echo "-- input $(basename "$f") ($(wc -c < "$f") bytes), replay: build-fuzz/tests/fuzz/fuzz_scene FILE"
+          head -c 4096 "$f" | cat -v; echo
+        done
         exit 1
       fi
       echo "fuzz: ${FUZZ_SECONDS} s without a failing input" >> "$summary"

@@ -98,20 +98,24 @@ Scene epsilon_scene(const cl_RA& eps) {
 /// K = DᵀMD is banded.  Couplings are ±0.1 … ±5 (both signs), every diagonal
 /// entry exceeds the sum of its row's |couplings| by 0.1 … 10, so M is
 /// positive definite (checked exactly by ExactScene::from).  Masses are
-/// log-uniform in 1e-2 … 1e3, velocities before in -2 … 2 (pairs approach
-/// and separate).  All values are short decimals, exact as written.
+/// log-uniform in 1e-2 … 1e3, velocities before in -2 … 2, non-decreasing
+/// downwards (every contact closes or is at rest, as ExactScene::from requires).  All values are short decimals, exact as written.
 Scene chain_scene(int n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);  // the engine's output is fixed by the standard
   auto pick = [&](int lo, int hi) { return lo + static_cast<int>(rng() % static_cast<std::uint64_t>(hi - lo + 1)); };
   Scene s;
   s.title = "random chain, n = " + std::to_string(n);
   s.origin = "chain-" + std::to_string(n) + " (seed " + std::to_string(seed) + ")";
+  std::vector<int> speeds;  // hundredths of m/s, sorted so that every contact closes
   for (int i = 0; i < n; ++i) {
     Body b;
     b.mass = Number::parse(std::to_string(pick(100, 999)) + "e" + std::to_string(pick(-4, 0)));
-    b.velocity = Number::parse(std::to_string(pick(-200, 200)) + "/100");
+    speeds.push_back(pick(-200, 200));
     s.bodies.push_back(b);
   }
+  std::sort(speeds.begin(), speeds.end());
+  for (int i = 0; i < n; ++i)
+    s.bodies[static_cast<std::size_t>(i)].velocity = Number::parse(std::to_string(speeds[static_cast<std::size_t>(i)]) + "/100");
   // Couplings, in tenths, and the row sums of their magnitudes.
   std::map<std::pair<int, int>, long long> row_sum;  // (i, j) 1-based pair -> Σ|coupling| in tenths
   auto key = [](const Pair& p) { return std::make_pair(p.i, p.j); };

@@ -167,14 +167,14 @@ class SceneReader {
     return p;
   }
 
-  void add_entry(Scene& scene, const toml::node& at, const std::string& field, MatrixEntry e) const {
+  void add_entry(Scene& scene, const toml::node& at, const std::string& field, MatrixEntry e) {
     if (e.second < e.first) std::swap(e.first, e.second);
-    if (scene.find(e.first, e.second))
+    if (!declared_.emplace(e.first, e.second).second)
       fail(at, field, "the entry of M for (" + e.first.name() + ", " + e.second.name() + ") is given twice");
     scene.entries.push_back(std::move(e));
   }
 
-  void read_dissipation(const toml::node& node, Scene& scene) const {
+  void read_dissipation(const toml::node& node, Scene& scene) {
     const toml::table* d = node.as_table();
     if (!d) fail(node, "dissipation", "must be a table");
     check_keys(*d, "dissipation.", {"K", "alpha", "coupling"});
@@ -226,6 +226,7 @@ class SceneReader {
 
   std::string origin_;
   std::vector<std::string> lines_;
+  std::set<std::pair<Pair, Pair>> declared_;  ///< the entries of M read so far, (first, second) with first <= second
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cln/rational_io.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "superball/cases/scene_file.hpp"
@@ -18,46 +19,92 @@ std::string text(const cln::cl_RA& x) {
   return os.str();
 }
 
+/// The sign of x·a + y for a = sqrt(a²) > 0, decided exactly.
+int sign_with_root(const cln::cl_RA& x, const cln::cl_RA& y, const cln::cl_RA& a_squared) {
+  const int sx = cln::signum(x) > 0 ? 1 : cln::zerop(x) ? 0 : -1;
+  const int sy = cln::signum(y) > 0 ? 1 : cln::zerop(y) ? 0 : -1;
+  if (sx == 0 || sy == 0 || sx == sy) return sx != 0 ? sx : sy;
+  const cln::cl_RA lhs = x * x * a_squared, rhs = y * y;
+  return lhs > rhs ? sx : lhs < rhs ? sy : 0;
+}
+
+/// Throws when an adjacent contact opens before the collision: D_c(U⁻) =
+/// U⁻_i − U⁻_{i+1} > 0.  In Frémond's law the reaction's share of the
+/// dissipation is P^reac · D_c(U⁻)/2 (paper §3, eq. 12: P^reac · D_c(U⁺) = 0),
+/// which is >= 0 only when D_c(U⁻) <= 0; an opening contact can create energy.
+void check_contacts_close(const ExactScene& s, const std::string& origin) {
+  const cln::cl_RA a_squared = s.a_squared ? *s.a_squared : cln::cl_RA(0);
+  for (int i = 0; i + 1 < s.n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const cln::cl_RA x = s.fall[k] - s.fall[k + 1], y = s.velocity[k] - s.velocity[k + 1];
+    if (sign_with_root(x, y, a_squared) <= 0) continue;
+    const double d = ScalarTraits<cln::cl_RA>::to_double(x) * std::sqrt(ScalarTraits<cln::cl_RA>::to_double(a_squared)) +
+                     ScalarTraits<cln::cl_RA>::to_double(y);
+    std::ostringstream os;
+    os << origin << ": body[" << i + 2 << "].velocity: contact " << i + 1 << "-" << i + 2
+       << " opens before the collision (U" << i + 1 << "- - U" << i + 2 << "- = " << d
+       << " m/s > 0); the collision law needs every contact closing or at rest (each body falls at least as fast as the one below)";
+    throw InputError(os.str());
+  }
+}
+
 }  // namespace
 
-std::optional<NegativeMinor> find_negative_minor(const std::vector<std::vector<cln::cl_RA>>& M) {
-  // Symmetric pivoted elimination in exact arithmetic: after eliminating the
-  // pivots P (all > 0), det M[P ∪ Q] = det M[P] · det S[Q] with S the Schur
-  // complement, so a negative diagonal of S, or a 2×2 block (0 x; x 0) of S
-  // with x ≠ 0, gives a negative principal minor of M.
+std::optional<NegativeMinor> find_negative_minor(SymmetricRows M) {
+  // Symmetric elimination in exact arithmetic, pivots in index order: after
+  // eliminating the pivots P (all > 0), det M[P ∪ Q] = det M[P] · det S[Q]
+  // for Q outside P, with S the Schur complement.  So a negative diagonal of
+  // S, or a zero diagonal S_kk with some S_kj ≠ 0 (the 2×2 block (0 x; x s)
+  // has determinant −x²), gives a negative principal minor of M.  Only the
+  // nonzero entries are stored and updated: for a banded M (a chain) fill-in
+  // stays inside the band and the cost is O(m b²).
   const int m = static_cast<int>(M.size());
-  std::vector<std::vector<cln::cl_RA>> S = M;
-  std::vector<int> pivots, rest(static_cast<std::size_t>(m));
-  for (int i = 0; i < m; ++i) rest[static_cast<std::size_t>(i)] = i;
+  auto diagonal = [&](int i) {
+    const auto it = M[static_cast<std::size_t>(i)].find(i);
+    return it == M[static_cast<std::size_t>(i)].end() ? cln::cl_RA(0) : it->second;
+  };
+  std::vector<int> pivots;
   cln::cl_RA product = 1;
-  while (!rest.empty()) {
-    for (int i : rest)
-      if (S[i][i] < 0) {
-        std::vector<int> idx = pivots;
-        idx.push_back(i);
-        std::sort(idx.begin(), idx.end());
-        return NegativeMinor{idx, product * S[i][i]};
-      }
-    int best = rest.front();
-    for (int i : rest)
-      if (S[i][i] > S[best][best]) best = i;
-    if (cln::zerop(S[best][best])) {
-      for (int i : rest)
-        for (int j : rest)
-          if (i < j && !cln::zerop(S[i][j])) {
-            std::vector<int> idx = pivots;
-            idx.push_back(i);
-            idx.push_back(j);
-            std::sort(idx.begin(), idx.end());
-            return NegativeMinor{idx, -product * S[i][j] * S[i][j]};
-          }
-      return std::nullopt;
+  auto minor = [&](std::initializer_list<int> more, const cln::cl_RA& det) {
+    std::vector<int> idx = pivots;
+    idx.insert(idx.end(), more);
+    std::sort(idx.begin(), idx.end());
+    return NegativeMinor{idx, det};
+  };
+  for (int i = 0; i < m; ++i)
+    if (diagonal(i) < 0) return minor({i}, diagonal(i));
+  // Gershgorin: a symmetric M whose every diagonal entry is at least the sum
+  // of the magnitudes of its row's other entries is PSD.  Exact, O(nnz), and
+  // it decides at once the usual chains, whose rationals would otherwise grow
+  // along the elimination.
+  const bool dominant = std::all_of(M.begin(), M.end(), [&](const std::map<int, cln::cl_RA>& row) {
+    cln::cl_RA off = 0, diag = 0;
+    for (const auto& [j, x] : row) (j == static_cast<int>(&row - M.data()) ? diag : off) += cln::abs(x);
+    return off <= diag;
+  });
+  if (dominant) return std::nullopt;
+  for (int k = 0; k < m; ++k) {
+    auto& row = M[static_cast<std::size_t>(k)];
+    const cln::cl_RA pivot = diagonal(k);
+    if (cln::zerop(pivot)) {
+      for (const auto& [j, x] : row)
+        if (j != k && !cln::zerop(x)) return minor({k, j}, -product * x * x);
+      continue;  // a zero row of S: no part of any negative minor
     }
-    rest.erase(std::find(rest.begin(), rest.end(), best));
-    for (int i : rest)
-      for (int j : rest) S[i][j] = S[i][j] - S[i][best] * S[best][j] / S[best][best];
-    product = product * S[best][best];
-    pivots.push_back(best);
+    // S_ij -= S_ik S_kj / S_kk for i, j > k in row k; then drop row k.
+    std::vector<std::pair<int, cln::cl_RA>> rest;
+    for (const auto& [j, x] : row)
+      if (j > k && !cln::zerop(x)) rest.emplace_back(j, x);
+    for (const auto& [i, xi] : rest) {
+      auto& ri = M[static_cast<std::size_t>(i)];
+      ri.erase(k);
+      const cln::cl_RA f = xi / pivot;
+      for (const auto& [j, xj] : rest) ri[j] = ri[j] - f * xj;
+    }
+    product = product * pivot;
+    pivots.push_back(k);
+    for (const auto& [i, xi] : rest)
+      if (diagonal(i) < 0) return minor({i}, product * diagonal(i));
   }
   return std::nullopt;
 }
@@ -97,16 +144,18 @@ ExactScene ExactScene::from(const Scene& scene) {
     for (const Pair& p : {e.first, e.second}) {
       if (p.i < 1 || p.j > s.n || p.i >= p.j)
         throw InputError(scene.origin + ": dissipation: pair " + p.name() + " is outside bodies 1.." + std::to_string(s.n));
-      if (std::find(pairs.begin(), pairs.end(), p) == pairs.end()) pairs.push_back(p);
+      pairs.push_back(p);
     }
     s.entries.push_back({e.first.i - 1, e.first.j - 1, e.second.i - 1, e.second.j - 1, exact(e.value)});
   }
   std::sort(pairs.begin(), pairs.end());
-  auto index = [&](const Pair& p) { return static_cast<std::size_t>(std::find(pairs.begin(), pairs.end(), p) - pairs.begin()); };
-  std::vector<std::vector<cln::cl_RA>> M(pairs.size(), std::vector<cln::cl_RA>(pairs.size(), cln::cl_RA(0)));
-  for (const MatrixEntry& e : scene.entries) {
-    const std::size_t a = index(e.first), b = index(e.second);
-    M[a][b] = M[b][a] = exact(e.value);
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  auto index = [&](const Pair& p) { return static_cast<int>(std::lower_bound(pairs.begin(), pairs.end(), p) - pairs.begin()); };
+  SymmetricRows M(pairs.size());
+  for (const Entry<cln::cl_RA>& e : s.entries) {
+    const int a = index({e.i + 1, e.j + 1}), b = index({e.k + 1, e.l + 1});
+    M[static_cast<std::size_t>(a)][b] = e.value;
+    M[static_cast<std::size_t>(b)][a] = e.value;
   }
   if (const auto minor = find_negative_minor(M)) {
     std::string names;
@@ -114,6 +163,7 @@ ExactScene ExactScene::from(const Scene& scene) {
     throw InputError(scene.origin + ": dissipation: M is not positive semi-definite: its principal minor on pairs (" + names +
                      ") is " + text(minor->determinant) + " < 0");
   }
+  check_contacts_close(s, scene.origin);
   return s;
 }
 

@@ -92,7 +92,8 @@ TEST(SceneFile, ExactSpellingsAndCouplings) {
   EXPECT_EQ(s.bodies[0].mass.fraction(), "1/1000");  // TOML float 1e-3, read as written
   EXPECT_EQ(s.bodies[1].mass.fraction(), "1/3");
   EXPECT_EQ(s.bodies[2].mass.fraction(), "25/10");
-  EXPECT_EQ(s.bodies[2].velocity->fraction(), "-7/2");
+  EXPECT_EQ(s.bodies[2].velocity->fraction(), "-29/10");
+  EXPECT_EQ(s.bodies[3].velocity->fraction(), "-1/4");
   EXPECT_EQ(s.bodies[3].mass.fraction(), "1000/1");
   EXPECT_TRUE(s.bodies[4].infinite);
   EXPECT_FALSE(s.bodies[3].infinite);

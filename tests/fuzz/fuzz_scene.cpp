@@ -5,6 +5,7 @@
 // Build (clang): cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DSUPERBALL_BUILD_FUZZ=ON
 // Run:           build-fuzz/tests/fuzz/fuzz_scene tests/fuzz/corpus -max_total_time=60
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -15,9 +16,12 @@ namespace {
 
 using namespace superball;
 
+/// A failed physical check: say which on stderr (libFuzzer then prints the
+/// stack and writes the input as crash-*), then stop.
 [[noreturn]] void finding(const char* what) {
+  std::fprintf(stderr, "fuzz_scene: finding: %s\n", what);
+  std::fflush(stderr);
   __builtin_trap();
-  (void)what;
 }
 
 /// Momentum is conserved when every body is finite; kinetic energy never

@@ -26,24 +26,33 @@ bool psd_by_minors(const Matrix& M) {
   return true;
 }
 
+/// find_negative_minor on a dense matrix (its nonzero entries).
+std::optional<numeric::NegativeMinor> negative_minor(const Matrix& M) {
+  numeric::SymmetricRows rows(M.size());
+  for (std::size_t i = 0; i < M.size(); ++i)
+    for (std::size_t j = 0; j < M.size(); ++j)
+      if (!cln::zerop(M[i][j])) rows[i][static_cast<int>(j)] = M[i][j];
+  return numeric::find_negative_minor(std::move(rows));
+}
+
 TEST(FindNegativeMinor, SmallMatrices) {
-  EXPECT_FALSE(numeric::find_negative_minor({}).has_value());
-  EXPECT_FALSE(numeric::find_negative_minor({{0}}).has_value());
-  EXPECT_FALSE(numeric::find_negative_minor({{1, 1}, {1, 1}}).has_value());  // singular, on the boundary
-  const auto a = numeric::find_negative_minor({{1, 2}, {2, 1}});
+  EXPECT_FALSE(negative_minor({}).has_value());
+  EXPECT_FALSE(negative_minor({{0}}).has_value());
+  EXPECT_FALSE(negative_minor({{1, 1}, {1, 1}}).has_value());  // singular, on the boundary
+  const auto a = negative_minor({{1, 2}, {2, 1}});
   ASSERT_TRUE(a.has_value());
   EXPECT_EQ(a->indices, (std::vector<int>{0, 1}));
   EXPECT_EQ(a->determinant, -3);
-  const auto b = numeric::find_negative_minor({{0, 1}, {1, 0}});
+  const auto b = negative_minor({{0, 1}, {1, 0}});
   ASSERT_TRUE(b.has_value());
   EXPECT_EQ(b->determinant, -1);
-  const auto c = numeric::find_negative_minor({{1, 0}, {0, -1}});
+  const auto c = negative_minor({{1, 0}, {0, -1}});
   ASSERT_TRUE(c.has_value());
   EXPECT_EQ(c->indices, (std::vector<int>{1}));
   EXPECT_EQ(c->determinant, -1);
   // Every 2x2 minor >= 0 but the 3x3 one negative.
   const Matrix m3 = {{1, cl_RA(-9) / 10, cl_RA(-9) / 10}, {cl_RA(-9) / 10, 1, cl_RA(-9) / 10}, {cl_RA(-9) / 10, cl_RA(-9) / 10, 1}};
-  const auto d = numeric::find_negative_minor(m3);
+  const auto d = negative_minor(m3);
   ASSERT_TRUE(d.has_value());
   EXPECT_EQ(d->indices.size(), 3u);
   EXPECT_EQ(d->determinant, determinant(m3));
@@ -72,7 +81,7 @@ TEST(FindNegativeMinor, AgreesWithTheDefinitionOnRandomMatrices) {
       if (i != j) M[j][i] = M[j][i] - t;
     }
     SCOPED_TRACE("seed " + std::to_string(seed));
-    const auto found = numeric::find_negative_minor(M);
+    const auto found = negative_minor(M);
     const bool definition = psd_by_minors(M);
     EXPECT_EQ(!found.has_value(), definition);
     (definition ? psd : not_psd) += 1;
@@ -158,7 +167,8 @@ TEST(ExactScene, DropHeightGivesAnIrrationalUnit) {
 
 TEST(ExactScene, NonHomogeneousIrrationalFallIsRefusedInExactArithmeticOnly) {
   Scene scene = load_scene(std::string(SUPERBALL_TEST_DATA_DIR) + "/good/fractions-and-couplings.toml");
-  // h = 1/2, g = 9.81: a = sqrt(9.81) irrational, and body 3 has its own velocity -7/2.
+  // h = 1/2, g = 9.81: a = sqrt(9.81) irrational, and bodies 3 and 4 have their own
+  // velocities -29/10 and -1/4.
   const ExactScene s = ExactScene::from(scene);
   EXPECT_FALSE(s.homogeneous());
   EXPECT_FALSE(s.exact_u().has_value());
@@ -173,7 +183,8 @@ TEST(ExactScene, NonHomogeneousIrrationalFallIsRefusedInExactArithmeticOnly) {
   const auto p = Problem<double>::from(s);
   EXPECT_EQ(p.unit, 1);
   EXPECT_DOUBLE_EQ(p.u[0], -std::sqrt(9.81));
-  EXPECT_DOUBLE_EQ(p.u[2], -3.5);
+  EXPECT_DOUBLE_EQ(p.u[2], -2.9);
+  EXPECT_DOUBLE_EQ(p.u[3], -0.25);
   EXPECT_EQ(p.u[4], 0);
   const auto pl = Problem<long double>::from(s);
   EXPECT_NEAR(static_cast<double>(pl.u[0]), -std::sqrt(9.81), 1e-15);
@@ -184,7 +195,7 @@ TEST(ExactScene, NonHomogeneousIrrationalFallIsRefusedInExactArithmeticOnly) {
   scene.fall_speed = Number::parse("3");
   const auto q = Problem<cl_RA>::from(ExactScene::from(scene));
   EXPECT_EQ(q.u[0], -3);
-  EXPECT_EQ(q.u[2], cl_RA(-7) / 2);
+  EXPECT_EQ(q.u[2], cl_RA(-29) / 10);
 }
 
 TEST(ExactScene, RejectsScenesBuiltInMemory) {
@@ -220,6 +231,31 @@ TEST(ExactScene, RejectsScenesBuiltInMemory) {
   s = good;
   s.entries.push_back({Pair::parse("1-3"), Pair::parse("1-2"), Number::parse("1")});  // K13 = 0 undeclared
   EXPECT_NE(message(s).find("not positive semi-definite"), std::string::npos) << message(s);
+  s = good;
+  s.bodies[1].velocity = Number::parse("-1/2");  // slower than body 3 (falls at 1): contact 2-3 opens
+  EXPECT_EQ(message(s).rfind("mem: body[3].velocity: contact 2-3 opens before the collision", 0), 0u) << message(s);
+  s = good;
+  s.bodies[0].velocity = Number::parse("-1/2");  // the top falls slower than body 2: contact 1-2 opens
+  EXPECT_NE(message(s).find("contact 1-2 opens"), std::string::npos) << message(s);
+}
+
+TEST(ExactScene, OpeningContactIsDecidedExactlyWithAnIrrationalFallSpeed) {
+  // a = sqrt(2 g h) = sqrt(2) = 1.41421…: body 3 given -1.414 falls slower
+  // than body 2 (contact 2-3 closes), -1.415 faster (it opens).  Only an
+  // exact comparison of a² = 2 with 1.414² and 1.415² tells them apart.
+  Scene s = parse_scene(kBoundary, "mem");
+  s.fall_speed.reset();
+  s.drop_height = Number::parse("1");
+  s.g = Number::parse("1");
+  s.bodies[2].velocity = Number::parse("-1.414");
+  EXPECT_NO_THROW(ExactScene::from(s));
+  s.bodies[2].velocity = Number::parse("-1.415");
+  try {
+    ExactScene::from(s);
+    ADD_FAILURE() << "contact 2-3 opens and was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("body[3].velocity: contact 2-3 opens"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Precision, ParsesTheCliSpellings) {

@@ -6,6 +6,7 @@
 
 #include <cln/rational.h>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,7 +43,11 @@ struct ExactScene {
 
   /// Check \p scene and convert it.  Throws superball::InputError naming the
   /// scene and what is wrong; the positive semi-definiteness of M is decided
-  /// exactly (the message names a principal minor of M that is negative).
+  /// exactly (the message names a principal minor of M that is negative), and
+  /// so is the sign of every adjacent contact's D_c(U⁻) = U⁻_i − U⁻_{i+1}:
+  /// a contact opening before the collision (D_c(U⁻) > 0) is rejected, since
+  /// the reaction's dissipation P^reac·D_c(U⁻)/2 (paper §3) is then not
+  /// guaranteed >= 0 and the solve could create kinetic energy.
   static ExactScene from(const Scene& scene);
 
   /// Whether U⁻ = a·u with u = fall (every explicit velocity is 0).
@@ -78,7 +83,11 @@ struct NegativeMinor {
   std::vector<int> indices;
   cln::cl_RA determinant;
 };
-std::optional<NegativeMinor> find_negative_minor(const std::vector<std::vector<cln::cl_RA>>& M);
+/// A symmetric matrix by rows of its nonzero entries: row i maps column j to
+/// M_ij, and M_ji is stored too.
+using SymmetricRows = std::vector<std::map<int, cln::cl_RA>>;
+/// Sparse elimination in index order, O(m b²) for a matrix of bandwidth b.
+std::optional<NegativeMinor> find_negative_minor(SymmetricRows M);
 
 extern template struct Problem<double>;
 extern template struct Problem<long double>;
