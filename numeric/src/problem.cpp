@@ -83,6 +83,11 @@ std::optional<NegativeMinor> find_negative_minor(SymmetricRows M) {
     return off <= diag;
   });
   if (dominant) return std::nullopt;
+  // The 2×2 principal minors next, so that the usual mistake (one coupling
+  // too large for its two K's) is named by its two pairs.
+  for (int i = 0; i < m; ++i)
+    for (const auto& [j, x] : M[static_cast<std::size_t>(i)])
+      if (j > i && diagonal(i) * diagonal(j) < x * x) return minor({i, j}, diagonal(i) * diagonal(j) - x * x);
   for (int k = 0; k < m; ++k) {
     auto& row = M[static_cast<std::size_t>(k)];
     const cln::cl_RA pivot = diagonal(k);

@@ -49,13 +49,6 @@ constexpr double rational_tolerance = 1e-7;
 
 [[noreturn]] void fail(const std::string& what) { throw std::invalid_argument("explore_case(): " + what); }
 
-std::string decimal(double v, int digits = 6) {
-  std::ostringstream os;
-  os.precision(digits);
-  os << v;
-  return os.str();
-}
-
 /// The sum of the absolute values of the terms of \p p.
 GiNaC::ex absolute_terms(const GiNaC::ex& p, const Symbols& s) {
   GiNaC::ex out = 0;
@@ -638,7 +631,7 @@ std::string impossibility_certificate(const GiNaC::ex& s_poly, const symbolic::S
 }
 
 std::string describe_box(const ExploreOptions& o) {
-  return "every mass and K in [" + detail::decimal(o.box_low) + ", " + detail::decimal(o.box_high) +
+  return "every mass and K in [" + numeric::to_string(o.box_low, 6) + ", " + numeric::to_string(o.box_high, 6) +
          "] (log scale), each coupling t·√(K_p K_q) with t in [-1, 1], a = 1, bottom body fixed";
 }
 
@@ -767,12 +760,12 @@ std::string cell_text(const ExploreResult& r) {
     // Four significant digits, more when fewer would round the ratio (> 1) to 1.
     const double ratio = cln::double_approx(r.ratio);
     int digits = 4;
-    while (digits < 17 && std::stod(detail::decimal(ratio, digits)) <= 1) ++digits;
-    return "yes U₁⁺/a = " + detail::decimal(ratio, digits);
+    while (digits < 17 && std::stod(numeric::to_string(ratio, digits)) <= 1) ++digits;
+    return "yes U₁⁺/a = " + numeric::to_string(ratio, digits);
   }
   if (r.reach != Reach::NotFound) return to_string(r.reach);
   std::string notes;
-  if (!r.witness.empty()) notes = "best U₁⁺/a = " + detail::decimal(cln::double_approx(r.ratio), 6);
+  if (!r.witness.empty()) notes = "best U₁⁺/a = " + numeric::to_string(cln::double_approx(r.ratio), 6);
   if (r.asymptotic_clash) notes += std::string(notes.empty() ? "" : "; ") + "leading order clashes";
   return notes.empty() ? "not found" : "not found (" + notes + ")";
 }
@@ -791,8 +784,8 @@ std::string to_text(const ExploreResult& r) {
   os << "  box: " << r.box << "\n";
   if (!r.witness.empty()) {
     os << "  " << (r.reach == Reach::Yes ? "largest U₁⁺/a found in the box" : "largest U₁⁺/a found with the case actual") << ": "
-       << detail::decimal(cln::double_approx(r.ratio), 8) << " = " << to_string(r.ratio) << " (exact solve; double search "
-       << detail::decimal(r.stats.best_double, 8) << ")\n";
+       << numeric::to_string(cln::double_approx(r.ratio), 8) << " = " << to_string(r.ratio) << " (exact solve; double search "
+       << numeric::to_string(r.stats.best_double, 8) << ")\n";
     std::string point;
     for (const auto& [name, v] : r.witness) point += (point.empty() ? "" : ", ") + name + " = " + to_string(v);
     os << "  witness: " << point << "\n";
@@ -882,7 +875,7 @@ std::string witness_file(const ExploreResult& r, const std::string& command) {
   const std::string comment = "Found by `" + command + "`: multi-start Nelder-Mead on the derived conditions of case " + r.case_name +
                               " in the box (" + r.box + "), rounded to rationals.\nExact solve (CollisionSolver over rationals, case not imposed): case " +
                               r.case_name + " is the actual evolution, U1+ = " + to_string(r.u1) + " = " +
-                              detail::decimal(cln::double_approx(r.ratio), 10) + " a" + (r.ratio > 1 ? " > a (superball)" : " <= a (no superball)") +
+                              numeric::to_string(cln::double_approx(r.ratio), 10) + " a" + (r.ratio > 1 ? " > a (superball)" : " <= a (no superball)") +
                               ".\nCheck: superball solve FILE --precision exact";
   return write_scene(*r.scene, comment);
 }
