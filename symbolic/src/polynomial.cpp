@@ -168,6 +168,29 @@ GiNaC::numeric epsilon_order(const GiNaC::ex& p, const Symbols& symbols, const S
   return lowest;
 }
 
+namespace {
+
+/// Whether the expanded polynomial \p e (without rational content) is
+/// certainly irreducible over Q, decided cheaply: e = a·x + b is of degree 1
+/// in some symbol x, with b ≠ 0 and gcd(a, b) a number.  Any factorisation
+/// e = f·g puts x in one factor only, so the other, free of x, divides both
+/// a and b.  A gcd is far cheaper than GiNaC::factor, which then is skipped.
+bool certainly_irreducible(const GiNaC::ex& e, const std::vector<detail::Term>& ts) {
+  std::vector<GiNaC::ex> seen;
+  for (const detail::Term& t : ts)
+    for (const auto& [x, power] : t.powers) {
+      if (std::any_of(seen.begin(), seen.end(), [&](const GiNaC::ex& y) { return y.is_equal(x); })) continue;
+      seen.push_back(x);
+      if (e.degree(x) != 1) continue;
+      const GiNaC::ex b = e.coeff(x, 0);
+      if (b.is_zero()) continue;
+      if (GiNaC::is_a<GiNaC::numeric>(GiNaC::gcd(e.coeff(x, 1), b))) return true;
+    }
+  return false;
+}
+
+}  // namespace
+
 GiNaC::ex strip_positive_factors(const GiNaC::ex& p, const Symbols& symbols, GiNaC::ex* removed) {
   GiNaC::ex e = GiNaC::expand(p);
   GiNaC::ex gone = 1;
@@ -198,7 +221,7 @@ GiNaC::ex strip_positive_factors(const GiNaC::ex& p, const Symbols& symbols, GiN
   e = GiNaC::expand(e / gone);  // term by term: a number times a monomial divides every term exactly
   // Irreducible factors that are positive for every admissible point
   // (factorisation only for small polynomials: it dominates the cost otherwise).
-  if (GiNaC::is_a<GiNaC::add>(e) && e.nops() <= max_factor_terms) {
+  if (GiNaC::is_a<GiNaC::add>(e) && e.nops() <= max_factor_terms && !certainly_irreducible(e, detail::terms(e))) {
     const GiNaC::ex f = GiNaC::factor(e);
     if (GiNaC::is_a<GiNaC::mul>(f)) {
       GiNaC::ex kept = 1;
