@@ -42,8 +42,11 @@ nlohmann::ordered_json audit_json(const verify::Audit& a) {
     x["about"] = c.printed.about;
     x["printed"] = c.printed.printed;
     x["printed_text"] = c.printed_text;
+    x["printed_latex"] = c.printed_latex;
     x["derived_exact"] = c.exact_text;
+    x["derived_exact_latex"] = c.exact_latex;
     x["derived_asymptotic"] = c.asymptotic_text;
+    x["derived_asymptotic_latex"] = c.asymptotic_latex;
     x["verdict"] = verify::to_string(c.agreement);
     x["notes"] = c.notes;
     if (c.witness) x["witness"] = witness_json(*c.witness);
@@ -60,6 +63,7 @@ nlohmann::ordered_json audit_json(const verify::Audit& a) {
     x["supported"] = c.supported;
     x["verdict"] = c.verdict;
     x["derived_superball"] = c.superball_text;
+    x["derived_superball_latex"] = c.superball_latex;
     x["comparisons"] = c.comparisons;
     if (!c.certificate.empty()) x["certificate"] = c.certificate;
     if (c.example) x["example"] = witness_json(*c.example);

@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
-#include <map>
 #include <memory>
 #include <sstream>
 
@@ -23,7 +22,6 @@
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/sweep.hpp"
 #include "superball/symbolic/derivation.hpp"
-#include "superball/symbolic/format.hpp"
 #include "superball/verify/audit.hpp"
 #include "superball/verify/explore.hpp"
 #include "superball/verify/verification.hpp"
@@ -286,39 +284,10 @@ void epsilon_family(const Run& run, Document& doc) {
                 "exactly a (1 - eps^2) / (eps (2 + eps)) = a/(2 eps) - a/4 + O(eps) on this family.");
 }
 
-/// The derivations behind the audit, printed in LaTeX.  The audit gives its
-/// formulas in text notation only; the same derivation (symbolic::Deriver of
-/// the same pattern and case) printed in both notations, its text checked
-/// equal to the audit's, gives the LaTeX of exactly the audited formula.
-class Formulas {
- public:
-  /// Case \p case_name derived for the paper's couplings \p alphas, bottom body fixed (m4 = infinity), as audited.
-  const symbolic::Derivation& derivation(const std::vector<int>& alphas, const std::string& case_name) {
-    auto& deriver = derivers_[alphas];
-    if (!deriver) deriver = std::make_unique<symbolic::Deriver>(symbolic::Pattern::paper(alphas), symbolic::Obstacle::Infinite);
-    const auto key = std::make_pair(alphas, case_name);
-    auto it = derivations_.find(key);
-    if (it == derivations_.end()) it = derivations_.emplace(key, deriver->derive(Vocabulary::paper().named_case(case_name).closed)).first;
-    return it->second;
-  }
-
-  /// The condition (kind, about) of a derivation.
-  static const symbolic::Condition& condition(const symbolic::Derivation& d, const std::string& kind, const std::string& about) {
-    for (const symbolic::Condition& c : d.conditions)
-      if (symbolic::to_string(c.kind) == kind && c.about == about) return c;
-    throw std::logic_error("Formulas::condition(): case " + d.case_name + " has no " + kind + " condition about " + about);
-  }
-
-  /// A formula cell: \p text must be what the audit printed (\p audit_text).
-  static Cell cell(const std::string& audit_text, const std::string& text, const std::string& latex) {
-    if (text != audit_text) throw std::logic_error("Formulas::cell(): the derivation prints '" + text + "', the audit '" + audit_text + "'");
-    return Cell::math(text, latex);
-  }
-
- private:
-  std::map<std::vector<int>, std::unique_ptr<symbolic::Deriver>> derivers_;
-  std::map<std::pair<std::vector<int>, std::string>, symbolic::Derivation> derivations_;
-};
+/// The symbols of the paper's couplings \p alphas, bottom body fixed (m4 = infinity), as audited.
+symbolic::Symbols paper_symbols(const std::vector<int>& alphas) {
+  return symbolic::Symbols(symbolic::Pattern::paper(alphas), symbolic::Obstacle::Infinite);
+}
 
 /// The couplings α_k of a pattern ("α₂, α₆"), in \p style.
 std::string pattern_name(const symbolic::Symbols& s, symbolic::Style style) {
@@ -362,7 +331,6 @@ std::string breakable(std::string latex) {
 /// a printed condition disagrees with the exact solution, then the claims.
 void printed_conditions(const verify::Audit& audit, Document& doc) {
   using symbolic::Style;
-  Formulas formulas;
   int counts[3] = {0, 0, 0};
   for (const auto& c : audit.conditions) ++counts[static_cast<int>(c.agreement)];
   doc.heading("The printed conditions of §4.1–§4.3 against the derivation");
@@ -392,33 +360,23 @@ void printed_conditions(const verify::Audit& audit, Document& doc) {
   }
   for (const auto& group : groups) {
     const PrintedCondition& first = group[0]->printed;
-    const symbolic::Derivation& d = formulas.derivation(first.alphas, first.case_name);
-    const symbolic::Symbols& s = *d.symbols;
+    const symbolic::Symbols s = paper_symbols(first.alphas);
     doc.subheading("§" + first.section + ", case " + first.case_name + ", coupling " + pattern_name(s, Style::Text) + " (the other couplings zero)");
     std::vector<std::vector<Cell>> rows, points;
     std::vector<std::string> notes;
     for (const verify::ConditionAudit* c : group) {
       const PrintedCondition& p = c->printed;
-      Cell title(""), exact(""), asymptotic("");
-      if (p.kind == "velocity") {
-        const int body = std::stoi(p.lhs.substr(1));
-        const symbolic::Fraction& u = d.velocities.at(static_cast<std::size_t>(body - 1));
-        auto formula = [&](Style style) { return symbolic::velocity_name(body, style) + " = " + symbolic::format_fraction(u, s, style); };
-        title = Cell("velocity " + symbolic::velocity_name(body, Style::Text), "velocity $" + symbolic::velocity_name(body, Style::Latex) + "$");
-        exact = Formulas::cell(c->exact_text, formula(Style::Text), formula(Style::Latex));
-        if (c->asymptotic_text != c->exact_text) throw std::logic_error("printed_conditions(): a velocity formula is audited exactly");
-        asymptotic = Cell("the exact formula (a velocity is compared exactly)");
-      } else {
-        const symbolic::Condition& k = Formulas::condition(d, p.kind, p.about);
-        auto form = [&](const symbolic::ConditionForm& f, Style style) { return symbolic::format_condition(f, k.relation, s, style); };
-        title = Cell(symbolic::condition_title(k, Style::Text), symbolic::condition_title(k, Style::Latex));
-        exact = Formulas::cell(c->exact_text, form(k.exact, Style::Text), form(k.exact, Style::Latex));
-        asymptotic = Formulas::cell(c->asymptotic_text, form(k.asymptotic, Style::Text), form(k.asymptotic, Style::Latex));
+      const Cell title(c->title_text, c->title_latex);
+      const Cell exact = Cell::math(c->exact_text, c->exact_latex);
+      const Cell asymptotic = p.kind == "velocity" ? Cell("the exact formula (a velocity is compared exactly)")
+                                                   : Cell::math(c->asymptotic_text, c->asymptotic_latex);
+      std::string words = verify::to_string(c->agreement);
+      if (c->agreement == verify::Agreement::Different) words = "**" + words + "**";
+      Cell verdict(words);
+      if (c->agreement != verify::Agreement::IdenticalExact && !c->printed_asymptotic_text.empty()) {
+        words += "; the printed one at leading order: ";
+        verdict = Cell(words + c->printed_asymptotic_text, latex_text(words) + "$" + c->printed_asymptotic_latex + "$");
       }
-      std::string verdict = verify::to_string(c->agreement);
-      if (c->agreement == verify::Agreement::Different) verdict = "**" + verdict + "**";
-      if (c->agreement != verify::Agreement::IdenticalExact && !c->printed_asymptotic_text.empty())
-        verdict += "; the printed one at leading order: " + c->printed_asymptotic_text;
       rows.push_back({title, Cell::math(c->printed_text, breakable(p.printed)), exact, asymptotic, verdict});
       for (const std::string& n : c->notes) notes.push_back(title.text + ": " + n + ".");
       if (c->agreement != verify::Agreement::Different) continue;
@@ -451,20 +409,17 @@ void printed_conditions(const verify::Audit& audit, Document& doc) {
   std::vector<std::vector<Cell>> rows;
   std::vector<std::string> evidence;
   for (const verify::ClaimAudit& c : audit.claims) {
-    const symbolic::Derivation& d = formulas.derivation(c.claim.alphas, c.claim.case_name);
-    const symbolic::Symbols& s = *d.symbols;
-    const symbolic::Condition& k = Formulas::condition(d, "superball", "U1 > a");
+    const symbolic::Symbols s = paper_symbols(c.claim.alphas);
     const std::string couplings = pattern_name(s, Style::Text);
     rows.push_back({"§" + c.claim.section, "\"" + c.claim.text + "\"",
                     Cell("case " + c.claim.case_name + ", " + couplings, "case " + c.claim.case_name + ", $" + pattern_name(s, Style::Latex) + "$"),
-                    Formulas::cell(c.superball_text, symbolic::format_condition(k.exact, k.relation, s, Style::Text),
-                                   symbolic::format_condition(k.exact, k.relation, s, Style::Latex)),
+                    Cell::math(c.superball_text, c.superball_latex),
                     (c.supported ? "" : "**") + c.verdict + (c.supported ? "" : "**") + " (" + std::to_string(c.tried) + " points tried, " +
                         std::to_string(c.hits) + " with the superball in the case)"});
     const std::string who = "Case " + c.claim.case_name + " with " + couplings;
     if (!c.certificate.empty()) evidence.push_back(who + ", proof: " + c.certificate + ".");
     if (c.example) evidence.push_back(who + ", example: " + point_cell(*c.example, s).text + ": " + c.example->quantity + ", actual case " + c.example->actual_case + ".");
-    for (const std::string& line : c.comparisons) evidence.push_back(who + " against " + pattern_name(*formulas.derivation(c.claim.like, c.claim.case_name).symbols, Style::Text) + ", " + line + ".");
+    for (const std::string& line : c.comparisons) evidence.push_back(who + " against " + pattern_name(paper_symbols(c.claim.like), Style::Text) + ", " + line + ".");
   }
   doc.table({"", "the paper says", "case, couplings", "derived superball condition", "verdict"}, rows, {0.1, 0.28, 0.12, 0.26, 0.24});
   doc.bullets(evidence);

@@ -114,6 +114,7 @@ TEST(Reproduce, QuickReportIsCompleteAndCompiles) {
   for (const auto& c : audit.at("conditions")) {
     const std::string verdict = c.at("verdict");
     EXPECT_NE(md.find("| " + c.at("derived_exact").get<std::string>() + " |"), std::string::npos) << c.at("derived_exact");
+    EXPECT_NE(tex.find("& $" + c.at("derived_exact_latex").get<std::string>() + "$ &"), std::string::npos) << c.at("derived_exact_latex");
     EXPECT_NE(md.find(verdict == "different" ? "**different**" : verdict), std::string::npos) << verdict;
     if (c.contains("witness")) {
       EXPECT_NE(md.find(c.at("witness").at("quantity").get<std::string>() + ": the condition "), std::string::npos) << c;
@@ -122,6 +123,7 @@ TEST(Reproduce, QuickReportIsCompleteAndCompiles) {
   for (const auto& c : audit.at("claims")) {
     EXPECT_NE(md.find(c.at("verdict").get<std::string>() + " (" + std::to_string(c.at("tried").get<int>()) + " points tried"), std::string::npos) << c;
     EXPECT_NE(md.find("| " + c.at("derived_superball").get<std::string>() + " |"), std::string::npos) << c;
+    EXPECT_NE(tex.find("& $" + c.at("derived_superball_latex").get<std::string>() + "$ &"), std::string::npos) << c;
   }
   // The derived formulas are typeset as LaTeX math, not as Unicode text.
   EXPECT_NE(tex.find("$-\\alpha_{2} > 2m_{1} + K_{12} + K_{13}$"), std::string::npos);

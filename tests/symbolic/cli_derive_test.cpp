@@ -121,10 +121,20 @@ TEST(CliAudit, JsonHasEveryPrintedCondition) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j.at("conditions").size(), 14u);
   EXPECT_EQ(j.at("claims").size(), 3u);
+  // Every formula also in LaTeX: ASCII markup (no Unicode of the text notation), indexed names (K_{14}).
+  auto latex = [](const nlohmann::json& entry, const char* key) {
+    ASSERT_TRUE(entry.contains(key)) << key << " in " << entry;
+    const std::string tex = entry.at(key);
+    EXPECT_FALSE(tex.empty()) << key;
+    EXPECT_TRUE(std::all_of(tex.begin(), tex.end(), [](char ch) { return static_cast<unsigned char>(ch) < 0x80; })) << key << ": " << tex;
+    EXPECT_NE(tex.find("_{"), std::string::npos) << key << ": " << tex;
+  };
   for (const auto& c : j.at("conditions")) {
     const std::string v = c.at("verdict");
     EXPECT_TRUE(v == "identical to the exact condition" || v == "identical at the asymptotic order" || v == "different") << v;
+    for (const char* key : {"printed_latex", "derived_exact_latex", "derived_asymptotic_latex"}) latex(c, key);
   }
+  for (const auto& c : j.at("claims")) latex(c, "derived_superball_latex");
 }
 
 }  // namespace

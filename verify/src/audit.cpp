@@ -117,9 +117,14 @@ ConditionAudit audit_condition(const PrintedCondition& pc, const AuditOptions& o
     if (body < 1 || body > s.bodies()) fail(ctx + ": no body " + pc.lhs.substr(1));
     const Fraction& u = d.velocities[static_cast<std::size_t>(body - 1)];
     const GiNaC::ex nd = GiNaC::numer_denom(rhs);
-    out.printed_text = velocity_name(body, Style::Text) + " = " + format_fraction(Fraction{nd.op(0), nd.op(1)}, s, Style::Text);
-    out.exact_text = velocity_name(body, Style::Text) + " = " + format_fraction(u, s, Style::Text);
-    out.asymptotic_text = out.exact_text;
+    const Fraction as_printed{nd.op(0), nd.op(1)};
+    auto formula = [&](const Fraction& f, Style style) { return velocity_name(body, style) + " = " + format_fraction(f, s, style); };
+    out.title_text = "velocity " + velocity_name(body, Style::Text);
+    out.title_latex = "velocity $" + velocity_name(body, Style::Latex) + "$";
+    out.printed_text = formula(as_printed, Style::Text);
+    out.printed_latex = formula(as_printed, Style::Latex);
+    out.exact_text = out.asymptotic_text = formula(u, Style::Text);
+    out.exact_latex = out.asymptotic_latex = formula(u, Style::Latex);
     out.agreement = GiNaC::normal(u.value() - rhs).is_zero() ? Agreement::IdenticalExact : Agreement::Different;
     if (out.agreement == Agreement::Different) {
       const ParameterSpace& space = cache.space(pc.alphas);
@@ -150,12 +155,18 @@ ConditionAudit audit_condition(const PrintedCondition& pc, const AuditOptions& o
   const Relation rel = strict ? Relation::Greater : Relation::GreaterEqual;
   const Condition* c = find(d, pc.kind, pc.about);
   if (!c) fail(ctx + ": the case has no " + pc.kind + " condition about " + pc.about);
+  out.title_text = condition_title(*c, Style::Text);
+  out.title_latex = condition_title(*c, Style::Latex);
   out.printed_text = format_condition(q, rel, s, Style::Text);
+  out.printed_latex = format_condition(q, rel, s, Style::Latex);
   out.exact_text = format_condition(c->exact, c->relation, s, Style::Text);
+  out.exact_latex = format_condition(c->exact, c->relation, s, Style::Latex);
   out.asymptotic_text = format_condition(c->asymptotic, c->relation, s, Style::Text);
+  out.asymptotic_latex = format_condition(c->asymptotic, c->relation, s, Style::Latex);
   GiNaC::numeric printed_order;
   const GiNaC::ex q_asymptotic = deriver.asymptotic(q, &printed_order);
   out.printed_asymptotic_text = format_condition(q_asymptotic, rel, s, Style::Text);
+  out.printed_asymptotic_latex = format_condition(q_asymptotic, rel, s, Style::Latex);
   if (same_condition(q, c->exact.numerator, s))
     out.agreement = Agreement::IdenticalExact;
   else if (same_condition(q_asymptotic, c->asymptotic.numerator, s))
@@ -225,6 +236,7 @@ ClaimAudit audit_claim(const PaperClaim& pc, const AuditOptions& o, Cache& cache
   const Derivation& d = cache.derivation(pc.alphas, closed);
   const Condition* superball = find(d, "superball", "U1 > a");
   out.superball_text = format_condition(superball->exact, superball->relation, s, Style::Text);
+  out.superball_latex = format_condition(superball->exact, superball->relation, s, Style::Latex);
   if (!pc.like.empty()) {
     const Derivation& like = cache.derivation(pc.like, closed);
     for (const Condition& c : d.conditions) {
