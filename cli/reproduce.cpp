@@ -366,18 +366,18 @@ void printed_conditions(const verify::Audit& audit, Document& doc) {
     std::vector<std::string> notes;
     for (const verify::ConditionAudit* c : group) {
       const PrintedCondition& p = c->printed;
-      const Cell title(c->title_text, c->title_latex);
-      const Cell exact = Cell::math(c->exact_text, c->exact_latex);
+      const Cell title(c->title.text, c->title.latex);
+      const Cell exact = Cell::math(c->exact.text, c->exact.latex);
       const Cell asymptotic = p.kind == "velocity" ? Cell("the exact formula (a velocity is compared exactly)")
-                                                   : Cell::math(c->asymptotic_text, c->asymptotic_latex);
+                                                   : Cell::math(c->asymptotic.text, c->asymptotic.latex);
       std::string words = verify::to_string(c->agreement);
       if (c->agreement == verify::Agreement::Different) words = "**" + words + "**";
       Cell verdict(words);
-      if (c->agreement != verify::Agreement::IdenticalExact && !c->printed_asymptotic_text.empty()) {
+      if (c->agreement != verify::Agreement::IdenticalExact && !c->printed_asymptotic.text.empty()) {
         words += "; the printed one at leading order: ";
-        verdict = Cell(words + c->printed_asymptotic_text, latex_text(words) + "$" + c->printed_asymptotic_latex + "$");
+        verdict = Cell(words + c->printed_asymptotic.text, latex_text(words) + "$" + c->printed_asymptotic.latex + "$");
       }
-      rows.push_back({title, Cell::math(c->printed_text, breakable(p.printed)), exact, asymptotic, verdict});
+      rows.push_back({title, Cell::math(c->as_printed.text, breakable(p.printed)), exact, asymptotic, verdict});
       for (const std::string& n : c->notes) notes.push_back(title.text + ": " + n + ".");
       if (c->agreement != verify::Agreement::Different) continue;
       if (!c->witness) {
@@ -413,7 +413,7 @@ void printed_conditions(const verify::Audit& audit, Document& doc) {
     const std::string couplings = pattern_name(s, Style::Text);
     rows.push_back({"§" + c.claim.section, "\"" + c.claim.text + "\"",
                     Cell("case " + c.claim.case_name + ", " + couplings, "case " + c.claim.case_name + ", $" + pattern_name(s, Style::Latex) + "$"),
-                    Cell::math(c.superball_text, c.superball_latex),
+                    Cell::math(c.superball.text, c.superball.latex),
                     (c.supported ? "" : "**") + c.verdict + (c.supported ? "" : "**") + " (" + std::to_string(c.tried) + " points tried, " +
                         std::to_string(c.hits) + " with the superball in the case)"});
     const std::string who = "Case " + c.claim.case_name + " with " + couplings;

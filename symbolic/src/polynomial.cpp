@@ -171,7 +171,8 @@ GiNaC::numeric epsilon_order(const GiNaC::ex& p, const Symbols& symbols, const S
 namespace {
 
 /// Whether the expanded polynomial \p e (without rational content) is
-/// certainly irreducible over Q, decided cheaply: e = a·x + b is of degree 1
+/// certainly irreducible over Q, decided cheaply (\p ts: the terms of e, or
+/// of e times a monomial: only the symbols they name are tried): e = a·x + b is of degree 1
 /// in some symbol x, with b ≠ 0 and gcd(a, b) a number.  Any factorisation
 /// e = f·g puts x in one factor only, so the other, free of x, divides both
 /// a and b.  A gcd is far cheaper than GiNaC::factor, which then is skipped.
@@ -221,7 +222,7 @@ GiNaC::ex strip_positive_factors(const GiNaC::ex& p, const Symbols& symbols, GiN
   e = GiNaC::expand(e / gone);  // term by term: a number times a monomial divides every term exactly
   // Irreducible factors that are positive for every admissible point
   // (factorisation only for small polynomials: it dominates the cost otherwise).
-  if (GiNaC::is_a<GiNaC::add>(e) && e.nops() <= max_factor_terms && !certainly_irreducible(e, detail::terms(e))) {
+  if (GiNaC::is_a<GiNaC::add>(e) && e.nops() <= max_factor_terms && !certainly_irreducible(e, ts)) {
     const GiNaC::ex f = GiNaC::factor(e);
     if (GiNaC::is_a<GiNaC::mul>(f)) {
       GiNaC::ex kept = 1;

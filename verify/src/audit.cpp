@@ -26,6 +26,12 @@ using namespace superball::symbolic;
 
 [[noreturn]] void fail(const std::string& what) { throw std::invalid_argument("audit_paper(): " + what); }
 
+/// A formula printed by \p print in both notations.
+template <class Print>
+Formula both(const Print& print) {
+  return {print(Style::Text), print(Style::Latex)};
+}
+
 std::string where(const PrintedCondition& c) { return "§" + c.section + " case " + c.case_name + " " + c.kind + " " + c.about; }
 
 /// The substitution symbol → value of the point \p x.
@@ -118,13 +124,12 @@ ConditionAudit audit_condition(const PrintedCondition& pc, const AuditOptions& o
     const Fraction& u = d.velocities[static_cast<std::size_t>(body - 1)];
     const GiNaC::ex nd = GiNaC::numer_denom(rhs);
     const Fraction as_printed{nd.op(0), nd.op(1)};
-    auto formula = [&](const Fraction& f, Style style) { return velocity_name(body, style) + " = " + format_fraction(f, s, style); };
-    out.title_text = "velocity " + velocity_name(body, Style::Text);
-    out.title_latex = "velocity $" + velocity_name(body, Style::Latex) + "$";
-    out.printed_text = formula(as_printed, Style::Text);
-    out.printed_latex = formula(as_printed, Style::Latex);
-    out.exact_text = out.asymptotic_text = formula(u, Style::Text);
-    out.exact_latex = out.asymptotic_latex = formula(u, Style::Latex);
+    auto velocity = [&](const Fraction& f) {
+      return both([&](Style style) { return velocity_name(body, style) + " = " + format_fraction(f, s, style); });
+    };
+    out.title = {"velocity " + velocity_name(body, Style::Text), "velocity $" + velocity_name(body, Style::Latex) + "$"};
+    out.as_printed = velocity(as_printed);
+    out.exact = out.asymptotic = velocity(u);
     out.agreement = GiNaC::normal(u.value() - rhs).is_zero() ? Agreement::IdenticalExact : Agreement::Different;
     if (out.agreement == Agreement::Different) {
       const ParameterSpace& space = cache.space(pc.alphas);
@@ -155,18 +160,13 @@ ConditionAudit audit_condition(const PrintedCondition& pc, const AuditOptions& o
   const Relation rel = strict ? Relation::Greater : Relation::GreaterEqual;
   const Condition* c = find(d, pc.kind, pc.about);
   if (!c) fail(ctx + ": the case has no " + pc.kind + " condition about " + pc.about);
-  out.title_text = condition_title(*c, Style::Text);
-  out.title_latex = condition_title(*c, Style::Latex);
-  out.printed_text = format_condition(q, rel, s, Style::Text);
-  out.printed_latex = format_condition(q, rel, s, Style::Latex);
-  out.exact_text = format_condition(c->exact, c->relation, s, Style::Text);
-  out.exact_latex = format_condition(c->exact, c->relation, s, Style::Latex);
-  out.asymptotic_text = format_condition(c->asymptotic, c->relation, s, Style::Text);
-  out.asymptotic_latex = format_condition(c->asymptotic, c->relation, s, Style::Latex);
+  out.title = both([&](Style style) { return condition_title(*c, style); });
+  out.as_printed = both([&](Style style) { return format_condition(q, rel, s, style); });
+  out.exact = both([&](Style style) { return format_condition(c->exact, c->relation, s, style); });
+  out.asymptotic = both([&](Style style) { return format_condition(c->asymptotic, c->relation, s, style); });
   GiNaC::numeric printed_order;
   const GiNaC::ex q_asymptotic = deriver.asymptotic(q, &printed_order);
-  out.printed_asymptotic_text = format_condition(q_asymptotic, rel, s, Style::Text);
-  out.printed_asymptotic_latex = format_condition(q_asymptotic, rel, s, Style::Latex);
+  out.printed_asymptotic = both([&](Style style) { return format_condition(q_asymptotic, rel, s, style); });
   if (same_condition(q, c->exact.numerator, s))
     out.agreement = Agreement::IdenticalExact;
   else if (same_condition(q_asymptotic, c->asymptotic.numerator, s))
@@ -235,8 +235,7 @@ ClaimAudit audit_claim(const PaperClaim& pc, const AuditOptions& o, Cache& cache
   const Symbols& s = deriver.symbols();
   const Derivation& d = cache.derivation(pc.alphas, closed);
   const Condition* superball = find(d, "superball", "U1 > a");
-  out.superball_text = format_condition(superball->exact, superball->relation, s, Style::Text);
-  out.superball_latex = format_condition(superball->exact, superball->relation, s, Style::Latex);
+  out.superball = both([&](Style style) { return format_condition(superball->exact, superball->relation, s, style); });
   if (!pc.like.empty()) {
     const Derivation& like = cache.derivation(pc.like, closed);
     for (const Condition& c : d.conditions) {
@@ -345,10 +344,10 @@ std::string to_text(const Audit& audit) {
   for (const ConditionAudit& c : audit.conditions) {
     ++counts[static_cast<int>(c.agreement)];
     os << "§" << c.printed.section << " case " << c.printed.case_name << ", " << c.printed.kind << " " << c.printed.about << " — " << c.printed.words << '\n';
-    os << "  printed:    " << c.printed_text << "      [paper: " << c.printed.printed << "]\n";
-    os << "  derived:    exact " << c.exact_text << '\n';
-    os << "              asymptotic " << c.asymptotic_text << '\n';
-    if (c.printed.kind != "velocity") os << "  printed, dominant balance: " << c.printed_asymptotic_text << '\n';
+    os << "  printed:    " << c.as_printed.text << "      [paper: " << c.printed.printed << "]\n";
+    os << "  derived:    exact " << c.exact.text << '\n';
+    os << "              asymptotic " << c.asymptotic.text << '\n';
+    if (c.printed.kind != "velocity") os << "  printed, dominant balance: " << c.printed_asymptotic.text << '\n';
     std::string verdict = to_string(c.agreement);
     for (char& ch : verdict) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
     os << "  verdict:    " << verdict << '\n';
@@ -370,7 +369,7 @@ std::string to_text(const Audit& audit) {
   }
   for (const ClaimAudit& c : audit.claims) {
     os << "claim (§" << c.claim.section << "): \"" << c.claim.text << "\"\n";
-    os << "  derived superball condition in case " << c.claim.case_name << ": " << c.superball_text << '\n';
+    os << "  derived superball condition in case " << c.claim.case_name << ": " << c.superball.text << '\n';
     for (const std::string& line : c.comparisons) os << "  vs the like pattern: " << line << '\n';
     if (!c.certificate.empty()) os << "  certificate: " << c.certificate << '\n';
     if (c.example) os << "  example:    " << point(*c.example) << " -> " << c.example->quantity << ", actual case " << c.example->actual_case << '\n';

@@ -43,22 +43,23 @@ struct Witness {
 enum class Agreement { IdenticalExact, IdenticalAsymptotic, Different };
 const char* to_string(Agreement a);
 
-/// The audit of one printed condition.  Each formula comes in text notation
-/// (`*_text`, Unicode) and in LaTeX (`*_latex`, math mode without `$`), both
-/// printed from the same expression (symbolic/format.hpp).
+/// A formula in text notation (Unicode) and in LaTeX (math mode without `$`,
+/// or text mode with its formula in $…$ for a title), both printed from the
+/// same expression (symbolic/format.hpp).
+struct Formula {
+  std::string text;
+  std::string latex;
+};
+
+/// The audit of one printed condition.
 struct ConditionAudit {
   PrintedCondition printed;
   Agreement agreement = Agreement::Different;
-  std::string title_text;         ///< what the condition ensures, in words: "superball (U₁⁺ > a)", "velocity U₁⁺"
-  std::string title_latex;        ///< the same in LaTeX text mode, its formula in $…$
-  std::string printed_text;       ///< the printed condition re-written in text notation
-  std::string printed_latex;      ///< the same in LaTeX
-  std::string exact_text;         ///< the derived exact condition (m₄ = ∞)
-  std::string exact_latex;        ///< the same in LaTeX
-  std::string asymptotic_text;    ///< the derived asymptotic condition
-  std::string asymptotic_latex;   ///< the same in LaTeX
-  std::string printed_asymptotic_text;   ///< the dominant balance of the printed condition (empty for a velocity)
-  std::string printed_asymptotic_latex;  ///< the same in LaTeX
+  Formula title;                  ///< what the condition ensures, in words: "superball (U₁⁺ > a)", "velocity U₁⁺"
+  Formula as_printed;             ///< the printed condition re-written in our notation
+  Formula exact;                  ///< the derived exact condition (m₄ = ∞)
+  Formula asymptotic;             ///< the derived asymptotic condition
+  Formula printed_asymptotic;     ///< the dominant balance of the printed condition (empty for a velocity)
   std::vector<std::string> notes; ///< strictness differences, PSD look-alikes, transcription notes
   std::optional<Witness> witness; ///< Different: printed ≠ numeric there, derived = numeric
   int tried = 0;                  ///< points tried in the search
@@ -70,8 +71,7 @@ struct ClaimAudit {
   bool supported = false;
   std::string verdict;                    ///< one line: what was shown
   std::vector<std::string> comparisons;   ///< per condition: same as the `like` pattern after renaming, or not
-  std::string superball_text;             ///< the derived exact superball condition of the claim's pattern
-  std::string superball_latex;            ///< the same in LaTeX (math mode without `$`)
+  Formula superball;                      ///< the derived exact superball condition of the claim's pattern
   std::string certificate;                ///< "impossible" claims: the proof, when found
   std::optional<Witness> example;         ///< a point with the case actual and U₁⁺ > a, when found
   int tried = 0;
