@@ -13,8 +13,7 @@ Certificate certify(const Problem<S>& p, const Solution<S>& s) {
   const auto& W = s.velocities_after;
   Certificate cert;
   if (s.status != Status::Success) return cert;
-  int b = 0;
-  for (const Entry<S>& e : p.entries) b = std::max(b, std::max({e.i, e.j, e.k, e.l}) - std::min({e.i, e.j, e.k, e.l}));
+  const int b = p.bandwidth();
   const S gamma = S(4 * (b + 4)) * std::numeric_limits<S>::epsilon() / S(2);
   // Row residuals rr_i = m_i (W_i − u_i) + (DᵀMD (W + u))_i, their sizes
   // (Σ|terms|) and the row sums Σ_j |A_ij|.

@@ -15,12 +15,7 @@ constexpr int block_pivot_patience = 10;
 
 template <class S>
 void ChainSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
-  if (p.n < 2) throw std::invalid_argument("ChainSolver::compute(): a problem needs at least 2 bodies");
-  if (static_cast<int>(p.mass.size()) != p.n || static_cast<int>(p.u.size()) != p.n)
-    throw std::invalid_argument("ChainSolver::compute(): masses and velocities must have one entry per body");
-  for (const Entry<S>& e : p.entries)
-    if (std::min({e.i, e.j, e.k, e.l}) < 0 || std::max({e.i, e.j, e.k, e.l}) >= p.n || e.i >= e.j || e.k >= e.l)
-      throw std::invalid_argument("ChainSolver::compute(): an entry of M names a pair outside the bodies");
+  p.check("ChainSolver::compute()");
   system_.assemble(p);
   const int nc = p.n - 1, nf = p.fixed_bottom ? p.n - 1 : p.n;
   lambda_.resize(static_cast<std::size_t>(nc));
@@ -85,8 +80,7 @@ void ChainSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
 template <class S>
 Solution<S> solve(const Problem<S>& problem) {
   const Settings<S> settings = Settings<S>::defaults(problem.digits);
-  int b = 0;
-  for (const Entry<S>& e : problem.entries) b = std::max(b, std::max({e.i, e.j, e.k, e.l}) - std::min({e.i, e.j, e.k, e.l}));
+  const int b = problem.bandwidth();
   if (problem.n > dense_max_bodies && 2 * b + 1 < problem.n) return ChainSolver<S>(settings).compute(problem);
   return CollisionSolver<S>(settings).compute(problem);
 }

@@ -10,8 +10,7 @@ void ClusterSystem<S>::assemble(const Problem<S>& p) {
   nf_ = p.fixed_bottom ? n_ - 1 : n_;
   nc_ = n_ - 1;
   definite_ = -1;
-  b_ = 0;
-  for (const Entry<S>& e : p.entries) b_ = std::max(b_, std::max({e.i, e.j, e.k, e.l}) - std::min({e.i, e.j, e.k, e.l}));
+  b_ = p.bandwidth();
   A_.assign(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1), S(0));
   // Symmetric lower-band storage: add(r, c, v) adds v to A_rc and A_cr.
   auto add = [&](int r, int c, const S& v) {
@@ -51,6 +50,15 @@ void ClusterSystem<S>::assemble(const Problem<S>& p) {
     rhs_[i] += p.mass[i] * p.u[i];
     A(i, 0) += p.mass[i];
   }
+  // Σ_j |A_ij| per row (all n bodies), for solve()'s choice of the row that
+  // takes a cluster's rounding residual.
+  row_size_.assign(static_cast<std::size_t>(n_), S(0));
+  for (int i = 0; i < n_; ++i)
+    for (int d = 0; d <= b_ && d <= i; ++d) {
+      const S a = A(i, d) < S(0) ? S(-A(i, d)) : A(i, d);
+      row_size_[i] += a;
+      if (d > 0) row_size_[i - d] += a;
+    }
 }
 
 template <class S>
@@ -124,11 +132,18 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
       continue;
     }
     y_[ci] += rhs_[i];
-    for (int d = 0; d <= b_ && d <= i; ++d) {
+    // Row i of A adds A_ii and twice its couplings inside the cluster to the
+    // cluster's diagonal (summed here first: one dependent update of R per
+    // row, not one per band entry), and its other couplings off it.
+    S inner = A(i, 0);
+    for (int d = 1; d <= b_ && d <= i; ++d) {
       const int cj = cluster_[i - d];
-      R(ci, ci - cj) += A(i, d);
-      if (d > 0 && ci == cj) R(ci, 0) += A(i, d);
+      if (cj == ci)
+        inner += S(2) * A(i, d);
+      else
+        R(ci, ci - cj) += A(i, d);
     }
+    R(ci, 0) += inner;
   }
   // Banded LDLᵀ in place, then the three triangular/diagonal solves.  With
   // every contact open the reduced system is A itself: its factorization
@@ -155,12 +170,6 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
     for (int d = 1; d <= b_ && c + d < nf_; ++d) r += A(c + d, d) * W[c + d];
     return r;
   };
-  auto row_size = [&](int c) {
-    S z = S(0);
-    for (int d = 0; d <= b_ && d <= c; ++d) z += A(c, d) < S(0) ? S(-A(c, d)) : A(c, d);
-    for (int d = 1; d <= b_ && c + d < n_; ++d) z += A(c + d, d) < S(0) ? S(-A(c + d, d)) : A(c + d, d);
-    return z;
-  };
   for (int top = 0; top < n_;) {
     int bottom = top;
     while (bottom < nc_ && closed_[bottom]) ++bottom;  // bodies top..bottom form a cluster
@@ -170,7 +179,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
       if (cluster_[top] != fixed) {
         S largest = S(-1);
         for (int k = top; k <= bottom; ++k)
-          if (const S z = row_size(k); z > largest) largest = z, pivot = k;
+          if (row_size_[k] > largest) largest = row_size_[k], pivot = k;
       }
       S sum = S(0);
       for (int c = top; c < pivot; ++c) lambda_[c] = sum = sum + row_residual(c);

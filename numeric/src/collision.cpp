@@ -167,15 +167,10 @@ void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out, bool impo
 
 template <class S>
 void CollisionSolver<S>::check(const Problem<S>& p) const {
-  if (p.n < 2) throw std::invalid_argument("CollisionSolver::compute(): a problem needs at least 2 bodies");
-  if (static_cast<int>(p.mass.size()) != p.n || static_cast<int>(p.u.size()) != p.n)
-    throw std::invalid_argument("CollisionSolver::compute(): masses and velocities must have one entry per body");
+  p.check("CollisionSolver::compute()");
   if (p.n > dense_solver_max_bodies)
     throw std::invalid_argument("CollisionSolver::compute(): " + std::to_string(p.n) + " bodies: the dense solver takes at most " +
                                 std::to_string(dense_solver_max_bodies) + " (use ChainSolver for chains whose M is banded)");
-  for (const Entry<S>& e : p.entries)
-    if (std::min({e.i, e.j, e.k, e.l}) < 0 || std::max({e.i, e.j, e.k, e.l}) >= p.n || e.i >= e.j || e.k >= e.l)
-      throw std::invalid_argument("CollisionSolver::compute(): an entry of M names a pair outside the bodies");
 }
 
 template <class S>

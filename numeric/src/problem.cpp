@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "superball/cases/scene_file.hpp"
 
@@ -214,6 +215,15 @@ Problem<S> Problem<S>::from(const ExactScene& s, int digits) {
     for (std::size_t i = 0; i < s.fall.size(); ++i) p.u.push_back(T::from(s.fall[i], digits) * a + T::from(s.velocity[i], digits));
   }
   return p;
+}
+
+template <class S>
+void Problem<S>::check(const char* who) const {
+  auto fail = [who](const char* what) { throw std::invalid_argument(std::string(who) + ": " + what); };
+  if (n < 2) fail("a problem needs at least 2 bodies");
+  if (static_cast<int>(mass.size()) != n || static_cast<int>(u.size()) != n) fail("masses and velocities must have one entry per body");
+  for (const Entry<S>& e : entries)
+    if (e.i < 0 || e.k < 0 || e.j >= n || e.l >= n || e.i >= e.j || e.k >= e.l) fail("an entry of M names a pair outside the bodies");
 }
 
 template struct Problem<double>;

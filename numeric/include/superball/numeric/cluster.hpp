@@ -51,6 +51,7 @@ class ClusterSystem {
   int definite_ = -1;     ///< definite(): 1 yes, 0 no, −1 not yet known for this problem
   std::vector<S> A_;      ///< lower band of diag(m) + DᵀMD over all n bodies: A(i, d) = A_{i, i−d}
   std::vector<S> rhs_;    ///< b̃ on free bodies
+  std::vector<S> row_size_;  ///< Σ_j |A_ij| per row
   std::vector<int> cluster_;
   std::vector<S> R_, y_;  ///< the reduced banded system and its right side / solution
   std::vector<S> win_;    ///< definite(): a window of the Schur complement

@@ -6,6 +6,7 @@
 
 #include <cln/rational.h>
 
+#include <algorithm>
 #include <map>
 #include <optional>
 #include <string>
@@ -74,6 +75,19 @@ struct Problem {
   /// Convert \p scene to S.  Throws superball::InputError when S is exact and
   /// the scene needs an irrational number inside the solve.
   static Problem from(const ExactScene& scene, int digits = 0);
+
+  /// Misuse check at a solver's entry point: at least 2 bodies, one mass
+  /// and one velocity per body, every entry of M on pairs i < j, k < l of
+  /// bodies 0 … n−1.  Throws std::invalid_argument("<who>: ...").
+  void check(const char* who) const;
+
+  /// The bandwidth b of DᵀMD: the largest max(j, l) − min(i, k) over the
+  /// entries (i-j, k-l) of M (0 when M is empty).  O(entries); assumes check().
+  int bandwidth() const {
+    int b = 0;
+    for (const Entry<S>& e : entries) b = std::max(b, std::max(e.j, e.l) - std::min(e.i, e.k));
+    return b;
+  }
 };
 
 /// The smallest principal minor check: nullopt when the symmetric matrix
