@@ -80,8 +80,7 @@ void ChainSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
 template <class S>
 Solution<S> solve(const Problem<S>& problem) {
   const Settings<S> settings = Settings<S>::defaults(problem.digits);
-  const int b = problem.bandwidth();
-  if (problem.n > dense_max_bodies && 2 * b + 1 < problem.n) return ChainSolver<S>(settings).compute(problem);
+  if (solves_as_chain(problem)) return ChainSolver<S>(settings).compute(problem);
   return CollisionSolver<S>(settings).compute(problem);
 }
 

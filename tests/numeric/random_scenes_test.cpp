@@ -56,7 +56,7 @@ TYPED_TEST(RandomScenes, PhysicsHoldsAndAgreesWithTheExactSolution) {
   using S = TypeParam;
   const bool exact = ScalarTraits<S>::exact;
   const std::uint64_t scenes = property_scenes();
-  int undecidable = 0, finite = 0, fixed = 0, moving = 0, closed_contacts = 0, not_success = 0, certified = 0;
+  int undecidable = 0, finite = 0, fixed = 0, moving = 0, closed_contacts = 0, not_success = 0, certified = 0, banded = 0;
   cl_RA worst = 0;  // largest error / (n κ u)
   double worst_certified = 0;  // largest error / certified bound
   std::uint64_t worst_seed = 0;
@@ -66,10 +66,13 @@ TYPED_TEST(RandomScenes, PhysicsHoldsAndAgreesWithTheExactSolution) {
     ExactScene scene;
     ASSERT_NO_THROW(scene = ExactScene::from(r.scene())) << "the generator made an inadmissible scene";
     const auto pe = Problem<cl_RA>::from(scene);
-    const auto se = numeric::solve(pe);
+    // The reference is the dense exact solve whichever formulation solve()
+    // picks (the banded one for banded M, solves_as_chain()).
+    const auto se = numeric::CollisionSolver<cl_RA>().compute(pe);
     ASSERT_EQ(se.status, numeric::Status::Success) << "exact solve";
     const auto ps = Problem<S>::from(scene, digits_of<S>());
     const auto ss = numeric::solve(ps);
+    banded += numeric::solves_as_chain(ps);
     const Tolerances tol = tolerances(ps);
     const double n_kappa = ps.n * static_cast<double>(condition_number(ps));
     SCOPED_TRACE("n kappa(A) = " + std::to_string(n_kappa) + ", status " + numeric::to_string(ss.status));
@@ -89,6 +92,10 @@ TYPED_TEST(RandomScenes, PhysicsHoldsAndAgreesWithTheExactSolution) {
       if (!r.moving_obstacle) {
         EXPECT_EQ(ss.kinetic_energy_before - ss.kinetic_energy_after, ss.dissipation);
       }
+      // A is positive definite, so the velocities after are unique: both
+      // formulations must give the same fractions.
+      EXPECT_EQ(exact_vector(ss.velocities_after), se.velocities_after);
+      EXPECT_EQ(ss.closed, se.closed);
       continue;
     }
     const cl_RA err = relative_velocity_error(exact_vector(ss.velocities_after), se.velocities_after, pe.u);
@@ -119,13 +126,15 @@ TYPED_TEST(RandomScenes, PhysicsHoldsAndAgreesWithTheExactSolution) {
     EXPECT_GT(fixed, count / 4);
     EXPECT_GT(moving, count / 50);
     EXPECT_GT(closed_contacts, count);
+    EXPECT_GT(banded, count / 20) << "solve() must meet banded scenes too";
   }
   EXPECT_LE(undecidable * 100.0, kMaxUndecidablePercent * count);
   EXPECT_LE(not_success * 100.0, 10 * count) << "too many scenes the solver declined";
   if (!exact) {
     std::cout << "[ info ] " << ScalarNames::GetName<S>(0) << ", " << scenes << " scenes: largest velocity error "
               << approx(worst) << " n kappa(A) u (seed " << worst_seed << "); " << undecidable
-              << " scenes within rounding of a switch point; " << not_success << " not solved with status Success";
+              << " scenes within rounding of a switch point; " << not_success << " not solved with status Success; " << banded
+              << " solved as banded chains";
     if (kHasCertificate<S>)
       std::cout << "; case certified on " << certified << ", largest error / certified bound " << worst_certified;
     std::cout << "\n";

@@ -29,6 +29,7 @@
 
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/certify.hpp"
+#include "superball/numeric/chain.hpp"
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/problem.hpp"
 

@@ -51,9 +51,14 @@ class ChainSolver {
   detail::CheckWorkspace<S> check_;
 };
 
-/// Largest n the dense CollisionSolver is used for by solve(); above it, and
-/// whenever DᵀMD is banded with 2b + 1 < n, ChainSolver is used.
-inline constexpr int dense_max_bodies = 64;
+/// Whether solve() uses ChainSolver for \p p: when DᵀMD is banded, 2b + 1 < n
+/// (b = p.bandwidth()); otherwise the dense CollisionSolver.  From 4 bodies
+/// with nearest-neighbour M on, the banded solve is the faster one whenever
+/// the dense one needs a pivot (docs/PERFORMANCE.md, bench/peers).
+template <class S>
+bool solves_as_chain(const Problem<S>& p) {
+  return 2 * p.bandwidth() + 1 < p.n;
+}
 
 extern template class ChainSolver<double>;
 extern template class ChainSolver<long double>;

@@ -151,8 +151,8 @@ class CollisionSolver {
 };
 
 /// The solution of \p problem with default settings, by the formulation that
-/// suits it: the dense CollisionSolver for small n, the banded ChainSolver
-/// (chain.hpp) for long chains whose M couples only nearby pairs.
+/// suits it: the banded ChainSolver (chain.hpp) when M couples only nearby
+/// pairs (solves_as_chain()), else the dense CollisionSolver.
 template <class S>
 Solution<S> solve(const Problem<S>& problem);
 
