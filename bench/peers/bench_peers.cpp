@@ -615,7 +615,10 @@ int main(int argc, char** argv) {
       {"pgs", SICONOS_LCP_PGS, lcp_pgs},
       {"pgs/tol:1e-14", SICONOS_LCP_PGS, lcp_pgs, tight, tight_iter},
       {"newton-min", SICONOS_LCP_NEWTONMIN, lcp_newton_min},
-      {"newton-min/tol:1e-14", SICONOS_LCP_NEWTONMIN, lcp_newton_min, tight, tight_iter},
+      // Newton-min converges in 1 to 3 steps where it converges; with 1e5
+      // steps allowed it ran for minutes per call on chain-256 (growing to
+      // 5 GB), so it keeps its default cap (1000) at the tight tolerance.
+      {"newton-min/tol:1e-14", SICONOS_LCP_NEWTONMIN, lcp_newton_min, tight},
   };
   std::map<std::string, std::string> picked;
   std::map<std::string, int> bodies;
