@@ -1,7 +1,8 @@
 #pragma once
 /// \file chain.hpp
-/// The collision solver for long chains: O(n) time and memory when M only
-/// couples pairs within a band (e.g. nearest and next-nearest neighbours).
+/// The collision solver for chains: O(n) time and memory when M only
+/// couples pairs within a band (e.g. nearest and next-nearest neighbours);
+/// solve() uses it whenever DᵀMD is banded (solves_as_chain()).
 ///
 /// Same problem as CollisionSolver (collision.hpp), another formulation:
 /// for a guess of the evolution case S, closed contacts tie consecutive
