@@ -1,4 +1,4 @@
-// ChainSolver (the banded formulation for long chains) against the dense
+// ChainSolver (the banded formulation for chains) against the dense
 // CollisionSolver: the same problem has one solution, so in exact
 // arithmetic both must return the same case and the same velocities.
 #include <gtest/gtest.h>
@@ -86,6 +86,30 @@ TEST(ChainSolver, LongChainInDoublePassesTheResidualCheck) {
   for (int i = 0; i < n; ++i) EXPECT_NEAR(s.velocities_after[static_cast<std::size_t>(i)], 0.0, 1e-12) << "body " << i + 1;
   EXPECT_LE(s.kinetic_energy_after, 1e-12 * s.kinetic_energy_before);
   EXPECT_GE(s.dissipation, -1e-9 * s.kinetic_energy_before);
+}
+
+TEST(ChainSolver, SolvePicksTheBandedFormulationExactlyWhenTheBandLeavesRoom) {
+  // b = the largest body distance an entry of M couples; banded when 2b + 1 < n.
+  auto problem = [](int n, std::vector<numeric::Entry<double>> entries) {
+    Problem<double> p;
+    p.n = n;
+    p.mass.assign(static_cast<std::size_t>(n), 1.0);
+    p.u.assign(static_cast<std::size_t>(n), -1.0);
+    p.entries = std::move(entries);
+    return p;
+  };
+  const auto nearest = problem(4, {{0, 1, 0, 1, 1.0}, {1, 2, 1, 2, 1.0}, {2, 3, 2, 3, 1.0}});  // b = 1
+  EXPECT_EQ(nearest.bandwidth(), 1);
+  EXPECT_TRUE(numeric::solves_as_chain(nearest));
+  const auto three = problem(3, {{0, 1, 0, 1, 1.0}, {1, 2, 1, 2, 1.0}});  // b = 1, 2b + 1 = n
+  EXPECT_FALSE(numeric::solves_as_chain(three));
+  // The paper's K₁₄ couples bodies 1 and 4: b = 3, dense; and a coupling of
+  // (1-2) with (3-4) spans the same distance through two pairs.
+  EXPECT_EQ(problem(4, {{0, 3, 0, 3, 1.0}}).bandwidth(), 3);
+  EXPECT_EQ(problem(8, {{0, 1, 2, 3, 1.0}}).bandwidth(), 3);
+  EXPECT_FALSE(numeric::solves_as_chain(problem(4, {{0, 3, 0, 3, 1.0}})));
+  EXPECT_TRUE(numeric::solves_as_chain(problem(8, {{0, 1, 2, 3, 1.0}})));
+  EXPECT_EQ(problem(5, {}).bandwidth(), 0);
 }
 
 }  // namespace
