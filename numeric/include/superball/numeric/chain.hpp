@@ -53,9 +53,9 @@ class ChainSolver {
 };
 
 /// Whether solve() uses ChainSolver for \p p: when DᵀMD is banded, 2b + 1 < n
-/// (b = p.bandwidth()); otherwise the dense CollisionSolver.  From 4 bodies
-/// with nearest-neighbour M on, the banded solve is the faster one whenever
-/// the dense one needs a pivot (docs/PERFORMANCE.md, bench/peers).
+/// (b = p.bandwidth()); otherwise the dense CollisionSolver.  On the chains
+/// of bench/peers (8 to 256 bodies) the banded solve is the faster one
+/// wherever the dense one pivots (docs/PERFORMANCE.md).
 template <class S>
 bool solves_as_chain(const Problem<S>& p) {
   return 2 * p.bandwidth() + 1 < p.n;
