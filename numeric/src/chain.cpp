@@ -15,8 +15,7 @@ constexpr int block_pivot_patience = 10;
 
 template <class S>
 void ChainSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
-  p.check("ChainSolver::compute()");
-  system_.assemble(p);
+  system_.assemble(p, p.check("ChainSolver::compute()"));
   const int nc = p.n - 1, nf = p.fixed_bottom ? p.n - 1 : p.n;
   lambda_.resize(static_cast<std::size_t>(nc));
   // Start from every contact closed: the pivoting then opens the ones that

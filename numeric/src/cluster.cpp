@@ -5,25 +5,35 @@
 namespace superball::numeric::detail {
 
 template <class S>
-void ClusterSystem<S>::assemble(const Problem<S>& p) {
+void ClusterSystem<S>::assemble(const Problem<S>& p, int bandwidth) {
   n_ = p.n;
   nf_ = p.fixed_bottom ? n_ - 1 : n_;
   nc_ = n_ - 1;
+  digits_ = p.digits;
   definite_ = -1;
-  b_ = p.bandwidth();
+  b_ = bandwidth;
+  entries_ = static_cast<int>(p.entries.size());
   A_.assign(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1), S(0));
+  scale_.assign(static_cast<std::size_t>(n_), S(0));
   // Symmetric lower-band storage: add(r, c, v) adds v to A_rc and A_cr.
   auto add = [&](int r, int c, const S& v) {
     if (r < c) std::swap(r, c);
     A(r, r - c) += v;
   };
+  // Every entry puts terms of size |v| (2|v| on a diagonal it meets twice)
+  // into the rows it names, 2|v| in each: scale_ sums them.
   for (const Entry<S>& e : p.entries) {
+    const S size = S(2) * (e.value < S(0) ? S(-e.value) : e.value);
+    scale_[e.i] += size;
+    scale_[e.j] += size;
     if (e.diagonal()) {  // v (e_i − e_j)(e_i − e_j)ᵀ
       A(e.i, 0) += e.value;
       A(e.j, 0) += e.value;
       add(e.j, e.i, -e.value);
       continue;
     }
+    scale_[e.k] += size;
+    scale_[e.l] += size;
     // v [(e_i − e_j)(e_k − e_l)ᵀ + transpose]
     const int rows[2] = {e.i, e.j}, cols[2] = {e.k, e.l};
     for (int a = 0; a < 2; ++a)
@@ -49,16 +59,31 @@ void ClusterSystem<S>::assemble(const Problem<S>& p) {
   for (int i = 0; i < nf_; ++i) {
     rhs_[i] += p.mass[i] * p.u[i];
     A(i, 0) += p.mass[i];
+    scale_[i] += p.mass[i];
+    if (i == 0 || p.mass[i] < min_mass_) min_mass_ = p.mass[i];
   }
-  // Σ_j |A_ij| per row (all n bodies), for solve()'s choice of the row that
-  // takes a cluster's rounding residual.
-  row_size_.assign(static_cast<std::size_t>(n_), S(0));
-  for (int i = 0; i < n_; ++i)
-    for (int d = 0; d <= b_ && d <= i; ++d) {
-      const S a = A(i, d) < S(0) ? S(-A(i, d)) : A(i, d);
-      row_size_[i] += a;
-      if (d > 0) row_size_[i - d] += a;
-    }
+}
+
+template <class S>
+bool ClusterSystem<S>::definite_by_bound() const {
+  // A = diag(m) + DᵀMD with M positive semi-definite has λ_min(A) >= min m.
+  // Each computed A_rc sums at most k − 1 = 2·entries + 1 terms (at most two
+  // per entry of M, and a mass), each a rounded datum (relative error <= u)
+  // times ±1 or ±2, so (Higham, Thm 3.1, γ_k = k u/(1 − k u))
+  // |fl(A_rc) − A_rc| <= γ_k · Σ|terms of A_rc|, and row r of the error E
+  // sums to at most γ_k · scale_r.  E is symmetric, so ‖E‖₂ <= ‖E‖_∞, and by
+  // Weyl's inequality fl(A) is positive definite when γ_k · max_r scale_r <
+  // min m.  The factor 4 covers γ_k <= 2 k u (k u <= 1/2) and the rounding
+  // of this test's own sums; the principal submatrix on the free bodies
+  // inherits every bound.
+  const S u = ScalarTraits<S>::unit_roundoff(digits_);
+  const S k = S(2 * static_cast<long long>(entries_) + 2);
+  if (!(S(8) * k * u < S(1))) return false;
+  S worst = S(0);
+  for (int r = 0; r < nf_; ++r)
+    if (scale_[r] > worst) worst = scale_[r];
+  worst = S(4) * k * u * worst;
+  return worst < min_mass_;
 }
 
 template <class S>
@@ -78,12 +103,17 @@ bool ClusterSystem<S>::factor(int k) {
 
 template <class S>
 bool ClusterSystem<S>::definite() {
-  if (definite_ >= 0) return definite_ == 1;
-  // Not known from an all-open solve: the pivots of the LDLᵀ of A on the
-  // free bodies, streamed through a window of the Schur complement on rows
-  // j … j+b (L is not kept, A is not copied), so that the check costs a
-  // fraction of one solve.  The operations are factor()'s, in its order, so
-  // both give the same verdict.  win_(r, c) = W[r·(b+1) + c], c <= r.
+  if (definite_ < 0) definite_ = definite_by_bound() || definite_by_factor() ? 1 : 0;
+  return definite_ == 1;
+}
+
+template <class S>
+bool ClusterSystem<S>::definite_by_factor() {
+  // The pivots of the LDLᵀ of A on the free bodies, streamed through a
+  // window of the Schur complement on rows j … j+b (L is not kept, A is not
+  // copied), so that the check costs a fraction of one solve.  The
+  // operations are factor()'s, in its order, so both give the same verdict.
+  // win_(r, c) = W[r·(b+1) + c], c <= r.
   const int w = b_ + 1;
   win_.assign(static_cast<std::size_t>(w * w + 2 * w), S(0));  // and the eliminated column, and it over the pivot
   auto W = [&](int r, int c) -> S& { return win_[static_cast<std::size_t>(r * w + c)]; };
@@ -91,13 +121,9 @@ bool ClusterSystem<S>::definite() {
     for (int c = 0; c <= r; ++c) W(r, c) = row < nf_ ? A(row, r - c) : S(0);
   };
   for (int r = 0; r < w; ++r) load(r, r);
-  definite_ = 1;
   for (int j = 0; j < nf_; ++j) {
     const S d = W(0, 0);
-    if (!(d > S(0))) {
-      definite_ = 0;
-      break;
-    }
+    if (!(d > S(0))) return false;
     S* col = win_.data() + w * w;
     S* l = col + w;
     for (int r = 1; r < w; ++r) col[r] = W(r, 0), l[r] = col[r] / d;
@@ -105,7 +131,7 @@ bool ClusterSystem<S>::definite() {
       for (int c = 1; c <= r; ++c) W(r - 1, c - 1) = W(r, c) - col[r] * l[c];
     load(b_, j + w);
   }
-  return definite_ == 1;
+  return true;
 }
 
 template <class S>
@@ -161,7 +187,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   // running sum of the row residuals from the top of the cluster, or minus
   // the running sum from its bottom (the rows of a free cluster add up to
   // its equation, 0).  Summing from both ends towards the row with the
-  // largest coefficients puts the cluster's own rounding residual on that
+  // largest terms puts the cluster's own rounding residual on that
   // row, where it is smallest relative to the row's terms.  A cluster on a
   // fixed obstacle has no equation of its own: its sums run from the top.
   auto row_residual = [&](int c) {
@@ -179,7 +205,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
       if (cluster_[top] != fixed) {
         S largest = S(-1);
         for (int k = top; k <= bottom; ++k)
-          if (row_size_[k] > largest) largest = row_size_[k], pivot = k;
+          if (scale_[k] > largest) largest = scale_[k], pivot = k;
       }
       S sum = S(0);
       for (int c = top; c < pivot; ++c) lambda_[c] = sum = sum + row_residual(c);

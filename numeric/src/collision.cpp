@@ -27,14 +27,14 @@ Settings<S> Settings<S>::defaults(int digits) {
 }
 
 template <class S>
-void CollisionSolver<S>::start(const Problem<S>& p, Solution<S>& out) {
+void CollisionSolver<S>::start(const Problem<S>& p, int bandwidth, Solution<S>& out) {
   // A = diag(m) + DᵀMD and b̃, once, in the band storage of the cluster
   // system; then the case with every contact open (one cluster per body,
   // A W = b̃), whose gaps are the constant column q of the LCP.
   n_ = p.n;
   nf_ = p.fixed_bottom ? n_ - 1 : n_;
   nc_ = n_ - 1;
-  system_.assemble(p);
+  system_.assemble(p, bandwidth);
   basic_lambda_.assign(static_cast<std::size_t>(nc_), 0);
   A_.resize(nf_, nf_);  // sized now, so that forming N later does not allocate
   G_.resize(nf_, nc_);
@@ -104,9 +104,9 @@ void CollisionSolver<S>::form_tableau() {
 
 template <class S>
 typename CollisionSolver<S>::Lcp CollisionSolver<S>::lcp(const Problem<S>& p) {
-  check(p);
+  const int b = check(p);
   Solution<S> open;
-  start(p, open);
+  start(p, b, open);
   form_tableau();
   return {T_, t_, G_, W0_};
 }
@@ -166,17 +166,17 @@ void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out, bool impo
 }
 
 template <class S>
-void CollisionSolver<S>::check(const Problem<S>& p) const {
-  p.check("CollisionSolver::compute()");
+int CollisionSolver<S>::check(const Problem<S>& p) const {
+  const int b = p.check("CollisionSolver::compute()");
   if (p.n > dense_solver_max_bodies)
     throw std::invalid_argument("CollisionSolver::compute(): " + std::to_string(p.n) + " bodies: the dense solver takes at most " +
                                 std::to_string(dense_solver_max_bodies) + " (use ChainSolver for chains whose M is banded)");
+  return b;
 }
 
 template <class S>
 void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
-  check(p);
-  start(p, out);
+  start(p, check(p), out);
   const int pivots = pivot();
   out.status = pivots == -1 ? Status::NoConvergence : pivots == -2 ? Status::NumericalIssue : Status::Success;
   out.pivots = std::max(pivots, 0);
@@ -185,11 +185,11 @@ void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
 
 template <class S>
 void CollisionSolver<S>::compute_case(const Problem<S>& p, const ContactSet& closed, Solution<S>& out) {
-  check(p);
+  const int b = check(p);
   if (closed.bodies() != p.n)
     throw std::invalid_argument("CollisionSolver::compute_case(): the case is for " + std::to_string(closed.bodies()) +
                                 " bodies, the problem has " + std::to_string(p.n));
-  start(p, out);
+  start(p, b, out);
   out.status = Status::Success;
   out.pivots = 0;
   for (int c = 0; c < nc_; ++c)

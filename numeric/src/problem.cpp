@@ -218,12 +218,19 @@ Problem<S> Problem<S>::from(const ExactScene& s, int digits) {
 }
 
 template <class S>
-void Problem<S>::check(const char* who) const {
+int Problem<S>::check(const char* who) const {
   auto fail = [who](const char* what) { throw std::invalid_argument(std::string(who) + ": " + what); };
   if (n < 2) fail("a problem needs at least 2 bodies");
   if (static_cast<int>(mass.size()) != n || static_cast<int>(u.size()) != n) fail("masses and velocities must have one entry per body");
-  for (const Entry<S>& e : entries)
-    if (e.i < 0 || e.k < 0 || e.j >= n || e.l >= n || e.i >= e.j || e.k >= e.l) fail("an entry of M names a pair outside the bodies");
+  // One pass for both, with no branch per entry.
+  bool outside = false;
+  int b = 0;
+  for (const Entry<S>& e : entries) {
+    outside |= (e.i < 0) | (e.k < 0) | (e.j >= n) | (e.l >= n) | (e.i >= e.j) | (e.k >= e.l);
+    b = std::max(b, std::max(e.j, e.l) - std::min(e.i, e.k));
+  }
+  if (outside) fail("an entry of M names a pair outside the bodies");
+  return b;
 }
 
 template struct Problem<double>;

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "superball/numeric/certify.hpp"
+#include "superball/numeric/cluster.hpp"
 #include "support.hpp"
 
 namespace superball::testing {
@@ -134,6 +135,31 @@ TEST_P(HardScene, EveryPrecisionIsRightOrDeclines) {
   std::cout << row.str() << "\n";
 }
 
+/// definite_by_bound() and definite_by_factor() of A = diag(m) + DᵀMD for
+/// \p scene in \p S at \p digits.
+template <class S>
+std::pair<bool, bool> definiteness(const ExactScene& scene, int digits) {
+  const auto p = Problem<S>::from(scene, digits);
+  numeric::detail::ClusterSystem<S> system;
+  system.assemble(p, p.check("definiteness()"));
+  return {system.definite_by_bound(), system.definite_by_factor()};
+}
+
+// The O(n) bound on the assembly's rounding (cluster.hpp) is a sufficient
+// condition: wherever it certifies A positive definite, the LDLᵀ of the
+// assembled A must find every pivot positive.  Exact arithmetic: both hold.
+TEST_P(HardScene, DefinitenessBoundCertifiesOnlyWhatTheFactorizationConfirms) {
+  const ExactScene scene = ExactScene::from(load_scene(kHard + GetParam()));
+  const auto expect_implies = [](std::pair<bool, bool> verdict, const char* what) {
+    if (verdict.first) EXPECT_TRUE(verdict.second) << what << ": the bound certifies A, its LDLᵀ does not";
+  };
+  expect_implies(definiteness<double>(scene, 0), "double");
+  expect_implies(definiteness<long double>(scene, 0), "long double");
+  expect_implies(definiteness<cl_R>(scene, kDigitsLow), "digits:20");
+  const auto exact = definiteness<cl_RA>(scene, 0);
+  EXPECT_TRUE(exact.first && exact.second) << "exact arithmetic";
+}
+
 std::string test_name(const ::testing::TestParamInfo<std::string>& info) {
   std::string name = info.param.substr(0, info.param.rfind('.'));
   for (char& c : name)
@@ -228,6 +254,20 @@ TEST(HardSceneCatalogue, EpsilonFamilyKnownAnswer) {
     ASSERT_EQ(s.status, numeric::Status::Success);
     EXPECT_EQ(s.velocities_after[0], (1 - eps * eps) / (eps * (2 + eps))) << text(s.velocities_after[0]);
   }
+}
+
+TEST(HardSceneCatalogue, DefinitenessBoundDeclinesWhereTheMassIsBelowRounding) {
+  // §4.1 family in double: m1 = eps^3 (1e-21 ... 1e-27) lies far below the
+  // rounding of the O(1) terms of DᵀMD, so the bound cannot certify A and the
+  // LDLᵀ decides (hard-eps-1e-8: A11 = 2e-16 comes out as 1e-24).  A chain
+  // of masses far above that rounding is certified by the bound alone.
+  for (int k : {7, 8, 9}) {
+    const std::string file = kHard + "eps-1e-" + std::to_string(k) + ".toml";
+    SCOPED_TRACE(file);
+    EXPECT_FALSE(definiteness<double>(ExactScene::from(load_scene(file)), 0).first);
+  }
+  const auto chain = definiteness<double>(ExactScene::from(load_scene(kHard + "chain-32-finite.toml")), 0);
+  EXPECT_TRUE(chain.first && chain.second);
 }
 
 }  // namespace

@@ -20,19 +20,31 @@ namespace superball::numeric::detail {
 template <class S>
 class ClusterSystem {
  public:
-  /// Assemble A (lower band) and b̃ for \p p: O(entries + n b).
-  void assemble(const Problem<S>& p);
+  /// Assemble A (lower band) and b̃ for \p p, whose DᵀMD has bandwidth
+  /// \p bandwidth (what p.check() returned): O(entries + n b).
+  void assemble(const Problem<S>& p, int bandwidth);
   /// Solve the case \p closed (one flag per contact): velocities \p W (size
   /// n) and λ = −R on the contacts (\p lambda, 0 where open).  False when a
   /// pivot of the reduced system is not positive (rounding broke definiteness).
   bool solve(const Problem<S>& p, const std::vector<char>& closed, std::vector<S>& W, std::vector<S>& lambda);
   /// Whether A = diag(m) + DᵀMD on the free bodies, as assembled in S, is
-  /// positive definite: every pivot of its banded LDLᵀ is positive (A is
-  /// positive definite in exact arithmetic; rounding of the data and of the
-  /// assembly can break it when κ(A)·u ≳ 1, and then the computed problem is
-  /// not the paper's — its LCP need not have one solution).  O(n b²), free
-  /// after a solve() of the case with every contact open.
+  /// positive definite (A is positive definite in exact arithmetic when M is
+  /// positive semi-definite, as ExactScene::from checks; rounding of the data
+  /// and of the assembly can break it when κ(A)·u ≳ 1, and then the computed
+  /// problem is not the paper's — its LCP need not have one solution).
+  /// definite_by_bound(), else definite_by_factor(); known without either
+  /// after a solve() of the case with every contact open.  Cached until the
+  /// next assemble().
   bool definite();
+  /// A sufficient condition for definite(), O(n): the assembly's rounding
+  /// error E, bounded term by term, has ‖E‖₂ below the smallest mass, which
+  /// bounds λ_min(A) from below (Weyl's inequality, since M is positive
+  /// semi-definite): γ_k · max_r scale_r < min m, k = 2·entries + 2.  Always
+  /// true in exact arithmetic.
+  bool definite_by_bound() const;
+  /// definite() decided: every pivot of the banded LDLᵀ of A (free bodies)
+  /// is positive, O(n b²).
+  bool definite_by_factor();
   int bandwidth() const { return b_; }
   /// A_{i, i−d} (0 <= d <= bandwidth(), d <= i), as assembled.
   const S& band(int i, int d) const {
@@ -47,11 +59,12 @@ class ClusterSystem {
   bool factor(int k);
   S& R(int i, int d) { return R_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(d)]; }
 
-  int n_ = 0, nf_ = 0, nc_ = 0, b_ = 0;
+  int n_ = 0, nf_ = 0, nc_ = 0, b_ = 0, digits_ = 0, entries_ = 0;
   int definite_ = -1;     ///< definite(): 1 yes, 0 no, −1 not yet known for this problem
   std::vector<S> A_;      ///< lower band of diag(m) + DᵀMD over all n bodies: A(i, d) = A_{i, i−d}
   std::vector<S> rhs_;    ///< b̃ on free bodies
-  std::vector<S> row_size_;  ///< Σ_j |A_ij| per row
+  std::vector<S> scale_;     ///< per row of A: Σ |terms| the assembly added (mass included), its rounding scale
+  S min_mass_ = S(0);        ///< the smallest mass of a free body
   std::vector<int> cluster_;
   std::vector<S> R_, y_;  ///< the reduced banded system and its right side / solution
   std::vector<S> win_;    ///< definite(): a window of the Schur complement

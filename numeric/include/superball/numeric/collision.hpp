@@ -32,6 +32,7 @@ namespace detail {
 /// that a solve does not allocate.
 template <class S>
 struct CheckWorkspace {
+  std::vector<S> y, ay;  ///< W + u and |W| + |u| per body
   std::vector<S> residual, size;
 };
 }  // namespace detail
@@ -124,12 +125,12 @@ class CollisionSolver {
   Lcp lcp(const Problem<S>& problem);
 
  private:
-  void start(const Problem<S>& p, Solution<S>& out);
+  void start(const Problem<S>& p, int bandwidth, Solution<S>& out);
   void factorize();
   void form_tableau();
   template <class V>
   void solve_in_place(V&& x) const;
-  void check(const Problem<S>& p) const;
+  int check(const Problem<S>& p) const;  ///< Problem::check and the size limit; returns the bandwidth
   int pivot();
   bool pivot_on(int p);
   void finish(const Problem<S>& p, Solution<S>& out, bool imposed);

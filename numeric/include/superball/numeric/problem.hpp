@@ -78,8 +78,9 @@ struct Problem {
 
   /// Misuse check at a solver's entry point: at least 2 bodies, one mass
   /// and one velocity per body, every entry of M on pairs i < j, k < l of
-  /// bodies 0 … n−1.  Throws std::invalid_argument("<who>: ...").
-  void check(const char* who) const;
+  /// bodies 0 … n−1.  Throws std::invalid_argument("<who>: ...").  Returns
+  /// bandwidth(), found in the same pass over the entries.
+  int check(const char* who) const;
 
   /// The bandwidth b of DᵀMD: the largest max(j, l) − min(i, k) over the
   /// entries (i-j, k-l) of M (0 when M is empty).  O(entries); assumes check().
