@@ -92,11 +92,12 @@ bool ClusterSystem<S>::factor(int k) {
     const S dj = R(j, 0);
     if (!(dj > S(0))) return false;
     const int last = std::min(k - 1, j + b_);
-    for (int r = j + 1; r <= last; ++r) {
-      const S lrj = R(r, r - j) / dj;
-      for (int i = r; i <= last; ++i) R(i, i - r) -= R(i, i - j) * lrj;
-    }
-    for (int i = j + 1; i <= last; ++i) R(i, i - j) /= dj;
+    // Column j of L is R(r, r−j)/dj; the update reads column j unscaled, so
+    // the quotients wait in l_ until it is done (one division each).
+    for (int r = j + 1; r <= last; ++r) l_[r - j] = R(r, r - j) / dj;
+    for (int r = j + 1; r <= last; ++r)
+      for (int i = r; i <= last; ++i) R(i, i - r) -= R(i, i - j) * l_[r - j];
+    for (int r = j + 1; r <= last; ++r) R(r, r - j) = l_[r - j];
   }
   return true;
 }
@@ -138,6 +139,7 @@ template <class S>
 bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& closed_, std::vector<S>& W, std::vector<S>& lambda_) {
   cluster_.resize(static_cast<std::size_t>(n_));
   R_.resize(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1));
+  l_.resize(static_cast<std::size_t>(b_ + 1));
   y_.resize(static_cast<std::size_t>(n_));
   lambda_.resize(static_cast<std::size_t>(nc_));
   W.resize(static_cast<std::size_t>(n_));

@@ -222,11 +222,16 @@ int Problem<S>::check(const char* who) const {
   auto fail = [who](const char* what) { throw std::invalid_argument(std::string(who) + ": " + what); };
   if (n < 2) fail("a problem needs at least 2 bodies");
   if (static_cast<int>(mass.size()) != n || static_cast<int>(u.size()) != n) fail("masses and velocities must have one entry per body");
-  // One pass for both, with no branch per entry.
+  // One pass for both, with no branch per entry.  As unsigned numbers,
+  // i < j < n holds exactly when 0 <= i < j < n (a negative i or j wraps
+  // above n).
   bool outside = false;
   int b = 0;
+  const auto un = static_cast<unsigned>(n);
   for (const Entry<S>& e : entries) {
-    outside |= (e.i < 0) | (e.k < 0) | (e.j >= n) | (e.l >= n) | (e.i >= e.j) | (e.k >= e.l);
+    const auto i = static_cast<unsigned>(e.i), j = static_cast<unsigned>(e.j), k = static_cast<unsigned>(e.k),
+               l = static_cast<unsigned>(e.l);
+    outside |= (i >= j) | (j >= un) | (k >= l) | (l >= un);
     b = std::max(b, std::max(e.j, e.l) - std::min(e.i, e.k));
   }
   if (outside) fail("an entry of M names a pair outside the bodies");

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "superball/numeric/chain.hpp"
 #include "support.hpp"
 
 namespace superball::testing {
@@ -164,8 +165,18 @@ TEST(Compute, RejectsInconsistentProblems) {
   p.u = {-1, 0};
   p.entries.push_back({0, 2, 0, 2, 1.0});  // pair 1-3 of 2 bodies
   EXPECT_THROW(solver.compute(p, s), std::invalid_argument);
-  p.entries = {{1, 0, 1, 0, 1.0}};  // i > j
-  EXPECT_THROW(solver.compute(p, s), std::invalid_argument);
+  // Every way an entry can leave the bodies or its order, for both solvers.
+  numeric::ChainSolver<double> chain;
+  const numeric::Entry<double> bad[] = {
+      {1, 0, 1, 0, 1.0},  {0, 0, 0, 1, 1.0}, {-1, 1, 0, 1, 1.0}, {0, -1, 0, 1, 1.0},
+      {0, 1, -1, 1, 1.0}, {0, 1, 0, 2, 1.0}, {0, 1, 1, 0, 1.0},  {0, 1, 1, 1, 1.0},
+  };
+  for (const auto& e : bad) {
+    p.entries = {{0, 1, 0, 1, 1.0}, e};
+    SCOPED_TRACE(std::to_string(e.i) + "-" + std::to_string(e.j) + ", " + std::to_string(e.k) + "-" + std::to_string(e.l));
+    EXPECT_THROW(solver.compute(p, s), std::invalid_argument);
+    EXPECT_THROW(chain.compute(p, s), std::invalid_argument);
+  }
   p.entries.clear();
   EXPECT_NO_THROW(solver.compute(p, s));
   EXPECT_EQ(s.status, numeric::Status::Success);

@@ -151,7 +151,9 @@ std::pair<bool, bool> definiteness(const ExactScene& scene, int digits) {
 TEST_P(HardScene, DefinitenessBoundCertifiesOnlyWhatTheFactorizationConfirms) {
   const ExactScene scene = ExactScene::from(load_scene(kHard + GetParam()));
   const auto expect_implies = [](std::pair<bool, bool> verdict, const char* what) {
-    if (verdict.first) EXPECT_TRUE(verdict.second) << what << ": the bound certifies A, its LDLᵀ does not";
+    if (verdict.first) {
+      EXPECT_TRUE(verdict.second) << what << ": the bound certifies A, its LDLᵀ does not";
+    }
   };
   expect_implies(definiteness<double>(scene, 0), "double");
   expect_implies(definiteness<long double>(scene, 0), "long double");

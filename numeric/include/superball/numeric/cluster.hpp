@@ -67,6 +67,7 @@ class ClusterSystem {
   S min_mass_ = S(0);        ///< the smallest mass of a free body
   std::vector<int> cluster_;
   std::vector<S> R_, y_;  ///< the reduced banded system and its right side / solution
+  std::vector<S> l_;      ///< factor(): a column of L
   std::vector<S> win_;    ///< definite(): a window of the Schur complement
 };
 
