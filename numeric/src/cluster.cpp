@@ -46,16 +46,17 @@ void ClusterSystem<S>::assemble(const Problem<S>& p, int bandwidth) {
       }
   }
   // b̃ = m u − K u − [fixed] K_{·,n} u_n on free bodies (K u before the masses enter A).
-  rhs_.assign(static_cast<std::size_t>(nf_), S(0));
-  for (int i = 0; i < n_; ++i)
-    for (int d = 0; d <= b_ && d <= i; ++d) {
-      const int j = i - d;
-      const S a = A(i, d);
-      if (i < nf_) rhs_[i] -= a * p.u[j];
-      if (d > 0 && j < nf_) rhs_[j] -= a * p.u[i];
-    }
-  if (p.fixed_bottom)
-    for (int d = 1; d <= b_ && d <= n_ - 1; ++d) rhs_[n_ - 1 - d] -= A(n_ - 1, d) * p.u[n_ - 1];
+  // Row by row in a register: the terms of row j of A left of the
+  // diagonal, then those right of it (held by the rows below), then the
+  // fixed body's column once more.
+  rhs_.resize(static_cast<std::size_t>(nf_));
+  for (int j = 0; j < nf_; ++j) {
+    S acc = S(0);
+    for (int d = 0; d <= b_ && d <= j; ++d) acc -= A(j, d) * p.u[j - d];
+    for (int d = 1; d <= b_ && j + d < n_; ++d) acc -= A(j + d, d) * p.u[j + d];
+    if (p.fixed_bottom && n_ - 1 - j <= b_) acc -= A(n_ - 1, n_ - 1 - j) * p.u[n_ - 1];
+    rhs_[j] = acc;
+  }
   for (int i = 0; i < nf_; ++i) {
     rhs_[i] += p.mass[i] * p.u[i];
     A(i, 0) += p.mass[i];
@@ -152,17 +153,32 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   const S u_fixed = p.fixed_bottom ? p.u[n_ - 1] : S(0);
   std::fill(R_.begin(), R_.begin() + static_cast<std::ptrdiff_t>(k) * (b_ + 1), S(0));
   std::fill(y_.begin(), y_.begin() + k, S(0));
+  // A cluster's right side and diagonal are summed in registers over its
+  // rows and stored once (the clusters are runs of rows), so that no row
+  // waits for the previous row's update through memory.
+  int current = -1;
+  S y_sum = S(0), diagonal_sum = S(0);
+  const auto flush = [&] {
+    if (current < 0) return;
+    y_[current] += y_sum;
+    R(current, 0) += diagonal_sum;
+  };
   for (int i = 0; i < nf_; ++i) {
     const int ci = cluster_[i];
     if (ci == fixed) {  // columns of the fixed cluster move to the right side
+      flush();
+      current = -1;
       for (int d = 1; d <= b_ && d <= i; ++d)
         if (cluster_[i - d] != fixed) y_[cluster_[i - d]] -= A(i, d) * u_fixed;
       continue;
     }
-    y_[ci] += rhs_[i];
+    if (ci != current) {
+      flush();
+      current = ci, y_sum = S(0), diagonal_sum = S(0);
+    }
+    y_sum += rhs_[i];
     // Row i of A adds A_ii and twice its couplings inside the cluster to the
-    // cluster's diagonal (summed here first: one dependent update of R per
-    // row, not one per band entry), and its other couplings off it.
+    // cluster's diagonal, and its other couplings off it.
     S inner = A(i, 0);
     for (int d = 1; d <= b_ && d <= i; ++d) {
       const int cj = cluster_[i - d];
@@ -171,8 +187,9 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
       else
         R(ci, ci - cj) += A(i, d);
     }
-    R(ci, 0) += inner;
+    diagonal_sum += inner;
   }
+  flush();
   // Banded LDLᵀ in place, then the three triangular/diagonal solves.  With
   // every contact open the reduced system is A itself: its factorization
   // decides definite() too.
