@@ -35,27 +35,25 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   // are relative to the sum of |terms|.
   std::vector<S>& y = work.y;
   std::vector<S>& ay = work.ay;
-  std::vector<S>& r = work.residual;
-  std::vector<S>& size = work.size;
+  std::vector<RowSum<S>>& rows = work.rows;
   y.resize(static_cast<std::size_t>(n));
   ay.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     y[i] = W[i] + p.u[i];
     ay[i] = abs_value<S>(W[i]) + abs_value<S>(p.u[i]);
   }
-  r.assign(static_cast<std::size_t>(n), S(0));
-  size.assign(static_cast<std::size_t>(n), S(0));
+  rows.assign(static_cast<std::size_t>(n), RowSum<S>{});
   S dissipation = S(0);
   for (const Entry<S>& e : p.entries) {
     const S yij = y[e.i] - y[e.j], ykl = y[e.k] - y[e.l];
     const S f = e.value * ykl, s = abs_value<S>(e.value) * (ay[e.k] + ay[e.l]);
-    r[e.i] += f, r[e.j] -= f, size[e.i] += s, size[e.j] += s;
+    rows[e.i].add(f, s), rows[e.j].add(-f, s);
     if (e.diagonal()) {  // 2 v X_ij² = v y_ij² / 2
       dissipation += f * yij / S(2);
       continue;
     }
     const S g = e.value * yij, t = abs_value<S>(e.value) * (ay[e.i] + ay[e.j]);
-    r[e.k] += g, r[e.l] -= g, size[e.k] += t, size[e.l] += t;
+    rows[e.k].add(g, t), rows[e.l].add(-g, t);
     dissipation += g * ykl;  // 4 v X_ij X_kl
   }
   for (int c = 0; c < nc; ++c) dissipation += out.reactions[static_cast<std::size_t>(c)] * S(y[c] - y[c + 1]) / S(2);
@@ -64,12 +62,14 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   double motion = 0;
   for (int i = 0; i < nf; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    r[k] += p.mass[k] * (W[k] - p.u[k]);
-    size[k] += abs_value<S>(p.mass[k] * W[k]) + abs_value<S>(p.mass[k] * p.u[k]);
-    if (i < nc) r[k] -= lambda[k], size[k] += abs_value<S>(lambda[k]);
-    if (i > 0) r[k] += lambda[k - 1], size[k] += abs_value<S>(lambda[k - 1]);
+    S r = rows[k].residual(), size = rows[k].size();
+    r += p.mass[k] * (W[k] - p.u[k]);
+    size += abs_value<S>(p.mass[k] * W[k]) + abs_value<S>(p.mass[k] * p.u[k]);
+    if (i < nc) r -= lambda[k], size += abs_value<S>(lambda[k]);
+    if (i > 0) r += lambda[k - 1], size += abs_value<S>(lambda[k - 1]);
+    rows[k].set(r, size);
     // max |r|/size, dividing only where the row beats the largest so far
-    const double rk = to_double(abs_value<S>(r[k])), sk = std::max(to_double(size[k]), 1e-300);
+    const double rk = to_double(abs_value<S>(r)), sk = std::max(to_double(size), 1e-300);
     if (rk > motion * sk) motion = std::max(motion, rk / sk);
   }
   // Gaps relative to the largest velocity; reactions relative to the largest
@@ -78,7 +78,7 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   // reactions are about 0, is not taken for a violation.
   double comp = 0, vscale = 0, lscale = 0;
   for (int i = 0; i < n; ++i) vscale = std::max({vscale, std::fabs(to_double(W[i])), std::fabs(to_double(p.u[i]))});
-  for (int i = 0; i < nf; ++i) lscale = std::max(lscale, to_double(size[static_cast<std::size_t>(i)]));
+  for (int i = 0; i < nf; ++i) lscale = std::max(lscale, to_double(rows[static_cast<std::size_t>(i)].size()));
   for (int c = 0; c < nc; ++c) {
     const auto k = static_cast<std::size_t>(c);
     const double w = to_double(out.gaps[k]), l = to_double(lambda[k]);

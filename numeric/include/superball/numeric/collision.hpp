@@ -30,10 +30,39 @@ namespace superball::numeric {
 namespace detail {
 /// Scratch space of the residual check, kept by a solver between solves so
 /// that a solve does not allocate.
+/// A row of the residual check: the residual and the sum of |terms|, updated
+/// together by every entry of M that names the body.
+template <class S>
+class RowSum {
+ public:
+  void add(const S& term, const S& magnitude) { r_ += term, size_ += magnitude; }
+  const S& residual() const { return r_; }
+  const S& size() const { return size_; }
+  void set(const S& residual, const S& size) { r_ = residual, size_ = size; }
+
+ private:
+  S r_ = S(0), size_ = S(0);
+};
+/// In double both live in one 16-byte vector (GCC/Clang vector extension),
+/// so that an update is one load, one add and one store, not two of each:
+/// the residual check's scatter over M's entries is bound by its stores.
+template <>
+class RowSum<double> {
+  using Pair = double __attribute__((vector_size(16)));
+
+ public:
+  void add(double term, double magnitude) { v_ += Pair{term, magnitude}; }
+  double residual() const { return v_[0]; }
+  double size() const { return v_[1]; }
+  void set(double residual, double size) { v_ = Pair{residual, size}; }
+
+ private:
+  Pair v_ = {0, 0};
+};
 template <class S>
 struct CheckWorkspace {
   std::vector<S> y, ay;  ///< W + u and |W| + |u| per body
-  std::vector<S> residual, size;
+  std::vector<RowSum<S>> rows;
 };
 }  // namespace detail
 
