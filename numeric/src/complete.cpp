@@ -33,36 +33,31 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   // y = W + u = 2X, the force DᵀMD y gets v (y_k − y_l)(e_i − e_j) from entry
   // (i-j, k-l, v), and the transposed term off the diagonal of M; residuals
   // are relative to the sum of |terms|.
-  std::vector<S>& y = work.y;
-  std::vector<S>& ay = work.ay;
-  std::vector<RowSum<S>>& rows = work.rows;
+  std::vector<Sized<S>>& y = work.y;
+  std::vector<Sized<S>>& rows = work.rows;
   y.resize(static_cast<std::size_t>(n));
-  ay.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    y[i] = W[i] + p.u[i];
-    ay[i] = abs_value<S>(W[i]) + abs_value<S>(p.u[i]);
-  }
-  rows.assign(static_cast<std::size_t>(n), RowSum<S>{});
+  for (int i = 0; i < n; ++i) y[i].set(W[i] + p.u[i], abs_value<S>(W[i]) + abs_value<S>(p.u[i]));
+  rows.assign(static_cast<std::size_t>(n), Sized<S>{});
   S dissipation = S(0);
   for (const Entry<S>& e : p.entries) {
-    const S yij = y[e.i] - y[e.j], ykl = y[e.k] - y[e.l];
-    const S f = e.value * ykl, s = abs_value<S>(e.value) * (ay[e.k] + ay[e.l]);
+    const S yij = y[e.i].value() - y[e.j].value(), ykl = y[e.k].value() - y[e.l].value();
+    const S f = e.value * ykl, s = abs_value<S>(e.value) * (y[e.k].size() + y[e.l].size());
     rows[e.i].add(f, s), rows[e.j].add(-f, s);
     if (e.diagonal()) {  // 2 v X_ij² = v y_ij² / 2
       dissipation += f * yij / S(2);
       continue;
     }
-    const S g = e.value * yij, t = abs_value<S>(e.value) * (ay[e.i] + ay[e.j]);
+    const S g = e.value * yij, t = abs_value<S>(e.value) * (y[e.i].size() + y[e.j].size());
     rows[e.k].add(g, t), rows[e.l].add(-g, t);
     dissipation += g * ykl;  // 4 v X_ij X_kl
   }
-  for (int c = 0; c < nc; ++c) dissipation += out.reactions[static_cast<std::size_t>(c)] * S(y[c] - y[c + 1]) / S(2);
+  for (int c = 0; c < nc; ++c) dissipation += out.reactions[static_cast<std::size_t>(c)] * S(y[c].value() - y[c + 1].value()) / S(2);
   out.dissipation = dissipation;
 
   double motion = 0;
   for (int i = 0; i < nf; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    S r = rows[k].residual(), size = rows[k].size();
+    S r = rows[k].value(), size = rows[k].size();
     r += p.mass[k] * (W[k] - p.u[k]);
     size += abs_value<S>(p.mass[k] * W[k]) + abs_value<S>(p.mass[k] * p.u[k]);
     if (i < nc) r -= lambda[k], size += abs_value<S>(lambda[k]);

@@ -30,39 +30,38 @@ namespace superball::numeric {
 namespace detail {
 /// Scratch space of the residual check, kept by a solver between solves so
 /// that a solve does not allocate.
-/// A row of the residual check: the residual and the sum of |terms|, updated
-/// together by every entry of M that names the body.
+/// A sum and the sum of the magnitudes of its terms, side by side, so that
+/// adding a term updates both with one store (the residual check scatters
+/// over M's entries, and there the stores are the bottleneck).
 template <class S>
-class RowSum {
+class Sized {
  public:
-  void add(const S& term, const S& magnitude) { r_ += term, size_ += magnitude; }
-  const S& residual() const { return r_; }
+  void add(const S& term, const S& magnitude) { value_ += term, size_ += magnitude; }
+  const S& value() const { return value_; }
   const S& size() const { return size_; }
-  void set(const S& residual, const S& size) { r_ = residual, size_ = size; }
+  void set(const S& value, const S& size) { value_ = value, size_ = size; }
 
  private:
-  S r_ = S(0), size_ = S(0);
+  S value_ = S(0), size_ = S(0);
 };
-/// In double both live in one 16-byte vector (GCC/Clang vector extension),
-/// so that an update is one load, one add and one store, not two of each:
-/// the residual check's scatter over M's entries is bound by its stores.
+/// In double both live in one 16-byte vector (GCC/Clang vector extension).
 template <>
-class RowSum<double> {
+class Sized<double> {
   using Pair = double __attribute__((vector_size(16)));
 
  public:
   void add(double term, double magnitude) { v_ += Pair{term, magnitude}; }
-  double residual() const { return v_[0]; }
+  double value() const { return v_[0]; }
   double size() const { return v_[1]; }
-  void set(double residual, double size) { v_ = Pair{residual, size}; }
+  void set(double value, double size) { v_ = Pair{value, size}; }
 
  private:
   Pair v_ = {0, 0};
 };
 template <class S>
 struct CheckWorkspace {
-  std::vector<S> y, ay;  ///< W + u and |W| + |u| per body
-  std::vector<RowSum<S>> rows;
+  std::vector<Sized<S>> y;     ///< per body: W + u and |W| + |u|
+  std::vector<Sized<S>> rows;  ///< per body: the residual of its equation of motion and the sum of |terms|
 };
 }  // namespace detail
 
