@@ -232,7 +232,7 @@ int Problem<S>::check(const char* who) const {
     const auto i = static_cast<unsigned>(e.i), j = static_cast<unsigned>(e.j), k = static_cast<unsigned>(e.k),
                l = static_cast<unsigned>(e.l);
     outside |= (i >= j) | (j >= un) | (k >= l) | (l >= un);
-    b = std::max(b, std::max(e.j, e.l) - std::min(e.i, e.k));
+    b = std::max(b, e.span());
   }
   if (outside) fail("an entry of M names a pair outside the bodies");
   return b;

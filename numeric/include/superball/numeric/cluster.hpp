@@ -68,7 +68,7 @@ class ClusterSystem {
   std::vector<int> cluster_;
   std::vector<S> R_, y_;  ///< the reduced banded system and its right side / solution
   std::vector<S> l_;      ///< factor(): a column of L
-  std::vector<S> win_;    ///< definite(): a window of the Schur complement
+  std::vector<S> win_;    ///< definite_by_factor(): a window of the Schur complement
 };
 
 extern template class ClusterSystem<double>;

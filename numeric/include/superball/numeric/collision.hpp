@@ -28,8 +28,6 @@
 namespace superball::numeric {
 
 namespace detail {
-/// Scratch space of the residual check, kept by a solver between solves so
-/// that a solve does not allocate.
 /// A sum and the sum of the magnitudes of its terms, side by side, so that
 /// adding a term updates both with one store (the residual check scatters
 /// over M's entries, and there the stores are the bottleneck).
@@ -58,6 +56,8 @@ class Sized<double> {
  private:
   Pair v_ = {0, 0};
 };
+/// Scratch space of the residual check, kept by a solver between solves so
+/// that a solve does not allocate.
 template <class S>
 struct CheckWorkspace {
   std::vector<Sized<S>> y;     ///< per body: W + u and |W| + |u|

@@ -23,6 +23,8 @@ struct Entry {
   int i, j, k, l;
   S value;
   bool diagonal() const { return i == k && j == l; }
+  /// How far apart the bodies it couples are: max(j, l) − min(i, k).
+  int span() const { return std::max(j, l) - std::min(i, k); }
 };
 
 /// A scene in exact rationals, checked.
@@ -86,7 +88,7 @@ struct Problem {
   /// entries (i-j, k-l) of M (0 when M is empty).  O(entries); assumes check().
   int bandwidth() const {
     int b = 0;
-    for (const Entry<S>& e : entries) b = std::max(b, std::max(e.j, e.l) - std::min(e.i, e.k));
+    for (const Entry<S>& e : entries) b = std::max(b, e.span());
     return b;
   }
 };
