@@ -8,12 +8,15 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <memory>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace superball::cli {
 
 /// Exit codes shared by all commands.
-enum Exit : int { ok = 0, bad_input = 2, numerical_failure = 3, internal_error = 4 };
+enum Exit : int { ok = 0, numerical_failure = 1, bad_input = 2, output_error = 3, internal_error = 4 };
 
 /// A command's action, run after parsing; returns the exit code.
 using Action = std::function<int()>;
@@ -26,13 +29,39 @@ void add_audit(CLI::App& app, Action& action);
 void add_verify(CLI::App& app, Action& action);
 void add_explore(CLI::App& app, Action& action);
 
-/// Write \p text to \p path through a temporary file in the same folder and
-/// a rename, so an interrupted run never leaves a half-written file.
-/// Throws std::runtime_error("write_file_atomically(): PATH: why").
-void write_file_atomically(const std::string& path, const std::string& text);
+/// An output that cannot be written (full disk, closed pipe, no permission):
+/// the command ends with one line naming the path and the system's reason,
+/// exit code 3.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
-/// A command's result: \p text on standard output when \p path is empty,
-/// else into the file \p path (write_file_atomically()).
+/// Where a command's result goes, written piece by piece: standard output
+/// when the path is empty or "-", else the file \p path, replaced as a whole
+/// only by commit() (a run that fails or is interrupted leaves the old file).
+/// Every write is checked; failures throw OutputError("PATH: reason").
+class Output {
+ public:
+  explicit Output(std::string path);
+  Output(const Output&) = delete;
+  Output& operator=(const Output&) = delete;
+  /// Drops what was written unless commit() ran.
+  ~Output();
+  /// Append \p text.
+  void write(std::string_view text);
+  /// Flush and put the result in place.
+  void commit();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// A command's whole result at once: Output(path), write(text), commit().
 void write_output(const std::string& path, const std::string& text);
+
+/// write_output() into a file (\p path not empty).
+void write_file_atomically(const std::string& path, const std::string& text);
 
 }  // namespace superball::cli

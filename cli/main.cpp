@@ -41,6 +41,9 @@ int main(int argc, char** argv) {
   } catch (const superball::InputError& e) {
     std::cerr << "superball: " << e.what() << '\n';
     return bad_input;
+  } catch (const OutputError& e) {
+    std::cerr << "superball: " << e.what() << '\n';
+    return output_error;
   } catch (const std::invalid_argument& e) {
     std::cerr << "superball: " << superball::without_function_prefix(e.what()) << '\n';
     return bad_input;

@@ -6,9 +6,11 @@
 // certifies the case).
 //
 // The number of scenes is a setting: SUPERBALL_PROPERTY_SCENES (default
-// kDefaultScenes, what the suite runs); docs/ACCURACY.md records a run with
-// 10^5 or more, e.g.
-//   SUPERBALL_PROPERTY_SCENES=1000000 build/tests/numeric/superball_numeric_tests --gtest_filter='RandomScenes/*.Physics*'
+// kDefaultScenes, what the suite runs), from the seed SUPERBALL_PROPERTY_FIRST_SEED
+// (default 1), so that a long run can be split into seed ranges and resumed
+// (scripts/property-run.sh); docs/ACCURACY.md records a run with 10^5 or more, e.g.
+//   SUPERBALL_PROPERTY_SCENES=100000 SUPERBALL_PROPERTY_FIRST_SEED=100001
+//     build/tests/numeric/superball_numeric_tests --gtest_filter='RandomScenes/double.Physics*'
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -29,15 +31,19 @@ constexpr std::uint64_t kDefaultScenes = 250;
 /// checked on runs of at least this many scenes.
 constexpr std::uint64_t kMinScenesForCoverage = 100;
 
-/// SUPERBALL_PROPERTY_SCENES when set (a positive integer), else kDefaultScenes.
-std::uint64_t property_scenes() {
-  const char* text = std::getenv("SUPERBALL_PROPERTY_SCENES");
-  if (!text || !*text) return kDefaultScenes;
+/// The environment variable \p name when set (a positive integer), else \p fallback.
+std::uint64_t positive_setting(const char* name, std::uint64_t fallback) {
+  const char* text = std::getenv(name);
+  if (!text || !*text) return fallback;
   const std::string s(text);
   if (s.find_first_not_of("0123456789") != std::string::npos || s.size() > 12 || std::stoull(s) == 0)
-    throw std::invalid_argument("property_scenes(): SUPERBALL_PROPERTY_SCENES must be a positive integer, got '" + s + "'");
+    throw std::invalid_argument(std::string("positive_setting(): ") + name + " must be a positive integer, got '" + s + "'");
   return std::stoull(s);
 }
+/// How many seeds the property test runs: SUPERBALL_PROPERTY_SCENES, else kDefaultScenes.
+std::uint64_t property_scenes() { return positive_setting("SUPERBALL_PROPERTY_SCENES", kDefaultScenes); }
+/// The first of them: SUPERBALL_PROPERTY_FIRST_SEED, else 1.
+std::uint64_t first_seed() { return positive_setting("SUPERBALL_PROPERTY_FIRST_SEED", 1); }
 
 /// The evolution case is compared only when the exact solution is strictly
 /// complementary by more than this multiple of the forward error bound (a
@@ -55,12 +61,12 @@ TYPED_TEST_SUITE(RandomScenes, Scalars, ScalarNames);
 TYPED_TEST(RandomScenes, PhysicsHoldsAndAgreesWithTheExactSolution) {
   using S = TypeParam;
   const bool exact = ScalarTraits<S>::exact;
-  const std::uint64_t scenes = property_scenes();
+  const std::uint64_t scenes = property_scenes(), first = first_seed();
   int undecidable = 0, finite = 0, fixed = 0, moving = 0, closed_contacts = 0, not_success = 0, certified = 0, banded = 0;
   cl_RA worst = 0;  // largest error / (n κ u)
   double worst_certified = 0;  // largest error / certified bound
   std::uint64_t worst_seed = 0;
-  for (std::uint64_t seed = 1; seed <= scenes; ++seed) {
+  for (std::uint64_t seed = first; seed < first + scenes; ++seed) {
     const RandomScene r = random_scene(seed);
     SCOPED_TRACE(r.describe());
     ExactScene scene;
@@ -131,7 +137,8 @@ TYPED_TEST(RandomScenes, PhysicsHoldsAndAgreesWithTheExactSolution) {
   EXPECT_LE(undecidable * 100.0, kMaxUndecidablePercent * count);
   EXPECT_LE(not_success * 100.0, 10 * count) << "too many scenes the solver declined";
   if (!exact) {
-    std::cout << "[ info ] " << ScalarNames::GetName<S>(0) << ", " << scenes << " scenes: largest velocity error "
+    std::cout << "[ info ] " << ScalarNames::GetName<S>(0) << ", " << scenes << " scenes (seeds " << first << " .. "
+              << first + scenes - 1 << "): largest velocity error "
               << approx(worst) << " n kappa(A) u (seed " << worst_seed << "); " << undecidable
               << " scenes within rounding of a switch point; " << not_success << " not solved with status Success; " << banded
               << " solved as banded chains";
