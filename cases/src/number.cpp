@@ -53,14 +53,19 @@ Number Number::parse(std::string_view text) {
     den = strip_zeros(std::string(q));
     if (den == "0") fail(text, "has a zero denominator");
   } else {
-    // decimal: digits [. digits] [e|E [sign] digits]; TOML's '_' separators are allowed.
+    // decimal: digits [. digits] [e|E [sign] digits]; TOML's '_' separators are
+    // allowed, as in TOML only between two digits ("1_000", not "_1", "1_" or "1__0").
     std::string mantissa, fraction;
     long exponent = 0;
     std::size_t k = 0;
+    auto is_digit = [&](std::size_t at) { return at < s.size() && std::isdigit(static_cast<unsigned char>(s[at])); };
     auto take_digits = [&](std::string& into) {
-      while (k < s.size() && (std::isdigit(static_cast<unsigned char>(s[k])) || s[k] == '_')) {
-        if (s[k] != '_') into += s[k];
-        ++k;
+      for (; is_digit(k) || (k < s.size() && s[k] == '_'); ++k) {
+        if (s[k] != '_') {
+          into += s[k];
+        } else if (k == 0 || !is_digit(k - 1) || !is_digit(k + 1)) {
+          fail(text, "has an '_' that is not between two digits");
+        }
       }
     };
     take_digits(mantissa);

@@ -1,11 +1,17 @@
 #include "superball/cases/scene_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cctype>
-#include <fstream>
+#include <cerrno>
+#include <cstring>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "superball/cases/vocabulary.hpp"
 
@@ -66,7 +72,7 @@ class SceneReader {
     os << origin_;
     if (at.begin.line > 0) os << ':' << at.begin.line << ':' << at.begin.column;
     os << ": " << field << ": " << what;
-    throw InputError(os.str());
+    throw InputError(printable(os.str()));
   }
 
   void check_keys(const toml::table& t, const std::string& prefix, std::set<std::string> allowed) const {
@@ -79,13 +85,27 @@ class SceneReader {
       }
   }
 
-  /// The exact spelling of a TOML number as it stands in the file.
+  /// The byte offset in \p line of toml++'s \p column, which counts code
+  /// points from 1 (a tab is one, 'é' is one); npos past the end.
+  static std::size_t byte_offset(const std::string& line, std::size_t column) {
+    std::size_t at = 0;
+    for (std::size_t c = 1; c < column; ++c) {
+      if (at >= line.size()) return std::string::npos;
+      ++at;
+      while (at < line.size() && (static_cast<unsigned char>(line[at]) & 0xc0) == 0x80) ++at;  // continuation bytes
+    }
+    return at;
+  }
+
+  /// The exact spelling of a TOML number as it stands in the file (the text
+  /// has no byte-order mark: parse_scene() removes it before toml++ and this
+  /// reader see the text, so that both count from the same first byte).
   std::string spelling(const toml::node& node) const {
     const auto& src = node.source();
     if (src.begin.line == 0 || src.begin.line != src.end.line || src.begin.line > lines_.size())
       return "";
     const std::string& line = lines_[src.begin.line - 1];
-    const std::size_t b = src.begin.column - 1, e = src.end.column - 1;
+    const std::size_t b = byte_offset(line, src.begin.column), e = byte_offset(line, src.end.column);
     return e <= line.size() && b < e ? line.substr(b, e - b) : "";
   }
 
@@ -139,8 +159,8 @@ class SceneReader {
       Body body;
       const toml::node* mass = t.get("mass");
       if (!mass) fail(t, field + ".mass", "missing: every body needs a mass (kg), or \"inf\" for a fixed obstacle");
-      const bool inf_spelled = (mass->is_string() && *mass->value<std::string>() == "inf") ||
-                               (mass->is_floating_point() && spelling(*mass) == "inf");
+      const std::string inf_text = mass->is_string() ? *mass->value<std::string>() : mass->is_floating_point() ? spelling(*mass) : "";
+      const bool inf_spelled = inf_text == "inf" || inf_text == "+inf";
       if (inf_spelled) {
         if (k + 1 != list->size()) fail(*mass, field + ".mass", "only the bottom body may have infinite mass (a fixed obstacle)");
         body.infinite = true;
@@ -229,16 +249,176 @@ class SceneReader {
   std::set<std::pair<Pair, Pair>> declared_;  ///< the entries of M read so far, (first, second) with first <= second
 };
 
+/// The nesting pre-scan: the line where \p text first nests tables, arrays
+/// and dotted keys deeper than max_scene_nesting, or 0.
+///
+/// A key `a.b.c` is 3 levels below the table it is written in, a `[a.b]`
+/// header puts the keys after it 2 levels down, an array's elements and an
+/// inline table's keys are one level below it.  The scan follows TOML's
+/// grammar far enough to tell keys from values (strings, comments, the
+/// scalars between them) in one pass over the text, and recurses at most
+/// max_scene_nesting deep.  It validates nothing: where the text is not TOML
+/// it goes on reading brackets as nesting, and toml++ reports the error.
+class NestingScan {
+ public:
+  explicit NestingScan(std::string_view text) : s_(text) {}
+
+  std::size_t too_deep_line() {
+    while (i_ < s_.size()) {
+      skip_blank(true);
+      if (i_ >= s_.size()) break;
+      if (s_[i_] == '[') {  // [table] or [[array.of.tables]]
+        ++i_;
+        if (i_ < s_.size() && s_[i_] == '[') ++i_;
+        if (!key(0)) return line_;
+        table_level_ = level_;
+      } else if (key(table_level_)) {
+        skip_blank(false);
+        if (i_ < s_.size() && s_[i_] == '=') {
+          ++i_;
+          if (!value(level_)) return line_;
+        }
+      } else {
+        return line_;
+      }
+      while (i_ < s_.size() && s_[i_] != '\n') ++i_;  // the rest of the line (a comment, or not TOML)
+    }
+    return 0;
+  }
+
+ private:
+  static bool ends_bare(char c) { return std::strchr(" \t\r\n.=[]{},#\"'", c) != nullptr; }
+
+  /// Spaces and tabs; with \p newlines also line ends and comments.
+  void skip_blank(bool newlines) {
+    while (i_ < s_.size()) {
+      const char c = s_[i_];
+      if (c == ' ' || c == '\t' || c == '\r') {
+        ++i_;
+      } else if (newlines && c == '\n') {
+        ++line_, ++i_;
+      } else if (newlines && c == '#') {
+        while (i_ < s_.size() && s_[i_] != '\n') ++i_;
+      } else {
+        break;
+      }
+    }
+  }
+
+  /// A basic, literal or multi-line string, from its opening quote.
+  void skip_string() {
+    const char q = s_[i_];
+    const bool multi = s_.compare(i_, 3, std::string(3, q)) == 0;
+    i_ += multi ? 3 : 1;
+    while (i_ < s_.size()) {
+      const char c = s_[i_];
+      if (c == '\\' && q == '"') {
+        if (i_ + 1 < s_.size() && s_[i_ + 1] == '\n') ++line_;
+        i_ += 2;
+        continue;
+      }
+      if (c == '\n') {
+        ++line_;
+        if (!multi) return;
+      }
+      if (c == q && (!multi || s_.compare(i_, 3, std::string(3, q)) == 0)) {
+        i_ += multi ? 3 : 1;
+        while (multi && i_ < s_.size() && s_[i_] == q) ++i_;  // up to two quotes may end the content
+        return;
+      }
+      ++i_;
+    }
+  }
+
+  /// A key `a."b".c`, \p base levels deep: sets level_ to base + its parts;
+  /// false when that is deeper than allowed.
+  bool key(int base) {
+    level_ = base;
+    for (;;) {
+      skip_blank(false);
+      if (i_ < s_.size() && (s_[i_] == '"' || s_[i_] == '\'')) {
+        skip_string();
+      } else {
+        while (i_ < s_.size() && !ends_bare(s_[i_])) ++i_;
+      }
+      if (++level_ > max_scene_nesting) return false;
+      skip_blank(false);
+      if (i_ >= s_.size() || s_[i_] != '.') return true;
+      ++i_;
+    }
+  }
+
+  /// A value of a key \p level deep; false when it nests deeper than allowed.
+  bool value(int level) {
+    skip_blank(false);
+    if (i_ >= s_.size()) return true;
+    const char c = s_[i_];
+    if (c == '"' || c == '\'') {
+      skip_string();
+    } else if (c == '[') {
+      if (level + 1 > max_scene_nesting) return false;
+      for (++i_;;) {
+        skip_blank(true);
+        if (i_ >= s_.size()) return true;
+        if (s_[i_] == ']') break;
+        if (s_[i_] == ',') {
+          ++i_;
+          continue;
+        }
+        if (!value(level + 1)) return false;
+      }
+      ++i_;
+    } else if (c == '{') {
+      for (++i_;;) {
+        skip_blank(false);
+        if (i_ >= s_.size() || s_[i_] == '\n') return true;
+        if (s_[i_] == '}') break;
+        if (s_[i_] == ',') {
+          ++i_;
+          continue;
+        }
+        if (!key(level)) return false;
+        skip_blank(false);
+        if (i_ < s_.size() && s_[i_] == '=') ++i_;
+        if (!value(level_)) return false;
+      }
+      ++i_;
+    } else {
+      // A scalar (number, boolean, date): up to the next separator; anything
+      // else is not TOML here and is stepped over.
+      const std::size_t from = i_;
+      while (i_ < s_.size() && !std::strchr(" \t\r\n,]}#", s_[i_])) ++i_;
+      if (i_ == from && s_[i_] != '\n') ++i_;
+    }
+    return true;
+  }
+
+  std::string_view s_;
+  std::size_t i_ = 0, line_ = 1;
+  int table_level_ = 0;  ///< levels of the last [table] header
+  int level_ = 0;        ///< levels of the last key read
+};
+
+constexpr std::string_view utf8_byte_order_mark = "\xEF\xBB\xBF";
+
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& origin) {
+Scene parse_scene(const std::string& file_text, const std::string& origin) {
+  // A UTF-8 byte-order mark is no part of the text: drop it before anything
+  // counts lines and columns.
+  const std::string text = file_text.compare(0, utf8_byte_order_mark.size(), utf8_byte_order_mark) == 0
+                               ? file_text.substr(utf8_byte_order_mark.size())
+                               : file_text;
+  if (const std::size_t line = NestingScan(text).too_deep_line())
+    throw InputError(printable(origin + ":" + std::to_string(line) + ": tables, arrays and dotted keys nest deeper than " +
+                               std::to_string(max_scene_nesting) + " levels (a scene needs a few)"));
   toml::table root;
   try {
     root = toml::parse(text, origin);
   } catch (const toml::parse_error& e) {
     std::ostringstream os;
     os << origin << ':' << e.source().begin.line << ':' << e.source().begin.column << ": not valid TOML: " << e.description();
-    throw InputError(os.str());
+    throw InputError(printable(os.str()));
   }
   return SceneReader(text, origin).read(root);
 }
@@ -312,20 +492,70 @@ std::string write_scene(const Scene& scene, const std::string& comment) {
   return os.str();
 }
 
+namespace {
+
+[[noreturn]] void fail_reading(const std::string& origin, const std::string& what) { throw InputError(printable(origin + ": " + what)); }
+
+/// Refuses what is not a regular file or a pipe, before anything opens it
+/// (opening a device may act on it: a tape rewinds, a terminal is taken).
+void check_kind(const struct stat& st, const std::string& origin) {
+  if (S_ISDIR(st.st_mode)) fail_reading(origin, "is a directory, not a scene file");
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) fail_reading(origin, "is a device, not a scene file");
+  if (S_ISSOCK(st.st_mode)) fail_reading(origin, "is a socket, not a scene file");
+  if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) fail_reading(origin, "is not a regular file");
+}
+
+/// Everything \p fd holds, never reading more than max_scene_file_bytes + 1
+/// bytes (a pipe that never ends is refused once it has said too much).
+std::string read_capped(int fd, const std::string& origin) {
+  std::string text;
+  char buffer[1 << 16];
+  for (;;) {
+    const std::size_t want = std::min(sizeof buffer, max_scene_file_bytes + 1 - text.size());
+    const ssize_t got = ::read(fd, buffer, want);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) fail_reading(origin, std::string("cannot read the scene file: ") + std::strerror(errno));
+    if (got == 0) return text;
+    text.append(buffer, static_cast<std::size_t>(got));
+    if (text.size() > max_scene_file_bytes)
+      fail_reading(origin, "more than " + std::to_string(max_scene_file_bytes) + " bytes; a scene file has at most " +
+                               std::to_string(max_scene_file_bytes));
+  }
+}
+
+/// Closes a file descriptor on every way out.
+struct FileDescriptor {
+  int fd;
+  ~FileDescriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+}  // namespace
+
 Scene load_scene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the scene file");
-  in.seekg(0, std::ios::end);
-  const auto size = in.tellg();
-  if (size < 0) throw InputError(path + ": cannot read the scene file (is it a directory?)");
-  if (static_cast<std::size_t>(size) > max_scene_file_bytes)
-    throw InputError(path + ": the file has " + std::to_string(static_cast<long long>(size)) + " bytes; a scene file has at most " +
-                     std::to_string(max_scene_file_bytes));
-  in.seekg(0);
-  std::string text(static_cast<std::size_t>(size), '\0');
-  if (!in.read(text.data(), size)) throw InputError(path + ": cannot read the scene file");
-  if (text.find('\0') != std::string::npos) throw InputError(path + ": not a text file (it holds a NUL byte)");
-  return parse_scene(text, path);
+  const bool from_stdin = path == "-";
+  const std::string origin = from_stdin ? std::string(stdin_origin) : path;
+  std::string text;
+  if (from_stdin) {
+    text = read_capped(STDIN_FILENO, origin);
+  } else {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) fail_reading(origin, std::string("cannot open the scene file: ") + std::strerror(errno));
+    check_kind(st, origin);
+    // A FIFO is read like standard input (open waits for a writer); O_NOCTTY
+    // and the second check keep a path swapped in between from being used.
+    const FileDescriptor file{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY)};
+    if (file.fd < 0) fail_reading(origin, std::string("cannot open the scene file: ") + std::strerror(errno));
+    if (::fstat(file.fd, &st) != 0) fail_reading(origin, std::string("cannot read the scene file: ") + std::strerror(errno));
+    check_kind(st, origin);
+    if (S_ISREG(st.st_mode) && static_cast<unsigned long long>(st.st_size) > max_scene_file_bytes)
+      fail_reading(origin, "the file has " + std::to_string(static_cast<long long>(st.st_size)) + " bytes; a scene file has at most " +
+                               std::to_string(max_scene_file_bytes));
+    text = read_capped(file.fd, origin);
+  }
+  if (text.find('\0') != std::string::npos) fail_reading(origin, "not a text file (it holds a NUL byte)");
+  return parse_scene(text, origin);
 }
 
 }  // namespace superball

@@ -105,7 +105,10 @@ INSTANTIATE_TEST_SUITE_P(Spellings, NumberBad,
                          ::testing::Values("", "   ", "abc", "1/0", "-1/000", "1/", "/2", "1/2/3", "1/-2", "1/+2", "--1",
                                            "+-1", "1e", "1e+", "e5", ".", "-.", "1.2.3", "1,5", "0x10", "inf", "-inf",
                                            "nan", "1 000", "1/3.0", "1.5/2", "3 /4", "1e4001", "1e9999999",
-                                           "1e-99999999", "12abc", "\xc2\xbd"));
+                                           "1e-99999999", "12abc", "\xc2\xbd",
+                                           // '_' only between two digits, as in TOML
+                                           "_1_", "_1", "1_", "_", "1__0", "+_1", "1_.5", "1._5", "._5", "1_e5",
+                                           "1e_5", "1e5_", "1.5_"));
 
 TEST(Number, ReasonsAreSpecific) {
   auto message = [](const char* text) -> std::string {
@@ -120,6 +123,13 @@ TEST(Number, ReasonsAreSpecific) {
   EXPECT_NE(message("1e4001").find("exponent out of range"), std::string::npos) << message("1e4001");
   EXPECT_NE(message("").find("empty"), std::string::npos) << message("");
   EXPECT_NE(message("12abc").find("'12abc'"), std::string::npos) << message("12abc");
+  EXPECT_NE(message("_1_").find("'_' that is not between two digits"), std::string::npos) << message("_1_");
+}
+
+TEST(Number, UnderscoresBetweenDigitsEverywhereTomlAllowsThem) {
+  // TOML groups digits in the integer part, the fraction and the exponent.
+  EXPECT_EQ(Number::parse("1_0.2_5e1_0").fraction(), Number::parse("10.25e10").fraction());
+  EXPECT_EQ(Number::parse("-1_2_3").fraction(), "-123/1");
 }
 
 }  // namespace

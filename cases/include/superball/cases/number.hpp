@@ -13,8 +13,10 @@ namespace superball {
 ///
 /// Accepted spellings: integers (`15`, `-3`), decimals with an optional
 /// exponent (`0.001`, `5e6`, `1.5E-3`) and fractions of integers (`1/3`,
-/// `-2/7`).  The value is kept exactly: `0.001` is 1/1000, not the nearest
-/// double.  The fraction is not reduced (no big-integer arithmetic here).
+/// `-2/7`).  The digits of a decimal may be grouped by `_` as in TOML, only
+/// between two digits (`1_000`; not `_1`, `1_`, `1__0`).  The value is kept
+/// exactly: `0.001` is 1/1000, not the nearest double.  The fraction is not
+/// reduced (no big-integer arithmetic here).
 struct Number {
   std::string numerator = "0";    ///< optional '-' then decimal digits
   std::string denominator = "1";  ///< decimal digits, never zero

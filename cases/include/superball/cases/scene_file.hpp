@@ -5,6 +5,7 @@
 /// numeric backend at its entry point.
 
 #include <string>
+#include <string_view>
 
 #include "superball/cases/error.hpp"
 #include "superball/cases/model.hpp"
@@ -16,6 +17,15 @@ namespace superball {
 inline constexpr std::size_t max_scene_file_bytes = 4u << 20;
 /// Largest number of bodies a scene file may list.
 inline constexpr int max_scene_bodies = 100000;
+/// Deepest nesting of tables, arrays and dotted keys in a scene file: a key
+/// `a.b.c` is 3 levels, the keys after a `[a.b]` header start 2 levels down,
+/// the elements of an array and the keys of an inline table one level below
+/// it.  The format itself needs 5 (`[dissipation]`, `coupling = [ { pairs =
+/// [...] } ]`); the limit is checked before the TOML parser, which recurses
+/// once per level, runs.
+inline constexpr int max_scene_nesting = 16;
+/// The name of standard input in messages and in Scene::origin.
+inline constexpr std::string_view stdin_origin = "<stdin>";
 
 /// Read and check a scene file.
 ///
@@ -35,10 +45,19 @@ inline constexpr int max_scene_bodies = 100000;
 /// \endcode
 /// Numbers may be TOML integers or floats (read exactly as written) or
 /// strings holding a fraction "1/3".  Throws InputError naming the file, the
-/// place and what is wrong.
+/// place and what is wrong, on one line (control characters of the file
+/// escaped, see printable()).
+///
+/// \p path "-" reads standard input (named stdin_origin in messages); a FIFO
+/// is read the same way, as a stream (its open waits for a writer).  At most
+/// max_scene_file_bytes are accepted, and a stream is refused as soon as it
+/// gives one byte more: never more than that is read.  A directory, a device
+/// or a socket is refused before it is opened.
 Scene load_scene(const std::string& path);
 
-/// Same as load_scene() for text already in memory; \p origin names it in messages.
+/// Same as load_scene() for text already in memory; \p origin names it in
+/// messages.  A leading UTF-8 byte-order mark is skipped; text nesting deeper
+/// than max_scene_nesting is refused (naming the line) before it is parsed.
 Scene parse_scene(const std::string& text, const std::string& origin);
 
 /// The TOML text of \p scene, in the format load_scene() reads: numbers as
