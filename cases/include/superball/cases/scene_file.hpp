@@ -36,7 +36,7 @@ inline constexpr std::string_view stdin_origin = "<stdin>";
 /// g = 9.81
 /// fall_speed = 3.13209  # or give a = sqrt(2 g h) directly (not both)
 /// [[body]]              # required, top to bottom, at least 2
-/// mass = 0.001          # required: > 0, "inf" for a fixed bottom obstacle
+/// mass = 0.001          # required: > 0, "inf" (inf, +inf) for a fixed bottom obstacle
 /// velocity = 0          # overrides the fall
 /// [dissipation]
 /// K = { "1-2" = 7 }                       # diagonal of M
