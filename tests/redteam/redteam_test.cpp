@@ -38,6 +38,7 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -95,6 +96,7 @@ struct Command {
   std::vector<std::string> args;
   std::string stdin_text;     ///< fed on standard input (empty: /dev/null)
   bool close_stdout = false;  ///< standard output closed: every write fails
+  std::string stdout_path;    ///< standard output into this file (a full device), not captured
   Command(std::vector<std::string> a, std::string in = "") : args(std::move(a)), stdin_text(std::move(in)) {}
 };
 
@@ -114,6 +116,8 @@ Outcome execute(const Command& r, const std::string& dir) {
   posix_spawn_file_actions_addopen(&actions, 0, r.stdin_text.empty() ? "/dev/null" : in.c_str(), O_RDONLY, 0);
   if (r.close_stdout)
     posix_spawn_file_actions_addclose(&actions, 1);
+  else if (!r.stdout_path.empty())
+    posix_spawn_file_actions_addopen(&actions, 1, r.stdout_path.c_str(), O_WRONLY, 0);
   else
     posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -288,13 +292,18 @@ std::optional<std::vector<long double>> velocities_before(const Spec& s) {
 enum class Expect { Any, Refused, Success, OutputFailure };
 
 /// How a case's `-o` target is made before the run.
-enum class Target { None, File, Symlink, DanglingSymlink, Fifo, Directory, MissingFolder };
+enum class Target { None, File, Symlink, DanglingSymlink, Fifo, Directory, MissingFolder, FullDevice };
+
+/// Make \p path a full device (as /dev/full: every write fails with ENOSPC);
+/// false where the system does not let us (then the case is skipped).
+bool make_full_device(const std::string& path) { return mknod(path.c_str(), S_IFCHR | 0644, makedev(1, 7)) == 0; }
 
 /// One hostile case: files written into its folder, the command lines
 /// (runs[1..] must give what runs[0] gives), what it must give.
 struct Case {
   std::map<std::string, std::string> files;  ///< name in the case's folder -> content
   std::vector<std::string> fifos;            ///< FIFOs made in the case's folder (nobody writes them)
+  std::vector<std::string> full_devices;     ///< full devices made in the case's folder
   std::vector<Command> runs;
   Expect expect = Expect::Any;
   std::optional<Spec> spec;    ///< the scene of a `solve --json`, for the physics check
@@ -571,7 +580,7 @@ Case make_conflict(Rng& rng, int index) {
 Case make_output(Rng& rng, int index) {
   Case c;
   static const std::vector<Target> targets = {Target::File, Target::Symlink, Target::DanglingSymlink, Target::Fifo,
-                                              Target::Directory, Target::MissingFolder};
+                                              Target::Directory, Target::MissingFolder, Target::FullDevice};
   c.target = targets[static_cast<std::size_t>(index) % targets.size()];
   const bool fails = index >= 2 * static_cast<int>(targets.size()) ? coin(rng) : (index / static_cast<int>(targets.size())) % 2 == 0;
   c.target_path = c.target == Target::MissingFolder ? "@/out/missing/derived.txt" : "@/out/derived.txt";
@@ -588,12 +597,13 @@ Case make_output(Rng& rng, int index) {
     c.runs = {Command{good}, Command{with_o(good)}};
     c.target_reference = true;
     const bool writable = c.target == Target::File || c.target == Target::Symlink || c.target == Target::Fifo;
+    // A folder, a missing folder, a full device: exit 3.
     c.expect = writable ? Expect::Success : c.target == Target::DanglingSymlink ? Expect::Any : Expect::OutputFailure;
   }
   return c;
 }
 
-/// Standard output closed: the result cannot be written, exit 3.
+/// Standard output closed, or a full device: the result cannot be written, exit 3.
 Case make_stdout(Rng& rng, int index) {
   Case c;
   c.files["scene.toml"] = random_spec(rng).toml();
@@ -601,7 +611,12 @@ Case make_stdout(Rng& rng, int index) {
       {"solve", "@/scene.toml", "--json"}, {"solve", "@/scene.toml"}, {"sweep", "@/scene.toml", "--vary", "K.1-2=0:20:5", "--csv"},
       {"derive", "--case", "1", "--alphas", "2"}};
   Command r{lines[static_cast<std::size_t>(index) % lines.size()]};
-  r.close_stdout = true;
+  if ((index / 4) % 2 == 0) {
+    r.close_stdout = true;
+  } else {
+    c.full_devices = {"full"};
+    r.stdout_path = "@/full";
+  }
   c.runs = {r};
   c.expect = Expect::OutputFailure;
   return c;
@@ -617,7 +632,7 @@ const std::vector<Class> kClasses = {
     {"valid", 8, make_valid},         {"exponent", 8, make_exponent},  {"bom", 4, make_bom},
     {"nesting", 4, make_nesting},     {"control", 8, make_control},    {"underscore", 8, make_underscore},
     {"special", 8, make_special},     {"path", 6, make_path},          {"sweep", 8, make_sweep},
-    {"conflict", 21, make_conflict},  {"output", 12, make_output},     {"stdout", 4, make_stdout},
+    {"conflict", 21, make_conflict},  {"output", 14, make_output},     {"stdout", 8, make_stdout},
 };
 
 // ---------------------------------------------------------------------------
@@ -644,6 +659,7 @@ std::string command_line(const Command& r) {
   std::string s = "superball";
   for (const auto& a : r.args) s += " '" + visible(a, 80) + "'";
   if (r.close_stdout) s += " >&-";
+  if (!r.stdout_path.empty()) s += " > " + r.stdout_path + " (a full device)";
   if (!r.stdin_text.empty()) s += " < (the case's stdin)";
   return s;
 }
@@ -774,6 +790,8 @@ std::vector<std::string> check_case(const Case& c, const std::string& dir) {
     std::ofstream(dir + "/" + name, std::ios::binary) << content;
   }
   for (const auto& f : c.fifos) mkfifo((dir + "/" + f).c_str(), 0644);
+  for (const auto& f : c.full_devices)
+    if (!make_full_device(dir + "/" + f)) return {};  // not permitted here: nothing to check
   // The -o target.
   const std::string target = in_folder({c.target_path}, dir)[0], out_dir = dir + "/out";
   if (c.target != Target::None) fs::create_directories(out_dir);
@@ -787,6 +805,9 @@ std::vector<std::string> check_case(const Case& c, const std::string& dir) {
     case Target::DanglingSymlink: fs::create_symlink("absent.txt", target); break;
     case Target::Fifo: mkfifo(target.c_str(), 0644); break;
     case Target::Directory: fs::create_directories(target); break;
+    case Target::FullDevice:
+      if (!make_full_device(target)) return {};  // not permitted here: nothing to check
+      break;
     default: break;
   }
   const auto before = listing(out_dir);
@@ -795,11 +816,12 @@ std::vector<std::string> check_case(const Case& c, const std::string& dir) {
   for (std::size_t i = 0; i < c.runs.size(); ++i) {
     Command r = c.runs[i];
     r.args = in_folder(r.args, dir);
+    if (!r.stdout_path.empty()) r.stdout_path = in_folder({r.stdout_path}, dir)[0];
     if (c.target == Target::Fifo && i + 1 == c.runs.size()) reader.emplace(target);
     outcomes.push_back(execute(r, dir));
     check_run(r, outcomes.back(), v);
     const Outcome& o = outcomes.back();
-    if (r.close_stdout) continue;
+    if (r.close_stdout || !r.stdout_path.empty()) continue;
     if (o.exit_code == 0 && r.args[0] == "solve" && std::find(r.args.begin(), r.args.end(), "--json") != r.args.end())
       check_solution(r, o, c.spec ? &*c.spec : nullptr, v);
     if (o.exit_code == 0 && r.args[0] == "sweep") check_sweep(r, o, v);
@@ -810,6 +832,7 @@ std::vector<std::string> check_case(const Case& c, const std::string& dir) {
   const Outcome& last = outcomes.back();
   Command last_run = c.runs.back();
   last_run.args = in_folder(last_run.args, dir);
+  if (!last_run.stdout_path.empty()) last_run.stdout_path = in_folder({last_run.stdout_path}, dir)[0];
   const std::string got = command_line(last_run) + ": got exit " + std::to_string(last.exit_code) + ", ";
   const std::string said = visible(last.err.empty() ? last.out : last.err, 200);
   if (c.expect == Expect::Refused && last.exit_code != 2) v.push_back(got + "expected 2 (refused): " + said);
@@ -855,6 +878,7 @@ std::vector<std::string> check_case(const Case& c, const std::string& dir) {
       if (last.exit_code == 0 && fifo_text != expected) v.push_back(w + "the FIFO's reader got " + std::to_string(fifo_text.size()) + " bytes, not the output");
     }
     if (c.target == Target::Directory && !fs::is_directory(st)) v.push_back(w + "the folder was replaced");
+    if (c.target == Target::FullDevice && !fs::is_character_file(st)) v.push_back(w + "the device was replaced");
   }
   return v;
 }
@@ -921,7 +945,10 @@ TEST_P(Hostile, Holds) {
     }
   }
   std::error_code ec;
-  if (failing == 0 || known) fs::remove_all(base, ec);  // a known class's report is enough
+  if (failing == 0 || known) {  // a known class's report is enough
+    fs::remove_all(base, ec);
+    fs::remove(fs::path(base).parent_path(), ec);  // when the last class leaves it empty
+  }
   std::cout << cls.name << ": " << cases << " cases, " << failing << " violating (seed " << seed << ")\n";
   if (known) {
     if (failing == 0)
