@@ -53,6 +53,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <random>
@@ -190,6 +191,41 @@ class FifoReader {
   std::thread thread_;
 };
 
+/// Writes a text into a FIFO once a command opens it for reading (opened
+/// without blocking and retried, so that a command that never opens it does
+/// not hang the test: the writer gives up after kFifoWriterPatience).
+class FifoWriter {
+ public:
+  static constexpr std::chrono::seconds kFifoWriterPatience{15};
+  FifoWriter(const std::string& path, std::string text)
+      : thread_([this, path, text = std::move(text)] {
+          const auto deadline = std::chrono::steady_clock::now() + kFifoWriterPatience;
+          while (!stop_.load() && std::chrono::steady_clock::now() < deadline) {
+            const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK);
+            if (fd < 0) {  // ENXIO: no reader yet
+              std::this_thread::sleep_for(std::chrono::milliseconds(10));
+              continue;
+            }
+            ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+            for (std::size_t at = 0; at < text.size();) {
+              const ssize_t put = ::write(fd, text.data() + at, text.size() - at);
+              if (put <= 0) break;
+              at += static_cast<std::size_t>(put);
+            }
+            ::close(fd);
+            return;
+          }
+        }) {}
+  ~FifoWriter() {
+    stop_ = true;
+    thread_.join();
+  }
+
+ private:
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
 // ---------------------------------------------------------------------------
 // Cases
 
@@ -302,7 +338,7 @@ bool make_full_device(const std::string& path) { return mknod(path.c_str(), S_IF
 /// (runs[1..] must give what runs[0] gives), what it must give.
 struct Case {
   std::map<std::string, std::string> files;  ///< name in the case's folder -> content
-  std::vector<std::string> fifos;            ///< FIFOs made in the case's folder (nobody writes them)
+  std::map<std::string, std::string> fifos;  ///< FIFOs made in the case's folder -> what a writer puts in them
   std::vector<std::string> full_devices;     ///< full devices made in the case's folder
   std::vector<Command> runs;
   Expect expect = Expect::Any;
@@ -494,11 +530,15 @@ Case make_special(Rng& rng, int index) {
 /// Scene paths that are not regular files, and standard input.
 Case make_path(Rng& rng, int index) {
   Case c;
-  const std::string good = random_spec(rng).toml();
+  const Spec spec = random_spec(rng);
+  const std::string good = spec.toml();
   c.files["folder/.keep"] = "";
   switch (index % 6) {
     case 0: c.runs = {Command{{"solve", "@/folder"}}}, c.expect = Expect::Refused; break;
-    case 1: c.fifos = {"fifo"}, c.runs = {Command{{"solve", "@/fifo"}}}, c.expect = Expect::Refused; break;
+    case 1:  // read as a stream, like standard input (`solve <(generator)`)
+      c.fifos["fifo"] = good, c.spec = spec;
+      c.runs = {Command{{"solve", "@/fifo", "--json"}}}, c.expect = Expect::Success;
+      break;
     case 2: c.runs = {Command{{"solve", "@/no-such-file.toml"}}}, c.expect = Expect::Refused; break;
     case 3: c.files["empty.toml"] = "", c.runs = {Command{{"solve", "@/empty.toml"}}}, c.expect = Expect::Refused; break;
     case 4:
@@ -789,7 +829,11 @@ std::vector<std::string> check_case(const Case& c, const std::string& dir) {
     fs::create_directories(fs::path(dir + "/" + name).parent_path());
     std::ofstream(dir + "/" + name, std::ios::binary) << content;
   }
-  for (const auto& f : c.fifos) mkfifo((dir + "/" + f).c_str(), 0644);
+  std::vector<std::unique_ptr<FifoWriter>> writers;
+  for (const auto& [name, text] : c.fifos) {
+    mkfifo((dir + "/" + name).c_str(), 0644);
+    writers.push_back(std::make_unique<FifoWriter>(dir + "/" + name, text));
+  }
   for (const auto& f : c.full_devices)
     if (!make_full_device(dir + "/" + f)) return {};  // not permitted here: nothing to check
   // The -o target.
