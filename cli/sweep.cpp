@@ -1,4 +1,4 @@
-#include <iostream>
+#include <algorithm>
 #include <memory>
 #include <sstream>
 
@@ -57,6 +57,72 @@ Range parse_vary(const std::string& text, const Scene& scene) {
 
 std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_decimal(x, digits); }
 
+/// Values solved between two writes: a sweep's memory does not grow with STEPS.
+constexpr int kChunk = 4096;
+
+/// A CSV field, quoted (RFC 4180) when it holds a comma or a quote: the case
+/// of a scene of other than 4 bodies is its closed contacts, "{1-2,2-3}".
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"") == std::string::npos) return text;
+  std::string q = "\"";
+  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+/// The table (or CSV) of the velocities after the collision, \p kChunk rows
+/// at a time, in the sweep's order; returns the number of rows whose status
+/// is not success.
+int write_rows(Output& out, const Scene& scene, const Range& r, const numeric::Precision& precision, bool csv, int threads) {
+  const Vocabulary& v = Vocabulary::paper();
+  const std::string sep = csv ? "," : "  ";
+  std::ostringstream os;
+  os << r.parameter.key();
+  for (int i = 1; i <= scene.size(); ++i) os << sep << "U" << i;
+  os << sep << "case\n";
+  int failures = 0;
+  for (int first = 0; first < r.steps; first += kChunk) {
+    const auto values = numeric::linspace(r.from, r.to, r.steps, first, std::min(kChunk, r.steps - first));
+    for (const auto& p : numeric::sweep(scene, r.parameter, values, precision, threads)) {
+      os << decimal(p.value, 10);
+      for (double w : p.velocities_after) os << sep << numeric::to_string(w, csv ? 17 : 8);
+      os << sep << (csv ? csv_field(v.case_name(p.closed)) : v.case_name(p.closed));
+      if (p.status != numeric::Status::Success) os << sep << numeric::to_string(p.status), ++failures;
+      os << '\n';
+    }
+    out.write(os.str());
+    os.str("");
+  }
+  return failures;
+}
+
+/// The switch points, in increasing value of the parameter whatever the
+/// direction of the range (the values are the same), \p kChunk values at a
+/// time: each chunk starts at the last value of the one before, so that a
+/// change between two chunks is found.
+void write_switch_points(Output& out, const Scene& scene, const Range& r, bool csv, int threads) {
+  const Vocabulary& v = Vocabulary::paper();
+  const cln::cl_RA& low = r.from < r.to ? r.from : r.to;
+  const cln::cl_RA& high = r.from < r.to ? r.to : r.from;
+  std::ostringstream os;
+  if (csv) os << r.parameter.key() << ",bracket_width,case_below,case_above\n";
+  bool any = false;
+  for (int first = 0; first + 1 < r.steps; first += kChunk) {
+    const auto values = numeric::linspace(low, high, r.steps, first, std::min(kChunk + 1, r.steps - first));
+    for (const auto& s : numeric::switch_points(scene, r.parameter, values, 64, threads)) {
+      any = true;
+      const std::string at = decimal((s.low + s.high) / 2), width = decimal(s.high - s.low, 3);
+      if (csv)
+        os << at << ',' << width << ',' << csv_field(v.case_name(s.below)) << ',' << csv_field(v.case_name(s.above)) << '\n';
+      else
+        os << r.parameter.key() << " = " << at << "  (bracket width " << width << "): case " << v.case_name(s.below) << " "
+           << s.below.to_string() << " -> case " << v.case_name(s.above) << " " << s.above.to_string() << '\n';
+    }
+    out.write(os.str());
+    os.str("");
+  }
+  if (!any && !csv) out.write("no change of evolution case for " + r.parameter.key() + " in the range\n");
+}
+
 }  // namespace
 
 void add_sweep(CLI::App& app, Action& action) {
@@ -69,51 +135,40 @@ void add_sweep(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("sweep", "Velocities after the collision along one parameter, and where the case changes");
   cmd->footer(
       "KEY names a parameter: K.i-j, alpha.k (n = 4), coupling.i-j/k-l, mass.i, velocity.i, drop_height,\n"
-      "fall_speed, g.  FROM and TO are numbers or fractions (exact); STEPS counts the values, ends included.\n"
+      "fall_speed, g.  FROM and TO are numbers or fractions (exact), in either order; STEPS counts the values,\n"
+      "ends included.  A range holding a value a scene file could not hold (g <= 0, a mass <= 0, M not\n"
+      "positive semi-definite, a contact opening before the collision, ...) is refused before anything is\n"
+      "printed.  Rows are printed as they are solved, a few thousand at a time.\n"
       "--switch-points bisects on the exact solution (CLN rationals) between sweep values whose evolution\n"
-      "case differs, to 64 bits below the step.  The values are solved on --threads threads (default: all\n"
-      "cores); the output does not depend on the number of threads.\n\n"
+      "case differs, to 64 bits below the step, and prints every change in increasing KEY; with --csv, as\n"
+      "CSV: KEY (the middle of the bracket), bracket_width, case_below, case_above.  The values are solved on\n"
+      "--threads threads (default: all cores); the output does not depend on the number of threads.\n\n"
       "Examples:\n"
       "  superball sweep cases/scenes/paper-4.4-alpha2.toml --vary K.3-4=0:20:401 --csv\n"
       "  superball sweep cases/scenes/paper-4.4-alpha2.toml --vary K.3-4=0:20:41 --switch-points");
   cmd->add_option("scene", o->scene, "Scene file (TOML)")->required();
   cmd->add_option("--vary", o->vary, "KEY=FROM:TO:STEPS")->required();
-  cmd->add_option("--precision,-p", o->precision, "Arithmetic of the sweep values (see solve)")->capture_default_str();
-  cmd->add_flag("--csv", o->csv, "Print CSV: the parameter, U1..Un, the case");
-  cmd->add_flag("--switch-points", o->switches, "Print only the parameter values where the evolution case changes");
+  cmd->add_option("--precision,-p", o->precision, "Arithmetic of the sweep values (see solve; not with --switch-points, which is exact)")->capture_default_str();
+  cmd->add_flag("--csv", o->csv, "Print CSV: the parameter, U1..Un, the case (or the switch points)");
+  cmd->add_flag("--switch-points", o->switches, "Print only the parameter values where the evolution case changes (as CSV with --csv)");
   cmd->add_option("--threads,-j", o->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
-  cmd->callback([o, &action] {
-    action = [o] {
+  cmd->callback([o, cmd, &action] {
+    action = [o, cmd] {
       const Scene scene = load_scene(o->scene);
       const Range r = parse_vary(o->vary, scene);
+      if (o->switches && cmd->count("--precision") > 0)
+        throw std::invalid_argument("sweep: --switch-points bisects on the exact solution; --precision does not apply to it");
       const auto precision = numeric::Precision::parse(o->precision);
-      const auto points = numeric::sweep(scene, r.parameter, numeric::linspace(r.from, r.to, r.steps), precision, o->threads);
-      const Vocabulary& v = Vocabulary::paper();
-      std::ostringstream os;
+      numeric::check_range(scene, r.parameter, r.from, r.to);  // every value, before any output
+      Output out("");
       int failures = 0;
-      if (o->switches) {
-        const auto switches = numeric::switch_points(scene, r.parameter, points, 64, o->threads);
-        if (switches.empty()) os << "no change of evolution case for " << r.parameter.key() << " in the range\n";
-        for (const auto& s : switches)
-          os << r.parameter.key() << " = " << decimal((s.low + s.high) / 2) << "  (bracket width "
-             << decimal(s.high - s.low, 3) << "): case " << v.case_name(s.below) << " " << s.below.to_string() << " -> case "
-             << v.case_name(s.above) << " " << s.above.to_string() << '\n';
-      } else {
-        const std::string sep = o->csv ? "," : "  ";
-        os << r.parameter.key();
-        for (int i = 1; i <= scene.size(); ++i) os << sep << "U" << i;
-        os << sep << "case\n";
-        for (const auto& p : points) {
-          os << decimal(p.value, 10);
-          for (double w : p.velocities_after) os << sep << numeric::to_string(w, o->csv ? 17 : 8);
-          os << sep << v.case_name(p.closed);
-          if (p.status != numeric::Status::Success) os << sep << numeric::to_string(p.status), ++failures;
-          os << '\n';
-        }
-      }
-      std::cout << os.str();
+      if (o->switches)
+        write_switch_points(out, scene, r, o->csv, o->threads);
+      else
+        failures = write_rows(out, scene, r, precision, o->csv, o->threads);
+      out.commit();
       return failures ? numerical_failure : ok;
     };
   });

@@ -1,7 +1,9 @@
 #include "superball/cases/parameter.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
+#include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 
 namespace superball {
@@ -78,23 +80,38 @@ Parameter Parameter::parse(const std::string& key, const Scene& scene) {
   return p;
 }
 
-void Parameter::set(Scene& scene, const Number& value) const {
+void Parameter::assign(Scene& s, const Number& value) const {
   switch (kind_) {
     case Kind::Entry: {
-      for (auto& e : scene.entries)
-        if ((e.first == first && e.second == second) || (e.first == second && e.second == first)) {
-          e.value = value;
-          return;
-        }
-      scene.entries.push_back({first, second, value});
-      return;
+      auto same = [&](const MatrixEntry& e) { return (e.first == first && e.second == second) || (e.first == second && e.second == first); };
+      const auto e = std::find_if(s.entries.begin(), s.entries.end(), same);
+      if (e != s.entries.end())
+        e->value = value;
+      else
+        s.entries.push_back({first, second, value});
+      break;
     }
-    case Kind::Mass: scene.bodies[static_cast<std::size_t>(body - 1)].mass = value; return;
-    case Kind::Velocity: scene.bodies[static_cast<std::size_t>(body - 1)].velocity = value; return;
-    case Kind::DropHeight: scene.drop_height = value; return;
-    case Kind::FallSpeed: scene.fall_speed = value; return;
-    case Kind::Gravity: scene.g = value; return;
+    case Kind::Mass: s.bodies[static_cast<std::size_t>(body - 1)].mass = value; break;
+    case Kind::Velocity: s.bodies[static_cast<std::size_t>(body - 1)].velocity = value; break;
+    case Kind::DropHeight: s.drop_height = value; break;
+    case Kind::FallSpeed: s.fall_speed = value; break;
+    case Kind::Gravity: s.g = value; break;
   }
+}
+
+void Parameter::set(Scene& scene, const Number& value) const {
+  Scene s = scene;
+  assign(s, value);
+  // The loader's own checks, on the scene as a file would give it.
+  try {
+    (void)parse_scene(write_scene(s), s.origin);
+  } catch (const InputError& e) {
+    // "ORIGIN:LINE:COL: field: why": the place is in the rewritten text, not in the user's file.
+    const std::string what = e.what();
+    const auto at = what.find(": ", std::min(what.size(), s.origin.size()));
+    throw InputError(s.origin + ": " + key_ + " = " + value.text + ": " + (at == std::string::npos ? what : what.substr(at + 2)));
+  }
+  scene = std::move(s);
 }
 
 }  // namespace superball

@@ -2,8 +2,10 @@
 
 #include <cln/rational_io.h>
 
+#include <algorithm>
 #include <stdexcept>
 
+#include "superball/cases/error.hpp"
 #include "superball/numeric/parallel.hpp"
 
 namespace superball::numeric {
@@ -18,10 +20,19 @@ std::vector<std::string> as_text(const std::vector<cln::cl_RA>& values) {
   return texts;
 }
 
-/// A thread's own copy of the scene, with the parameter set to \p text.
+/// A thread's own copy of the scene, with the parameter set to \p text, a
+/// value inside a range that check_values() has passed.
 const Scene& set_value(Scene& copy, const Parameter& parameter, const std::string& text) {
-  parameter.set(copy, Number::parse(text));
+  parameter.assign(copy, Number::parse(text));
   return copy;
+}
+
+/// check_range() from the smallest to the largest of \p values: every value
+/// a sweep sets lies between two that passed every check.
+void check_values(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values) {
+  if (values.empty()) return;
+  const auto [low, high] = std::minmax_element(values.begin(), values.end());
+  check_range(scene, parameter, *low, *high);
 }
 
 ExactPoint solve_exact(const Scene& scene) {
@@ -36,38 +47,65 @@ ExactPoint solve_exact_at(const Scene& scene, const Parameter& parameter, const 
   return solve_exact(with_value(scene, parameter, value));
 }
 
+namespace {
+
+/// Every change of \p label inside \p c (c.below at c.low, c.above at
+/// c.high, different), found by \p bits halvings, appended to \p out from
+/// c.low to c.high: where the midpoint's label is neither end's, both halves
+/// hold a change and both are searched.
+void bisect(Scene& s, const Parameter& parameter, const Label& label, LabelChange c, int bits, std::vector<LabelChange>& out) {
+  for (; bits > 0; --bits) {
+    const cln::cl_RA mid = (c.low + c.high) / 2;
+    std::string l = label(solve_exact(set_value(s, parameter, to_string(mid))));
+    if (l == c.below) {
+      c.low = mid;
+    } else if (l == c.above) {
+      c.high = mid;
+    } else {
+      bisect(s, parameter, label, {c.low, mid, c.below, l}, bits - 1, out);
+      c.low = mid;
+      c.below = std::move(l);
+    }
+  }
+  out.push_back(std::move(c));
+}
+
+}  // namespace
+
 std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                                        const Label& label, int bits, int threads) {
-  const std::vector<std::string> texts = as_text(values);
+  check_values(scene, parameter, values);
+  // In increasing value: a descending sweep has the same brackets, read backwards.
+  const bool descending = values.size() > 1 && values.back() < values.front();
+  std::vector<std::string> texts = as_text(values);
+  if (descending) std::reverse(texts.begin(), texts.end());
   auto own_scene = [&scene] { return scene; };
-  const std::vector<std::string> labels = parallel_map(values.size(), threads, own_scene, [&](Scene& s, std::size_t k) {
+  const std::vector<std::string> labels = parallel_map(texts.size(), threads, own_scene, [&](Scene& s, std::size_t k) {
     return label(solve_exact(set_value(s, parameter, texts[k])));
   });
   std::vector<std::size_t> changes;  // k: the label changes between values k − 1 and k
-  for (std::size_t k = 1; k < values.size(); ++k)
+  for (std::size_t k = 1; k < texts.size(); ++k)
     if (labels[k - 1] != labels[k]) changes.push_back(k);
-  return parallel_map(changes.size(), threads, own_scene, [&](Scene& s, std::size_t m) {
+  const auto found = parallel_map(changes.size(), threads, own_scene, [&](Scene& s, std::size_t m) {
     const std::size_t k = changes[m];
-    LabelChange c{parse_rational(texts[k - 1]), parse_rational(texts[k]), labels[k - 1], labels[k]};
-    for (int b = 0; b < bits; ++b) {
-      const cln::cl_RA mid = (c.low + c.high) / 2;
-      const std::string l = label(solve_exact(set_value(s, parameter, to_string(mid))));
-      if (l == c.below) {
-        c.low = mid;
-      } else {
-        c.high = mid;
-        c.above = l;
-      }
-    }
-    return c;
+    std::vector<LabelChange> out;
+    bisect(s, parameter, label, {parse_rational(texts[k - 1]), parse_rational(texts[k]), labels[k - 1], labels[k]}, bits, out);
+    return out;
   });
+  std::vector<LabelChange> all;
+  for (const auto& f : found) all.insert(all.end(), f.begin(), f.end());
+  return all;
 }
 
-std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, int steps) {
+std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int first, int count) {
   if (steps < 2) throw std::invalid_argument("linspace(): a sweep needs at least 2 steps");
+  if (count < 0) count = steps - first;
+  if (first < 0 || count < 0 || first > steps - count)
+    throw std::invalid_argument("linspace(): values " + std::to_string(first) + " .. " + std::to_string(first + count - 1) +
+                                " are not among the " + std::to_string(steps));
   std::vector<cln::cl_RA> v;
-  v.reserve(static_cast<std::size_t>(steps));
-  for (int k = 0; k < steps; ++k) v.push_back(from + (to - from) * k / (steps - 1));
+  v.reserve(static_cast<std::size_t>(count));
+  for (int k = first; k < first + count; ++k) v.push_back(from + (to - from) * k / (steps - 1));
   return v;
 }
 
@@ -77,8 +115,23 @@ Scene with_value(const Scene& scene, const Parameter& parameter, const cln::cl_R
   return s;
 }
 
+void check_range(const Scene& scene, const Parameter& parameter, const cln::cl_RA& from, const cln::cl_RA& to) {
+  for (const cln::cl_RA& end : {from, to}) {
+    const Scene s = with_value(scene, parameter, end);
+    try {
+      (void)ExactScene::from(s);
+    } catch (const InputError& e) {
+      // "ORIGIN: field: why" -> "ORIGIN: KEY = VALUE: field: why"
+      const std::string what = e.what(), prefix = scene.origin + ": ";
+      throw InputError(prefix + parameter.key() + " = " + to_string(end) + ": " +
+                       (what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what));
+    }
+  }
+}
+
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads) {
+  check_values(scene, parameter, values);
   const std::vector<std::string> texts = as_text(values);
   return parallel_map(values.size(), threads, [&scene] { return scene; }, [&](Scene& s, std::size_t k) {
     const auto exact = ExactScene::from(set_value(s, parameter, texts[k]));
@@ -99,6 +152,11 @@ std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& para
                                        int bits, int threads) {
   std::vector<cln::cl_RA> values;
   for (const auto& p : points) values.push_back(p.value);
+  return switch_points(scene, parameter, values, bits, threads);
+}
+
+std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
+                                       int bits, int threads) {
   const Label by_case = [](const ExactPoint& e) { return e.solution.closed.to_string(); };
   // The label back to the case: "{2-3,3-4}" without its braces.
   auto as_case = [&](const std::string& label) { return ContactSet::parse(label.substr(1, label.size() - 2), scene.size()); };

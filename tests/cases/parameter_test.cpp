@@ -79,6 +79,47 @@ TEST(Parameter, SetsBodiesAndTheFall) {
   EXPECT_EQ(Parameter::parse("K.1-2", t).key(), "K.1-2");
 }
 
+// Parameter::set() applies the scene loader's checks: a value a scene file
+// could not hold is refused with the key and the value, and the scene is left
+// as it was.
+TEST(Parameter, RefusesWhatTheLoaderRefuses) {
+  const Scene four = parse_scene(kFourBodies, "four"), three = parse_scene(kThreeBodies, "three");
+  struct Bad {
+    const Scene& scene;
+    const char* key;
+    const char* value;
+    const char* why;  // the loader's words
+  };
+  const Bad bad[] = {{four, "g", "-1", "g: must be > 0 (got -1)"},
+                     {four, "g", "0", "g: must be > 0"},
+                     {three, "drop_height", "-1/2", "drop_height: must be >= 0"},
+                     {four, "fall_speed", "-1", "fall_speed: must be >= 0"},
+                     {four, "mass.1", "0", "body[1].mass: must be > 0"},
+                     {three, "mass.3", "-2", "body[3].mass: must be > 0"}};
+  for (const Bad& b : bad) {
+    Scene s = b.scene;
+    const Parameter p = Parameter::parse(b.key, s);
+    try {
+      p.set(s, Number::parse(b.value));
+      ADD_FAILURE() << b.key << " = " << b.value << " accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what, s.origin + ": " + b.key + " = " + b.value + ": " + what.substr(what.find(b.why))) << what;
+      EXPECT_NE(what.find(b.why), std::string::npos) << what;
+    }
+    EXPECT_EQ(write_scene(s), write_scene(b.scene)) << "the scene changed";
+  }
+  // The edges the loader admits are admitted.
+  Scene s = three;
+  Parameter::parse("drop_height", s).set(s, Number::parse("0"));
+  Parameter::parse("mass.1", s).set(s, Number::parse("1/1000000000"));
+  Parameter::parse("g", s).set(s, Number::parse("1e-9"));
+  EXPECT_EQ(s.drop_height->text, "0");
+  Scene f = four;
+  Parameter::parse("fall_speed", f).set(f, Number::parse("0"));
+  EXPECT_EQ(f.fall_speed->text, "0");
+}
+
 struct BadKey {
   const char* key;
   const char* reason;  // substring of the message

@@ -15,11 +15,30 @@
 
 namespace superball::numeric {
 
-/// `steps` equally spaced exact values from \p from to \p to (steps >= 2).
-std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, int steps);
+/// `steps` equally spaced exact values from \p from to \p to, ends included
+/// (steps >= 2): x_k = from + (to − from)·k/(steps − 1).  Only x_k for k in
+/// [first, first + count) when \p count >= 0 (a chunk of a long sweep, made
+/// without the others); throws std::invalid_argument when that is not inside
+/// 0 … steps − 1.
+std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int first = 0, int count = -1);
 
-/// \p scene with \p parameter set to the exact \p value.
+/// \p scene with \p parameter set to the exact \p value, through
+/// Parameter::set() (the scene loader's checks; throws InputError).
 Scene with_value(const Scene& scene, const Parameter& parameter, const cln::cl_RA& value);
+
+/// Refuse, before anything is solved, a range of \p parameter from \p from to
+/// \p to that holds an inadmissible value: each end is set through
+/// Parameter::set() (the scene loader's checks: g > 0, drop_height >= 0,
+/// fall_speed >= 0, mass > 0, …) and checked by ExactScene::from() (M
+/// positive semi-definite, no contact opening before the collision).
+///
+/// The ends suffice: along one parameter every check admits an interval.
+/// The loader's are signs of the value; M(p) = M₀ + p·E is positive
+/// semi-definite on an interval (the PSD cone is convex); the velocities
+/// before the collision U⁻ are affine in a velocity or in the fall speed a,
+/// and a = sqrt(2 g h) is monotone in g and in h, so each D_c(U⁻) <= 0 holds
+/// on an interval.  Throws InputError("ORIGIN: KEY = VALUE: what is wrong").
+void check_range(const Scene& scene, const Parameter& parameter, const cln::cl_RA& from, const cln::cl_RA& to);
 
 /// One point of a sweep: the parameter value, the solution in the chosen
 /// arithmetic, with velocities already multiplied by the velocity unit and
@@ -34,7 +53,8 @@ struct SweepPoint {
 /// Solve \p scene at each of \p values of \p parameter in \p precision,
 /// on \p threads threads (0: all cores; parallel.hpp).  Each point is solved
 /// on its own from the scene, so the result does not depend on \p threads,
-/// bit for bit.
+/// bit for bit.  The smallest and largest of \p values pass check_range()
+/// first (throws InputError), so every value solved is admissible.
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads = 1);
 
@@ -56,9 +76,16 @@ struct LabelChange {
   std::string below, above;
 };
 
-/// Locate every change of \p label between consecutive \p values by bisection
-/// on the exact solution until the bracket is narrower than 2^-bits of the
-/// step.  Where a third label appears inside a bracket, the nearer change is kept.
+/// Locate every change of \p label between consecutive \p values (monotone,
+/// ascending or descending) by bisection on the exact solution until the
+/// bracket is narrower than 2^-bits of the step.  Where the midpoint's label
+/// differs from both ends (a third label inside the bracket), both halves are
+/// searched, so every change between two values of different labels is
+/// found (changes that come back to the same label between two values are
+/// not seen).  The result is in increasing parameter value, low < high, with
+/// `below` the label at low and `above` the label at high, and the changes
+/// chain: each one's `above` is the next one's `below`.  The values pass
+/// check_range() first, as in sweep().
 /// The labels at \p values, then the bisections, run on \p threads threads
 /// (0: all cores); with more than one, \p label is called on several threads
 /// at once and must not share a CLN object between calls (no captured
@@ -74,10 +101,14 @@ struct SwitchPoint {
   ContactSet below, above;
 };
 
-/// Locate every case change between consecutive \p points by bisection on
+/// Locate every case change between consecutive \p values by bisection on
 /// the exact solution (CLN rationals) until the bracket is narrower than
 /// 2^-bits of the sweep step (default: 64 bits, beyond double precision),
-/// on \p threads threads (0: all cores) as label_changes().
+/// on \p threads threads (0: all cores), as label_changes(): in increasing
+/// parameter value, each switch starting in the case the previous one ended in.
+std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
+                                       int bits = 64, int threads = 1);
+/// switch_points() at the values of \p points (the cases are found again, exactly).
 std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<SweepPoint>& points,
                                        int bits = 64, int threads = 1);
 
