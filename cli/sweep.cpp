@@ -78,7 +78,7 @@ int write_rows(Output& out, const Scene& scene, const Range& r, const numeric::P
   std::ostringstream os;
   os << r.parameter.key();
   for (int i = 1; i <= scene.size(); ++i) os << sep << "U" << i;
-  os << sep << "case\n";
+  os << sep << "case" << (csv ? ",status\n" : "\n");
   int failures = 0;
   for (int first = 0; first < r.steps; first += kChunk) {
     const auto values = numeric::linspace(r.from, r.to, r.steps, first, std::min(kChunk, r.steps - first));
@@ -86,7 +86,9 @@ int write_rows(Output& out, const Scene& scene, const Range& r, const numeric::P
       os << decimal(p.value, 10);
       for (double w : p.velocities_after) os << sep << numeric::to_string(w, csv ? 17 : 8);
       os << sep << (csv ? csv_field(v.case_name(p.closed)) : v.case_name(p.closed));
-      if (p.status != numeric::Status::Success) os << sep << numeric::to_string(p.status), ++failures;
+      failures += p.status != numeric::Status::Success;
+      // CSV: every row has the header's fields; the table names only a status that is not success.
+      if (csv || p.status != numeric::Status::Success) os << sep << numeric::to_string(p.status);
       os << '\n';
     }
     out.write(os.str());
@@ -149,7 +151,7 @@ void add_sweep(CLI::App& app, Action& action) {
   cmd->add_option("scene", o->scene, "Scene file (TOML)")->required();
   cmd->add_option("--vary", o->vary, "KEY=FROM:TO:STEPS")->required();
   cmd->add_option("--precision,-p", o->precision, "Arithmetic of the sweep values (see solve; not with --switch-points, which is exact)")->capture_default_str();
-  cmd->add_flag("--csv", o->csv, "Print CSV: the parameter, U1..Un, the case (or the switch points)");
+  cmd->add_flag("--csv", o->csv, "Print CSV: the parameter, U1..Un, the case, the status (or the switch points)");
   cmd->add_flag("--switch-points", o->switches, "Print only the parameter values where the evolution case changes (as CSV with --csv)");
   cmd->add_option("--threads,-j", o->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 1024))

@@ -187,13 +187,14 @@ TEST(Sweep, CsvAlongK34) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   ASSERT_EQ(lines.size(), 42u) << r.out;
-  EXPECT_EQ(lines[0], "K.3-4,U1,U2,U3,U4,case");
+  EXPECT_EQ(lines[0], "K.3-4,U1,U2,U3,U4,case,status");
   int cases[3] = {0, 0, 0};
   for (std::size_t k = 1; k < lines.size(); ++k) {
     std::vector<std::string> cells;
     std::istringstream row(lines[k]);
     for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    ASSERT_EQ(cells.size(), 6u) << lines[k];
+    ASSERT_EQ(cells.size(), 7u) << lines[k];
+    EXPECT_EQ(cells[6], "success") << lines[k];
     const double k34 = std::stod(cells[0]);
     EXPECT_NEAR(k34, 0.5 * static_cast<double>(k - 1), 1e-9);
     const double U[4] = {std::stod(cells[1]), std::stod(cells[2]), std::stod(cells[3]), std::stod(cells[4])};

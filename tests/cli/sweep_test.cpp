@@ -117,11 +117,11 @@ TEST(SweepCli, CsvQuotesTheCaseOfOtherThanFourBodies) {
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   const auto lines = lines_of(r.out);
   ASSERT_EQ(lines.size(), 12u);
-  EXPECT_EQ(lines[0], "mass.1,U1,U2,U3,case");
+  EXPECT_EQ(lines[0], "mass.1,U1,U2,U3,case,status");
   bool both_closed = false;
   for (std::size_t k = 1; k < lines.size(); ++k) {
     const auto f = csv_fields(lines[k]);
-    ASSERT_EQ(f.size(), 5u) << lines[k];
+    ASSERT_EQ(f.size(), 6u) << lines[k];  // every row has the header's fields
     EXPECT_EQ(f[4].front(), '{') << lines[k];
     both_closed = both_closed || f[4] == "{1-2,2-3}";
   }
