@@ -224,6 +224,27 @@ TEST(Output, DashIsStandardOutput) {
   EXPECT_EQ(r.out, expected);
 }
 
+TEST(Output, PlotFiguresGoThroughOutput) {
+  // The figure gnuplot draws reaches its file through Output: a link to it is kept, a full device is an error.
+  Folder dir;
+  const std::string flight = kScenes + "paper-4.4-flight.toml";
+  fs::create_directory(dir / "real");
+  { std::ofstream(dir / "real/figure.png") << "old\n"; }
+  ASSERT_EQ(::symlink("real/figure.png", (dir / "trajectories.png").c_str()), 0);
+  const RunResult r = run({"solve", flight, "--plot", dir.path()});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(fs::is_symlink(dir / "trajectories.png"));
+  EXPECT_EQ(slurp(dir / "real/figure.png").substr(1, 3), "PNG");
+  EXPECT_NE(slurp(dir / "trajectories.svg").find("<svg"), std::string::npos);
+  const std::string full = make_full_device(dir);
+  if (full.empty()) GTEST_SKIP() << "cannot make a device node here (mknod needs root and a folder not mounted nodev)";
+  ASSERT_EQ(::rename(full.c_str(), (dir / "trajectories.svg").c_str()), 0);
+  expect_full(run({"solve", flight, "--plot", dir.path()}), dir / "trajectories.svg");
+  struct stat st {};
+  ASSERT_EQ(::lstat((dir / "trajectories.svg").c_str(), &st), 0);
+  EXPECT_TRUE(S_ISCHR(st.st_mode)) << "the device node was replaced";
+}
+
 // ---------------------------------------------------------------------------
 // Standard output full or closed: every command that prints its result
 
