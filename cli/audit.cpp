@@ -103,7 +103,7 @@ void add_audit(CLI::App& app, Action& action) {
   cmd->add_option("--samples", o->samples, "Points tried per search")->check(CLI::Range(1, 10000000))->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the pseudo-random points")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON for programs");
-  cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output");
+  cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output")->check(non_empty());
   cmd->callback([o, &action] {
     action = [o] {
       verify::AuditOptions options;

@@ -3,7 +3,7 @@
 /// The CLI is a thin layer: each subcommand lives in its own file and
 /// registers itself on the CLI11 app here.  Commands report bad input as one
 /// line on stderr ("superball: FILE:LINE:COL: field: what is wrong") and a
-/// non-zero exit; they write output files through write_file_atomically().
+/// non-zero exit; they write every result through Output.
 
 #include <CLI/CLI.hpp>
 
@@ -29,6 +29,13 @@ void add_audit(CLI::App& app, Action& action);
 void add_verify(CLI::App& app, Action& action);
 void add_explore(CLI::App& app, Action& action);
 
+/// Refuses the empty string: "" names no file, case or list, and a command
+/// must not take it for "none" or "standard output" (use "none" or "-").
+inline const CLI::Validator& non_empty() {
+  static const CLI::Validator v([](const std::string& s) { return s.empty() ? std::string("is empty") : std::string(); }, "", "NONEMPTY");
+  return v;
+}
+
 /// An output that cannot be written (full disk, closed pipe, no permission):
 /// the command ends with one line naming the path and the system's reason,
 /// exit code 3.
@@ -37,20 +44,31 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Where a command's result goes, written piece by piece: standard output
-/// when the path is empty or "-", else the file \p path, replaced as a whole
-/// only by commit() (a run that fails or is interrupted leaves the old file).
-/// Every write is checked; failures throw OutputError("PATH: reason").
+/// Where a command's result goes, written piece by piece; the one way the
+/// commands write anything (model: coreutils' install/mv, moreutils' sponge).
+///  - "", "-", /dev/stdout: standard output, written directly;
+///  - an existing device, FIFO or socket: opened and written directly, never
+///    replaced;
+///  - a regular file or a new path: a temporary (mkstemp) beside it, with the
+///    existing file's permissions (and owner, when run as root) or 0666 & ~umask,
+///    replaced by rename() in commit() after fsync() of the file, then fsync()
+///    of the folder; the old file stays whole until then;
+///  - an existing symbolic link: its target is replaced that way, the link kept.
+/// Every write and close is checked: a failure throws OutputError("PATH:
+/// strerror(errno)"), e.g. "out.json: No space left on device" (exit 3).
+/// The temporary is removed by the destructor when commit() did not run, and
+/// by SIGINT, SIGTERM, SIGHUP and SIGPIPE (the signal is then re-raised).
 class Output {
  public:
+  /// Open \p path as above; throws OutputError when it cannot be written.
   explicit Output(std::string path);
   Output(const Output&) = delete;
   Output& operator=(const Output&) = delete;
   /// Drops what was written unless commit() ran.
   ~Output();
-  /// Append \p text.
+  /// Append \p text (all of it, or OutputError).
   void write(std::string_view text);
-  /// Flush and put the result in place.
+  /// Put the result in place (see above); call once, after the last write().
   void commit();
 
  private:
@@ -59,9 +77,11 @@ class Output {
 };
 
 /// A command's whole result at once: Output(path), write(text), commit().
-void write_output(const std::string& path, const std::string& text);
+void write_output(const std::string& path, std::string_view text);
 
-/// write_output() into a file (\p path not empty).
-void write_file_atomically(const std::string& path, const std::string& text);
+/// Called first by main(): a standard descriptor (0, 1, 2) that is closed is
+/// opened read-only on /dev/null, so that no file opened later takes its
+/// number and writes to a closed standard output still fail (EBADF).
+void guard_standard_descriptors();
 
 }  // namespace superball::cli

@@ -106,7 +106,7 @@ void add_derive(CLI::App& app, Action& action) {
   cmd->add_option("--format,-f", o->format, "text, latex (a complete document) or json")
       ->check(CLI::IsMember({"text", "latex", "json"}))
       ->capture_default_str();
-  cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output");
+  cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output")->check(non_empty());
   cmd->callback([o, &action] {
     action = [o] {
       const Selection selection = resolve(o->selection);

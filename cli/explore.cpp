@@ -92,9 +92,9 @@ void add_explore(CLI::App& app, Action& action) {
   cmd->add_option("--starts", o->explore.starts, "Local searches (Nelder-Mead) per case")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--evaluations", o->explore.evaluations, "Objective evaluations per local search")->check(CLI::Range(10, 10000000))->capture_default_str();
   cmd->add_option("--box", o->box, "LOW:HIGH, the range of every mass and K (log scale)")->capture_default_str();
-  cmd->add_option("--out", o->out, "Write each witness scene file into this folder (created if missing)");
+  cmd->add_option("--out", o->out, "Write each witness scene file into this folder (created if missing)")->check(non_empty());
   cmd->add_flag("--json", o->json, "Print JSON for programs");
-  cmd->add_option("--output,-o", o->output, "Write the report to this file instead of standard output");
+  cmd->add_option("--output,-o", o->output, "Write the report to this file instead of standard output")->check(non_empty());
   cmd->callback([o, &action] {
     action = [o] {
       std::tie(o->explore.box_low, o->explore.box_high) = parse_box(o->box);
@@ -131,7 +131,7 @@ void add_explore(CLI::App& app, Action& action) {
         std::filesystem::create_directories(o->out, error);
         if (error) throw std::invalid_argument("--out: cannot create folder '" + o->out + "': " + error.message());
         for (const auto& r : results)
-          if (r.scene) write_file_atomically((std::filesystem::path(o->out) / witness_name(r)).string(), verify::witness_file(r, command.str()));
+          if (r.scene) write_output((std::filesystem::path(o->out) / witness_name(r)).string(), verify::witness_file(r, command.str()));
       }
       write_output(o->output, text);
       return ok;

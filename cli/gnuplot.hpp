@@ -34,8 +34,9 @@ struct Plot {
 };
 
 /// Write DIR/STEM.dat and DIR/STEM.gp and run gnuplot to make DIR/STEM.png
-/// and DIR/STEM.svg.  Throws std::runtime_error("draw(): ...") when gnuplot
-/// is missing or fails.
+/// and DIR/STEM.svg, every file through Output (gnuplot prints each figure on
+/// its standard output).  Throws OutputError("DIR/STEM.png: ...") when gnuplot
+/// is missing or fails, or a file cannot be written.
 void draw(const std::string& dir, const std::string& stem, const Plot& plot);
 
 }  // namespace superball::cli

@@ -1,9 +1,29 @@
 // superball: conditions for the superball phenomenon in Frémond's theory of
 // collisions.  See README.md and `superball --help`.
+#include <cerrno>
+#include <cstring>
 #include <iostream>
 
 #include "commands.hpp"
 #include "superball/cases/scene_file.hpp"
+
+namespace {
+
+/// \p text with control bytes shown as \xNN, for a message on a terminal.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (unsigned char c : text) {
+    if (c >= 0x20 && c != 0x7f) {
+      out += static_cast<char>(c);
+      continue;
+    }
+    constexpr char hex[] = "0123456789abcdef";
+    out += {'\\', 'x', hex[c >> 4], hex[c & 15]};
+  }
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace superball::cli;
@@ -19,7 +39,19 @@ int main(int argc, char** argv) {
       "  superball verify --case 1 --alphas 2                          a case's conditions against exact solutions\n"
       "  superball explore --alphas 3 --case 1                         is the superball reachable? witness or proof\n",
       "superball"};
+  app.footer(
+      "Exit codes (every command):\n"
+      "  0  success\n"
+      "  1  a numerical outcome you asked to be told about: a solve or sweep value whose status is not success,\n"
+      "     derived conditions that disagree with exact solutions (verify)\n"
+      "  2  bad input or usage: a scene file, an option, a command line (one line on stderr says what and where)\n"
+      "  3  an output that cannot be written: a full disk, a closed pipe, no permission (one line: the path and why)\n"
+      "  4  internal error: a bug of the tool, to be reported\n"
+      "Output (-o, --out, --plot, standard output): a file is replaced whole, atomically, only at the end (its\n"
+      "permissions kept; through a symbolic link, the link's target); a device, FIFO or standard output is written\n"
+      "directly.");
   app.require_subcommand(1);
+  guard_standard_descriptors();
   app.set_version_flag("--version", "superball 0.1.0");
   Action action;
   add_solve(app, action);
@@ -29,10 +61,30 @@ int main(int argc, char** argv) {
   add_audit(app, action);
   add_verify(app, action);
   add_explore(app, action);
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string names;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+      known = known || sub->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      std::cerr << "superball: unknown command '" << printable(argv[1]) << "' (commands: " << names << ")\n";
+      return bad_input;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    if (e.get_exit_code() == 0) {  // --help, --version
+      app.exit(e);
+      std::cout.flush();
+      if (!std::cout) {
+        std::cerr << "superball: standard output: " << std::strerror(errno) << '\n';
+        return output_error;
+      }
+      return ok;
+    }
     std::cerr << "superball: " << e.what() << " (see superball --help)\n";
     return bad_input;
   }

@@ -8,7 +8,6 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <iostream>
 #include <memory>
 #include <sstream>
 
@@ -550,7 +549,7 @@ void add_reproduce(CLI::App& app, Action& action) {
       "of the paper's cases against exact solutions (superball verify; --verify-samples) and tabulates which coupling\n"
       "gives the superball in which case (superball explore --all-patterns; --explore-starts).  Needs gnuplot.\n\n"
       "Examples:\n  superball reproduce --out report\n  superball reproduce --out report-quick --samples 500 --verify-samples 200 --explore-starts 4");
-  cmd->add_option("--out,-o", o->out, "Report folder (created if missing)")->capture_default_str();
+  cmd->add_option("--out,-o", o->out, "Report folder (created if missing)")->capture_default_str()->check(non_empty());
   cmd->add_option("--scenes", o->scenes, "Folder of the paper's scene files")->capture_default_str();
   cmd->add_option("--samples", o->samples, "Points tried per search of the audit of the printed conditions")
       ->check(CLI::Range(1, 10000000))
@@ -585,9 +584,9 @@ void add_reproduce(CLI::App& app, Action& action) {
       verify::ExploreOptions explore;
       explore.starts = o->explore_starts;
       verification_and_patterns(runs, verify::explore_all_patterns(explore), doc);
-      write_file_atomically(o->out + "/report.tex", doc.latex());
-      write_file_atomically(o->out + "/report.md", doc.markdown());
-      std::cout << doc.markdown() << "(written to " << o->out << "/report.md and report.tex)\n";
+      write_output(o->out + "/report.tex", doc.latex());
+      write_output(o->out + "/report.md", doc.markdown());
+      write_output("", doc.markdown() + "(written to " + o->out + "/report.md and report.tex)\n");
       return ok;
     };
   });

@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "commands.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 
@@ -28,30 +29,58 @@ std::vector<int> parse_alphas(const std::string& text) {
 }
 
 void add_selection_options(CLI::App* cmd, SelectionOptions& o, bool require_case) {
-  cmd->add_option("--bodies,-n", o.bodies, "Number of bodies n >= 2, the bottom one being the obstacle")->capture_default_str();
+  CLI::Option* bodies = cmd->add_option("--bodies,-n", o.bodies, "Number of bodies n >= 2, the bottom one being the obstacle")->capture_default_str();
   auto* g = cmd->add_option_group("case", "Which evolution case (one of)");
-  g->add_option("--case", o.case_name, "The paper's case name (n = 4): 0, 1, 2.1, 2.2, 3.1, 3.2, 3.3, 3.4");
-  g->add_option("--closed", o.closed, "The closed contacts, e.g. 2-3,3-4 (\"none\" for no closed contact)");
+  g->add_option("--case", o.case_name, "The paper's case name (n = 4): 0, 1, 2.1, 2.2, 3.1, 3.2, 3.3, 3.4")->check(non_empty());
+  g->add_option("--closed", o.closed, "The closed contacts, e.g. 2-3,3-4 (\"none\" for no closed contact)")->check(non_empty());
   g->add_flag("--all", o.all, "Every one of the 2^(n-1) cases");
   if (require_case)
     g->require_option(1);
   else
     g->require_option(0, 1);
-  cmd->add_option("--alphas", o.alphas, "The paper's couplings alpha_k in play (n = 4), e.g. 2 or 1,6");
-  cmd->add_option("--coupling", o.coupling, "Couplings of pairs, e.g. 1-2/1-4,2-3/2-4, or near2");
-  cmd->add_option("--pairs", o.pairs, "Pairs with a diagonal K: all, near, near2 or a list 1-2,2-3")->capture_default_str();
-  cmd->add_option("--scene", o.scene, "Take the pattern (declared entries of M) and n from a scene file");
+  CLI::Option* alphas = cmd->add_option("--alphas", o.alphas, "The paper's couplings alpha_k in play (n = 4), e.g. 2 or 1,6")->check(non_empty());
+  CLI::Option* coupling = cmd->add_option("--coupling", o.coupling, "Couplings of pairs, e.g. 1-2/1-4,2-3/2-4, or near2")->check(non_empty());
+  CLI::Option* pairs =
+      cmd->add_option("--pairs", o.pairs, "Pairs with a diagonal K: all, near, near2 or a list 1-2,2-3")->capture_default_str()->check(non_empty());
+  cmd->add_option("--scene", o.scene, "Take the pattern (declared entries of M) and n from a scene file")
+      ->check(non_empty())
+      ->excludes(bodies)
+      ->excludes(alphas)
+      ->excludes(coupling)
+      ->excludes(pairs);
   cmd->add_option("--obstacle", o.obstacle, "infinite (m_n = infinity, default) or finite (m_n a symbol; the m_n = infinity limit is also given)")
       ->check(CLI::IsMember({"infinite", "finite"}))
       ->capture_default_str();
-  cmd->add_option("--scaling", o.scaling, "Orders in epsilon, e.g. m1=1,K14=-1 (default m1=1, K1n=-1, mn=-1 if finite; \"none\")");
+  cmd->add_option("--scaling", o.scaling, "Orders in epsilon, e.g. m1=1,K14=-1 (default m1=1, K1n=-1, mn=-1 if finite; \"none\")")->check(non_empty());
   cmd->add_option("--order", o.order, "Correction orders kept beyond the dominant balance")->check(CLI::Range(0, 20))->capture_default_str();
+  cmd->add_flag("--no-limit", o.no_limit, "Derive even past the number of bodies measured to take about 10 s (see docs/SYMBOLIC.md)");
 }
+
+namespace detail {
+
+int body_limit(int width, bool all_cases) {
+  // The largest n under about 10 s (docs/SYMBOLIC.md, "Limits"), for width 1 (--pairs near), 2 (near2), 3 and
+  // more (all, or near2 with couplings): one case (--closed none, the slowest) and every case (--all).
+  constexpr int one[] = {9, 6, 5}, every[] = {7, 6, 5};
+  const int k = std::min(std::max(width, 1), 3) - 1;
+  return all_cases ? every[k] : one[k];
+}
+
+/// The width of \p p: how many bodies apart the widest declared entry joins
+/// (a diagonal K or a coupled pair), one more when there are couplings
+/// (they were measured to cost as much as one more step of width).
+int width(const Pattern& p) {
+  int r = 1;
+  for (const Pair& q : p.diagonal) r = std::max(r, q.j - q.i);
+  for (const PairCoupling& c : p.couplings) r = std::max({r, c.first.j - c.first.i, c.second.j - c.second.i});
+  return r + (p.couplings.empty() ? 0 : 1);
+}
+
+}  // namespace detail
 
 Selection resolve(const SelectionOptions& o) {
   Pattern pattern;
   if (!o.scene.empty()) {
-    if (!o.alphas.empty() || !o.coupling.empty()) throw std::invalid_argument("--scene gives the pattern: drop --alphas/--coupling");
     pattern = Pattern::from_scene(load_scene(o.scene));
   } else {
     if (o.bodies < 2 || o.bodies > 64) throw std::invalid_argument("--bodies must be 2..64");
@@ -70,6 +99,13 @@ Selection resolve(const SelectionOptions& o) {
     pattern.check();
   }
   const int n = pattern.bodies;
+  if (!o.no_limit) {
+    const int w = detail::width(pattern), limit = detail::body_limit(w, o.all);
+    if (n > limit)
+      throw std::invalid_argument("--bodies " + std::to_string(n) + ": deriving " + (o.all ? "every case" : "a case") + " of a pattern of width " +
+                                  std::to_string(w) + " was measured to take over 10 s past " + std::to_string(limit) +
+                                  " bodies (docs/SYMBOLIC.md, Limits); --no-limit derives anyway");
+  }
   const Obstacle obstacle = o.obstacle == "finite" ? Obstacle::Finite : Obstacle::Infinite;
   const Symbols symbols(pattern, obstacle);
   std::optional<Scaling> scaling;

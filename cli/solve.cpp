@@ -1,4 +1,3 @@
-#include <iostream>
 #include <memory>
 
 #include "commands.hpp"
@@ -30,24 +29,23 @@ void add_solve(CLI::App& app, Action& action) {
                   "Arithmetic: auto (default: the cheapest of double, long-double, exact whose result is certified to --rtol), "
                   "double, long-double, digits:N (CLN floats, N decimal digits), exact (CLN rationals)")
       ->capture_default_str();
-  cmd->add_option("--rtol", o->rtol, "With --precision auto: largest certified relative error of the velocities")
+  CLI::Option* rtol = cmd->add_option("--rtol", o->rtol, "With --precision auto: largest certified relative error of the velocities")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--json", o->json, "Print JSON for programs instead of text");
-  cmd->add_option("--plot", o->plot, "Folder for the trajectory plot (scenes with a [flight] table)");
-  cmd->callback([o, &action] {
-    action = [o] {
+  cmd->add_option("--plot", o->plot, "Folder for the trajectory plot (scenes with a [flight] table)")->check(non_empty());
+  cmd->callback([o, rtol, &action] {
+    action = [o, rtol] {
       const bool automatic = o->precision == "auto";
+      if (!automatic && rtol->count() > 0)
+        throw std::invalid_argument("--rtol is the certified error of --precision auto; --precision " + o->precision + " has none");
       const auto precision = automatic ? numeric::Precision{} : numeric::Precision::parse(o->precision);
       const Scene scene = load_scene(o->scene);
       if (!o->plot.empty() && !scene.flight.requested)
         throw std::invalid_argument("--plot: " + o->scene + " has no [flight] table, so there is no flight to draw");
       const Presented p = automatic ? solve_scene_auto(scene, o->rtol) : solve_scene(scene, precision);
       if (!o->plot.empty()) draw_flight(p, o->plot);
-      if (o->json)
-        std::cout << to_json(p).dump(2) << '\n';
-      else
-        std::cout << to_text(p);
+      write_output("", o->json ? to_json(p).dump(2) + "\n" : to_text(p));
       return p.status == "success" ? ok : numerical_failure;
     };
   });

@@ -336,7 +336,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:5", "--threads", "many"}, {"--threads"}},
         BadArgs{{"solve"}, {"scene"}},
         BadArgs{{"solve", kPaper, "--bogus"}, {"--bogus"}},
-        BadArgs{{"frobnicate"}, {"subcommand"}},
+        BadArgs{{"frobnicate"}, {"unknown command 'frobnicate'", "commands: solve"}},
         BadArgs{{}, {"subcommand"}}),
     [](const auto& info) { return "case" + std::to_string(info.index); });
 
