@@ -5,28 +5,12 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "superball/cases/error.hpp"
 #include "superball/cases/scene_file.hpp"
-
-namespace {
-
-/// \p text with control bytes shown as \xNN, for a message on a terminal.
-std::string printable(const std::string& text) {
-  std::string out;
-  for (unsigned char c : text) {
-    if (c >= 0x20 && c != 0x7f) {
-      out += static_cast<char>(c);
-      continue;
-    }
-    constexpr char hex[] = "0123456789abcdef";
-    out += {'\\', 'x', hex[c >> 4], hex[c & 15]};
-  }
-  return out;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   using namespace superball::cli;
+  using superball::printable;
   CLI::App app{
       "superball: derive and check the conditions under which a stack of aligned balls dropped on a massive\n"
       "obstacle sends the top ball up faster than it fell (Fremond's theory of collisions).\n\n"
@@ -85,22 +69,22 @@ int main(int argc, char** argv) {
       }
       return ok;
     }
-    std::cerr << "superball: " << e.what() << " (see superball --help)\n";
+    std::cerr << "superball: " << printable(e.what()) << " (see superball --help)\n";
     return bad_input;
   }
   try {
     return action();
   } catch (const superball::InputError& e) {
-    std::cerr << "superball: " << e.what() << '\n';
+    std::cerr << "superball: " << printable(e.what()) << '\n';
     return bad_input;
   } catch (const OutputError& e) {
-    std::cerr << "superball: " << e.what() << '\n';
+    std::cerr << "superball: " << printable(e.what()) << '\n';
     return output_error;
   } catch (const std::invalid_argument& e) {
-    std::cerr << "superball: " << superball::without_function_prefix(e.what()) << '\n';
+    std::cerr << "superball: " << printable(superball::without_function_prefix(e.what())) << '\n';
     return bad_input;
   } catch (const std::exception& e) {
-    std::cerr << "superball: internal error: " << e.what() << '\n';
+    std::cerr << "superball: internal error: " << printable(e.what()) << '\n';
     return internal_error;
   }
 }

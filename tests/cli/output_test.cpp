@@ -389,7 +389,7 @@ INSTANTIATE_TEST_SUITE_P(
         ExitCase{{"solve", std::string(SUPERBALL_TEST_DATA_DIR) + "/hard/eps-1e-9.toml", "--precision", "double"}, 1, ""},
         // 2: bad input or usage
         ExitCase{{}, 2, "subcommand"}, ExitCase{{"nosuchcmd"}, 2, "unknown command 'nosuchcmd' (commands: solve, sweep"},
-        ExitCase{{"solv\x1b[31m"}, 2, "unknown command 'solv\\x1b[31m'"},
+        ExitCase{{"solv\x1b[31m"}, 2, "unknown command 'solv\\e[31m'"},
         ExitCase{{"solve", kPaper, "--nosuchoption"}, 2, "--nosuchoption"},
         ExitCase{{"solve", kPaper, "--precision", "double", "--rtol", "1e-3"}, 2, "--rtol"},
         ExitCase{{"derive", "--closed", ""}, 2, "--closed"}, ExitCase{{"derive", "--case", ""}, 2, "--case"},

@@ -588,7 +588,7 @@ Case make_conflict(Rng& rng, int index) {
   Case c;
   c.files["scene.toml"] = random_spec(rng).toml();
   static const std::vector<std::vector<std::string>> lines = {
-      {"sweep", "@/scene.toml", "--vary", "K.1-2=0:20:5", "--csv", "--switch-points"},
+      {"sweep", "@/scene.toml", "--vary", "K.1-2=0:20:5", "--switch-points", "--precision", "double"},  // the bisection is exact
       {"derive", "--scene", "@/scene.toml", "--bodies", "5", "--case", "1"},
       {"derive", "--closed", ""},
       {"nosuchcmd"},
