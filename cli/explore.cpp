@@ -129,7 +129,7 @@ void add_explore(CLI::App& app, Action& action) {
       if (!o->out.empty()) {
         std::error_code error;
         std::filesystem::create_directories(o->out, error);
-        if (error) throw std::invalid_argument("--out: cannot create folder '" + o->out + "': " + error.message());
+        if (error) throw OutputError("--out: cannot create folder '" + o->out + "': " + error.message());
         for (const auto& r : results)
           if (r.scene) write_output((std::filesystem::path(o->out) / witness_name(r)).string(), verify::witness_file(r, command.str()));
       }

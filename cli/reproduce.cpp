@@ -529,10 +529,10 @@ std::string default_scenes() {
 /// and leaves nothing behind.  Throws std::invalid_argument("--out ...").
 void prepare_folder(const std::string& out) {
   if (::mkdir(out.c_str(), 0777) != 0 && errno != EEXIST)
-    throw std::invalid_argument("--out " + out + ": cannot create the folder (" + std::strerror(errno) + ")");
+    throw OutputError("--out " + out + ": cannot create the folder (" + std::strerror(errno) + ")");
   struct stat st {};
-  if (::stat(out.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) throw std::invalid_argument("--out " + out + ": not a folder");
-  if (::access(out.c_str(), W_OK | X_OK) != 0) throw std::invalid_argument("--out " + out + ": cannot write in the folder (" + std::strerror(errno) + ")");
+  if (::stat(out.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) throw OutputError("--out " + out + ": not a folder");
+  if (::access(out.c_str(), W_OK | X_OK) != 0) throw OutputError("--out " + out + ": cannot write in the folder (" + std::strerror(errno) + ")");
 }
 
 }  // namespace

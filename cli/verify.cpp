@@ -143,7 +143,7 @@ void add_verify(CLI::App& app, Action& action) {
       options.seed = o->seed;
       options.threads = o->threads;
       if (!o->out.empty() && std::filesystem::exists(o->out) && !std::filesystem::is_directory(o->out))
-        throw std::invalid_argument("--out " + o->out + ": exists and is not a folder");
+        throw OutputError("--out " + o->out + ": exists and is not a folder");
       const Selection selection = resolve(o->selection);
       std::vector<verify::Verification> results;
       {
@@ -165,7 +165,7 @@ void add_verify(CLI::App& app, Action& action) {
           if (written == 0) {
             std::error_code error;
             std::filesystem::create_directories(o->out, error);
-            if (error) throw std::invalid_argument("--out " + o->out + ": cannot create the folder: " + error.message());
+            if (error) throw OutputError("--out " + o->out + ": cannot create the folder: " + error.message());
           }
           const std::string path = (std::filesystem::path(o->out) /
                                     ("case-" + file_part(v.case_name) + "-eps-" + file_part(verify::epsilon_name(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon)) +

@@ -140,26 +140,26 @@ TEST(Reproduce, QuickReportIsCompleteAndCompiles) {
   EXPECT_EQ(log.find("Overfull \\hbox"), std::string::npos) << "a line or table wider than the page";
 }
 
-TEST(Reproduce, OutThatCannotBeCreatedIsOneLineExitTwoAndNothingWritten) {
+TEST(Reproduce, OutThatCannotBeCreatedIsOneLineExitThreeAndNothingWritten) {
   const TempFolder tmp;
   ASSERT_FALSE(tmp.path().empty());
   const std::string file = tmp.path() + "/a-file";
   std::ofstream(file) << "not a folder\n";
-  expect_bad_input(run({"reproduce", "--out", file, "--samples", kSamples}), {"--out " + file, "not a folder"});
-  expect_bad_input(run({"reproduce", "--out", file + "/report", "--samples", kSamples}), {"--out " + file + "/report", "cannot create"});
-  expect_bad_input(run({"reproduce", "--out", tmp.path() + "/missing/report", "--samples", kSamples}), {"cannot create"});
+  expect_output_error(run({"reproduce", "--out", file, "--samples", kSamples}), {"--out " + file, "not a folder"});
+  expect_output_error(run({"reproduce", "--out", file + "/report", "--samples", kSamples}), {"--out " + file + "/report", "cannot create"});
+  expect_output_error(run({"reproduce", "--out", tmp.path() + "/missing/report", "--samples", kSamples}), {"cannot create"});
   EXPECT_EQ(slurp(file), "not a folder\n");
   EXPECT_EQ(files_in(tmp.path()), std::vector<std::string>{"a-file"});
 }
 
-TEST(Reproduce, ReadOnlyOutIsOneLineExitTwoAndNothingWritten) {
+TEST(Reproduce, ReadOnlyOutIsOneLineExitThreeAndNothingWritten) {
   if (::geteuid() == 0) GTEST_SKIP() << "running as root: a read-only folder is still writable";
   const TempFolder tmp;
   ASSERT_FALSE(tmp.path().empty());
   const std::string locked = tmp.path() + "/locked";
   ASSERT_EQ(::mkdir(locked.c_str(), 0555), 0);
-  expect_bad_input(run({"reproduce", "--out", locked, "--samples", kSamples}), {"--out " + locked, "cannot write"});
-  expect_bad_input(run({"reproduce", "--out", locked + "/report", "--samples", kSamples}), {"cannot create"});
+  expect_output_error(run({"reproduce", "--out", locked, "--samples", kSamples}), {"--out " + locked, "cannot write"});
+  expect_output_error(run({"reproduce", "--out", locked + "/report", "--samples", kSamples}), {"cannot create"});
   EXPECT_TRUE(files_in(locked).empty());
 }
 

@@ -81,10 +81,10 @@ inline std::string describe(const RunResult& r) {
   return "exit " + std::to_string(r.exit_code) + "\nstdout:\n" + r.out + "\nstderr:\n" + r.err;
 }
 
-/// Bad input: exit 2, exactly one line on stderr ("superball: ...")
+/// A refusal: exit \p code, exactly one line on stderr ("superball: ...")
 /// containing every piece of \p expected, nothing on stdout.
-inline void expect_bad_input(const RunResult& r, const std::vector<std::string>& expected) {
-  EXPECT_EQ(r.exit_code, 2) << describe(r);
+inline void expect_refusal(const RunResult& r, int code, const std::vector<std::string>& expected) {
+  EXPECT_EQ(r.exit_code, code) << describe(r);
   EXPECT_TRUE(r.out.empty()) << describe(r);
   const auto lines = r.err_lines();
   ASSERT_EQ(lines.size(), 1u) << describe(r);
@@ -92,5 +92,11 @@ inline void expect_bad_input(const RunResult& r, const std::vector<std::string>&
   for (const auto& e : expected) EXPECT_NE(lines[0].find(e), std::string::npos) << "'" << e << "' not in: " << lines[0];
   EXPECT_EQ(r.err.back(), '\n');
 }
+
+/// Bad input or usage: exit 2, one line naming \p expected.
+inline void expect_bad_input(const RunResult& r, const std::vector<std::string>& expected) { expect_refusal(r, 2, expected); }
+
+/// An output that cannot be written: exit 3, one line naming \p expected.
+inline void expect_output_error(const RunResult& r, const std::vector<std::string>& expected) { expect_refusal(r, 3, expected); }
 
 }  // namespace superball::test
