@@ -250,15 +250,15 @@ Scaling scaling_of(const Problem<S>& p) {
   Scaling k;
   if constexpr (std::is_floating_point<S>::value) {
     constexpr int w = safe_exponent<S>();
-    // The binary exponents e (|x| = f·2^e, 1/2 <= f < 1) of a group's
-    // nonzero data span lo … hi; inside the window means −w < e <= w.
+    // The smallest and largest nonzero magnitudes of a group (two compares
+    // per datum: this runs before every solve), then their binary exponents
+    // e (|x| = f·2^e, 1/2 <= f < 1): lo … hi; inside the window means −w < e <= w.
     struct Span {
-      int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
+      S smallest = std::numeric_limits<S>::infinity(), largest = S(0);
       void add(const S& x) {
-        if (x == S(0)) return;
-        int e = 0;
-        std::frexp(x, &e);
-        lo = std::min(lo, e), hi = std::max(hi, e);
+        const S a = std::fabs(x);
+        if (a < smallest && a > S(0)) smallest = a;
+        if (a > largest) largest = a;
       }
     };
     Span masses, velocities;
@@ -267,9 +267,13 @@ Scaling scaling_of(const Problem<S>& p) {
     for (const S& x : p.u) velocities.add(x);
     // Shifting by c = lo + ⌊(hi − lo)/2⌋ puts every exponent inside when hi − lo < 2w.
     auto centre = [&k](const Span& g, int& shift) {
-      if (g.lo > g.hi || (g.lo > -w && g.hi <= w)) return;
-      if (g.hi - g.lo >= 2 * w) k.fits = false;
-      shift = g.lo + (g.hi - g.lo) / 2;
+      if (!(g.largest > S(0))) return;  // no nonzero datum
+      int lo = 0, hi = 0;
+      std::frexp(g.smallest, &lo);
+      std::frexp(g.largest, &hi);
+      if (lo > -w && hi <= w) return;
+      if (hi - lo >= 2 * w) k.fits = false;
+      shift = lo + (hi - lo) / 2;
     };
     centre(masses, k.mass);
     centre(velocities, k.velocity);
