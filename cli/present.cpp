@@ -35,24 +35,26 @@ Presented present(const Scene& scene, const numeric::ExactScene& exact, const nu
   const std::string sqrt_text = problem.unit_exact ? "" : "*sqrt(" + numeric::to_string(exact.unit_squared()) + ")";
   const double unit = problem.unit_exact ? T::to_double(problem.unit) : std::sqrt(cln::double_approx(exact.unit_squared()));
   const S unit_s = problem.unit;  // 1 when irrational in exact arithmetic
-  auto text = [&](const S& x) { return numeric::to_string(S(x * unit_s)) + sqrt_text; };
+  auto text = [&](const S& x) { return x == S(0) ? std::string("0") : numeric::to_string(S(x * unit_s)) + sqrt_text; };
+  // x times the irrational unit in double: 0 stays 0 when the unit overflows.
+  auto times_unit = [&](double x, double power) { return x == 0 ? 0.0 : x * power; };
   for (int i = 0; i < p.n; ++i) {
     p.masses.push_back(problem.fixed_bottom && i == p.n - 1 ? INFINITY : T::to_double(problem.mass[i]));
-    p.before.push_back(T::to_double(problem.u[i]) * unit);
-    p.after.push_back(T::to_double(S(sol.velocities_after[i] * unit_s)) * (problem.unit_exact ? 1.0 : unit));
+    p.before.push_back(times_unit(T::to_double(problem.u[i]), unit));
+    p.after.push_back(times_unit(T::to_double(S(sol.velocities_after[i] * unit_s)), problem.unit_exact ? 1.0 : unit));
     p.after_text.push_back(text(sol.velocities_after[i]));
   }
   for (int c = 0; c + 1 < p.n; ++c) {
-    p.reactions.push_back(T::to_double(S(sol.reactions[c] * unit_s)) * (problem.unit_exact ? 1.0 : unit));
+    p.reactions.push_back(times_unit(T::to_double(S(sol.reactions[c] * unit_s)), problem.unit_exact ? 1.0 : unit));
     p.reaction_text.push_back(text(sol.reactions[c]));
   }
   const double unit2 = problem.unit_exact ? 1.0 : unit * unit;
   const S u2 = unit_s * unit_s;
-  p.ke_before = T::to_double(S(sol.kinetic_energy_before * u2)) * unit2;
-  p.ke_after = T::to_double(S(sol.kinetic_energy_after * u2)) * unit2;
-  p.dissipation = T::to_double(S(sol.dissipation * u2)) * unit2;
-  p.momentum_before = T::to_double(S(sol.momentum_before * unit_s)) * (problem.unit_exact ? 1.0 : unit);
-  p.momentum_after = T::to_double(S(sol.momentum_after * unit_s)) * (problem.unit_exact ? 1.0 : unit);
+  p.ke_before = times_unit(T::to_double(S(sol.kinetic_energy_before * u2)), unit2);
+  p.ke_after = times_unit(T::to_double(S(sol.kinetic_energy_after * u2)), unit2);
+  p.dissipation = times_unit(T::to_double(S(sol.dissipation * u2)), unit2);
+  p.momentum_before = times_unit(T::to_double(S(sol.momentum_before * unit_s)), problem.unit_exact ? 1.0 : unit);
+  p.momentum_after = times_unit(T::to_double(S(sol.momentum_after * unit_s)), problem.unit_exact ? 1.0 : unit);
   p.residual_motion = sol.residual_motion;
   p.residual_complementarity = sol.residual_complementarity;
   // Superball: the top body's velocity after exceeds its speed before.

@@ -1,3 +1,4 @@
+#include <cstdlib>
 #include <memory>
 
 #include "commands.hpp"
@@ -31,7 +32,12 @@ void add_solve(CLI::App& app, Action& action) {
       ->capture_default_str();
   CLI::Option* rtol = cmd->add_option("--rtol", o->rtol, "With --precision auto: largest certified relative error of the velocities")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(CLI::Validator(
+          [](std::string& text) {  // CLI::Range lets NaN through
+            const double x = std::strtod(text.c_str(), nullptr);
+            return x >= 0 && x <= 1 ? std::string() : "must be a number from 0 to 1, got '" + text + "'";
+          },
+          "in [0, 1]"));
   cmd->add_flag("--json", o->json, "Print JSON for programs instead of text");
   cmd->add_option("--plot", o->plot, "Folder for the trajectory plot (scenes with a [flight] table)")->check(non_empty());
   cmd->callback([o, rtol, &action] {

@@ -1,18 +1,23 @@
 #include "superball/numeric/certify.hpp"
 
+#include "detail/complete.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace superball::numeric {
 
+namespace {
+
+/// certify() of a problem whose data lie in the safe window of S.
 template <class S>
-Certificate certify(const Problem<S>& p, const Solution<S>& s) {
+Certificate certify_in_range(const Problem<S>& p, const Solution<S>& s) {
   using std::fabs;
   const int n = p.n, nc = n - 1, nf = p.fixed_bottom ? n - 1 : n;
   const auto& W = s.velocities_after;
   Certificate cert;
-  if (s.status != Status::Success) return cert;
   const int b = p.bandwidth();
   const S gamma = S(4 * (b + 4)) * std::numeric_limits<S>::epsilon() / S(2);
   // Row residuals rr_i = m_i (W_i − u_i) + (DᵀMD (W + u))_i, their sizes
@@ -56,7 +61,11 @@ Certificate certify(const Problem<S>& p, const Solution<S>& s) {
     top = i + 1;
   }
   (void)top;
-  const S E = min_mass == std::numeric_limits<S>::infinity() ? S(0) : std::sqrt(rho2) / min_mass;
+  S E = min_mass == std::numeric_limits<S>::infinity() ? S(0) : std::sqrt(rho2) / min_mass;
+  // The bodies of the fixed cluster move with the obstacle's velocity as
+  // rounded to S: off the exact one by up to u·|u_n| (0 when it is a dyadic
+  // number such as 39/4, not when it is 9.75e-126).
+  if (p.fixed_bottom) E = std::max(E, S(fabs(p.u[n - 1]) * std::numeric_limits<S>::epsilon() / S(2)));
   // The case: open gaps beyond 2E, closed reactions beyond their bounds.
   bool certain = std::isfinite(static_cast<double>(E));
   S lambda = S(0), lambda_bound = S(0);
@@ -75,6 +84,24 @@ Certificate certify(const Problem<S>& p, const Solution<S>& s) {
   cert.case_certain = certain;
   cert.velocity_error = static_cast<double>(E);
   cert.relative_error = vmax > 0 ? static_cast<double>(E / vmax) : static_cast<double>(E);
+  return cert;
+}
+
+}  // namespace
+
+template <class S>
+Certificate certify(const Problem<S>& p, const Solution<S>& s) {
+  // Nothing is certain of an answer that is not a success, not finite, or of
+  // data S does not hold; data outside the safe window are certified in the
+  // units of the scaled problem solve() solved (the bound scales back by
+  // 2^velocity, the relative bound is the same).
+  const Scaling k = scaling_of(p);
+  if (s.status != Status::Success || !p.in_range || !k.fits || !detail::all_finite(s)) return Certificate{};
+  if (k.identity()) return certify_in_range(p, s);
+  Solution<S> scaled = s;
+  if (!detail::scale_solution(scaled, k, -1)) return Certificate{};
+  Certificate cert = certify_in_range(p.scaled(k), scaled);
+  cert.velocity_error = static_cast<double>(times_power_of_two(static_cast<S>(cert.velocity_error), k.velocity));
   return cert;
 }
 
@@ -109,6 +136,8 @@ bool try_precision(const ExactScene& scene, double rtol, AutoChoice& choice) {
 }  // namespace
 
 AutoChoice choose_precision(const ExactScene& scene, double rtol) {
+  if (!(rtol >= 0 && rtol <= 1))
+    throw std::invalid_argument("choose_precision(): rtol must be a number from 0 to 1, got " + to_string(rtol, 3));
   AutoChoice choice;
   if (try_precision<double>(scene, rtol, choice)) {
     choice.precision = {Precision::Kind::Double, 0};

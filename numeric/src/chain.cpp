@@ -79,8 +79,18 @@ void ChainSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
 template <class S>
 Solution<S> solve(const Problem<S>& problem) {
   const Settings<S> settings = Settings<S>::defaults(problem.digits);
-  if (solves_as_chain(problem)) return ChainSolver<S>(settings).compute(problem);
-  return CollisionSolver<S>(settings).compute(problem);
+  auto solve_as_given = [&settings](const Problem<S>& p) {
+    if (solves_as_chain(p)) return ChainSolver<S>(settings).compute(p);
+    return CollisionSolver<S>(settings).compute(p);
+  };
+  // Data outside the safe window of S are solved scaled by powers of two
+  // (scaling_of()) and the answer scaled back exactly; an answer S cannot
+  // represent, or data whose magnitudes no scaling fits, are a numerical issue.
+  const Scaling scaling = scaling_of(problem);
+  if (scaling.identity() && scaling.fits) return solve_as_given(problem);
+  Solution<S> out = solve_as_given(problem.scaled(scaling));
+  if (!detail::scale_solution(out, scaling, 1) || !scaling.fits) out.status = Status::NumericalIssue;
+  return out;
 }
 
 template Solution<double> solve(const Problem<double>&);

@@ -41,14 +41,15 @@ void CollisionSolver<S>::start(const Problem<S>& p, int bandwidth, Solution<S>& 
   T_.resize(nc_, nc_);
   W0_.resize(nf_);
   t_.resize(nc_);
-  factorized_ = tableau_ = false;
+  factorized_ = tableau_ = singular_ = false;
   answered_ = system_.solve(p, basic_lambda_, out.velocities_after, lambda_);
   if (answered_) {
     for (int i = 0; i < nf_; ++i) W0_(i) = out.velocities_after[static_cast<std::size_t>(i)];
-  } else {  // rounding broke the definiteness of A: the dense factors say what they can
-    factorize();
+  } else if (factorize()) {  // rounding broke the definiteness of A: the dense factors say what they can
     for (int i = 0; i < nf_; ++i) W0_(i) = system_.rhs()[static_cast<std::size_t>(i)];
     solve_in_place(W0_);
+  } else {  // a pivot of A is not positive in S: nothing to pivot on (compute() says so)
+    W0_.setZero();
   }
   for (int c = 0; c < nc_; ++c) t_(c) = c + 1 < nf_ ? S(W0_(c) - W0_(c + 1)) : S(W0_(c) - p.u[n_ - 1]);
 }
@@ -65,15 +66,18 @@ void CollisionSolver<S>::solve_in_place(V&& x) const {
 }
 
 template <class S>
-void CollisionSolver<S>::factorize() {
+bool CollisionSolver<S>::factorize() {
   // The lower triangle of A on the free bodies from the band, then its LDLᵀ
   // in place, no pivoting (A is symmetric positive definite: positive
   // masses plus DᵀMD with M positive semi-definite).
   const int b = system_.bandwidth();
   for (int i = 0; i < nf_; ++i)
     for (int j = 0; j <= i; ++j) A_(i, j) = i - j <= b ? system_.band(i, i - j) : S(0);
-  for (int k = 0; k < nf_; ++k) {
+  singular_ = false;
+  for (int k = 0; k < nf_ && !singular_; ++k) {
     const S d = A_(k, k);
+    singular_ = !(d > S(0));  // no division by it (CLN floats throw on 0)
+    if (singular_) break;
     for (int j = k + 1; j < nf_; ++j) {
       const S ljk = A_(j, k) / d;
       for (int i = j; i < nf_; ++i) A_(i, j) -= A_(i, k) * ljk;
@@ -81,12 +85,14 @@ void CollisionSolver<S>::factorize() {
     for (int i = k + 1; i < nf_; ++i) A_(i, k) /= d;
   }
   factorized_ = true;
+  return !singular_;
 }
 
 template <class S>
 void CollisionSolver<S>::form_tableau() {
   // G = A⁻¹ C_Fᵀ, one solve per contact, and the tableau T = N = C G.
   if (!factorized_) factorize();
+  if (singular_) return;  // no A⁻¹ in S: pivot_on() declines
   G_.setZero();
   for (int c = 0; c < nc_; ++c) {
     G_(c, c) = S(1);
@@ -108,6 +114,7 @@ typename CollisionSolver<S>::Lcp CollisionSolver<S>::lcp(const Problem<S>& p) {
   Solution<S> open;
   start(p, b, open);
   form_tableau();
+  if (singular_) throw std::domain_error("CollisionSolver::lcp(): A = diag(m) + DᵀMD is not positive definite in this arithmetic");
   return {T_, t_, G_, W0_};
 }
 
@@ -135,6 +142,7 @@ bool CollisionSolver<S>::pivot_on(int p) {
   // Principal pivot transform on (p, p): exchange the basic and non-basic
   // variables of contact p, an O(nc²) update of the tableau.
     if (!tableau_) form_tableau();
+    if (singular_) return false;
     answered_ = false;
     const S piv = T_(p, p);
     if (!(piv > S(0))) return false;
@@ -170,14 +178,14 @@ int CollisionSolver<S>::check(const Problem<S>& p) const {
   const int b = p.check("CollisionSolver::compute()");
   if (p.n > dense_solver_max_bodies)
     throw std::invalid_argument("CollisionSolver::compute(): " + std::to_string(p.n) + " bodies: the dense solver takes at most " +
-                                std::to_string(dense_solver_max_bodies) + " (use ChainSolver for chains whose M is banded)");
+                                std::to_string(dense_solver_max_bodies) + " (ExactScene::from() refuses such scenes by name; use ChainSolver for chains whose M is banded)");
   return b;
 }
 
 template <class S>
 void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
   start(p, check(p), out);
-  const int pivots = pivot();
+  const int pivots = singular_ ? -2 : pivot();
   out.status = pivots == -1 ? Status::NoConvergence : pivots == -2 ? Status::NumericalIssue : Status::Success;
   out.pivots = std::max(pivots, 0);
   finish(p, out, false);

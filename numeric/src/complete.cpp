@@ -86,11 +86,55 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   }
   out.residual_motion = motion;
   out.residual_complementarity = comp;
+  // Written so that a NaN residual fails; and every value of the answer must
+  // be a number (an overflow in S gives ±inf or NaN, whose residuals can
+  // compare as small), from data S holds.
   const double tol = to_double(settings.residual);
-  if (out.status == Status::Success && (motion > tol || comp > tol)) out.status = Status::NumericalIssue;
+  if (out.status == Status::Success && !(motion <= tol && comp <= tol)) out.status = Status::NumericalIssue;
+  if (out.status == Status::Success && !(p.in_range && all_finite(out))) out.status = Status::NumericalIssue;
   if (out.status == Status::Success && !system.definite()) out.status = Status::NumericalIssue;
 }
 
+template <class S>
+bool all_finite(const Solution<S>& s) {
+  bool ok = finite(s.kinetic_energy_before) && finite(s.kinetic_energy_after) && finite(s.dissipation) &&
+            finite(s.momentum_before) && finite(s.momentum_after);
+  for (const S& x : s.velocities_after) ok = ok && finite(x);
+  for (const S& x : s.reactions) ok = ok && finite(x);
+  return ok;
+}
+
+template <class S>
+bool scale_solution(Solution<S>& s, const Scaling& k, int direction) {
+  // Velocities scale by μ = 2^velocity, reactions and momenta by λμ,
+  // energies by λμ² (λ = 2^mass).  Exact unless a value leaves the range of
+  // S, which the round trip detects.
+  bool exact = true;
+  auto scale = [&](S& x, int e) {
+    const S y = times_power_of_two(x, direction * e);
+    exact = exact && finite(y) && times_power_of_two(y, -direction * e) == x;
+    x = y;
+  };
+  const int v = k.velocity, r = k.mass + k.velocity, e = k.mass + 2 * k.velocity;
+  for (S& x : s.velocities_after) scale(x, v);
+  for (S& x : s.gaps) scale(x, v);
+  for (S& x : s.reactions) scale(x, r);
+  scale(s.momentum_before, r);
+  scale(s.momentum_after, r);
+  scale(s.kinetic_energy_before, e);
+  scale(s.kinetic_energy_after, e);
+  scale(s.dissipation, e);
+  return exact;
+}
+
+template bool all_finite(const Solution<double>&);
+template bool all_finite(const Solution<long double>&);
+template bool all_finite(const Solution<cln::cl_R>&);
+template bool all_finite(const Solution<cln::cl_RA>&);
+template bool scale_solution(Solution<double>&, const Scaling&, int);
+template bool scale_solution(Solution<long double>&, const Scaling&, int);
+template bool scale_solution(Solution<cln::cl_R>&, const Scaling&, int);
+template bool scale_solution(Solution<cln::cl_RA>&, const Scaling&, int);
 template void complete_solution(const Problem<double>&, ClusterSystem<double>&, const std::vector<double>&, const std::vector<char>&, bool,
                                 const Settings<double>&, CheckWorkspace<double>&, Solution<double>&);
 template void complete_solution(const Problem<long double>&, ClusterSystem<long double>&, const std::vector<long double>&, const std::vector<char>&, bool,

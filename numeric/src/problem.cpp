@@ -170,6 +170,14 @@ ExactScene ExactScene::from(const Scene& scene) {
                      ") is " + text(minor->determinant) + " < 0");
   }
   check_contacts_close(s, scene.origin);
+  // The dense solver's size limit, up front (solves_as_chain(): a banded
+  // DᵀMD, 2b + 1 < n, goes to the chain solver, which has none).
+  int b = 0;
+  for (const Entry<cln::cl_RA>& e : s.entries) b = std::max(b, e.span());
+  if (2 * b + 1 >= s.n && s.n > dense_solver_max_bodies)
+    throw InputError(scene.origin + ": body: " + std::to_string(s.n) + " bodies with M coupling pairs " + std::to_string(b) +
+                     " bodies apart: the dense solver takes at most " + std::to_string(dense_solver_max_bodies) +
+                     " bodies (a longer chain needs M banded: couplings at most (n - 2)/2 bodies apart)");
   return s;
 }
 
@@ -196,25 +204,83 @@ Problem<S> Problem<S>::from(const ExactScene& s, int digits) {
   p.n = s.n;
   p.fixed_bottom = s.fixed_bottom;
   p.digits = digits;
-  for (const auto& m : s.mass) p.mass.push_back(T::from(m, digits));
-  for (const auto& e : s.entries) p.entries.push_back({e.i, e.j, e.k, e.l, T::from(e.value, digits)});
+  // x converted from r; a nonzero r that S rounds to zero, a subnormal or
+  // infinity means S cannot hold the scene.
+  auto held = [&p](const S& x, bool nonzero) {
+    if constexpr (std::is_floating_point<S>::value)
+      if (!std::isfinite(x) || (nonzero && !(std::fabs(x) >= std::numeric_limits<S>::min()))) p.in_range = false;
+    return x;
+  };
+  auto convert = [&](const cln::cl_RA& r) { return held(T::from(r, digits), !cln::zerop(r)); };
+  for (const auto& m : s.mass) p.mass.push_back(convert(m));
+  for (const auto& e : s.entries) p.entries.push_back({e.i, e.j, e.k, e.l, convert(e.value)});
   if (s.homogeneous()) {
-    for (const auto& f : s.fall) p.u.push_back(T::from(f, digits));
+    for (const auto& f : s.fall) p.u.push_back(convert(f));
     if (s.a_squared && !T::sqrt(*s.a_squared, digits, p.unit)) {
       p.unit = S(1);
       p.unit_exact = false;
     }
+    held(p.unit, s.a_squared && !cln::zerop(*s.a_squared));
   } else if (const auto u = s.exact_u()) {
-    for (const auto& x : *u) p.u.push_back(T::from(x, digits));
+    for (const auto& x : *u) p.u.push_back(convert(x));
   } else if (T::exact) {
     throw InputError(s.origin + ": exact arithmetic needs rational velocities: the fall speed sqrt(" + text(*s.a_squared) +
                      ") is irrational and some bodies have their own velocity; give fall_speed, or choose another precision");
   } else {
     S a;
     T::sqrt(*s.a_squared, digits, a);
-    for (std::size_t i = 0; i < s.fall.size(); ++i) p.u.push_back(T::from(s.fall[i], digits) * a + T::from(s.velocity[i], digits));
+    held(a, !cln::zerop(*s.a_squared));
+    for (std::size_t i = 0; i < s.fall.size(); ++i)
+      p.u.push_back(held(T::from(s.fall[i], digits) * a + T::from(s.velocity[i], digits), !cln::zerop(s.velocity[i]) || !cln::zerop(s.fall[i])));
   }
   return p;
+}
+
+template <class S>
+Problem<S> Problem<S>::scaled(const Scaling& k) const {
+  Problem<S> p = *this;
+  for (S& m : p.mass) m = times_power_of_two(m, -k.mass);
+  for (Entry<S>& e : p.entries) e.value = times_power_of_two(e.value, -k.mass);
+  for (S& x : p.u) x = times_power_of_two(x, -k.velocity);
+  return p;
+}
+
+template <class S>
+Scaling scaling_of(const Problem<S>& p) {
+  Scaling k;
+  if constexpr (std::is_floating_point<S>::value) {
+    constexpr int w = safe_exponent<S>();
+    // The smallest and largest nonzero magnitudes of a group (two compares
+    // per datum: this runs before every solve), then their binary exponents
+    // e (|x| = f·2^e, 1/2 <= f < 1): lo … hi; inside the window means −w < e <= w.
+    struct Span {
+      S smallest = std::numeric_limits<S>::infinity(), largest = S(0);
+      void add(const S& x) {
+        const S a = std::fabs(x);
+        if (a < smallest && a > S(0)) smallest = a;
+        if (a > largest) largest = a;
+      }
+    };
+    Span masses, velocities;
+    for (const S& m : p.mass) masses.add(m);
+    for (const Entry<S>& e : p.entries) masses.add(e.value);
+    for (const S& x : p.u) velocities.add(x);
+    // Shifting by c = lo + ⌊(hi − lo)/2⌋ puts every exponent inside when hi − lo < 2w.
+    auto centre = [&k](const Span& g, int& shift) {
+      if (!(g.largest > S(0))) return;  // no nonzero datum
+      int lo = 0, hi = 0;
+      std::frexp(g.smallest, &lo);
+      std::frexp(g.largest, &hi);
+      if (lo > -w && hi <= w) return;
+      if (hi - lo >= 2 * w) k.fits = false;
+      shift = lo + (hi - lo) / 2;
+    };
+    centre(masses, k.mass);
+    centre(velocities, k.velocity);
+  } else {
+    (void)p;
+  }
+  return k;
 }
 
 template <class S>
@@ -238,6 +304,10 @@ int Problem<S>::check(const char* who) const {
   return b;
 }
 
+template Scaling scaling_of(const Problem<double>&);
+template Scaling scaling_of(const Problem<long double>&);
+template Scaling scaling_of(const Problem<cln::cl_R>&);
+template Scaling scaling_of(const Problem<cln::cl_RA>&);
 template struct Problem<double>;
 template struct Problem<long double>;
 template struct Problem<cln::cl_R>;

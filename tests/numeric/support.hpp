@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -94,8 +95,9 @@ inline constexpr double kForwardErrorFactor = 8;
 /// NumericalIssue; their results must still satisfy every bound here.
 inline constexpr double kMustSucceedNKappa = 1e5;
 
-/// The exact rational value of a double (used for tolerances).
-inline cl_RA rational_of(double x) { return cln::rational(cln::cl_DF(x)); }
+inline cl_RA exact_value(long double x);
+/// The exact rational value of a double (used for tolerances; subnormals too).
+inline cl_RA rational_of(double x) { return exact_value(static_cast<long double>(x)); }
 
 template <class S>
 cl_RA residual_tolerance() {
@@ -105,7 +107,7 @@ cl_RA residual_tolerance() {
 /// The exact rational value of a scalar (floats are dyadic or decimal rationals).
 inline cl_RA exact_value(const cl_RA& x) { return x; }
 inline cl_RA exact_value(const cl_R& x) { return cln::rational(x); }
-inline cl_RA exact_value(double x) { return cln::rational(cln::cl_DF(x)); }
+inline cl_RA exact_value(double x) { return exact_value(static_cast<long double>(x)); }
 inline cl_RA exact_value(long double x) {
   if (x == 0) return 0;
   int e = 0;
@@ -155,7 +157,13 @@ long double condition_number(const Problem<S>& p) {
   Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic> A = K.topLeftCorner(nf, nf);
   for (int i = 0; i < nf; ++i) A(i, i) += static_cast<long double>(approx(exact_value(p.mass[static_cast<std::size_t>(i)])));
   Eigen::SelfAdjointEigenSolver<decltype(A)> eig(A, Eigen::EigenvaluesOnly);
-  return eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
+  // λ_min(A) >= the smallest free mass (M is positive semi-definite): where
+  // long double cannot resolve λ_min (κ beyond 1/u, e.g. masses 1e-40 and 1
+  // under K = 1e40), that bound keeps κ an upper bound instead of ∞ or < 0.
+  long double lightest = std::numeric_limits<long double>::infinity();
+  for (int i = 0; i < nf; ++i)
+    lightest = std::min(lightest, static_cast<long double>(approx(exact_value(p.mass[static_cast<std::size_t>(i)]))));
+  return eig.eigenvalues().maxCoeff() / std::max(eig.eigenvalues().minCoeff(), lightest);
 }
 
 /// The forward error bound kForwardErrorFactor · n · κ(A) · u of a problem (0 when S is exact).
@@ -309,6 +317,51 @@ inline RandomScene random_scene(std::uint64_t seed, const RandomSceneOptions& op
   }
   r.toml = os.str();
   return r;
+}
+
+/// A scene of the extreme-exponent family: a random_scene() of 2 to 7 bodies
+/// with its masses and M multiplied by 10^mass_exponent and its velocities
+/// (explicit ones, and the fall speed) by 10^velocity_exponent, exponents
+/// from ±20 to ±300 (or 0).  Its own seed stream: seed k scales the property
+/// family's scene kExtremeSeedBase + k, a seed range no property run reaches,
+/// so the property family is untouched.
+struct ExtremeScene {
+  std::uint64_t seed = 0;
+  RandomScene base;
+  int mass_exponent = 0, velocity_exponent = 0;
+
+  /// \p base_scene (ExactScene::from(base.scene())) scaled, exactly.
+  ExactScene exact(const ExactScene& base_scene) const {
+    ExactScene s = base_scene;
+    s.origin = "extreme-scene-" + std::to_string(seed) + ".toml";
+    const cl_RA lambda = cln::expt(cl_RA(10), mass_exponent), mu = cln::expt(cl_RA(10), velocity_exponent);
+    for (cl_RA& m : s.mass) m = m * lambda;
+    for (auto& e : s.entries) e.value = e.value * lambda;
+    for (cl_RA& v : s.velocity) v = v * mu;
+    if (s.a_squared) s.a_squared = *s.a_squared * mu * mu;
+    return s;
+  }
+  std::string describe() const {
+    return "extreme seed " + std::to_string(seed) + ": masses and M times 1e" + std::to_string(mass_exponent) +
+           ", velocities times 1e" + std::to_string(velocity_exponent) + ", of the " + base.describe();
+  }
+};
+
+inline constexpr std::uint64_t kExtremeSeedBase = std::uint64_t(1) << 40;
+
+inline ExtremeScene random_extreme_scene(std::uint64_t seed) {
+  Rng rng(seed * 0xD1342543DE82EF95ull + 0x5851F42D4C957F2Dull);
+  ExtremeScene x;
+  x.seed = seed;
+  x.base = random_scene(kExtremeSeedBase + seed, {2, 7});
+  auto exponent = [&rng] {
+    if (rng.chance(15)) return 0;
+    const int e = rng.between(20, 300);
+    return rng.chance(50) ? e : -e;
+  };
+  x.mass_exponent = exponent();
+  x.velocity_exponent = exponent();
+  return x;
 }
 
 // ---------------------------------------------------------------------------
@@ -518,6 +571,15 @@ std::optional<numeric::Certificate> certificate_of(const Problem<S>& p, const So
     (void)p, (void)s;
     return std::nullopt;
   }
+}
+
+/// Whether every velocity after, reaction and energy of \p s is a finite number.
+template <class S>
+bool finite_answer(const Solution<S>& s) {
+  bool ok = numeric::finite(s.kinetic_energy_before) && numeric::finite(s.kinetic_energy_after) && numeric::finite(s.dissipation);
+  for (const S& x : s.velocities_after) ok = ok && numeric::finite(x);
+  for (const S& x : s.reactions) ok = ok && numeric::finite(x);
+  return ok;
 }
 
 /// Max absolute difference of two vectors, exact.

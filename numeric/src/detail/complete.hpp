@@ -26,7 +26,9 @@ double to_double(const S& x) {
 /// alone (the declared entries of M, not the solver's matrices):
 ///   m(W − u) + DᵀMD(W + u) − Cᵀλ = 0 on the free bodies, and complementarity
 /// (skipped where \p imposed: the case was imposed, not solved for).
-/// Sets out.status to NumericalIssue when a residual exceeds settings.residual,
+/// Sets out.status to NumericalIssue when a residual exceeds settings.residual
+/// or is NaN, when a value of the answer is not finite or the problem's data
+/// are not held by S (Problem::in_range),
 /// or when A = diag(m) + DᵀMD (\p system, assembled for \p p) is not positive
 /// definite in S: the residual check measures a backward error, which a
 /// solution of the rounded problem passes even when rounding has made that
@@ -38,5 +40,18 @@ template <class S>
 void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std::vector<S>& lambda,
                        const std::vector<char>& active, bool imposed, const Settings<S>& settings, CheckWorkspace<S>& work,
                        Solution<S>& out);
+
+/// Whether every value of \p s (velocities, reactions, energies, momenta) is finite.
+template <class S>
+bool all_finite(const Solution<S>& s);
+
+/// Scale \p s from the units of Problem::scaled(k) to those of the original
+/// problem (\p direction = 1) or back (−1): velocities and gaps by
+/// 2^±velocity, reactions and momenta by 2^±(mass + velocity), energies and
+/// dissipation by 2^±(mass + 2·velocity).  False when some value does not
+/// scale exactly (it overflows, or underflows into the subnormals or to 0):
+/// S cannot represent that answer.
+template <class S>
+bool scale_solution(Solution<S>& s, const Scaling& k, int direction);
 
 }  // namespace superball::numeric::detail

@@ -15,6 +15,8 @@
 /// bandwidth of DᵀMD, u the unit roundoff), which the bound includes.  The
 /// case is certain when every open contact's gap exceeds 2E and every closed
 /// contact's reaction exceeds its own bound (its running sum of row bounds).
+/// With a fixed obstacle, E is at least u·|u_n|: the bodies it carries move
+/// with its velocity as rounded to S.
 
 #include <string>
 #include <vector>
@@ -32,7 +34,11 @@ struct Certificate {
 };
 
 /// Bound the error of \p solution of \p problem (see the file comment).
-/// Defined for double and long double.
+/// Defined for double and long double.  Nothing is certain (case_certain
+/// false) when the status is not Success, a value of the solution is not
+/// finite, or the data are not held by S or fit no scaling (Problem::in_range,
+/// Scaling::fits); data outside the safe window are certified in the units
+/// of the scaled problem that solve() solves.
 template <class S>
 Certificate certify(const Problem<S>& problem, const Solution<S>& solution);
 
@@ -46,6 +52,8 @@ struct AutoChoice {
 /// Solve \p scene in double, then long double, then exact rationals, and
 /// stop at the first whose case is certain and whose velocity bound is at
 /// most \p rtol (relative to the largest velocity).  Exact always qualifies.
+/// Throws std::invalid_argument("choose_precision(): ...") unless 0 <= rtol <= 1
+/// (NaN included).
 AutoChoice choose_precision(const ExactScene& scene, double rtol);
 
 /// Default `--rtol`: six significant digits of every velocity, certified.

@@ -105,9 +105,6 @@ struct Solution {
   int pivots = 0;
 };
 
-/// Largest n CollisionSolver accepts: it stores n × n matrices.
-inline constexpr int dense_solver_max_bodies = 4096;
-
 /// Reusable solver: construct once per problem size, then compute() any
 /// problem of that size; compute() does not allocate for double and long
 /// double once the workspace has its size.
@@ -154,7 +151,7 @@ class CollisionSolver {
 
  private:
   void start(const Problem<S>& p, int bandwidth, Solution<S>& out);
-  void factorize();
+  bool factorize();  ///< false (and singular_) at a pivot of A that is not positive
   void form_tableau();
   template <class V>
   void solve_in_place(V&& x) const;
@@ -172,6 +169,7 @@ class CollisionSolver {
   bool factorized_ = false;  ///< whether A_ holds the factors for the current problem
   bool tableau_ = false;     ///< whether G_ and T_ are formed for the current problem
   bool answered_ = false;    ///< whether the output holds the cluster answer of the current case
+  bool singular_ = false;    ///< whether factorize() met a pivot that is not positive (no A⁻¹ in S)
   Vector t_;          ///< its constant column (starts as q)
   std::vector<char> basic_lambda_;  ///< contact c: λ_c basic (closed)
   std::vector<S> lambda_;           ///< λ on every contact, 0 where open
@@ -181,7 +179,11 @@ class CollisionSolver {
 
 /// The solution of \p problem with default settings, by the formulation that
 /// suits it: the banded ChainSolver (chain.hpp) when M couples only nearby
-/// pairs (solves_as_chain()), else the dense CollisionSolver.
+/// pairs (solves_as_chain()), else the dense CollisionSolver.  In double and
+/// long double, data outside the safe window of S are solved scaled by powers
+/// of two (scaling_of(), Problem::scaled()) and the answer is scaled back
+/// exactly; the status is NumericalIssue when that answer is not
+/// representable in S or when no scaling fits the data (Scaling::fits).
 template <class S>
 Solution<S> solve(const Problem<S>& problem);
 

@@ -7,9 +7,11 @@
 #include <cln/rational.h>
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "superball/cases/model.hpp"
@@ -62,6 +64,23 @@ struct ExactScene {
   std::optional<std::vector<cln::cl_RA>> exact_u() const;
 };
 
+/// Powers of two that bring the data of a problem into the middle of the
+/// range of its floating-point type.  The collision is invariant under
+/// m → λm, M → λM, U⁻ → μU⁻ (equations (5): percussions and reactions scale
+/// by λμ, velocities after by μ, energies by λμ²), so a problem solved with
+/// λ = 2^−mass and μ = 2^−velocity gives the answer of the original one,
+/// scaled back exactly, wherever that answer is representable.
+struct Scaling {
+  int mass = 0;      ///< masses and M were divided by 2^mass
+  int velocity = 0;  ///< velocities were divided by 2^velocity
+  /// Whether the magnitudes of the masses and of M, and those of the
+  /// velocities, each span at most the safe window of the type (see
+  /// safe_exponent()): otherwise no scaling fits them and products of the
+  /// solve can overflow or underflow.
+  bool fits = true;
+  bool identity() const { return mass == 0 && velocity == 0; }
+};
+
 /// A collision problem in scalar type S (velocities in units of the unit).
 template <class S>
 struct Problem {
@@ -73,10 +92,22 @@ struct Problem {
   S unit = S(1);            ///< multiply velocities by this (a, or 1)
   bool unit_exact = true;   ///< false when the unit is irrational and S is exact (unit is then 1 here)
   int digits = 0;           ///< for CLN floats: the decimal digits
+  /// False when S cannot hold the scene: some nonzero datum (a mass, an
+  /// entry of M, a velocity or the unit) rounded to zero, to a subnormal
+  /// number or to infinity.  Every solve of such a problem ends with
+  /// Status::NumericalIssue (double and long double only; CLN types always
+  /// hold the scene).
+  bool in_range = true;
 
   /// Convert \p scene to S.  Throws superball::InputError when S is exact and
-  /// the scene needs an irrational number inside the solve.
+  /// the scene needs an irrational number inside the solve.  A datum outside
+  /// the range of S is not an error of the scene: in_range says so.
   static Problem from(const ExactScene& scene, int digits = 0);
+
+  /// The same problem with masses and M multiplied by 2^−scaling.mass and
+  /// velocities by 2^−scaling.velocity: exact in binary floating point (no
+  /// datum leaves the range when the scaling comes from scaling_of()).
+  Problem scaled(const Scaling& scaling) const;
 
   /// Misuse check at a solver's entry point: at least 2 bodies, one mass
   /// and one velocity per body, every entry of M on pairs i < j, k < l of
@@ -93,6 +124,33 @@ struct Problem {
   }
 };
 
+/// The binary exponent w of the safe window [2^−w, 2^w] of a floating-point
+/// type S: max_exponent / 4 (256 for double, 4096 for long double), so that
+/// products of up to three data (the energies m·u²) and their sums stay
+/// normal.  0 for the CLN types, whose exponent range no scene reaches (no
+/// window, no scaling).
+template <class S>
+constexpr int safe_exponent() {
+  if constexpr (std::is_floating_point<S>::value) {
+    return std::numeric_limits<S>::max_exponent / 4;
+  } else {
+    return 0;
+  }
+}
+
+/// The Scaling of \p p: the identity when every nonzero mass, entry of M and
+/// velocity already lies in the safe window (so such problems are solved
+/// bit for bit as given), else the powers of two nearest the geometric
+/// middle of each group's magnitudes.  O(n + entries).
+template <class S>
+Scaling scaling_of(const Problem<S>& p);
+
+/// Largest n CollisionSolver accepts: it stores n × n matrices, and a
+/// falling stack that pivots on every contact takes 31 s of CPU in double at
+/// this size, 78 s at 2048 (O(n³); docs/PERFORMANCE.md).  ExactScene::from
+/// refuses a scene over it whose M is not banded, by the file's name.
+inline constexpr int dense_solver_max_bodies = 1536;
+
 /// The smallest principal minor check: nullopt when the symmetric matrix
 /// \p M (size m) is positive semi-definite, else the indices of a principal
 /// submatrix with a negative determinant and that determinant.
@@ -106,6 +164,10 @@ using SymmetricRows = std::vector<std::map<int, cln::cl_RA>>;
 /// Sparse elimination in index order, O(m b²) for a matrix of bandwidth b.
 std::optional<NegativeMinor> find_negative_minor(SymmetricRows M);
 
+extern template Scaling scaling_of(const Problem<double>&);
+extern template Scaling scaling_of(const Problem<long double>&);
+extern template Scaling scaling_of(const Problem<cln::cl_R>&);
+extern template Scaling scaling_of(const Problem<cln::cl_RA>&);
 extern template struct Problem<double>;
 extern template struct Problem<long double>;
 extern template struct Problem<cln::cl_R>;

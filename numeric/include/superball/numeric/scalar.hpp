@@ -9,8 +9,10 @@
 #include <cln/real.h>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 namespace Eigen {
 
@@ -80,6 +82,28 @@ struct ScalarTraits<cln::cl_RA> {
   /// True only when \p square is the square of a rational.
   static bool sqrt(const cln::cl_RA& square, int digits, cln::cl_RA& out);
 };
+
+/// x · 2^k: std::ldexp for double and long double (exact barring overflow
+/// and underflow), an exact product for the CLN types.
+template <class S>
+S times_power_of_two(const S& x, int k) {
+  if constexpr (std::is_floating_point<S>::value) {
+    return std::ldexp(x, k);
+  } else {
+    return x * cln::expt(cln::cl_RA(2), k);
+  }
+}
+
+/// Whether \p x is a finite number (always true for the CLN types).
+template <class S>
+bool finite(const S& x) {
+  if constexpr (std::is_floating_point<S>::value) {
+    return std::isfinite(x);
+  } else {
+    (void)x;
+    return true;
+  }
+}
 
 /// Decimal text of \p x with \p significant digits (exact rationals as "p/q").
 std::string to_string(double x, int significant = 17);
