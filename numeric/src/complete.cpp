@@ -5,6 +5,62 @@
 
 namespace superball::numeric::detail {
 
+namespace {
+
+/// The root of body \p i in the union-find forest \p parent (path halving).
+int root_of(std::vector<int>& parent, int i) {
+  while (parent[static_cast<std::size_t>(i)] != i) {
+    auto& up = parent[static_cast<std::size_t>(i)];
+    up = parent[static_cast<std::size_t>(up)];
+    i = up;
+  }
+  return i;
+}
+
+/// The momentum balance of every free group of bodies, a check the rows of
+/// the equations of motion cannot make.  Bodies joined by an entry of M or by
+/// a contact solved as closed form a group; summed over a group that does not
+/// hold a fixed bottom, the percussions of M and of the closed contacts cancel
+/// in pairs and the open contacts carry none, so Σ m (W − u) = 0 over the
+/// group, exactly.  Returns the largest |Σ m (W − u)| / Σ m (|W| + |u|).
+/// Each row of the equations is measured against its largest terms, which are
+/// those of M when the masses are light against M (masses 1e-200 with K of
+/// order 1): there the rows hold to rounding while the common velocity of a
+/// group, set by the masses alone, is lost; this balance sees it.
+template <class S>
+double group_momentum_residual(const Problem<S>& p, const std::vector<S>& W, const std::vector<char>& active,
+                               CheckWorkspace<S>& work) {
+  const int n = p.n, nf = p.fixed_bottom ? n - 1 : n;
+  auto& parent = work.group;
+  parent.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) parent[static_cast<std::size_t>(i)] = i;
+  const auto join = [&parent](int a, int b) { parent[static_cast<std::size_t>(root_of(parent, a))] = root_of(parent, b); };
+  for (const Entry<S>& e : p.entries) {
+    if (e.value == S(0)) continue;
+    join(e.i, e.j), join(e.k, e.l), join(e.i, e.k);
+  }
+  for (int c = 0; c + 1 < n; ++c)
+    if (active[static_cast<std::size_t>(c)]) join(c, c + 1);
+  auto& sum = work.momentum;
+  sum.assign(static_cast<std::size_t>(n), Sized<S>{});
+  for (int i = 0; i < nf; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    sum[static_cast<std::size_t>(root_of(parent, i))].add(p.mass[k] * (W[k] - p.u[k]),
+                                                          p.mass[k] * (abs_value<S>(W[k]) + abs_value<S>(p.u[k])));
+  }
+  const int anchored = p.fixed_bottom ? root_of(parent, n - 1) : -1;  // the obstacle takes momentum
+  S worst = S(0);  // in S, as the rows: momenta of 1e-308 are beyond double's range
+  for (int r = 0; r < n; ++r) {
+    const auto k = static_cast<std::size_t>(r);
+    if (parent[k] != r || r == anchored) continue;
+    const S v = abs_value<S>(sum[k].value()), size = sum[k].size();
+    if (size > S(0) && v > worst * size) worst = v / size;
+  }
+  return to_double(worst);
+}
+
+}  // namespace
+
 template <class S>
 void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std::vector<S>& lambda,
                        const std::vector<char>& active, bool imposed, const Settings<S>& settings, CheckWorkspace<S>& work,
@@ -54,7 +110,7 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   for (int c = 0; c < nc; ++c) dissipation += out.reactions[static_cast<std::size_t>(c)] * S(y[c].value() - y[c + 1].value()) / S(2);
   out.dissipation = dissipation;
 
-  double motion = 0;
+  S motion_s = S(0);  // in S: rows of 1e-308 in CLN floats are beyond double's range
   for (int i = 0; i < nf; ++i) {
     const auto k = static_cast<std::size_t>(i);
     S r = rows[k].value(), size = rows[k].size();
@@ -64,9 +120,10 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
     if (i > 0) r += lambda[k - 1], size += abs_value<S>(lambda[k - 1]);
     rows[k].set(r, size);
     // max |r|/size, dividing only where the row beats the largest so far
-    const double rk = to_double(abs_value<S>(r)), sk = std::max(to_double(size), 1e-300);
-    if (rk > motion * sk) motion = std::max(motion, rk / sk);
+    const S ar = abs_value<S>(r);
+    if (size > S(0) && ar > motion_s * size) motion_s = ar / size;
   }
+  const double motion = std::max(to_double(motion_s), group_momentum_residual(p, W, active, work));
   // Gaps relative to the largest velocity; reactions relative to the largest
   // row of the equations of motion (momenta, percussions and reactions), so
   // that a reaction at rounding level whose sign came out wrong, where all

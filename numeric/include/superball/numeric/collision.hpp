@@ -62,6 +62,8 @@ template <class S>
 struct CheckWorkspace {
   std::vector<Sized<S>> y;     ///< per body: W + u and |W| + |u|
   std::vector<Sized<S>> rows;  ///< per body: the residual of its equation of motion and the sum of |terms|
+  std::vector<int> group;      ///< per body: union-find parent over the bodies M and the closed contacts join
+  std::vector<Sized<S>> momentum;  ///< per group: Σ m (W − u) and Σ m (|W| + |u|)
 };
 }  // namespace detail
 
