@@ -128,19 +128,26 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   // row of the equations of motion (momenta, percussions and reactions), so
   // that a reaction at rounding level whose sign came out wrong, where all
   // reactions are about 0, is not taken for a violation.
-  double comp = 0, vscale = 0, lscale = 0;
-  for (int i = 0; i < n; ++i) vscale = std::max({vscale, std::fabs(to_double(W[i])), std::fabs(to_double(p.u[i]))});
-  for (int i = 0; i < nf; ++i) lscale = std::max(lscale, to_double(rows[static_cast<std::size_t>(i)].size()));
+  // In S, as the rows: gaps of 1e-444 m/s in long double are beyond double's
+  // range, and a violated sign there would convert to a residual of 0.
+  S comp_s = S(0), vscale = S(0), lscale = S(0);
+  const auto raise = [](S& to, const S& x) {
+    if (to < x) to = x;
+  };
+  for (int i = 0; i < n; ++i) raise(vscale, abs_value<S>(W[i])), raise(vscale, abs_value<S>(p.u[i]));
+  for (int i = 0; i < nf; ++i) raise(lscale, rows[static_cast<std::size_t>(i)].size());
   for (int c = 0; c < nc; ++c) {
     const auto k = static_cast<std::size_t>(c);
-    const double w = to_double(out.gaps[k]), l = to_double(lambda[k]);
+    const S& w = out.gaps[k];
+    const S& l = lambda[k];
     if (active[k]) {
-      if (!(out.gaps[k] == S(0))) comp = std::max(comp, std::fabs(w) / std::max(vscale, 1e-300));
-      if (l < 0 && !imposed) comp = std::max(comp, -l / std::max(lscale, 1e-300));
-    } else if (w < 0 && !imposed) {
-      comp = std::max(comp, -w / std::max(vscale, 1e-300));
+      if (!(w == S(0)) && vscale > S(0)) raise(comp_s, abs_value<S>(w) / vscale);
+      if (l < S(0) && !imposed && lscale > S(0)) raise(comp_s, S(-l) / lscale);
+    } else if (w < S(0) && !imposed && vscale > S(0)) {
+      raise(comp_s, S(-w) / vscale);
     }
   }
+  const double comp = to_double(comp_s);
   out.residual_motion = motion;
   out.residual_complementarity = comp;
   // Written so that a NaN residual fails; and every value of the answer must

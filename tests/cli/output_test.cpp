@@ -62,30 +62,8 @@ class Folder {
 /// writing (without creating it), or closed when \p stdout_path is empty;
 /// standard error captured.
 RunResult run_with_stdout(const std::vector<std::string>& args, const std::string& stdout_path) {
-  Folder capture;
-  const std::string err = capture / "err", exe = SUPERBALL_EXE;
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  if (stdout_path.empty())
-    posix_spawn_file_actions_addclose(&actions, 1);
-  else
-    posix_spawn_file_actions_addopen(&actions, 1, stdout_path.c_str(), O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<std::string> argv_s = {exe};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  RunResult r;
-  pid_t pid = 0;
-  if (posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ) == 0) {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  }
-  posix_spawn_file_actions_destroy(&actions);
-  r.err = slurp(err);
-  return r;
+  using superball::test::StandardOutput;
+  return run(args, stdout_path.empty() ? StandardOutput{StandardOutput::Closed, ""} : StandardOutput{StandardOutput::Into, stdout_path});
 }
 
 /// A character device like /dev/full (1, 7: every write fails with ENOSPC),

@@ -26,15 +26,6 @@ namespace {
 
 constexpr std::uint64_t kDefaultExtremeScenes = 200;
 
-/// The environment variable \p name when set (a positive integer), else \p fallback.
-std::uint64_t setting(const char* name, std::uint64_t fallback) {
-  const char* text = std::getenv(name);
-  if (!text || !*text) return fallback;
-  const std::string s(text);
-  if (s.find_first_not_of("0123456789") != std::string::npos || s.size() > 12 || std::stoull(s) == 0)
-    throw std::invalid_argument(std::string("setting(): ") + name + " must be a positive integer, got '" + s + "'");
-  return std::stoull(s);
-}
 
 template <class S>
 class ExtremeScenes : public ::testing::Test {};
@@ -43,8 +34,8 @@ TYPED_TEST_SUITE(ExtremeScenes, Scalars, ScalarNames);
 TYPED_TEST(ExtremeScenes, RightWithinTheBoundOrNotSuccess) {
   using S = TypeParam;
   const bool exact = ScalarTraits<S>::exact;
-  const std::uint64_t scenes = setting("SUPERBALL_EXTREME_SCENES", kDefaultExtremeScenes),
-                      first = setting("SUPERBALL_EXTREME_FIRST_SEED", 1);
+  const std::uint64_t scenes = positive_setting("SUPERBALL_EXTREME_SCENES", kDefaultExtremeScenes),
+                      first = positive_setting("SUPERBALL_EXTREME_FIRST_SEED", 1);
   int declined = 0, certified = 0, scaled = 0, undecidable = 0;
   for (std::uint64_t seed = first; seed < first + scenes; ++seed) {
     const ExtremeScene x = random_extreme_scene(seed);

@@ -31,15 +31,6 @@ constexpr std::uint64_t kDefaultScenes = 250;
 /// checked on runs of at least this many scenes.
 constexpr std::uint64_t kMinScenesForCoverage = 100;
 
-/// The environment variable \p name when set (a positive integer), else \p fallback.
-std::uint64_t positive_setting(const char* name, std::uint64_t fallback) {
-  const char* text = std::getenv(name);
-  if (!text || !*text) return fallback;
-  const std::string s(text);
-  if (s.find_first_not_of("0123456789") != std::string::npos || s.size() > 12 || std::stoull(s) == 0)
-    throw std::invalid_argument(std::string("positive_setting(): ") + name + " must be a positive integer, got '" + s + "'");
-  return std::stoull(s);
-}
 /// How many seeds the property test runs: SUPERBALL_PROPERTY_SCENES, else kDefaultScenes.
 std::uint64_t property_scenes() { return positive_setting("SUPERBALL_PROPERTY_SCENES", kDefaultScenes); }
 /// The first of them: SUPERBALL_PROPERTY_FIRST_SEED, else 1.

@@ -18,10 +18,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,6 +49,21 @@ using numeric::ExactScene;
 using numeric::Problem;
 using numeric::ScalarTraits;
 using numeric::Solution;
+
+// ---------------------------------------------------------------------------
+// Settings of long runs.
+
+/// The environment variable \p name when set (a positive integer), else
+/// \p fallback: how long runs of the property tests are asked for
+/// (SUPERBALL_PROPERTY_SCENES, SUPERBALL_EXTREME_SCENES, their first seeds).
+inline std::uint64_t positive_setting(const char* name, std::uint64_t fallback) {
+  const char* text = std::getenv(name);
+  if (!text || !*text) return fallback;
+  const std::string s(text);
+  if (s.find_first_not_of("0123456789") != std::string::npos || s.size() > 12 || std::stoull(s) == 0)
+    throw std::invalid_argument(std::string("positive_setting(): ") + name + " must be a positive integer, got '" + s + "'");
+  return std::stoull(s);
+}
 
 // ---------------------------------------------------------------------------
 // Scalar types under test.

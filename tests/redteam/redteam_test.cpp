@@ -480,22 +480,28 @@ Case make_control(Rng& rng, int) {
   return c;
 }
 
+/// A `solve` of \p s with field \p field (0 the top mass, 1 the first K,
+/// 2 the fall speed, 3 the top velocity) spelled \p v, which must be refused.
+Case refused_with(Spec s, int field, const std::string& v) {
+  if (field == 0) s.mass[0] = v;
+  if (field == 1) s.K[0].second = v;
+  if (field == 2) s.fall_speed = v, s.drop_height = "", s.g = "";
+  if (field == 3) s.velocity[0] = v;
+  Case c;
+  c.files["scene.toml"] = s.toml();
+  c.runs = {Command{{"solve", "@/scene.toml"}}};
+  c.expect = Expect::Refused;
+  return c;
+}
+
 /// Numbers whose underscores TOML forbids, bare or in strings.
 Case make_underscore(Rng& rng, int index) {
-  Case c;
   static const std::vector<std::string> spellings = {"\"_1_\"", "\"1__0\"", "\"1_\"", "\"_1\"", "\"1_/3\"", "\"1/_3\"",
                                                      "1__0", "_1", "1_", "1_.5", "1._5", "1e_3", "\"1e_3\""};
   const std::string v = index == 0 ? "\"_1_\"" : pick(rng, spellings);
   Spec s = random_spec(rng);
   const int field = index == 0 ? 0 : between(rng, 0, 3);
-  if (field == 0) s.mass[0] = v;
-  if (field == 1) s.K[0].second = v;
-  if (field == 2) s.fall_speed = v, s.drop_height = "", s.g = "";
-  if (field == 3) s.velocity[0] = v;
-  c.files["scene.toml"] = s.toml();
-  c.runs = {Command{{"solve", "@/scene.toml"}}};
-  c.expect = Expect::Refused;
-  return c;
+  return refused_with(s, field, v);
 }
 
 /// inf / +inf / nan spellings: the bottom mass's spellings mean one thing;
@@ -517,14 +523,7 @@ Case make_special(Rng& rng, int index) {
   }
   const std::string v = coin(rng, 0.7) ? pick(rng, bad) : pick(rng, infs);
   const int field = between(rng, 0, 3);
-  if (field == 0) s.mass[0] = v;
-  if (field == 1) s.K[0].second = v;
-  if (field == 2) s.fall_speed = v, s.drop_height = "", s.g = "";
-  if (field == 3) s.velocity[0] = v;
-  c.files["scene.toml"] = s.toml();
-  c.runs = {Command{{"solve", "@/scene.toml"}}};
-  c.expect = Expect::Refused;
-  return c;
+  return refused_with(s, field, v);
 }
 
 /// Scene paths that are not regular files, and standard input.

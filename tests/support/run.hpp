@@ -45,16 +45,30 @@ inline std::string slurp(const std::string& path) {
   return os.str();
 }
 
-/// Run `superball ARGS...`, standard output and error captured through
-/// temporary files (removed afterwards).
-inline RunResult run(const std::vector<std::string>& args) {
+/// Where a run's standard output goes: captured (the default), closed, or
+/// into an existing path opened for writing without creating it (a FIFO, a
+/// device, a file).
+struct StandardOutput {
+  enum Kind { Captured, Closed, Into } kind = Captured;
+  std::string path;  ///< for Into
+};
+
+/// Run `superball ARGS...`, standard error (and standard output, unless
+/// \p stdout_to says otherwise) captured through temporary files, removed
+/// afterwards.
+inline RunResult run(const std::vector<std::string>& args, const StandardOutput& stdout_to = {}) {
   static int counter = 0;
   const std::string exe = SUPERBALL_EXE;
   const std::string base = ::testing::TempDir() + "superball-run-" + std::to_string(::getpid()) + "-" + std::to_string(++counter);
   const std::string out = base + ".out", err = base + ".err";
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (stdout_to.kind == StandardOutput::Captured)
+    posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  else if (stdout_to.kind == StandardOutput::Closed)
+    posix_spawn_file_actions_addclose(&actions, 1);
+  else
+    posix_spawn_file_actions_addopen(&actions, 1, stdout_to.path.c_str(), O_WRONLY, 0);
   posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   std::vector<std::string> argv_s = {exe};
   argv_s.insert(argv_s.end(), args.begin(), args.end());
@@ -69,7 +83,7 @@ inline RunResult run(const std::vector<std::string>& args) {
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   }
   posix_spawn_file_actions_destroy(&actions);
-  r.out = slurp(out);
+  if (stdout_to.kind == StandardOutput::Captured) r.out = slurp(out);
   r.err = slurp(err);
   std::remove(out.c_str());
   std::remove(err.c_str());
