@@ -3,14 +3,14 @@
 #   1. the test suite (Release build, ctest)
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer
 #   3. the libFuzzer target over scene parsing and solving, 60 s from tests/fuzz/corpus
-#   4. the red-team suite (tests/redteam), hostile scenes and command lines for 120 s
+#   4. the red-team suite (tests/redteam), hostile scenes and command lines for 60 s
 # STAGES="1" (or "1 2", …) runs a subset; FUZZ_SECONDS changes stage 3's length, FUZZ_SEED its seed;
 # REDTEAM_SECONDS and REDTEAM_SEED the same for stage 4.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 STAGES="${STAGES:-1 2 3 4}"
 FUZZ_SECONDS="${FUZZ_SECONDS:-60}"
 FUZZ_SEED="${FUZZ_SEED:-1}"
-REDTEAM_SECONDS="${REDTEAM_SECONDS:-120}"
+REDTEAM_SECONDS="${REDTEAM_SECONDS:-60}"
 REDTEAM_SEED="${REDTEAM_SEED:-1}"
 install_packages
 export LSAN_OPTIONS="suppressions=$ROOT/tests/lsan.supp:print_suppressions=0"

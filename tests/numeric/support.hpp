@@ -606,6 +606,36 @@ inline cl_RA max_difference(const std::vector<cl_RA>& a, const std::vector<cl_RA
   return d;
 }
 
+/// What expect_case_and_certificate() saw on one scene.
+struct CaseVerdict {
+  bool decidable = false;  ///< the exact solution is farther than the margin from a switch point
+  bool certified = false;  ///< the certificate says the case is certain
+  double error_over_certified_bound = 0;  ///< largest |error| / certified bound (0 when not certified)
+};
+
+/// The evolution case of \p ss is the exact one (\p se) wherever the exact
+/// solution is farther than \p margin from a switch point; and wherever the
+/// certificate says the case is certain, it is the exact case and the
+/// velocities are within the certified bound (a proof, no slack).
+template <class S>
+CaseVerdict expect_case_and_certificate(const Problem<S>& ps, const Solution<S>& ss, const Problem<cl_RA>& pe,
+                                        const Solution<cl_RA>& se, const cl_RA& margin) {
+  CaseVerdict v;
+  v.decidable = complementarity_margin(pe, se) > margin;
+  if (v.decidable) {
+    EXPECT_EQ(ss.closed, se.closed) << "case " << ss.closed.to_string() << ", exact " << se.closed.to_string();
+  }
+  const auto cert = certificate_of(ps, ss);
+  if (!cert || !cert->case_certain) return v;
+  v.certified = true;
+  EXPECT_EQ(ss.closed, se.closed) << "certified case " << ss.closed.to_string() << ", exact " << se.closed.to_string();
+  const cl_RA abs_err = max_difference(exact_vector(ss.velocities_after), se.velocities_after);
+  EXPECT_TRUE(abs_err <= rational_of(cert->velocity_error))
+      << "error " << approx(abs_err) << " above the certified bound " << cert->velocity_error;
+  if (cert->velocity_error > 0) v.error_over_certified_bound = approx(abs_err) / cert->velocity_error;
+  return v;
+}
+
 // ---------------------------------------------------------------------------
 // Exact matrices (M of a scene, its principal minors).
 
