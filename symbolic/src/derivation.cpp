@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "poly.hpp"
 #include "polynomial.hpp"
 #include "superball/cases/vocabulary.hpp"
 
@@ -176,6 +177,10 @@ Deriver::Deriver(const Pattern& pattern, Obstacle obstacle, std::optional<Scalin
     : symbols_(std::make_shared<const Symbols>(pattern, obstacle)), order_(order) {
   if (order < 0) throw std::invalid_argument("Deriver::Deriver(): the order must be >= 0 (got " + std::to_string(order) + ")");
   scaling_ = scaling ? *scaling : Scaling::paper(*symbols_);
+  for (const SymbolInfo& info : symbols_->all()) {
+    orders_.push_back(scaling_.order(*symbols_, info.symbol));
+    if (info.kind == SymbolKind::Coupling) couplings_.push_back(info.rank);
+  }
   build_psd();
 }
 
@@ -199,28 +204,111 @@ GiNaC::ex Deriver::asymptotic(const GiNaC::ex& p, GiNaC::numeric* leading) const
   return GiNaC::expand(kept * denominators / content);
 }
 
-Condition Deriver::make_condition(ConditionKind kind, const std::string& about, Relation relation, const GiNaC::ex& raw,
-                                  const detail::Denominator& determinant, const std::vector<GiNaC::ex>& parts) const {
+bool Deriver::nonnegative_terms(const detail::Poly& p) const {
+  for (std::size_t t = 0; t < p.size(); ++t) {
+    if (cln::minusp(p.coefficient(t))) return false;
+    for (int k : couplings_)
+      if (p.exponent(t, k) % 2) return false;
+  }
+  return true;
+}
+
+bool Deriver::positive_terms(const detail::Poly& p) const {
+  if (p.is_zero() || !nonnegative_terms(p)) return false;
+  for (std::size_t t = 0; t < p.size(); ++t) {
+    bool free = true;
+    for (int k : couplings_) free = free && p.exponent(t, k) == 0;
+    if (free) return true;
+  }
+  return false;
+}
+
+Verdict Deriver::verdict(const detail::Poly& p, Relation rel) const {
+  if (p.is_zero()) return rel == Relation::GreaterEqual ? Verdict::Always : Verdict::Never;
+  if (rel == Relation::Greater ? positive_terms(p) : nonnegative_terms(p)) return Verdict::Always;
+  if (rel == Relation::Greater ? nonnegative_terms(-p) : positive_terms(-p)) return Verdict::Never;
+  return Verdict::Depends;
+}
+
+detail::Poly Deriver::strip(const detail::Poly& p, GiNaC::ex* removed) const {
+  const Symbols& sy = *symbols_;
+  if (p.is_zero() || p.size() <= max_factor_terms) {  // small: the factorisation too (strip_positive_factors)
+    GiNaC::ex gone = 1;
+    const detail::Poly out = detail::Poly::from_ex(strip_positive_factors(p.to_ex(sy), sy, &gone), sy);
+    if (removed) *removed = gone;
+    return out;
+  }
+  // Large: the positive content and the monomial of positive symbols common to every term.
+  const cln::cl_I content = p.content();
+  std::vector<int> common = p.common_exponents();
+  for (int k : couplings_) common[static_cast<std::size_t>(k)] = 0;
+  GiNaC::ex gone = GiNaC::numeric(cln::cl_N(content));
+  for (int k = 0; k < p.vars(); ++k)
+    if (common[static_cast<std::size_t>(k)]) gone *= GiNaC::pow(sy.all()[static_cast<std::size_t>(k)].symbol, common[static_cast<std::size_t>(k)]);
+  if (removed) *removed = gone;
+  return p.divided(content).divided_by_monomial(common);
+}
+
+detail::Poly Deriver::dominant(const detail::Poly& p, GiNaC::numeric* leading) const {
+  if (p.is_zero()) {
+    if (leading) *leading = 0;
+    return p;
+  }
+  std::vector<GiNaC::numeric> weight(p.size(), 0);
+  std::vector<GiNaC::numeric> levels;
+  for (std::size_t t = 0; t < p.size(); ++t) {
+    for (int k = 0; k < p.vars(); ++k)
+      if (const int e = p.exponent(t, k); e && !orders_[static_cast<std::size_t>(k)].is_zero()) weight[t] += orders_[static_cast<std::size_t>(k)] * e;
+    if (std::none_of(levels.begin(), levels.end(), [&](const GiNaC::numeric& w) { return w == weight[t]; })) levels.push_back(weight[t]);
+  }
+  std::sort(levels.begin(), levels.end(), [](const GiNaC::numeric& x, const GiNaC::numeric& y) { return x < y; });
+  if (leading) *leading = levels.front();
+  const GiNaC::numeric& last = levels[std::min(levels.size() - 1, static_cast<std::size_t>(order_))];
+  std::vector<std::size_t> terms;
+  for (std::size_t t = 0; t < p.size(); ++t)
+    if (weight[t] <= last) terms.push_back(t);
+  const detail::Poly kept = p.subset(terms);
+  const detail::Poly stripped = strip(kept);
+  if (!stripped.is_constant()) return stripped;
+  // A constant says "always" (or "never"); the dominant terms say why (K₁₄ > 0).
+  return kept.divided(kept.content());
+}
+
+GiNaC::numeric Deriver::epsilon_order(const detail::Poly& p) const {
+  if (p.is_zero()) throw std::invalid_argument("epsilon_order(): the zero polynomial has no order");
+  GiNaC::numeric lowest = 0;
+  for (std::size_t t = 0; t < p.size(); ++t) {
+    GiNaC::numeric w = 0;
+    for (int k = 0; k < p.vars(); ++k)
+      if (const int e = p.exponent(t, k); e && !orders_[static_cast<std::size_t>(k)].is_zero()) w += orders_[static_cast<std::size_t>(k)] * e;
+    if (t == 0 || w < lowest) lowest = w;
+  }
+  return lowest;
+}
+
+Condition Deriver::make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
+                                  const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts) const {
   const Symbols& sy = *symbols_;
   Condition c;
   c.kind = kind;
   c.about = about;
   c.relation = relation;
   // raw / det(ZᵀAZ) in lowest terms (at most one numer_denom per condition).
-  auto [numerator, denominator] = determinant.lowest_terms(raw);
+  const detail::Denominator::Reduced reduced = determinant.lowest_terms(raw);
+  const GiNaC::ex& denominator = reduced.denominator;
+  int sign = 1;
   ConditionForm form;
   if (GiNaC::is_a<GiNaC::numeric>(denominator)) {
-    numerator = numerator * GiNaC::ex_to<GiNaC::numeric>(denominator).csgn();
+    sign = GiNaC::ex_to<GiNaC::numeric>(denominator).csgn();
     c.proof = "the denominator is a positive number";
-    if (!GiNaC::is_a<GiNaC::numeric>(determinant.value()))
+    if (!determinant.poly().is_constant())
       c.proof = "det(Z^T A Z) cancels: no denominator is left";
-  } else if (GiNaC::ex q; denominator.is_equal(determinant.value()) || GiNaC::divide(determinant.value(), denominator, q)) {
-    const GiNaC::numeric at_ref = detail::evaluate(denominator, reference_point(sy));
-    if (at_ref.is_zero()) throw std::logic_error("Deriver::derive(): a factor of det(Z^T A Z) vanishes at the reference point");
-    numerator = numerator * at_ref.csgn();
+  } else if (GiNaC::ex q; reduced.whole || GiNaC::divide(determinant.value(), denominator, q)) {
+    sign = reduced.whole ? determinant.sign_at_reference() : detail::evaluate(denominator, reference_point(sy)).csgn();
+    if (sign == 0) throw std::logic_error("Deriver::derive(): a factor of det(Z^T A Z) vanishes at the reference point");
     c.proof = std::string("the denominator divides det(Z^T A Z), which is > 0 (Z^T A Z is positive definite: A = diag(m) + D^T M D ") +
               "with m > 0 and M positive semi-definite, Z the cluster incidence of full rank); a factor of a polynomial that never " +
-              "vanishes on the connected set of admissible parameters keeps one sign there: " + (at_ref.is_positive() ? "+" : "-") +
+              "vanishes on the connected set of admissible parameters keeps one sign there: " + (sign > 0 ? "+" : "-") +
               ", its sign at m = K = a = 1, couplings = 0";
   } else if (certainly_positive(denominator, sy)) {
     c.proof = "the denominator has only positive terms in positive parameters";
@@ -228,45 +316,44 @@ Condition Deriver::make_condition(ConditionKind kind, const std::string& about, 
     c.proof = "sign not proved: the denominator " + show(denominator) + " is kept";
   }
   const bool proved = c.proof.rfind("sign not proved", 0) != 0;
-  if (proved) {
-    form.numerator = strip_positive_factors(numerator, sy, &c.removed);
-    form.denominator = 1;
-  } else {
-    form.numerator = GiNaC::expand(numerator);
-    form.denominator = GiNaC::expand(denominator);
-  }
-  form.verdict = proved ? verdict_of(form.numerator, relation, sy) : Verdict::Depends;
+  const detail::Poly numerator =
+      (reduced.whole ? raw.divided(reduced.content) : detail::Poly::from_ex(reduced.numerator, sy)).scaled(sign);
+  // The form's numerator, as a polynomial (positive factors removed when the denominator's sign is proved).
+  const detail::Poly kept = proved ? strip(numerator, &c.removed) : numerator;
+  form.numerator = kept.to_ex(sy);
+  form.denominator = proved ? GiNaC::ex(1) : GiNaC::expand(denominator);
+  form.verdict = proved ? verdict(kept, relation) : Verdict::Depends;
   if (sy.obstacle() == Obstacle::Finite) {
     // m_n → ∞: for m_n large the sign is that of the leading coefficient in m_n.
     const GiNaC::ex& mn = sy.mass(sy.bodies());
     c.finite = form;
     ConditionForm limit;
-    limit.numerator = form.numerator.is_zero() ? GiNaC::ex(0)
-                                               : strip_positive_factors(form.numerator.lcoeff(mn), sy);
+    const detail::Poly lead = kept.is_zero() ? kept : strip(kept.leading_coefficient(sy.info(mn).rank));
+    limit.numerator = lead.to_ex(sy);
     limit.denominator = proved ? GiNaC::ex(1) : GiNaC::expand(form.denominator.lcoeff(mn));
-    limit.verdict = proved ? verdict_of(limit.numerator, relation, sy) : Verdict::Depends;
+    limit.verdict = proved ? verdict(lead, relation) : Verdict::Depends;
     c.exact = limit;
   } else {
     c.exact = form;
   }
   // Asymptotic form of the condition of the regime: with a finite obstacle
   // m_n is itself an ε-order (Scaling::paper: m_n ~ 1/ε), so the dominant
-  // balance is taken in the condition with m_n, not in its limit m_n → ∞.
-  // An unproved denominator gets its own dominant balance.
+  // balance is taken in the condition with m_n, not in its limit m_n → ∞
+  // (either way the regime's numerator is `kept`).  An unproved denominator
+  // gets its own dominant balance.
   const ConditionForm& regime = c.finite ? *c.finite : c.exact;
   c.asymptotic.denominator = regime.denominator.is_equal(1) ? GiNaC::ex(1) : asymptotic(regime.denominator);
-  c.asymptotic.numerator = asymptotic(regime.numerator, &c.leading_order);
-  c.asymptotic.verdict = c.asymptotic.sign_proved() ? verdict_of(c.asymptotic.numerator, relation, sy) : Verdict::Depends;
+  const detail::Poly dominant_balance = dominant(kept, &c.leading_order);
+  c.asymptotic.numerator = dominant_balance.to_ex(sy);
+  c.asymptotic.verdict = c.asymptotic.sign_proved() ? verdict(dominant_balance, relation) : Verdict::Depends;
   c.orders_kept = 1 + order_;
   // Did the leading orders of the parts cancel (the paper's superball condition)?
-  const GiNaC::ex raw_e = GiNaC::expand(raw);
-  if (!raw_e.is_zero()) {
-    const GiNaC::numeric whole = epsilon_order(raw_e, sy, scaling_);
+  if (!raw.is_zero()) {
+    const GiNaC::numeric whole = epsilon_order(raw);
     GiNaC::numeric lowest = whole;
-    for (const GiNaC::ex& p : parts) {
-      const GiNaC::ex pe = GiNaC::expand(p);
-      if (pe.is_zero()) continue;
-      const GiNaC::numeric o = epsilon_order(pe, sy, scaling_);
+    for (const detail::Poly* p : parts) {
+      if (p->is_zero()) continue;
+      const GiNaC::numeric o = epsilon_order(*p);
       if (o < lowest) lowest = o;
     }
     c.descended = whole - lowest;
@@ -337,136 +424,172 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   const int fixed_cluster = fixed ? cluster[static_cast<std::size_t>(n - 1)] : -1;
   const int k = fixed ? clusters - 1 : clusters;  // free clusters are 0..k-1 (the fixed one is the last)
 
-  // Data: K = DᵀMD (declared entries only), masses, u.
-  GiNaC::matrix K(static_cast<unsigned>(n), static_cast<unsigned>(n));
-  auto add_outer = [&](const Pair& p, const Pair& q, const GiNaC::ex& v) {
-    const int pi = p.i - 1, pj = p.j - 1, qi = q.i - 1, qj = q.j - 1;
-    auto at = [&](int r, int s) -> GiNaC::ex& { return K(static_cast<unsigned>(r), static_cast<unsigned>(s)); };
-    at(pi, qi) += v;
-    at(pi, qj) -= v;
-    at(pj, qi) -= v;
-    at(pj, qj) += v;
+  // Data: K = DᵀMD (declared entries only), masses, u, as polynomials (poly.hpp).
+  using detail::Poly;
+  const int vars = static_cast<int>(sy.all().size());
+  auto symbol = [&](const GiNaC::ex& x) { return Poly::variable(vars, sy.info(x).rank); };
+  const auto N = static_cast<std::size_t>(n);
+  std::vector<Poly> K(N * N, Poly(vars));
+  auto add_outer = [&](const Pair& p, const Pair& q, const Poly& v) {
+    const std::size_t pi = p.i - 1, pj = p.j - 1, qi = q.i - 1, qj = q.j - 1;
+    K[pi * N + qi] += v;
+    K[pi * N + qj] -= v;
+    K[pj * N + qi] -= v;
+    K[pj * N + qj] += v;
   };
-  for (const Pair& p : sy.pattern().diagonal) add_outer(p, p, sy.diagonal(p));
+  for (const Pair& p : sy.pattern().diagonal) add_outer(p, p, symbol(sy.diagonal(p)));
   for (const auto& [p, q] : sy.pattern().couplings) {
-    add_outer(p, q, sy.coupling(p, q));
-    add_outer(q, p, sy.coupling(p, q));
+    add_outer(p, q, symbol(sy.coupling(p, q)));
+    add_outer(q, p, symbol(sy.coupling(p, q)));
   }
-  auto Kij = [&](int i, int j) { return K(static_cast<unsigned>(i), static_cast<unsigned>(j)); };
-  std::vector<GiNaC::ex> m(static_cast<std::size_t>(n), 0), u(static_cast<std::size_t>(n), 0);
-  for (int i = 0; i < free_bodies; ++i) m[static_cast<std::size_t>(i)] = sy.mass(i + 1);
-  for (int i = 0; i + 1 < n; ++i) u[static_cast<std::size_t>(i)] = -a;
-  const GiNaC::ex u_obstacle = u[static_cast<std::size_t>(n - 1)];
+  auto Kij = [&](int i, int j) -> const Poly& { return K[static_cast<std::size_t>(i) * N + static_cast<std::size_t>(j)]; };
+  std::vector<Poly> m(N, Poly(vars)), u(N, Poly(vars));
+  for (int i = 0; i < free_bodies; ++i) m[static_cast<std::size_t>(i)] = symbol(sy.mass(i + 1));
+  for (int i = 0; i + 1 < n; ++i) u[static_cast<std::size_t>(i)] = -symbol(a);
+  const Poly u_obstacle = u[N - 1];
 
   // Reduced system (ZᵀAZ) V = Zᵀb over the free clusters.
-  GiNaC::matrix B(static_cast<unsigned>(k), static_cast<unsigned>(k)), rhs(static_cast<unsigned>(k), 1);
+  const auto Kc = static_cast<std::size_t>(k);
+  std::vector<Poly> B(Kc * Kc, Poly(vars)), rhs(Kc, Poly(vars));
   for (int i = 0; i < free_bodies; ++i) {
     const int ci = cluster[static_cast<std::size_t>(i)];
     if (ci == fixed_cluster) continue;
-    GiNaC::ex r = m[static_cast<std::size_t>(i)] * u[static_cast<std::size_t>(i)];
+    Poly r = m[static_cast<std::size_t>(i)] * u[static_cast<std::size_t>(i)];
     for (int j = 0; j < n; ++j) {
+      if (Kij(i, j).is_zero()) {
+        if (i == j) B[static_cast<std::size_t>(ci) * Kc + static_cast<std::size_t>(ci)] += m[static_cast<std::size_t>(i)];
+        continue;
+      }
       r -= Kij(i, j) * u[static_cast<std::size_t>(j)];
       const int cj = cluster[static_cast<std::size_t>(j)];
       if (cj == fixed_cluster)
         r -= Kij(i, j) * u_obstacle;  // W_j = u_n is known
       else
-        B(static_cast<unsigned>(ci), static_cast<unsigned>(cj)) += Kij(i, j) + (i == j ? m[static_cast<std::size_t>(i)] : GiNaC::ex(0));
+        B[static_cast<std::size_t>(ci) * Kc + static_cast<std::size_t>(cj)] += i == j ? Kij(i, j) + m[static_cast<std::size_t>(i)] : Kij(i, j);
     }
-    rhs(static_cast<unsigned>(ci), 0) += r;
+    rhs[static_cast<std::size_t>(ci)] += r;
   }
-  const GiNaC::ex D = detail::determinant(B);
+  const Poly D = detail::determinant(B, k, vars);
   if (D.is_zero()) throw std::logic_error("Deriver::derive(): the reduced system of case " + closed.to_string() + " is singular");
   const detail::Denominator denominator(D, sy);
   // Cramer's rule, fraction-free: V_c = det(B with column c replaced by rhs) / D.
-  std::vector<GiNaC::ex> Wh(static_cast<std::size_t>(n));  // D · W
-  std::vector<GiNaC::ex> Vh(static_cast<std::size_t>(k));
-  for (int c = 0; c < k; ++c) {
-    GiNaC::matrix Bc = B;
-    for (int r = 0; r < k; ++r) Bc(static_cast<unsigned>(r), static_cast<unsigned>(c)) = rhs(static_cast<unsigned>(r), 0);
-    Vh[static_cast<std::size_t>(c)] = detail::determinant(Bc);
+  std::vector<Poly> Wh(N, Poly(vars));  // D · W
+  std::vector<Poly> Vh(Kc, Poly(vars));
+  for (std::size_t c = 0; c < Kc; ++c) {
+    std::vector<Poly> Bc = B;
+    for (std::size_t r = 0; r < Kc; ++r) Bc[r * Kc + c] = rhs[r];
+    Vh[c] = detail::determinant(Bc, k, vars);
   }
   for (int i = 0; i < n; ++i) {
     const int ci = cluster[static_cast<std::size_t>(i)];
-    Wh[static_cast<std::size_t>(i)] = ci == fixed_cluster ? GiNaC::ex(u_obstacle * D) : Vh[static_cast<std::size_t>(ci)];
+    Wh[static_cast<std::size_t>(i)] = ci == fixed_cluster ? u_obstacle * D : Vh[static_cast<std::size_t>(ci)];
   }
-  // Row i of the equations of motion times D, without the reactions.
-  auto row = [&](int i, const std::vector<GiNaC::ex>& W) {
-    GiNaC::ex r = m[static_cast<std::size_t>(i)] * (W[static_cast<std::size_t>(i)] - u[static_cast<std::size_t>(i)] * D);
-    for (int j = 0; j < n; ++j) r += Kij(i, j) * (W[static_cast<std::size_t>(j)] + u[static_cast<std::size_t>(j)] * D);
+  // Row i of the equations of motion times D, without the reactions: its
+  // inertia m_i(W_i − u_i D) and dissipation Σ_j K_ij (W_j + u_j D) parts.
+  auto inertia_of = [&](int i) { return m[static_cast<std::size_t>(i)] * (Wh[static_cast<std::size_t>(i)] - u[static_cast<std::size_t>(i)] * D); };
+  auto dissipation_of = [&](int i) {
+    Poly r(vars);
+    for (int j = 0; j < n; ++j)
+      if (!Kij(i, j).is_zero()) r += Kij(i, j) * (Wh[static_cast<std::size_t>(j)] + u[static_cast<std::size_t>(j)] * D);
     return r;
   };
   // λ_c · D on closed contacts: running sums from the cluster's top body.
-  std::vector<GiNaC::ex> Lh(static_cast<std::size_t>(n - 1), 0), inertia(static_cast<std::size_t>(n - 1), 0),
-      dissipation(static_cast<std::size_t>(n - 1), 0);
+  std::vector<Poly> Lh(N - 1, Poly(vars)), inertia(N - 1, Poly(vars)), dissipation(N - 1, Poly(vars));
   for (int c = 0; c + 1 < n; ++c) {
     if (!closed.closed(c)) continue;
-    GiNaC::ex in = 0, dis = 0;
+    Poly in(vars), dis(vars);
     for (int i = top[static_cast<std::size_t>(cluster[static_cast<std::size_t>(c)])]; i <= c; ++i) {
-      in += m[static_cast<std::size_t>(i)] * (Wh[static_cast<std::size_t>(i)] - u[static_cast<std::size_t>(i)] * D);
-      for (int j = 0; j < n; ++j) dis += Kij(i, j) * (Wh[static_cast<std::size_t>(j)] + u[static_cast<std::size_t>(j)] * D);
+      in += inertia_of(i);
+      dis += dissipation_of(i);
     }
-    inertia[static_cast<std::size_t>(c)] = GiNaC::expand(in);
-    dissipation[static_cast<std::size_t>(c)] = GiNaC::expand(dis);
-    Lh[static_cast<std::size_t>(c)] = GiNaC::expand(in + dis);
+    inertia[static_cast<std::size_t>(c)] = in;
+    dissipation[static_cast<std::size_t>(c)] = dis;
+    Lh[static_cast<std::size_t>(c)] = in + dis;
   }
 
   Derivation out;
   out.symbols = symbols_;
   out.closed = closed;
   out.case_name = Vocabulary::paper().case_name(closed);
-  out.determinant = D;
+  out.determinant = denominator.value();
   out.free_clusters = k;
   const GiNaC::exmap ref = reference_point(sy);
-  auto normalise = [&](const GiNaC::ex& numerator) {
-    const auto [num, den] = denominator.lowest_terms(numerator);
-    Fraction f{num, den};
-    if (detail::evaluate(f.denominator, ref).is_negative()) f = {GiNaC::expand(-f.numerator), GiNaC::expand(-f.denominator)};
-    return f;
+  // Each result is stored in lowest terms; `scale` records how to get D times
+  // it back: numerator · (D / denominator), checked below.
+  struct Stored {
+    Fraction fraction;
+    detail::Denominator::Reduced reduced;
+    int sign = 1;
   };
-  for (int i = 0; i < n; ++i) out.velocities.push_back(normalise(Wh[static_cast<std::size_t>(i)]));
-  for (int c = 0; c + 1 < n; ++c) out.reactions.push_back(closed.closed(c) ? normalise(-Lh[static_cast<std::size_t>(c)]) : Fraction{});
+  auto normalise = [&](const Poly& numerator) {
+    Stored s;
+    s.reduced = denominator.lowest_terms(numerator);
+    s.fraction = {s.reduced.numerator, s.reduced.denominator};
+    const int sign = s.reduced.whole ? denominator.sign_at_reference() : detail::evaluate(s.fraction.denominator, ref).csgn();
+    if (sign < 0) {
+      s.fraction = {GiNaC::expand(-s.fraction.numerator), GiNaC::expand(-s.fraction.denominator)};
+      s.sign = -1;
+    }
+    return s;
+  };
+  std::vector<Stored> velocities, reactions;
+  for (int i = 0; i < n; ++i) velocities.push_back(normalise(Wh[static_cast<std::size_t>(i)]));
+  for (int c = 0; c + 1 < n; ++c) reactions.push_back(closed.closed(c) ? normalise(-Lh[static_cast<std::size_t>(c)]) : Stored{});
+  for (const Stored& s : velocities) out.velocities.push_back(s.fraction);
+  for (const Stored& s : reactions) out.reactions.push_back(s.fraction);
 
-  // Check: substitute the normalised results into the unreduced equations.
-  // Everything is multiplied by D = det(ZᵀAZ) ≠ 0 first, so each identity is
-  // between polynomials, whose normal form is the expanded one.
-  auto times_D = [&](const Fraction& f, const char* what) {
+  // Check: the stored fractions times D are the polynomials Wh, −Lh, and
+  // these satisfy the unreduced equations exactly.  Everything is multiplied
+  // by D = det(ZᵀAZ) ≠ 0 first, so each identity is between polynomials,
+  // compared term by term.
+  auto times_D = [&](const Stored& s, const char* what) {
+    const Fraction& f = s.fraction;
+    if (s.reduced.whole) {  // numerator = ±P / content, denominator = ±D / content
+      const cln::cl_I c = s.reduced.content * s.sign;
+      if (Poly::from_ex(f.denominator, sy).scaled(c) != D)
+        throw std::logic_error(std::string("Deriver::derive(): the denominator of ") + what + " is not det(Z^T A Z) over its content");
+      return Poly::from_ex(f.numerator, sy).scaled(c);
+    }
     GiNaC::ex q = 1;
-    if (!f.denominator.is_equal(D) && !GiNaC::divide(D, f.denominator, q))
+    if (!f.denominator.is_equal(denominator.value()) && !GiNaC::divide(denominator.value(), f.denominator, q))
       throw std::logic_error(std::string("Deriver::derive(): the denominator of ") + what + " does not divide det(Z^T A Z)");
-    return GiNaC::expand(f.numerator * q);
+    return Poly::from_ex(GiNaC::expand(f.numerator * q), sy);
   };
-  std::vector<GiNaC::ex> W(static_cast<std::size_t>(n)), L(static_cast<std::size_t>(n - 1));
-  for (int i = 0; i < n; ++i) W[static_cast<std::size_t>(i)] = times_D(out.velocities[static_cast<std::size_t>(i)], "a velocity");
-  for (int c = 0; c + 1 < n; ++c) L[static_cast<std::size_t>(c)] = -times_D(out.reactions[static_cast<std::size_t>(c)], "a reaction");
+  std::vector<Poly> W(N, Poly(vars)), L(N - 1, Poly(vars));
+  for (int i = 0; i < n; ++i) W[static_cast<std::size_t>(i)] = times_D(velocities[static_cast<std::size_t>(i)], "a velocity");
+  for (int c = 0; c + 1 < n; ++c)
+    if (closed.closed(c)) L[static_cast<std::size_t>(c)] = -times_D(reactions[static_cast<std::size_t>(c)], "a reaction");
   for (int i = 0; i < free_bodies; ++i) {
-    GiNaC::ex r = row(i, W);
+    Poly r = m[static_cast<std::size_t>(i)] * (W[static_cast<std::size_t>(i)] - u[static_cast<std::size_t>(i)] * D);
+    for (int j = 0; j < n; ++j)
+      if (!Kij(i, j).is_zero()) r += Kij(i, j) * (W[static_cast<std::size_t>(j)] + u[static_cast<std::size_t>(j)] * D);
     if (i + 1 < n) r -= L[static_cast<std::size_t>(i)];
     if (i > 0) r += L[static_cast<std::size_t>(i - 1)];
-    if (!GiNaC::expand(r).is_zero())
+    if (!r.is_zero())
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the equation of motion of body " + std::to_string(i + 1) +
-                             " is not satisfied by the solution (residual " + show(GiNaC::normal(r / D)) + ")");
+                             " is not satisfied by the solution (residual " + show(GiNaC::normal(r.to_ex(sy) / denominator.value())) + ")");
   }
   for (int c = 0; c + 1 < n; ++c)
-    if (closed.closed(c) && !GiNaC::expand(W[static_cast<std::size_t>(c)] - W[static_cast<std::size_t>(c + 1)]).is_zero())
+    if (closed.closed(c) && W[static_cast<std::size_t>(c)] != W[static_cast<std::size_t>(c + 1)])
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": contact " + Pair{c + 1, c + 2}.name() + " does not stay closed");
-  if (fixed && !GiNaC::expand(W[static_cast<std::size_t>(n - 1)] - u_obstacle * D).is_zero())
-    throw std::logic_error("Deriver::derive(): the fixed obstacle moves");
+  if (fixed && W[N - 1] != u_obstacle * D) throw std::logic_error("Deriver::derive(): the fixed obstacle moves");
   out.check = "substituted back: the " + std::to_string(free_bodies) +
               " equations of motion with the reactions hold exactly (times det(Z^T A Z) they expand to 0), closed contacts keep equal "
               "velocities" + std::string(fixed ? ", the obstacle stays at rest" : "");
 
   // Conditions (paper §4).
-  out.conditions.push_back(make_condition(ConditionKind::Superball, "U1 > a", Relation::Greater, Wh[0] - a * D, denominator, {Wh[0], a * D}));
+  const Poly aD = symbol(a) * D;
+  out.conditions.push_back(make_condition(ConditionKind::Superball, "U1 > a", Relation::Greater, Wh[0] - aD, denominator, {&Wh[0], &aD}));
   for (int c = 0; c + 1 < n; ++c)
     if (!closed.closed(c))
       out.conditions.push_back(make_condition(ConditionKind::Evolution, Pair{c + 1, c + 2}.name(), Relation::Greater,
                                               Wh[static_cast<std::size_t>(c)] - Wh[static_cast<std::size_t>(c + 1)], denominator,
-                                              {Wh[static_cast<std::size_t>(c)], Wh[static_cast<std::size_t>(c + 1)]}));
+                                              {&Wh[static_cast<std::size_t>(c)], &Wh[static_cast<std::size_t>(c + 1)]}));
   for (int c = 0; c + 1 < n; ++c)
     if (closed.closed(c))
       out.conditions.push_back(make_condition(ConditionKind::Contact, Pair{c + 1, c + 2}.name(), Relation::GreaterEqual,
                                               Lh[static_cast<std::size_t>(c)], denominator,
-                                              {inertia[static_cast<std::size_t>(c)], dissipation[static_cast<std::size_t>(c)]}));
+                                              {&inertia[static_cast<std::size_t>(c)], &dissipation[static_cast<std::size_t>(c)]}));
   out.conditions.insert(out.conditions.end(), psd_.begin(), psd_.end());
   return out;
 }

@@ -86,12 +86,17 @@ std::vector<detail::Term> sorted_terms(const GiNaC::ex& p, const Symbols& symbol
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("format_polynomial(): ") + e.what());
   }
-  std::stable_sort(ts.begin(), ts.end(), [&](const detail::Term& x, const detail::Term& y) {
-    const bool px = x.coefficient.is_positive(), py = y.coefficient.is_positive();
-    if (px != py) return px;
-    return term_key(x, symbols) < term_key(y, symbols);
-  });
-  return ts;
+  // Each key once (a long polynomial has thousands of terms), then one stable sort.
+  std::vector<std::pair<bool, std::vector<int>>> keys;
+  keys.reserve(ts.size());
+  for (const detail::Term& t : ts) keys.emplace_back(!t.coefficient.is_positive(), term_key(t, symbols));
+  std::vector<std::size_t> order(ts.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return keys[x] < keys[y]; });
+  std::vector<detail::Term> out;
+  out.reserve(ts.size());
+  for (std::size_t k : order) out.push_back(std::move(ts[k]));
+  return out;
 }
 
 /// Terms joined with signs; the first term carries its own sign.

@@ -77,50 +77,75 @@ bool certainly_nonnegative(const GiNaC::ex& p, const Symbols& symbols) {
   return true;
 }
 
-Denominator::Denominator(const GiNaC::ex& q, const Symbols& symbols) : q_(GiNaC::expand(q)) {
+namespace {
+
+/// c_0 + c_1 x + … as a GiNaC polynomial in x.
+GiNaC::ex univariate_ex(const std::vector<cln::cl_I>& c, const GiNaC::ex& x) {
+  GiNaC::ex p = 0;
+  for (std::size_t d = 0; d < c.size(); ++d)
+    if (!cln::zerop(c[d])) p += GiNaC::numeric(cln::cl_N(c[d])) * GiNaC::pow(x, static_cast<int>(d));
+  return p;
+}
+
+}  // namespace
+
+Denominator::Denominator(const Poly& q, const Symbols& symbols) : symbols_(&symbols), q_(q), q_ex_(q.to_ex(symbols)) {
   static const int values[] = {3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97};
   constexpr int count = sizeof(values) / sizeof(values[0]);
-  if (GiNaC::is_a<GiNaC::numeric>(q_)) return;
-  for (const SymbolInfo& s : symbols.all()) {
-    if (!q_.has(s.symbol)) continue;
-    const GiNaC::ex lc = q_.lcoeff(s.symbol);
+  const int vars = q.vars();
+  std::vector<cln::cl_I> ref(static_cast<std::size_t>(vars));
+  for (int k = 0; k < vars; ++k) ref[static_cast<std::size_t>(k)] = symbols.all()[static_cast<std::size_t>(k)].kind == SymbolKind::Coupling ? 0 : 1;
+  sign_ = cln::signum(q.evaluate(ref)) > 0 ? 1 : cln::zerop(q.evaluate(ref)) ? 0 : -1;
+  if (q_.is_constant()) return;
+  for (int x = 0; x < vars; ++x) {
+    const int degree = q_.degree(x);
+    if (!degree) continue;
     bool found = false;
     for (int attempt = 0; attempt < 3 && !found; ++attempt) {
-      Probe probe{s.symbol, {}, 0};
+      Probe probe{x, std::vector<cln::cl_I>(static_cast<std::size_t>(vars), 0), 0};
       int k = 0;
-      for (const SymbolInfo& other : symbols.all())
-        if (!other.symbol.is_equal(s.symbol)) probe.point[other.symbol] = values[(k++ * 7 + attempt * 5 + 1) % count] + attempt;
-      if (lc.subs(probe.point, GiNaC::subs_options::no_pattern).is_zero()) continue;
-      probe.q_at = GiNaC::expand(q_.subs(probe.point, GiNaC::subs_options::no_pattern));
+      for (int other = 0; other < vars; ++other)
+        if (other != x) probe.point[static_cast<std::size_t>(other)] = values[(k++ * 7 + attempt * 5 + 1) % count] + attempt;
+      const std::vector<cln::cl_I> at = q_.univariate(x, probe.point);
+      if (static_cast<int>(at.size()) - 1 != degree || cln::zerop(at.back())) continue;  // the leading coefficient vanishes there
+      probe.q_at = univariate_ex(at, symbols.all()[static_cast<std::size_t>(x)].symbol);
       probes_.push_back(std::move(probe));
       found = true;
     }
-    if (!found) unprobed_.push_back(s.symbol);
+    if (!found) unprobed_.push_back(x);
   }
 }
 
-bool Denominator::coprime_with(const GiNaC::ex& p) const {
-  const GiNaC::ex pe = GiNaC::expand(p);
-  if (pe.is_zero()) return false;
-  if (GiNaC::is_a<GiNaC::numeric>(pe) || GiNaC::is_a<GiNaC::numeric>(q_)) return true;
-  for (const GiNaC::ex& x : unprobed_)
-    if (pe.has(x)) return false;
+bool Denominator::coprime_with(const Poly& p) const {
+  if (p.is_zero()) return false;
+  if (p.is_constant() || q_.is_constant()) return true;
+  for (int x : unprobed_)
+    if (p.has(x)) return false;
   for (const Probe& probe : probes_) {
-    if (!pe.has(probe.x)) continue;
-    const GiNaC::ex g = GiNaC::gcd(GiNaC::expand(pe.subs(probe.point, GiNaC::subs_options::no_pattern)), probe.q_at);
-    if (g.degree(probe.x) > 0) return false;
+    if (!p.has(probe.x)) continue;
+    const GiNaC::ex& x = symbols_->all()[static_cast<std::size_t>(probe.x)].symbol;
+    const GiNaC::ex g = GiNaC::gcd(univariate_ex(p.univariate(probe.x, probe.point), x), probe.q_at);
+    if (g.degree(x) > 0) return false;
   }
   return true;
 }
 
-std::pair<GiNaC::ex, GiNaC::ex> Denominator::lowest_terms(const GiNaC::ex& num) const {
-  GiNaC::ex n = GiNaC::expand(num), d = q_;
-  if (n.is_zero()) return {0, 1};
-  if (!coprime_with(n)) {
-    const GiNaC::ex nd = GiNaC::numer_denom(n / d);
-    n = GiNaC::expand(nd.op(0));
-    d = GiNaC::expand(nd.op(1));
+Denominator::Reduced Denominator::lowest_terms(const Poly& num) const {
+  Reduced r;
+  if (num.is_zero()) {
+    r.numerator = 0;
+    r.denominator = 1;
+    return r;
   }
+  if (coprime_with(num)) {
+    r.whole = true;
+    r.content = cln::gcd(num.content(), q_.content());
+    r.numerator = num.divided(r.content).to_ex(*symbols_);
+    r.denominator = r.content == 1 ? q_ex_ : q_.divided(r.content).to_ex(*symbols_);
+    return r;
+  }
+  const GiNaC::ex nd = GiNaC::numer_denom(num.to_ex(*symbols_) / q_ex_);
+  GiNaC::ex n = GiNaC::expand(nd.op(0)), d = GiNaC::expand(nd.op(1));
   // Common rational content.
   GiNaC::numeric top = 0, bottom = 1;
   for (const GiNaC::ex* e : {&n, &d})
@@ -133,7 +158,9 @@ std::pair<GiNaC::ex, GiNaC::ex> Denominator::lowest_terms(const GiNaC::ex& num) 
     n = GiNaC::expand(n / c);
     d = GiNaC::expand(d / c);
   }
-  return {n, d};
+  r.numerator = n;
+  r.denominator = d;
+  return r;
 }
 
 }  // namespace detail

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "poly.hpp"
 #include "superball/symbolic/symbols.hpp"
 
 namespace superball::symbolic::detail {
@@ -37,32 +38,46 @@ GiNaC::numeric evaluate(const GiNaC::ex& p, const GiNaC::exmap& point);
 bool certainly_nonnegative(const GiNaC::ex& p, const Symbols& symbols);
 
 /// A fixed denominator q (det(ZᵀAZ) of a case) prepared for many
-/// coprimality tests: for every symbol x of q, a point for the other symbols
-/// where the leading coefficient of q in x does not vanish, and q there.
+/// coprimality tests: for every symbol x of q, an integer point for the other
+/// symbols where the leading coefficient of q in x does not vanish, and q there.
 class Denominator {
  public:
-  Denominator(const GiNaC::ex& q, const Symbols& symbols);
-  /// q, expanded.
-  const GiNaC::ex& value() const { return q_; }
+  Denominator(const Poly& q, const Symbols& symbols);
+  /// q.
+  const Poly& poly() const { return q_; }
+  /// q as a GiNaC expression.
+  const GiNaC::ex& value() const { return q_ex_; }
+  /// The sign (−1, 0, 1) of q at reference_point() (masses, K's, a = 1, couplings 0).
+  int sign_at_reference() const { return sign_; }
   /// Whether gcd(p, q) is a constant, proved by specialisation: for every
   /// symbol x of both, the univariate gcd at the probe point is a constant,
   /// so a common factor cannot involve x (it would keep its degree in x
   /// there, its leading coefficient dividing q's).  False means "not proved".
-  bool coprime_with(const GiNaC::ex& p) const;
-  /// \p num / q in lowest terms, both expanded: common polynomial factors
-  /// cancelled (GiNaC::numer_denom, once, unless coprime_with() proves there
-  /// are none) and the common rational content divided out.
-  std::pair<GiNaC::ex, GiNaC::ex> lowest_terms(const GiNaC::ex& num) const;
+  bool coprime_with(const Poly& p) const;
+
+  /// A fraction p / q in lowest terms.
+  struct Reduced {
+    GiNaC::ex numerator, denominator;  ///< expanded, the common rational content divided out
+    bool whole = false;                ///< the denominator is q / content (no polynomial factor cancelled)
+    cln::cl_I content = 1;             ///< when whole: numerator = p / content, denominator = q / content
+  };
+  /// \p num / q in lowest terms: common polynomial factors cancelled
+  /// (GiNaC::numer_denom, once, unless coprime_with() proves there are none)
+  /// and the common rational content divided out.
+  Reduced lowest_terms(const Poly& num) const;
 
  private:
   struct Probe {
-    GiNaC::ex x;
-    GiNaC::exmap point;
-    GiNaC::ex q_at;  ///< q at the point: a polynomial in x only
+    int x = 0;                    ///< index of the symbol kept
+    std::vector<cln::cl_I> point; ///< one integer a symbol (x's entry unused)
+    GiNaC::ex q_at;               ///< q at the point: a polynomial in x only
   };
-  GiNaC::ex q_;
+  const Symbols* symbols_;
+  Poly q_;
+  GiNaC::ex q_ex_;
+  int sign_ = 0;
   std::vector<Probe> probes_;
-  std::vector<GiNaC::ex> unprobed_;  ///< symbols of q without a usable point
+  std::vector<int> unprobed_;  ///< symbols of q without a usable point
 };
 
 }  // namespace superball::symbolic::detail

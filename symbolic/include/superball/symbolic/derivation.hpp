@@ -34,6 +34,7 @@ namespace superball::symbolic {
 
 namespace detail {
 class Denominator;
+class Poly;
 }  // namespace detail
 
 /// The order in a small ε of each parameter (paper §4: m₁ very small, m₄ and
@@ -160,14 +161,24 @@ class Deriver {
   GiNaC::ex asymptotic(const GiNaC::ex& p, GiNaC::numeric* leading = nullptr) const;
 
  private:
-  Condition make_condition(ConditionKind kind, const std::string& about, Relation relation, const GiNaC::ex& raw,
-                           const detail::Denominator& determinant, const std::vector<GiNaC::ex>& parts) const;
+  Condition make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
+                           const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts) const;
+  GiNaC::numeric epsilon_order(const detail::Poly& p) const;
+  // The same rules as certainly_nonnegative(), certainly_positive(),
+  // strip_positive_factors() and asymptotic(), on polynomials (poly.hpp).
+  bool nonnegative_terms(const detail::Poly& p) const;
+  bool positive_terms(const detail::Poly& p) const;
+  Verdict verdict(const detail::Poly& p, Relation rel) const;
+  detail::Poly strip(const detail::Poly& p, GiNaC::ex* removed = nullptr) const;
+  detail::Poly dominant(const detail::Poly& p, GiNaC::numeric* leading) const;
   void build_psd();
 
   std::shared_ptr<const Symbols> symbols_;
   Scaling scaling_;
   int order_ = 0;
   std::vector<Condition> psd_;
+  std::vector<GiNaC::numeric> orders_;  ///< the ε-order of each symbol, by index in Symbols::all()
+  std::vector<int> couplings_;          ///< the indices of the couplings in Symbols::all()
 };
 
 /// The ε-order of the expanded polynomial \p p (lowest over its terms) under

@@ -1,0 +1,351 @@
+#include "poly.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+namespace superball::symbolic::detail {
+namespace {
+
+constexpr std::uint64_t high_bits = 0x8080808080808080ULL;
+
+int words_for(int vars) { return std::max(1, (vars + 7) / 8); }
+/// Symbol k sits in word k/8, byte 7 − k%8: comparing words as integers compares exponent vectors lexicographically.
+int shift_of(int k) { return 8 * (7 - k % 8); }
+
+/// a > b in the term order.
+bool greater(const std::uint64_t* a, const std::uint64_t* b, int words) {
+  for (int w = 0; w < words; ++w)
+    if (a[w] != b[w]) return a[w] > b[w];
+  return false;
+}
+
+bool same(const std::uint64_t* a, const std::uint64_t* b, int words) {
+  for (int w = 0; w < words; ++w)
+    if (a[w] != b[w]) return false;
+  return true;
+}
+
+std::uint64_t hash(const std::uint64_t* m, int words) {
+  std::uint64_t h = 0x9E3779B97F4A7C15ULL;
+  for (int w = 0; w < words; ++w) {
+    h ^= m[w] + 0x9E3779B97F4A7C15ULL + (h << 6) + (h >> 2);
+    h *= 0xBF58476D1CE4E5B9ULL;
+  }
+  return h ^ (h >> 31);
+}
+
+}  // namespace
+
+Poly from_terms(int vars, std::vector<std::uint64_t>&& mono, std::vector<cln::cl_I>&& coef) {
+  // Sort the terms (they are distinct and non-zero).
+  Poly out(vars);
+  const int w = out.words_;
+  std::vector<std::size_t> order(coef.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return greater(&mono[x * w], &mono[y * w], w); });
+  out.mono_.reserve(mono.size());
+  out.coef_.reserve(coef.size());
+  for (std::size_t t : order) out.push(&mono[t * w], coef[t]);
+  return out;
+}
+
+Poly::Poly(int vars) : vars_(vars), words_(words_for(vars)) {}
+
+void Poly::push(const std::uint64_t* m, const cln::cl_I& c) {
+  mono_.insert(mono_.end(), m, m + words_);
+  coef_.push_back(c);
+}
+
+Poly Poly::constant(int vars, const cln::cl_I& c) {
+  Poly p(vars);
+  if (!cln::zerop(c)) {
+    const std::vector<std::uint64_t> zero(static_cast<std::size_t>(p.words_), 0);
+    p.push(zero.data(), c);
+  }
+  return p;
+}
+
+Poly Poly::variable(int vars, int k) {
+  if (k < 0 || k >= vars) throw std::invalid_argument("Poly::variable(): symbol " + std::to_string(k) + " out of range");
+  Poly p(vars);
+  std::vector<std::uint64_t> m(static_cast<std::size_t>(p.words_), 0);
+  m[static_cast<std::size_t>(k / 8)] = std::uint64_t{1} << shift_of(k);
+  p.push(m.data(), 1);
+  return p;
+}
+
+Poly Poly::from_ex(const GiNaC::ex& e, const Symbols& symbols) {
+  const int vars = static_cast<int>(symbols.all().size());
+  std::vector<std::uint64_t> mono;
+  std::vector<cln::cl_I> coef;
+  const int w = words_for(vars);
+  for (const Monomial& t : symbols.monomials(e)) {
+    if (!t.coefficient.is_integer()) throw std::invalid_argument("Poly::from_ex(): a coefficient is not an integer");
+    std::vector<std::uint64_t> m(static_cast<std::size_t>(w), 0);
+    for (const auto& [k, power] : t.powers) {
+      if (power > max_exponent) throw std::invalid_argument("Poly::from_ex(): an exponent is above " + std::to_string(max_exponent));
+      m[static_cast<std::size_t>(k / 8)] |= static_cast<std::uint64_t>(power) << shift_of(k);
+    }
+    mono.insert(mono.end(), m.begin(), m.end());
+    coef.push_back(cln::the<cln::cl_I>(t.coefficient.to_cl_N()));
+  }
+  return from_terms(vars, std::move(mono), std::move(coef));
+}
+
+bool Poly::is_constant() const {
+  if (coef_.size() > 1) return false;
+  for (std::uint64_t x : mono_)
+    if (x) return false;
+  return true;
+}
+
+int Poly::exponent(std::size_t t, int k) const {
+  return static_cast<int>((mono(t)[k / 8] >> shift_of(k)) & 0xFF);
+}
+
+int Poly::degree(int k) const {
+  int d = 0;
+  for (std::size_t t = 0; t < size(); ++t) d = std::max(d, exponent(t, k));
+  return d;
+}
+
+Poly Poly::operator-() const {
+  Poly p = *this;
+  for (cln::cl_I& c : p.coef_) c = -c;
+  return p;
+}
+
+Poly Poly::operator+(const Poly& q) const {
+  if (q.is_zero()) return *this;
+  if (is_zero()) return q;
+  Poly out(vars_);
+  out.mono_.reserve(mono_.size() + q.mono_.size());
+  out.coef_.reserve(size() + q.size());
+  std::size_t i = 0, j = 0;
+  while (i < size() || j < q.size()) {
+    if (j == q.size() || (i < size() && greater(mono(i), q.mono(j), words_))) {
+      out.push(mono(i), coef_[i]);
+      ++i;
+    } else if (i == size() || greater(q.mono(j), mono(i), words_)) {
+      out.push(q.mono(j), q.coef_[j]);
+      ++j;
+    } else {
+      const cln::cl_I c = coef_[i] + q.coef_[j];
+      if (!cln::zerop(c)) out.push(mono(i), c);
+      ++i;
+      ++j;
+    }
+  }
+  return out;
+}
+
+Poly Poly::operator-(const Poly& q) const { return *this + (-q); }
+
+Poly Poly::operator*(const Poly& q) const {
+  if (is_zero() || q.is_zero()) return Poly(vars_);
+  const int w = words_;
+  std::vector<std::uint64_t> res_mono;
+  std::vector<cln::cl_I> res_coef;
+  std::size_t capacity = 16;
+  const std::size_t bound = std::min<std::size_t>(size() * q.size(), std::size_t{1} << 24);
+  while (capacity < 2 * bound) capacity <<= 1;
+  std::vector<std::uint32_t> slot(capacity, 0);  // index + 1 into res_coef, 0 = empty
+  std::vector<std::uint64_t> m(static_cast<std::size_t>(w));
+  auto insert_slot = [&](std::size_t index) {
+    std::size_t h = hash(&res_mono[index * w], w) & (capacity - 1);
+    while (slot[h]) h = (h + 1) & (capacity - 1);
+    slot[h] = static_cast<std::uint32_t>(index + 1);
+  };
+  for (std::size_t i = 0; i < size(); ++i)
+    for (std::size_t j = 0; j < q.size(); ++j) {
+      const std::uint64_t *a = mono(i), *b = q.mono(j);
+      for (int k = 0; k < w; ++k) {
+        m[k] = a[k] + b[k];
+        if (m[k] & high_bits) throw std::overflow_error("Poly::operator*(): an exponent exceeds " + std::to_string(max_exponent));
+      }
+      std::size_t h = hash(m.data(), w) & (capacity - 1);
+      for (;;) {
+        const std::uint32_t s = slot[h];
+        if (!s) {
+          slot[h] = static_cast<std::uint32_t>(res_coef.size() + 1);
+          res_mono.insert(res_mono.end(), m.begin(), m.end());
+          res_coef.push_back(coef_[i] * q.coef_[j]);
+          if (2 * res_coef.size() > capacity) {  // grow and rehash
+            capacity <<= 1;
+            slot.assign(capacity, 0);
+            for (std::size_t t = 0; t < res_coef.size(); ++t) insert_slot(t);
+          }
+          break;
+        }
+        if (same(&res_mono[(s - 1) * w], m.data(), w)) {
+          res_coef[s - 1] = res_coef[s - 1] + coef_[i] * q.coef_[j];
+          break;
+        }
+        h = (h + 1) & (capacity - 1);
+      }
+    }
+  // Drop cancelled terms.
+  std::size_t kept = 0;
+  for (std::size_t t = 0; t < res_coef.size(); ++t) {
+    if (cln::zerop(res_coef[t])) continue;
+    if (kept != t) {
+      std::copy(&res_mono[t * w], &res_mono[t * w] + w, &res_mono[kept * w]);
+      res_coef[kept] = res_coef[t];
+    }
+    ++kept;
+  }
+  res_mono.resize(kept * w);
+  res_coef.resize(kept);
+  return from_terms(vars_, std::move(res_mono), std::move(res_coef));
+}
+
+Poly Poly::scaled(const cln::cl_I& c) const {
+  if (cln::zerop(c)) return Poly(vars_);
+  Poly p = *this;
+  for (cln::cl_I& x : p.coef_) x = x * c;
+  return p;
+}
+
+bool Poly::operator==(const Poly& q) const { return vars_ == q.vars_ && coef_ == q.coef_ && mono_ == q.mono_; }
+
+cln::cl_I Poly::content() const {
+  cln::cl_I g = 0;
+  for (const cln::cl_I& c : coef_) g = cln::gcd(g, c);
+  return g;
+}
+
+Poly Poly::divided(const cln::cl_I& c) const {
+  Poly p = *this;
+  for (cln::cl_I& x : p.coef_) x = cln::exquo(x, c);
+  return p;
+}
+
+std::vector<int> Poly::common_exponents() const {
+  std::vector<int> e(static_cast<std::size_t>(vars_), 0);
+  if (is_zero()) return e;
+  for (int k = 0; k < vars_; ++k) {
+    int low = exponent(0, k);
+    for (std::size_t t = 1; t < size() && low > 0; ++t) low = std::min(low, exponent(t, k));
+    e[static_cast<std::size_t>(k)] = low;
+  }
+  return e;
+}
+
+Poly Poly::divided_by_monomial(const std::vector<int>& e) const {
+  std::vector<std::uint64_t> m(static_cast<std::size_t>(words_), 0);
+  for (int k = 0; k < vars_; ++k) m[static_cast<std::size_t>(k / 8)] |= static_cast<std::uint64_t>(e[static_cast<std::size_t>(k)]) << shift_of(k);
+  Poly out(vars_);
+  std::vector<std::uint64_t> here(static_cast<std::size_t>(words_));
+  for (std::size_t t = 0; t < size(); ++t) {
+    for (int w = 0; w < words_; ++w) {
+      here[static_cast<std::size_t>(w)] = mono(t)[w] - m[static_cast<std::size_t>(w)];
+      if (here[static_cast<std::size_t>(w)] & high_bits) throw std::invalid_argument("Poly::divided_by_monomial(): the monomial does not divide a term");
+    }
+    out.push(here.data(), coef_[t]);  // subtracting the same vector keeps the order
+  }
+  return out;
+}
+
+Poly Poly::leading_coefficient(int k) const {
+  const int d = degree(k);
+  std::vector<std::uint64_t> res_mono;
+  std::vector<cln::cl_I> res_coef;
+  for (std::size_t t = 0; t < size(); ++t) {
+    if (exponent(t, k) != d) continue;
+    const std::size_t at = res_mono.size();
+    res_mono.insert(res_mono.end(), mono(t), mono(t) + words_);
+    res_mono[at + static_cast<std::size_t>(k / 8)] &= ~(std::uint64_t{0xFF} << shift_of(k));
+    res_coef.push_back(coef_[t]);
+  }
+  return from_terms(vars_, std::move(res_mono), std::move(res_coef));
+}
+
+Poly Poly::subset(const std::vector<std::size_t>& terms) const {
+  Poly out(vars_);
+  for (std::size_t t : terms) out.push(mono(t), coef_[t]);
+  return out;
+}
+
+std::vector<cln::cl_I> Poly::univariate(int keep, const std::vector<cln::cl_I>& point) const {
+  std::vector<cln::cl_I> out(static_cast<std::size_t>(degree(keep) + 1), 0);
+  std::vector<std::vector<cln::cl_I>> powers(static_cast<std::size_t>(vars_));
+  for (std::size_t t = 0; t < size(); ++t) {
+    cln::cl_I v = coef_[t];
+    for (int k = 0; k < vars_; ++k) {
+      if (k == keep) continue;
+      const int e = exponent(t, k);
+      if (!e) continue;
+      auto& table = powers[static_cast<std::size_t>(k)];
+      if (table.empty()) table.push_back(1);
+      while (static_cast<int>(table.size()) <= e) table.push_back(table.back() * point[static_cast<std::size_t>(k)]);
+      v = v * table[static_cast<std::size_t>(e)];
+    }
+    cln::cl_I& slot = out[static_cast<std::size_t>(exponent(t, keep))];
+    slot = slot + v;
+  }
+  while (out.size() > 1 && cln::zerop(out.back())) out.pop_back();
+  return out;
+}
+
+cln::cl_I Poly::evaluate(const std::vector<cln::cl_I>& point) const {
+  if (vars_ == 0) return is_zero() ? cln::cl_I(0) : coef_.front();
+  // x_0 is kept as the univariate variable, then evaluated.
+  const std::vector<cln::cl_I> c = univariate(0, point);
+  cln::cl_I v = 0;
+  for (std::size_t d = c.size(); d-- > 0;) v = v * point[0] + c[d];
+  return v;
+}
+
+GiNaC::ex Poly::to_ex(const Symbols& symbols) const {
+  if (static_cast<int>(symbols.all().size()) != vars_) throw std::invalid_argument("Poly::to_ex(): the symbols do not match");
+  GiNaC::exvector terms;
+  terms.reserve(size());
+  for (std::size_t t = 0; t < size(); ++t) {
+    GiNaC::exvector factors;
+    for (int k = 0; k < vars_; ++k)
+      if (const int e = exponent(t, k)) factors.push_back(e == 1 ? symbols.all()[static_cast<std::size_t>(k)].symbol
+                                                                  : GiNaC::pow(symbols.all()[static_cast<std::size_t>(k)].symbol, e));
+    const GiNaC::numeric c{cln::cl_N(coef_[t])};
+    if (factors.empty())
+      terms.push_back(c);
+    else if (factors.size() == 1 && c.is_equal(1))
+      terms.push_back(factors.front());
+    else
+      terms.push_back(GiNaC::ex(GiNaC::mul(factors)) * c);
+  }
+  if (terms.empty()) return 0;
+  if (terms.size() == 1) return terms.front();
+  return GiNaC::ex(GiNaC::add(terms));
+}
+
+Poly determinant(const std::vector<Poly>& m, int n, int vars) {
+  if (n < 0 || n > 20 || m.size() != static_cast<std::size_t>(n) * static_cast<std::size_t>(n))
+    throw std::invalid_argument("determinant(): expected an n x n matrix, n <= 20");
+  if (n == 0) return Poly::constant(vars, 1);
+  // minor(S): det of the last |S| rows on the columns of S.
+  std::unordered_map<std::uint32_t, Poly> memo;
+  std::function<Poly(std::uint32_t)> minor = [&](std::uint32_t columns) -> Poly {
+    if (!columns) return Poly::constant(vars, 1);
+    if (auto it = memo.find(columns); it != memo.end()) return it->second;
+    const int row = n - __builtin_popcount(columns);
+    Poly sum(vars);
+    int position = 0;
+    for (int c = 0; c < n; ++c) {
+      if (!(columns >> c & 1u)) continue;
+      const Poly& entry = m[static_cast<std::size_t>(row * n + c)];
+      if (!entry.is_zero()) {
+        const Poly rest = minor(columns & ~(1u << c));
+        if (!rest.is_zero()) sum += position % 2 ? -(entry * rest) : entry * rest;
+      }
+      ++position;
+    }
+    return memo.emplace(columns, std::move(sum)).first->second;
+  };
+  return minor((n == 32 ? 0u : (1u << n)) - 1u);
+}
+
+}  // namespace superball::symbolic::detail
