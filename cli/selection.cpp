@@ -61,7 +61,7 @@ namespace detail {
 int body_limit(int width, bool all_cases) {
   // The largest n under about 10 s (docs/SYMBOLIC.md, "Limits"), for width 1 (--pairs near), 2 (near2), 3 and
   // more (all, or near2 with couplings): one case (--closed none, the slowest) and every case (--all).
-  constexpr int one[] = {9, 6, 5}, every[] = {7, 6, 5};
+  constexpr int one[] = {11, 8, 6}, every[] = {9, 7, 6};
   const int k = std::min(std::max(width, 1), 3) - 1;
   return all_cases ? every[k] : one[k];
 }

@@ -1,0 +1,130 @@
+// check_: the derivation's polynomial arithmetic (symbolic/src/poly.hpp)
+// against GiNaC on random polynomials: sums, products, determinants of
+// random banded matrices, leading coefficients, monomial division,
+// specialisation.  Each result is compared as an expanded polynomial
+// (GiNaC's normal form), so a wrong term order, a lost cancellation or an
+// exponent packed into the wrong byte shows.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "poly.hpp"
+#include "superball/symbolic/symbols.hpp"
+
+namespace superball::symbolic {
+namespace {
+
+using detail::Poly;
+
+/// Same polynomial: GiNaC's expanded difference is 0.
+::testing::AssertionResult same(const Poly& p, const GiNaC::ex& e, const Symbols& s) {
+  const GiNaC::ex d = GiNaC::expand(p.to_ex(s) - e);
+  if (d.is_zero()) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "differs by " << d;
+}
+
+struct Random {
+  std::mt19937_64 engine;
+  explicit Random(std::uint64_t seed) : engine(seed) {}
+  int below(int n) { return static_cast<int>(engine() % static_cast<std::uint64_t>(n)); }
+  /// A random polynomial with up to \p terms terms, coefficients in [−20, 20], exponents up to 3.
+  GiNaC::ex polynomial(const Symbols& s, int terms) {
+    GiNaC::ex p = 0;
+    const int vars = static_cast<int>(s.all().size());
+    for (int t = below(terms + 1); t > 0; --t) {
+      GiNaC::ex term = below(41) - 20;
+      for (int f = below(4); f > 0; --f) term *= GiNaC::pow(s.all()[static_cast<std::size_t>(below(vars))].symbol, 1 + below(3));
+      p += term;
+    }
+    return GiNaC::expand(p);
+  }
+};
+
+/// The 7-body near-neighbour pattern has 41 symbols: six 64-bit words of exponents, one of them partial.
+const Symbols& symbols() {
+  static const Symbols s(Pattern::nearest_and_next_nearest(7), Obstacle::Finite);
+  return s;
+}
+
+TEST(CheckPoly, ArithmeticAgreesWithGinac) {
+  const Symbols& s = symbols();
+  ASSERT_GT(s.all().size(), 16u);
+  Random random(20261125);
+  for (int round = 0; round < 300; ++round) {
+    const GiNaC::ex x = random.polynomial(s, 12), y = random.polynomial(s, 12);
+    const Poly px = Poly::from_ex(x, s), py = Poly::from_ex(y, s);
+    ASSERT_TRUE(same(px, x, s)) << "round " << round;
+    EXPECT_TRUE(same(px + py, x + y, s)) << "round " << round;
+    EXPECT_TRUE(same(px - py, x - y, s)) << "round " << round;
+    EXPECT_TRUE(same(px * py, x * y, s)) << "round " << round;
+    EXPECT_TRUE((px - px).is_zero());
+    EXPECT_EQ(px * py, py * px);
+    EXPECT_EQ((px + py) * py, px * py + py * py);  // term lists equal: one canonical order
+    const int k = random.below(static_cast<int>(s.all().size()));
+    const GiNaC::ex& xk = s.all()[static_cast<std::size_t>(k)].symbol;
+    EXPECT_EQ(px.degree(k), x.degree(xk));
+    if (!x.is_zero()) EXPECT_TRUE(same(px.leading_coefficient(k), x.lcoeff(xk), s)) << "round " << round;
+  }
+}
+
+TEST(CheckPoly, MonomialDivisionContentAndSpecialisation) {
+  const Symbols& s = symbols();
+  Random random(7);
+  const int vars = static_cast<int>(s.all().size());
+  for (int round = 0; round < 100; ++round) {
+    const GiNaC::ex x = random.polynomial(s, 8);
+    if (x.is_zero()) continue;
+    // Multiply by a known monomial and a known integer; both must come back out.
+    GiNaC::ex monomial = 1;
+    for (int f = 0; f < 3; ++f) monomial *= s.all()[static_cast<std::size_t>(random.below(vars))].symbol;
+    const Poly p = Poly::from_ex(GiNaC::expand(6 * monomial * x), s);
+    const std::vector<int> common = p.common_exponents();
+    GiNaC::ex g = 1;
+    for (int k = 0; k < vars; ++k) g *= GiNaC::pow(s.all()[static_cast<std::size_t>(k)].symbol, common[static_cast<std::size_t>(k)]);
+    GiNaC::ex q;
+    EXPECT_TRUE(GiNaC::divide(g, monomial, q)) << "the common monomial " << g << " must contain " << monomial;
+    EXPECT_TRUE(same(p.divided_by_monomial(common), GiNaC::expand(6 * monomial * x / g), s));
+    EXPECT_TRUE(cln::zerop(cln::mod(p.content(), 6)));
+    // Specialise every symbol but one at integers.
+    std::vector<cln::cl_I> point;
+    GiNaC::exmap at;
+    for (int k = 0; k < vars; ++k) {
+      point.push_back(random.below(9) - 4);
+      at[s.all()[static_cast<std::size_t>(k)].symbol] = GiNaC::numeric(cln::cl_N(point.back()));
+    }
+    const GiNaC::ex value = GiNaC::expand(6 * monomial * x).subs(at);
+    EXPECT_TRUE(GiNaC::numeric(cln::cl_N(p.evaluate(point))).is_equal(GiNaC::ex_to<GiNaC::numeric>(value)));
+  }
+}
+
+TEST(CheckPoly, BandedDeterminantsAgreeWithGinac) {
+  const Symbols& s = symbols();
+  Random random(42);
+  for (int n = 1; n <= 6; ++n)
+    for (int band = 0; band <= 2; ++band) {
+      GiNaC::matrix m(static_cast<unsigned>(n), static_cast<unsigned>(n));
+      std::vector<Poly> pm;
+      for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) {
+          const GiNaC::ex e = std::abs(r - c) <= band ? random.polynomial(s, 3) : GiNaC::ex(0);
+          m(static_cast<unsigned>(r), static_cast<unsigned>(c)) = e;
+          pm.push_back(Poly::from_ex(e, s));
+        }
+      const GiNaC::ex expected = GiNaC::expand(m.determinant(GiNaC::determinant_algo::laplace));
+      EXPECT_TRUE(same(detail::determinant(pm, n, static_cast<int>(s.all().size())), expected, s)) << "n = " << n << ", band " << band;
+    }
+}
+
+TEST(CheckPoly, MisuseIsAnError) {
+  const Symbols& s = symbols();
+  const int vars = static_cast<int>(s.all().size());
+  EXPECT_THROW(Poly::variable(vars, vars), std::invalid_argument);
+  EXPECT_THROW(Poly::from_ex(s.all().front().symbol / 2, s), std::invalid_argument);
+  EXPECT_THROW(Poly::from_ex(GiNaC::pow(s.all().front().symbol, 200), s), std::invalid_argument);
+  const Poly x = Poly::from_ex(GiNaC::pow(s.all().front().symbol, 100), s);
+  EXPECT_THROW(x * x, std::overflow_error);
+  EXPECT_THROW(detail::determinant({Poly(vars)}, 2, vars), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace superball::symbolic
