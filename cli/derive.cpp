@@ -28,6 +28,18 @@ nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s) {
   j["asymptotic_text"] = format_condition(c.asymptotic, c.relation, s, Style::Text);
   j["asymptotic_latex"] = format_condition(c.asymptotic, c.relation, s, Style::Latex);
   if (c.finite) j["finite"] = format_condition(*c.finite, c.relation, s, Style::Ascii);
+  // The same conditions as a person writes them (isolated or grouped; derivation.hpp, Readable).
+  nlohmann::ordered_json readable = nlohmann::ordered_json::object();
+  auto add = [&](const char* key, const ConditionForm& form) {
+    if (!form.readable) return;
+    readable[key] = {{"ascii", format_readable(*form.readable, c.relation, s, Style::Ascii)},
+                     {"text", format_readable(*form.readable, c.relation, s, Style::Text)},
+                     {"latex", format_readable(*form.readable, c.relation, s, Style::Latex)}};
+  };
+  add("exact", c.exact);
+  if (c.finite) add("finite", *c.finite);
+  add("asymptotic", c.asymptotic);
+  if (!readable.empty()) j["readable"] = readable;
   std::ostringstream order;
   order << c.leading_order;
   j["order"] = order.str();
@@ -63,6 +75,16 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
   j["reactions"] = r;
   j["determinant"] = format_polynomial(d.determinant, s, Style::Ascii);
   j["check"] = d.check;
+  nlohmann::ordered_json named = nlohmann::ordered_json::array();
+  for (const NamedPart& p : d.named)
+    named.push_back({{"name", named_part_name(p.index, Style::Ascii)},
+                     {"value", format_polynomial(p.value, s, Style::Ascii)},
+                     {"text", format_polynomial(p.value, s, Style::Text)},
+                     {"latex", format_polynomial(p.value, s, Style::Latex)},
+                     {"positive", p.positive}});
+  j["named"] = named;
+  j["actual"] = to_string(d.actual);
+  if (d.actual == Verdict::Never) j["actual_reason"] = d.actual_reason;
   nlohmann::ordered_json conditions = nlohmann::ordered_json::array();
   for (const Condition& c : d.conditions) conditions.push_back(condition_json(c, s));
   j["conditions"] = conditions;

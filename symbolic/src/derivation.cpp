@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "poly.hpp"
 #include "polynomial.hpp"
@@ -274,6 +275,128 @@ detail::Poly Deriver::dominant(const detail::Poly& p, GiNaC::numeric* leading) c
   return kept.divided(kept.content());
 }
 
+namespace detail {
+
+/// The parts a case's readable forms name, in the order of first use, and
+/// the candidates they may group by (the diagonal entries of ZᵀAZ).
+struct Naming {
+  std::vector<Poly> named, candidates;
+  /// The k of S_k for \p s, naming it when it is new.
+  int name(const Poly& s) {
+    const auto k = static_cast<std::size_t>(std::find(named.begin(), named.end(), s) - named.begin());
+    if (k == named.size()) named.push_back(s);
+    return static_cast<int>(k) + 1;
+  }
+};
+
+}  // namespace detail
+
+namespace {
+
+using detail::Poly;
+
+/// Whether \p q has terms of both signs.
+bool mixed(const Poly& q) {
+  bool plus = false, minus = false;
+  for (std::size_t t = 0; t < q.size(); ++t) (cln::minusp(q.coefficient(t)) ? minus : plus) = true;
+  return plus && minus;
+}
+
+/// T = Q S + R by the symbol y of S in which S is y + (terms free of y), the
+/// y giving the fewest terms (terms of both signs in R count one more);
+/// without such a y, Q = 0 and R = T.
+std::pair<Poly, Poly> divide_by(const Poly& T, const Poly& S) {
+  const int vars = T.vars();
+  std::pair<Poly, Poly> best{Poly(vars), T};
+  const Poly one = Poly::constant(vars, 1);
+  for (int y = 0; y < vars; ++y) {
+    if (S.degree(y) != 1 || S.coefficient_of(y, 1) != one) continue;
+    const Poly rest = S.coefficient_of(y, 0);
+    Poly Q(vars), R = T;
+    for (int d = R.degree(y); d >= 1; d = R.degree(y)) {
+      const Poly lead = R.coefficient_of(y, d).times_power(y, d - 1);  // L y^(d−1)
+      Q += lead;
+      R -= lead.times_power(y, 1) + lead * rest;
+    }
+    if (Q.size() + R.size() + mixed(R) < best.first.size() + best.second.size() + mixed(best.second)) best = {std::move(Q), std::move(R)};
+  }
+  return best;
+}
+
+/// A grouped form pays when Q and R together have at most this share of P's terms.
+constexpr double grouped_gain = 0.6;
+
+}  // namespace
+
+std::optional<Readable> Deriver::readable(const detail::Poly& p, detail::Naming& naming) const {
+  const Symbols& sy = *symbols_;
+  const int vars = p.vars();
+  // Isolated: the coupling whose coefficient has a proved sign and that gives the fewest terms.
+  struct Choice {
+    int x = 0, sigma = 1;
+    Poly g, S, Q, R;
+    std::size_t cost = 0;
+  };
+  std::optional<Choice> best;
+  for (int x : couplings_) {
+    if (p.degree(x) != 1) continue;
+    const Poly A = p.coefficient_of(x, 1);
+    Choice c;
+    c.x = x;
+    c.sigma = cln::minusp(A.coefficient(0)) ? -1 : 1;
+    const Poly positive = c.sigma < 0 ? -A : A;
+    if (!positive_terms(positive)) continue;  // the sign of x's coefficient is not proved
+    // g: the content and the monomial of positive symbols common to the coefficient's terms.
+    std::vector<int> common = positive.common_exponents();
+    for (int k : couplings_) common[static_cast<std::size_t>(k)] = 0;
+    c.g = Poly::constant(vars, positive.content());
+    for (int k = 0; k < vars; ++k)
+      if (common[static_cast<std::size_t>(k)]) c.g = c.g.times_power(k, common[static_cast<std::size_t>(k)]);
+    c.S = positive.divided(positive.content()).divided_by_monomial(common);
+    const Poly T = -p.coefficient_of(x, 0);  // P = σ g S x − T
+    if (c.S.is_constant()) {
+      // Without a division the isolated form pays only when the other side has one sign
+      // (−α₂ > 2m₁ + K₁₂ + K₁₃); else the two-sided form reads better (m₁ < K₁₄ + α₂).
+      if (mixed(T)) continue;
+      c.Q = T;
+      c.R = Poly(vars);
+    } else {
+      std::tie(c.Q, c.R) = divide_by(T, c.S);
+    }
+    c.cost = c.Q.size() + c.R.size() + (c.S.is_constant() ? 0 : c.S.size());
+    if (!best || c.cost < best->cost) best = std::move(c);
+  }
+  if (best) {
+    const Choice& c = *best;
+    const Poly x = Poly::variable(vars, c.x);
+    if ((c.g * c.S * x).scaled(c.sigma) - (c.Q * c.S + c.R) != p)
+      throw std::logic_error("Deriver::readable(): the isolated form of a condition is not the condition (P != sigma g S x - (Q S + R))");
+    Readable r;
+    r.subject = (c.g * x).scaled(c.sigma).to_ex(sy);
+    r.quotient = c.Q.to_ex(sy);
+    r.remainder = c.R.to_ex(sy);
+    if (!c.S.is_constant()) r.named = naming.name(c.S);
+    return r;
+  }
+  // Grouped: by a part already named, else by a diagonal entry of ZᵀAZ.
+  std::optional<std::pair<Poly, std::pair<Poly, Poly>>> group;
+  for (const std::vector<Poly>* list : {&naming.named, &naming.candidates})
+    for (const Poly& S : *list) {
+      auto qr = divide_by(p, S);
+      if (qr.first.is_zero() || static_cast<double>(qr.first.size() + qr.second.size()) > grouped_gain * static_cast<double>(p.size())) continue;
+      if (!group || qr.first.size() + qr.second.size() < group->second.first.size() + group->second.second.size()) group.emplace(S, std::move(qr));
+    }
+  if (!group) return std::nullopt;
+  const auto& [S, qr] = *group;
+  if (qr.first * S + qr.second != p)
+    throw std::logic_error("Deriver::readable(): the grouped form of a condition is not the condition (P != Q S + R)");
+  Readable r;
+  r.quotient = qr.first.to_ex(sy);
+  r.remainder = qr.second.to_ex(sy);
+  r.named = naming.name(S);
+  return r;
+}
+
 GiNaC::numeric Deriver::epsilon_order(const detail::Poly& p) const {
   if (p.is_zero()) throw std::invalid_argument("epsilon_order(): the zero polynomial has no order");
   GiNaC::numeric lowest = 0;
@@ -287,7 +410,8 @@ GiNaC::numeric Deriver::epsilon_order(const detail::Poly& p) const {
 }
 
 Condition Deriver::make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
-                                  const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts) const {
+                                  const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts,
+                                  detail::Naming& naming) const {
   const Symbols& sy = *symbols_;
   Condition c;
   c.kind = kind;
@@ -323,6 +447,7 @@ Condition Deriver::make_condition(ConditionKind kind, const std::string& about, 
   form.numerator = kept.to_ex(sy);
   form.denominator = proved ? GiNaC::ex(1) : GiNaC::expand(denominator);
   form.verdict = proved ? verdict(kept, relation) : Verdict::Depends;
+  if (form.verdict == Verdict::Depends && proved) form.readable = readable(kept, naming);
   if (sy.obstacle() == Obstacle::Finite) {
     // m_n → ∞: for m_n large the sign is that of the leading coefficient in m_n.
     const GiNaC::ex& mn = sy.mass(sy.bodies());
@@ -332,6 +457,7 @@ Condition Deriver::make_condition(ConditionKind kind, const std::string& about, 
     limit.numerator = lead.to_ex(sy);
     limit.denominator = proved ? GiNaC::ex(1) : GiNaC::expand(form.denominator.lcoeff(mn));
     limit.verdict = proved ? verdict(lead, relation) : Verdict::Depends;
+    if (limit.verdict == Verdict::Depends && proved) limit.readable = readable(lead, naming);
     c.exact = limit;
   } else {
     c.exact = form;
@@ -346,6 +472,7 @@ Condition Deriver::make_condition(ConditionKind kind, const std::string& about, 
   const detail::Poly dominant_balance = dominant(kept, &c.leading_order);
   c.asymptotic.numerator = dominant_balance.to_ex(sy);
   c.asymptotic.verdict = c.asymptotic.sign_proved() ? verdict(dominant_balance, relation) : Verdict::Depends;
+  if (c.asymptotic.verdict == Verdict::Depends && c.asymptotic.sign_proved()) c.asymptotic.readable = readable(dominant_balance, naming);
   c.orders_kept = 1 + order_;
   // Did the leading orders of the parts cancel (the paper's superball condition)?
   if (!raw.is_zero()) {
@@ -579,17 +706,33 @@ Derivation Deriver::derive(const ContactSet& closed) const {
 
   // Conditions (paper §4).
   const Poly aD = symbol(a) * D;
-  out.conditions.push_back(make_condition(ConditionKind::Superball, "U1 > a", Relation::Greater, Wh[0] - aD, denominator, {&Wh[0], &aD}));
+  detail::Naming naming;  // the case's named parts, and the diagonal of ZᵀAZ as candidates
+  for (std::size_t c = 0; c < Kc; ++c)
+    if (!B[c * Kc + c].is_constant()) naming.candidates.push_back(B[c * Kc + c]);
+  out.conditions.push_back(make_condition(ConditionKind::Superball, "U1 > a", Relation::Greater, Wh[0] - aD, denominator, {&Wh[0], &aD}, naming));
   for (int c = 0; c + 1 < n; ++c)
     if (!closed.closed(c))
       out.conditions.push_back(make_condition(ConditionKind::Evolution, Pair{c + 1, c + 2}.name(), Relation::Greater,
                                               Wh[static_cast<std::size_t>(c)] - Wh[static_cast<std::size_t>(c + 1)], denominator,
-                                              {&Wh[static_cast<std::size_t>(c)], &Wh[static_cast<std::size_t>(c + 1)]}));
+                                              {&Wh[static_cast<std::size_t>(c)], &Wh[static_cast<std::size_t>(c + 1)]}, naming));
   for (int c = 0; c + 1 < n; ++c)
     if (closed.closed(c))
       out.conditions.push_back(make_condition(ConditionKind::Contact, Pair{c + 1, c + 2}.name(), Relation::GreaterEqual,
                                               Lh[static_cast<std::size_t>(c)], denominator,
-                                              {&inertia[static_cast<std::size_t>(c)], &dissipation[static_cast<std::size_t>(c)]}));
+                                              {&inertia[static_cast<std::size_t>(c)], &dissipation[static_cast<std::size_t>(c)]}, naming));
+  for (std::size_t k = 0; k < naming.named.size(); ++k)
+    out.named.push_back(NamedPart{static_cast<int>(k) + 1, naming.named[k].to_ex(sy), positive_terms(naming.named[k])});
+  // The case as a whole: never actual when one of its conditions never holds.
+  out.actual = Verdict::Always;
+  for (const Condition& c : out.conditions) {
+    if (c.kind != ConditionKind::Evolution && c.kind != ConditionKind::Contact) continue;
+    if (c.exact.verdict == Verdict::Never) {
+      out.actual = Verdict::Never;
+      out.actual_reason = c.about;
+      break;
+    }
+    if (c.exact.verdict == Verdict::Depends) out.actual = Verdict::Depends;
+  }
   out.conditions.insert(out.conditions.end(), psd_.begin(), psd_.end());
   return out;
 }

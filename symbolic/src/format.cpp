@@ -263,6 +263,60 @@ std::string format_condition(const ConditionForm& form, Relation relation, const
   return format_fraction(f, symbols, style) + " " + relation_text(relation, false, style) + " 0" + (style == Style::Ascii ? "" : note);
 }
 
+std::string named_part_name(int k, Style style) {
+  const std::string i = std::to_string(k);
+  if (style == Style::Latex) return "S_{" + i + "}";
+  if (style == Style::Text) return "S" + subscript_digits(i);
+  return "S" + i;
+}
+
+std::string format_readable(const Readable& r, Relation relation, const Symbols& symbols, Style style) {
+  const std::string rel = relation_text(relation, false, style);
+  if (r.subject.is_zero()) {  // grouped: Q S REL −R
+    const std::string name = named_part_name(r.named, style);
+    std::string left;
+    if (style == Style::Ascii) {
+      left = "(" + format_polynomial(r.quotient, symbols, style) + ")*" + name;
+    } else {
+      bool single = true;
+      const std::string q = factored(r.quotient, symbols, style, &single);
+      left = (single && q.find(' ') == std::string::npos ? q : "(" + q + ")") + (style == Style::Latex ? " " : "") + name;
+    }
+    const GiNaC::ex right = -r.remainder;
+    std::string rtext = right.is_zero() ? "0" : style == Style::Ascii ? format_polynomial(right, symbols, style) : factored(right, symbols, style, nullptr);
+    return left + " " + rel + " " + rtext;
+  }
+  std::string right = r.quotient.is_zero() ? "" : format_polynomial(r.quotient, symbols, style);
+  if (!r.remainder.is_zero()) {
+    const std::string name = named_part_name(r.named, style);
+    std::string fraction;
+    bool negative = false;
+    if (style == Style::Ascii) {
+      fraction = "(" + format_polynomial(r.remainder, symbols, style) + ")/" + name;
+    } else {
+      // The remainder's sign in front when all its terms are negative: "− K₁₂(…)/S₁".
+      const auto ts = detail::terms(GiNaC::expand(r.remainder));
+      negative = std::all_of(ts.begin(), ts.end(), [](const detail::Term& t) { return t.coefficient.is_negative(); });
+      bool single = true;
+      const std::string top = factored(negative ? GiNaC::ex(-r.remainder) : r.remainder, symbols, style, &single);
+      if (style == Style::Latex)
+        fraction = "\\frac{" + top + "}{" + name + "}";
+      else
+        fraction = (single ? top : "(" + top + ")") + "/" + name;
+    }
+    if (right.empty())
+      right = (negative ? minus(style) : "") + fraction;
+    else
+      right += std::string(negative ? std::string(" ") + minus(style) + " " : " + ") + fraction;
+  }
+  if (right.empty()) right = "0";
+  return format_polynomial(r.subject, symbols, style) + " " + rel + " " + right;
+}
+
+std::string format_form(const ConditionForm& form, Relation relation, const Symbols& symbols, Style style) {
+  return form.readable ? format_readable(*form.readable, relation, symbols, style) : format_condition(form, relation, symbols, style);
+}
+
 std::string velocity_name(int body, Style style) {
   const std::string i = std::to_string(body);
   if (style == Style::Latex) return "U_{" + i + "}^{+}";
@@ -362,6 +416,11 @@ std::string report(const Derivation& d, const Deriver& deriver, Style style) {
         line(tex ? "\\quad" : "  ", math(reaction_name(Pair{c + 1, c + 2}, style) + " = " + format_fraction(d.reactions[static_cast<std::size_t>(c)], sy, style), style));
   }
   line("check:", prose(d.check, style));
+  for (const NamedPart& p : d.named)
+    line(p.index == 1 ? "where" : "     ", math(named_part_name(p.index, style) + " = " + format_polynomial(p.value, sy, style) + (p.positive ? " > 0" : ""), style) +
+                                            (p.positive ? " (every term positive)" : prose(" (a diagonal entry of Z^T A Z)", style)));
+  if (d.actual == Verdict::Never)
+    line("never actual:", "the condition on " + d.actual_reason + " below fails for every admissible parameter, so this case is never the evolution");
   const std::string infinity = tex ? "m_{" + std::to_string(n) + "} = \\infty" : "m" + subscript_digits(std::to_string(n)) + " = ∞";
   const bool finite = sy.obstacle() == Obstacle::Finite;
   line("conditions:", std::string(finite ? "finite obstacle with " + math(sy.info(sy.mass(n)).name(style), style) + ", " : "") +
@@ -373,10 +432,10 @@ std::string report(const Derivation& d, const Deriver& deriver, Style style) {
       os << "\\medskip\\noindent " << condition_title(c, style) << "\\par\n";
     else
       os << "  " << condition_title(c, style) << '\n';
-    if (c.finite) line(tex ? "\\quad finite obstacle:" : "    finite obstacle:", math(format_condition(*c.finite, c.relation, sy, style), style));
-    line(tex ? "\\quad exact:" : "    exact:     ", math(format_condition(c.exact, c.relation, sy, style), style) +
+    if (c.finite) line(tex ? "\\quad finite obstacle:" : "    finite obstacle:", math(format_form(*c.finite, c.relation, sy, style), style));
+    line(tex ? "\\quad exact:" : "    exact:     ", math(format_form(c.exact, c.relation, sy, style), style) +
                                                        (c.exact.verdict == Verdict::Depends ? "" : std::string("  [") + to_string(c.exact.verdict) + "]"));
-    line(tex ? "\\quad asymptotic:" : "    asymptotic:", math(format_condition(c.asymptotic, c.relation, sy, style), style) + "  [" +
+    line(tex ? "\\quad asymptotic:" : "    asymptotic:", math(format_form(c.asymptotic, c.relation, sy, style), style) + "  [" +
                                                            (c.asymptotic.verdict == Verdict::Depends ? "" : std::string(to_string(c.asymptotic.verdict)) + ", ") +
                                                            order_note(c, style) + "]");
     const std::string proof = short_proof(c);

@@ -250,8 +250,18 @@ Poly Poly::divided_by_monomial(const std::vector<int>& e) const {
   return out;
 }
 
-Poly Poly::leading_coefficient(int k) const {
-  const int d = degree(k);
+Poly Poly::leading_coefficient(int k) const { return coefficient_of(k, degree(k)); }
+
+Poly Poly::times_power(int k, int d) const {
+  if (d < 0 || d > max_exponent) throw std::invalid_argument("Poly::times_power(): exponent " + std::to_string(d) + " out of range");
+  Poly x(vars_);
+  std::vector<std::uint64_t> m(static_cast<std::size_t>(words_), 0);
+  m[static_cast<std::size_t>(k / 8)] = static_cast<std::uint64_t>(d) << shift_of(k);
+  x.push(m.data(), 1);
+  return *this * x;
+}
+
+Poly Poly::coefficient_of(int k, int d) const {
   std::vector<std::uint64_t> res_mono;
   std::vector<cln::cl_I> res_coef;
   for (std::size_t t = 0; t < size(); ++t) {

@@ -80,6 +80,10 @@ class Poly {
   Poly divided_by_monomial(const std::vector<int>& e) const;
   /// The leading coefficient in x_k: the terms of highest degree in x_k, with x_k removed.
   Poly leading_coefficient(int k) const;
+  /// The coefficient of x_k^d: the terms of degree d in x_k, with x_k removed.
+  Poly coefficient_of(int k, int d) const;
+  /// The polynomial times x_k^d.
+  Poly times_power(int k, int d) const;
   /// The terms whose indices are listed (ascending).
   Poly subset(const std::vector<std::size_t>& terms) const;
 

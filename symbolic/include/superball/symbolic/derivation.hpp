@@ -35,6 +35,7 @@ namespace superball::symbolic {
 namespace detail {
 class Denominator;
 class Poly;
+struct Naming;
 }  // namespace detail
 
 /// The order in a small ε of each parameter (paper §4: m₁ very small, m₄ and
@@ -77,12 +78,45 @@ enum class Relation { Greater, GreaterEqual };
 enum class Verdict { Depends, Always, Never };
 const char* to_string(Verdict v);
 
+/// A polynomial of a case named once (S₁, S₂, … in the order the readable
+/// forms first use it), so that the conditions can divide by it or group
+/// by it ("where S₁ = m₂ + K₁₂ + K₂₃ + K₂₄").
+struct NamedPart {
+  int index = 1;          ///< the k of S_k
+  GiNaC::ex value;        ///< an expanded polynomial
+  bool positive = true;   ///< every term positive (even powers of couplings): S_k > 0; else a diagonal entry of ZᵀAZ
+};
+
+/// A condition "P REL 0" written the way a researcher writes it.  Two shapes:
+///
+/// - **isolated** (subject ≠ 0): the coupling x the condition is about on the
+///   left.  With P of degree 1 in x,  P = σ g S x − (Q S + R),  σ = ±1, g > 0
+///   a positive integer times a monomial in positive symbols, S > 0 a named
+///   part with every term positive (or 1), so that, dividing by S,
+///       P REL 0  ⟺  σ g x REL Q + R/S      (−α₃ > 2m₁ + K₁₃ + K₁₂(2m₂ + K₂₃)/S₁);
+/// - **grouped** (subject = 0): P = Q S + R with S a named part of the case
+///   (one already named, or a diagonal entry of ZᵀAZ) and far fewer terms in
+///   Q and R than in P, so that
+///       P REL 0  ⟺  Q S REL −R             ((m₃ + K₂₃ − K₁₃ − K₃₄)S₁ ≥ K₂₃(2K₁₂ + K₂₃ + 2K₂₄)).
+///
+/// Q and R come from dividing by S as a polynomial of degree 1 in one of its
+/// symbols y with coefficient 1 (R free of y), the y giving the fewest terms.
+/// The identity is checked exactly on the expanded polynomials when the form
+/// is made (Deriver::derive() throws std::logic_error otherwise).
+struct Readable {
+  GiNaC::ex subject = 0;    ///< σ g x: "−α₂", "2m₂α₃"; 0 for the grouped shape
+  GiNaC::ex quotient = 0;   ///< Q
+  GiNaC::ex remainder = 0;  ///< R (isolated: 0 when S = 1)
+  int named = 0;            ///< the k of the named part S = S_k, 0 when S = 1
+};
+
 /// One form of a condition: numerator / denominator REL 0, with the
 /// denominator 1 whenever its sign was proved and cleared.
 struct ConditionForm {
   GiNaC::ex numerator = 0;    ///< an expanded polynomial
   GiNaC::ex denominator = 1;  ///< 1, or a polynomial whose sign was not proved
   Verdict verdict = Verdict::Depends;
+  std::optional<Readable> readable;  ///< the isolated form, when a coupling can be isolated (sign proved, depends)
   bool sign_proved() const;   ///< denominator == 1
 };
 
@@ -118,7 +152,13 @@ struct Derivation {
   GiNaC::ex determinant;             ///< det(ZᵀAZ), > 0 (1 when no body is free)
   int free_clusters = 0;             ///< size of the reduced system
   std::vector<Condition> conditions; ///< superball, evolution, contact, then psd
+  std::vector<NamedPart> named;      ///< the positive parts the readable forms divide by
   std::string check;                 ///< what the substitution check verified
+  /// Whether the case can be the actual evolution: Never when one of its
+  /// evolution or contact conditions fails for every admissible parameter
+  /// (the case's conditions clash), Always when they all hold, else Depends.
+  Verdict actual = Verdict::Depends;
+  std::string actual_reason;         ///< for Never: the "about" of the first condition that never holds
 };
 
 /// Solves evolution cases for one pattern and one obstacle, with the
@@ -162,7 +202,9 @@ class Deriver {
 
  private:
   Condition make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
-                           const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts) const;
+                           const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts,
+                           detail::Naming& naming) const;
+  std::optional<Readable> readable(const detail::Poly& p, detail::Naming& naming) const;
   GiNaC::numeric epsilon_order(const detail::Poly& p) const;
   // The same rules as certainly_nonnegative(), certainly_positive(),
   // strip_positive_factors() and asymptotic(), on polynomials (poly.hpp).

@@ -42,6 +42,18 @@ std::string format_condition(const GiNaC::ex& p, Relation relation, const Symbol
 /// ("(N)/(D) > 0 (sign of the denominator not proved)").
 std::string format_condition(const ConditionForm& form, Relation relation, const Symbols& symbols, Style style);
 
+/// S₁ (text), S_{1} (LaTeX), S1 (ASCII): the name of the named part \p k of a case.
+std::string named_part_name(int k, Style style);
+
+/// The isolated form of a condition, "σ g x REL Q + R/S" (derivation.hpp,
+/// Readable): −α₃ > 2m₁ + K₁₃ + K₁₂(2m₂ + K₂₃)/S₁.  ASCII is GiNaC's syntax
+/// with the named part as S1.
+std::string format_readable(const Readable& r, Relation relation, const Symbols& symbols, Style style);
+
+/// A condition form as a person reads it: its isolated form when it has one,
+/// else format_condition().
+std::string format_form(const ConditionForm& form, Relation relation, const Symbols& symbols, Style style);
+
 /// U₁⁺ (text), U_{1}^{+} (LaTeX), U1 (ASCII).
 std::string velocity_name(int body, Style style);
 /// R₂₃ (text), R_{23} (LaTeX), R2_3 (ASCII): the reaction on contact \p contact.
