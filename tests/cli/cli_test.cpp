@@ -351,6 +351,26 @@ TEST(Verify, TablesOverEpsilonAndExactAgreement) {
     EXPECT_NE(r.out.find(piece), std::string::npos) << "'" << piece << "' not in:\n" << r.out;
 }
 
+TEST(Verify, SixBodyPatternExactFormsAgreeOnBothSides) {
+  // Issue 13: a verification run beyond the paper, CI-sized: 6 bodies, nearest and
+  // next-nearest neighbours with their couplings, two contacts closed.
+  const RunResult r = run({"verify", "--bodies", "6", "--pairs", "near2", "--coupling", "near2", "--closed", "2-3,4-5", "--samples", "100",
+                           "--epsilons", "1e-2,1e-4", "--boundary-pairs", "2", "--json", "--threads", "2"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j.at("exact_agrees").get<bool>());
+  int both_sides = 0;
+  for (const auto& e : j.at("epsilons")) {
+    EXPECT_EQ(e.at("all").at("exact").at("agree"), e.at("all").at("exact").at("total"));
+    EXPECT_EQ(e.at("all").at("unsolved").get<int>(), 0);
+    for (const auto& c : e.at("all").at("conditions")) {
+      EXPECT_EQ(c.at("exact_agree").get<int>(), c.at("holds").get<int>() + c.at("fails").get<int>()) << c.dump();
+      both_sides += c.at("holds").get<int>() > 0 && c.at("fails").get<int>() > 0;
+    }
+  }
+  EXPECT_GE(both_sides, 2) << "the points must fall on both sides of some conditions for the check to mean something";
+}
+
 TEST(Verify, JsonIsTheSameWithOneAndTwoThreads) {
   const std::vector<std::string> args = {"verify", "--case", "3.2", "--alphas", "5", "--samples", "80", "--epsilons", "1e-2,1e-4", "--json", "--threads"};
   std::vector<std::string> one = args, two = args;
