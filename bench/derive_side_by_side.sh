@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Wall time of `superball derive --all` for two builds side by side
+# (alternating, RUNS runs each), and whether their JSON is the same bytes:
+#
+#   bench/derive_side_by_side.sh OLD_SUPERBALL NEW_SUPERBALL [RUNS]
+#
+# The patterns are those of docs/SYMBOLIC.md ("Representation"): the paper's
+# four bodies with the seven α's, and 4 to 6 bodies with nearest and
+# next-nearest neighbours and their couplings.
+set -euo pipefail
+old="${1:?usage: derive_side_by_side.sh OLD NEW [RUNS]}"
+new="${2:?usage: derive_side_by_side.sh OLD NEW [RUNS]}"
+runs="${3:-3}"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+seconds() { local t0 t1; t0=$(date +%s.%N); "$@" > /dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc; }
+measure() {
+  local label="$1"; shift
+  for ((r = 1; r <= runs; ++r)); do
+    local before after same
+    before=$(seconds "$old" derive "$@" --format json -o "$work/old.json")
+    after=$(seconds "$new" derive "$@" --format json -o "$work/new.json")
+    cmp -s "$work/old.json" "$work/new.json" && same="same bytes" || same="DIFFERENT"
+    echo "$label run $r: before $before s, after $after s, $same"
+  done
+}
+uptime
+measure "n=4 seven alphas" --all --alphas 1,2,3,4,5,6,7
+for n in 4 5 6; do measure "n=$n near2+coupling" --bodies "$n" --pairs near2 --coupling near2 --all --no-limit; done
+uptime
