@@ -27,7 +27,9 @@ namespace superball::symbolic {
 std::string format_polynomial(const GiNaC::ex& p, const Symbols& symbols, Style style);
 
 /// The normalised fraction \p f: numerator with its rational content and
-/// common monomial in front, "/" or \\frac, parentheses where needed.
+/// common monomial in front, "/" or \\frac, parentheses where needed.  In
+/// LaTeX a long fraction is "a(…)/(…)" with plain parentheses (TeX may break
+/// an inline formula after the + and − inside them, never inside \\left( … \\right)).
 std::string format_fraction(const Fraction& f, const Symbols& symbols, Style style);
 
 /// The condition "\p p REL 0" as an inequality (paper §4 style).  Rule:
@@ -62,12 +64,18 @@ std::string reaction_name(const Pair& contact, Style style);
 std::string condition_title(const Condition& c, Style style);
 
 /// A full report of \p d in Text or Latex style (a LaTeX fragment: use
-/// latex_document() for a compilable file).  Throws std::invalid_argument
-/// ("report(): ...") for Style::Ascii (use JSON for programs).
+/// latex_document() for a compilable file).  In LaTeX a formula too wide
+/// for its line becomes an align* broken by hand between terms, det(ZᵀAZ)
+/// is named \\Delta, and a long velocity or reaction is written
+/// \\frac{a}{\\Delta}\\bigl(…\\bigr) with its terms over rows (a long
+/// denominator other than \\Delta is named D_{k} and given after them); every
+/// relation is in math mode.  Throws std::invalid_argument ("report(): ...")
+/// for Style::Ascii (use JSON for programs).
 std::string report(const Derivation& d, const Deriver& deriver, Style style);
 
-/// A standalone LaTeX document (article class, amsmath) with the reports of
-/// \p derivations; compiles with texlive-latex-base.
+/// A standalone LaTeX document (article class, amsmath, geometry) with the
+/// reports of \p derivations; compiles with texlive-latex-base's pdflatex
+/// without an overfull line or a missing glyph (tests/symbolic/latex_test.cpp).
 std::string latex_document(const std::vector<Derivation>& derivations, const Deriver& deriver);
 
 }  // namespace superball::symbolic
