@@ -143,7 +143,10 @@ void add_derive(CLI::App& app, Action& action) {
       } else if (o->format == "latex") {
         text = latex_document(results, deriver);
       } else {
-        for (const Derivation& d : results) text += report(d, deriver, Style::Text) + "\n";
+        // Several cases: the conditions on M, the same in every case, once before them.
+        const bool shared = results.size() > 1;
+        if (shared) text += report_psd(deriver, Style::Text) + "\n";
+        for (const Derivation& d : results) text += report(d, deriver, Style::Text, !shared) + "\n";
       }
       write_output(o->output, text);
       return ok;

@@ -753,27 +753,66 @@ std::string orders_kept_text(int order) {
   return "the dominant balance and the next " + (order == 1 ? std::string("order") : std::to_string(order) + " orders");
 }
 
+
+void write_line(std::ostream& os, Style style, const std::string& label, const std::string& value) {
+  if (style == Style::Latex)
+    os << "\\noindent " << label << (label.empty() ? "" : " ") << value << "\\par\n";
+  else
+    os << "  " << label << (label.empty() ? "" : " ") << value << '\n';
+}
+
+/// A labelled formula: one line of text, or in LaTeX a display broken over rows when it does not fit.
+void write_formula(std::ostream& os, Style style, const std::string& label, const std::string& value, const std::string& note) {
+  if (style == Style::Latex)
+    os << latex_formula_line(label, value, note);
+  else
+    os << "  " << label << (label.empty() ? "" : " ") << value << note << '\n';
+}
+
+/// One condition of a report: its title, forms and proof note.
+void write_condition(std::ostream& os, const Condition& c, const Symbols& sy, Style style) {
+  const bool tex = style == Style::Latex;
+  if (tex)
+    os << "\\medskip\\noindent " << condition_title(c, style) << "\\par\n";
+  else
+    os << "  " << condition_title(c, style) << '\n';
+  if (c.finite) write_formula(os, style, tex ? "\\quad finite obstacle:" : "    finite obstacle:", format_form(*c.finite, c.relation, sy, style), "");
+  write_formula(os, style, tex ? "\\quad exact:" : "    exact:     ", format_form(c.exact, c.relation, sy, style),
+                c.exact.verdict == Verdict::Depends ? "" : std::string("  [") + to_string(c.exact.verdict) + "]");
+  write_formula(os, style, tex ? "\\quad asymptotic:" : "    asymptotic:", format_form(c.asymptotic, c.relation, sy, style),
+                "  [" + (c.asymptotic.verdict == Verdict::Depends ? "" : std::string(to_string(c.asymptotic.verdict)) + ", ") + order_note(c, style) + "]");
+  // "always"/"never" with nothing left but a constant: the positive factor divided out says why.
+  if (c.kind != ConditionKind::Psd && !c.finite && c.exact.verdict != Verdict::Depends && c.exact.sign_proved() &&
+      GiNaC::is_a<GiNaC::numeric>(c.exact.numerator) && !c.removed.is_equal(1)) {
+    std::string quantity;
+    if (c.kind == ConditionKind::Superball) {
+      quantity = velocity_name(1, style) + " " + minus(style) + " a";
+    } else {
+      const Pair p = Pair::parse(c.about);
+      quantity = c.kind == ConditionKind::Evolution ? velocity_name(p.i, style) + " " + minus(style) + " " + velocity_name(p.j, style)
+                                                    : minus(style) + reaction_name(p, style);
+    }
+    const std::string value = format_polynomial(GiNaC::expand(c.exact.numerator * c.removed), sy, style);
+    const std::string delta = tex ? "\\Delta" : "Δ";
+    write_formula(os, style, tex ? "\\quad why:" : "    why:       ",
+                  quantity + " = " + (tex ? "\\frac{" + value + "}{" + delta + "}" : "(" + value + ")/" + delta) + " " +
+                      (GiNaC::ex_to<GiNaC::numeric>(c.exact.numerator).is_negative() ? "<" : c.exact.numerator.is_zero() ? "=" : ">") + " 0",
+                  tex ? ", $\\Delta$ a factor of $\\det(Z^{T}AZ) > 0$" : ", Δ a factor of det(ZᵀAZ) > 0");
+  }
+  const std::string proof = short_proof(c);
+  if (!proof.empty()) write_line(os, style, tex ? "\\quad" : "    ", "(" + (tex ? latex_prose(proof) : prose(proof, style)) + ")");
+}
+
 }  // namespace
 
-std::string report(const Derivation& d, const Deriver& deriver, Style style) {
+std::string report(const Derivation& d, const Deriver& deriver, Style style, bool with_psd) {
   if (style == Style::Ascii) throw std::invalid_argument("report(): ASCII output is JSON (see `superball derive --format json`)");
   const Symbols& sy = *d.symbols;
   const bool tex = style == Style::Latex;
   const int n = sy.bodies();
   std::ostringstream os;
-  auto line = [&](const std::string& label, const std::string& value) {
-    if (tex)
-      os << "\\noindent " << label << (label.empty() ? "" : " ") << value << "\\par\n";
-    else
-      os << "  " << label << (label.empty() ? "" : " ") << value << '\n';
-  };
-  // A labelled formula: one line of text, or in LaTeX a display broken over rows when it does not fit.
-  auto formula = [&](const std::string& label, const std::string& value, const std::string& note) {
-    if (tex)
-      os << latex_formula_line(label, value, note);
-    else
-      os << "  " << label << (label.empty() ? "" : " ") << value << note << '\n';
-  };
+  auto line = [&](const std::string& label, const std::string& value) { write_line(os, style, label, value); };
+  auto formula = [&](const std::string& label, const std::string& value, const std::string& note) { write_formula(os, style, label, value, note); };
   auto words = [&](const std::string& s) { return tex ? latex_prose(s) : prose(s, style); };
   std::string description;
   for (const NamedCase& c : Vocabulary::paper().cases())
@@ -837,19 +876,20 @@ std::string report(const Derivation& d, const Deriver& deriver, Style style) {
                           "exact with " + math(infinity, style) + (finite ? " (the limit)" : "") + "; asymptotic" +
                           (finite ? " of the finite-obstacle form" : "") + " for " + math(deriver.scaling().describe(sy, style), style) +
                           ", keeping " + orders_kept_text(deriver.order()));
-  for (const Condition& c : d.conditions) {
-    if (tex)
-      os << "\\medskip\\noindent " << condition_title(c, style) << "\\par\n";
-    else
-      os << "  " << condition_title(c, style) << '\n';
-    if (c.finite) formula(tex ? "\\quad finite obstacle:" : "    finite obstacle:", format_form(*c.finite, c.relation, sy, style), "");
-    formula(tex ? "\\quad exact:" : "    exact:     ", format_form(c.exact, c.relation, sy, style),
-            c.exact.verdict == Verdict::Depends ? "" : std::string("  [") + to_string(c.exact.verdict) + "]");
-    formula(tex ? "\\quad asymptotic:" : "    asymptotic:", format_form(c.asymptotic, c.relation, sy, style),
-            "  [" + (c.asymptotic.verdict == Verdict::Depends ? "" : std::string(to_string(c.asymptotic.verdict)) + ", ") + order_note(c, style) + "]");
-    const std::string proof = short_proof(c);
-    if (!proof.empty()) line(tex ? "\\quad" : "    ", "(" + words(proof) + ")");
-  }
+  for (const Condition& c : d.conditions)
+    if (with_psd || c.kind != ConditionKind::Psd) write_condition(os, c, sy, style);
+  return os.str();
+}
+
+std::string report_psd(const Deriver& deriver, Style style) {
+  if (style == Style::Ascii) throw std::invalid_argument("report_psd(): ASCII output is JSON (see `superball derive --format json`)");
+  std::ostringstream os;
+  const std::string title = "M positive semi-definite (paper §3): the same conditions in every case";
+  if (style == Style::Latex)
+    os << "\\subsection*{" << title << "}\n";
+  else
+    os << title << '\n';
+  for (const Condition& c : deriver.psd()) write_condition(os, c, deriver.symbols(), style);
   return os.str();
 }
 
@@ -866,7 +906,10 @@ std::string latex_document(const std::vector<Derivation>& derivations, const Der
           "between its terms over several rows, and a long velocity or reaction is written as a factor over $\\Delta$ times "
           "the sum of the remaining terms.\n";
   }
-  for (const Derivation& d : derivations) os << report(d, deriver, Style::Latex) << '\n';
+  // Several cases: the conditions on M, the same in every case, once before them.
+  const bool shared = derivations.size() > 1;
+  if (shared) os << report_psd(deriver, Style::Latex) << '\n';
+  for (const Derivation& d : derivations) os << report(d, deriver, Style::Latex, !shared) << '\n';
   os << "\\end{document}\n";
   return os.str();
 }

@@ -73,6 +73,31 @@ TEST(CliDerive, TextHasThePaperFormulas) {
     EXPECT_NE(r.out.find(s), std::string::npos) << s;
 }
 
+TEST(CliDerive, ConditionsOnMOnceForSeveralCasesAndNamedParts) {
+  // Several cases: the conditions on M (the same in every case) come once, before the cases.
+  const RunResult all = run({"derive", "--all", "--alphas", "3"});
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const auto first_psd = all.out.find("M positive semi-definite, minor on 1-3,1-4");
+  ASSERT_NE(first_psd, std::string::npos);
+  EXPECT_EQ(all.out.find("M positive semi-definite, minor on 1-3,1-4", first_psd + 1), std::string::npos);
+  EXPECT_LT(first_psd, all.out.find("case 0"));
+  // One case keeps them, and names the positive part its readable conditions divide by.
+  const RunResult one = run({"derive", "--case", "2.2", "--alphas", "3"});
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  for (const char* s : {"M positive semi-definite, minor on 1-3,1-4", "where S₁ = m₂ + K₁₂ + K₂₃ + K₂₄ > 0",
+                        "−α₃ > 2m₁ + K₁₃ + K₁₂(2m₂ + K₂₃)/S₁"})
+    EXPECT_NE(one.out.find(s), std::string::npos) << s << " not in:\n" << one.out;
+  // JSON keeps the expanded form beside the readable one.
+  const RunResult json = run({"derive", "--case", "2.2", "--alphas", "3", "-f", "json"});
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j.at("named").at(0).at("name"), "S1");
+  EXPECT_EQ(j.at("actual"), "depends");
+  const auto& superball = j.at("conditions").at(0);
+  EXPECT_EQ(superball.at("readable").at("exact").at("text"), "−α₃ > 2m₁ + K₁₃ + K₁₂(2m₂ + K₂₃)/S₁");
+  EXPECT_NE(superball.at("exact").get<std::string>().find("alpha3"), std::string::npos);
+}
+
 TEST(CliDerive, GeneralCouplingNamesAndAllCases) {
   const RunResult r = run({"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--closed", "2-3", "-f", "json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -64,14 +64,15 @@ std::string reaction_name(const Pair& contact, Style style);
 std::string condition_title(const Condition& c, Style style);
 
 /// A full report of \p d in Text or Latex style (a LaTeX fragment: use
-/// latex_document() for a compilable file).  In LaTeX a formula too wide
-/// for its line becomes an align* broken by hand between terms, det(ZᵀAZ)
-/// is named \\Delta, and a long velocity or reaction is written
-/// \\frac{a}{\\Delta}\\bigl(…\\bigr) with its terms over rows (a long
-/// denominator other than \\Delta is named D_{k} and given after them); every
-/// relation is in math mode.  Throws std::invalid_argument ("report(): ...")
-/// for Style::Ascii (use JSON for programs).
-std::string report(const Derivation& d, const Deriver& deriver, Style style);
+/// latex_document() for a compilable file); \p with_psd false leaves out the
+/// conditions on M, which are the same in every case (report_psd()).
+/// Throws std::invalid_argument ("report(): ...") for Style::Ascii (use JSON for programs).
+std::string report(const Derivation& d, const Deriver& deriver, Style style, bool with_psd = true);
+
+/// The conditions on M of the deriver's pattern (paper §3: M positive
+/// semi-definite, one principal minor per connected set of coupled pairs),
+/// once, in Text or Latex style.  Throws std::invalid_argument("report_psd(): ...") for Style::Ascii.
+std::string report_psd(const Deriver& deriver, Style style);
 
 /// A standalone LaTeX document (article class, amsmath, geometry) with the
 /// reports of \p derivations; compiles with texlive-latex-base's pdflatex
