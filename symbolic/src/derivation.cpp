@@ -329,6 +329,7 @@ constexpr double grouped_gain = 0.6;
 }  // namespace
 
 std::optional<Readable> Deriver::readable(const detail::Poly& p, detail::Naming& naming) const {
+  if (p.size() > max_readable_terms) return std::nullopt;  // neither shape makes such a polynomial readable; it costs
   const Symbols& sy = *symbols_;
   const int vars = p.vars();
   // Isolated: the coupling whose coefficient has a proved sign and that gives the fewest terms.

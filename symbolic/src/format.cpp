@@ -140,6 +140,7 @@ Split split_common(const GiNaC::ex& p, const Symbols& symbols) {
     all_negative = all_negative && t.coefficient.is_negative();
   }
   s.content = (all_negative ? -num : num) / den;
+  std::vector<std::pair<GiNaC::ex, int>> common;  // (symbol, lowest exponent > 0)
   for (const auto& [sym, e0] : ts.front().powers) {
     int low = e0;
     for (const detail::Term& t : ts) {
@@ -148,12 +149,26 @@ Split split_common(const GiNaC::ex& p, const Symbols& symbols) {
         if (s2.is_equal(sym)) here = e2;
       low = std::min(low, here);
     }
-    if (low > 0) s.monomial *= GiNaC::pow(sym, low);
+    if (low > 0) {
+      s.monomial *= GiNaC::pow(sym, low);
+      common.emplace_back(sym, low);
+    }
   }
   (void)symbols;
-  GiNaC::ex q;
-  if (!GiNaC::divide(GiNaC::expand(p), s.content * s.monomial, q)) throw std::logic_error("format_fraction(): content does not divide");
-  s.rest = GiNaC::expand(q);
+  // The rest, term by term (the content and the monomial divide every term exactly).
+  GiNaC::exvector rest;
+  rest.reserve(ts.size());
+  for (const detail::Term& t : ts) {
+    GiNaC::ex term = t.coefficient / s.content;
+    for (const auto& [sym, e] : t.powers) {
+      int left = e;
+      for (const auto& [c, low] : common)
+        if (c.is_equal(sym)) left -= low;
+      if (left) term *= GiNaC::pow(sym, left);
+    }
+    rest.push_back(term);
+  }
+  s.rest = GiNaC::ex(GiNaC::add(rest));
   return s;
 }
 

@@ -227,6 +227,12 @@ class Deriver {
 /// \p scaling; throws std::invalid_argument("epsilon_order(): ...") for p = 0.
 GiNaC::numeric epsilon_order(const GiNaC::ex& p, const Symbols& symbols, const Scaling& scaling);
 
+/// Conditions with more terms than this get no readable form (Readable):
+/// at 6 bodies a division of such a polynomial by each candidate part was
+/// measured to cost about a quarter of the derivation, for forms that stay
+/// hundreds of terms long.
+inline constexpr std::size_t max_readable_terms = 1000;
+
 /// Polynomials with more terms than this are not factorised by
 /// strip_positive_factors() (multivariate factorisation would dominate the
 /// cost of a derivation; the content and the common monomial are still removed).
