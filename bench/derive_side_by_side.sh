@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Wall time of `superball derive --all` for two builds side by side
-# (alternating, RUNS runs each), and whether their JSON is the same bytes:
+# (alternating, RUNS runs each), and whether their JSON is the same bytes
+# (or holds every field of the old output unchanged, new fields added):
 #
 #   bench/derive_side_by_side.sh OLD_SUPERBALL NEW_SUPERBALL [RUNS]
 #
@@ -20,7 +21,19 @@ measure() {
     local before after same
     before=$(seconds "$old" derive "$@" --format json -o "$work/old.json")
     after=$(seconds "$new" derive "$@" --format json -o "$work/new.json")
-    cmp -s "$work/old.json" "$work/new.json" && same="same bytes" || same="DIFFERENT"
+    if cmp -s "$work/old.json" "$work/new.json"; then same="same bytes"
+    elif python3 - "$work/old.json" "$work/new.json" <<'PY'
+import json, sys
+def within(old, new):  # every field of the old output is in the new one, with the same value
+    if isinstance(old, dict):
+        return isinstance(new, dict) and all(k in new and within(v, new[k]) for k, v in old.items())
+    if isinstance(old, list):
+        return isinstance(new, list) and len(old) == len(new) and all(within(a, b) for a, b in zip(old, new))
+    return old == new
+sys.exit(0 if within(json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))) else 1)
+PY
+    then same="old fields unchanged, new fields added"
+    else same="DIFFERENT"; fi
     echo "$label run $r: before $before s, after $after s, $same"
   done
 }
