@@ -351,6 +351,15 @@ TEST(Verify, TablesOverEpsilonAndExactAgreement) {
     EXPECT_NE(r.out.find(piece), std::string::npos) << "'" << piece << "' not in:\n" << r.out;
 }
 
+TEST(Verify, QuietDrawsNoProgressBarOnATerminal) {
+  // About a second in a Release build, longer under the sanitizers: the bar would be drawn without --quiet.
+  const RunResult r = superball::test::run_on_terminal(
+      {"verify", "--case", "1", "--alphas", "2", "--samples", "2000", "--epsilons", "1e-2,1e-4", "--threads", "2", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_NE(r.out.find("exact agree"), std::string::npos) << r.out;
+}
+
 TEST(Verify, JsonIsTheSameWithOneAndTwoThreads) {
   const std::vector<std::string> args = {"verify", "--case", "3.2", "--alphas", "5", "--samples", "80", "--epsilons", "1e-2,1e-4", "--json", "--threads"};
   std::vector<std::string> one = args, two = args;
