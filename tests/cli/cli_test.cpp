@@ -352,6 +352,7 @@ TEST(Verify, TablesOverEpsilonAndExactAgreement) {
 }
 
 TEST(Verify, QuietDrawsNoProgressBarOnATerminal) {
+  if (!superball::test::pseudo_terminals_available()) GTEST_SKIP() << "no pseudo-terminal on this machine";
   // About a second in a Release build, longer under the sanitizers: the bar would be drawn without --quiet.
   const RunResult r = superball::test::run_on_terminal(
       {"verify", "--case", "1", "--alphas", "2", "--samples", "2000", "--epsilons", "1e-2,1e-4", "--threads", "2", "--quiet"});

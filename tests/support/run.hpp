@@ -92,10 +92,21 @@ inline RunResult run(const std::vector<std::string>& args, const StandardOutput&
   return r;
 }
 
+/// Whether this machine can make a pseudo-terminal (a container may have no
+/// /dev/ptmx): tests of run_on_terminal() skip without one.
+inline bool pseudo_terminals_available() {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0) return false;
+  const bool ok = ::grantpt(master) == 0 && ::unlockpt(master) == 0 && ::ptsname(master) != nullptr;
+  ::close(master);
+  return ok;
+}
+
 /// Run `superball ARGS...` with its standard error on a terminal (a new
 /// pseudo-terminal: what it wrote there, with the terminal's \\r\\n for \\n,
 /// is `err`), standard output captured.  For the output a command shows only
-/// on a terminal (progress).  Fails the test when no pseudo-terminal can be made.
+/// on a terminal (progress).  Fails the test when no pseudo-terminal can be
+/// made (check pseudo_terminals_available() first).
 inline RunResult run_on_terminal(const std::vector<std::string>& args) {
   static int counter = 0;
   RunResult r;

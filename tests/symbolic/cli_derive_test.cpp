@@ -139,17 +139,19 @@ TEST(CliDerive, QuietPrintsNothingOnStandardError) {
   ASSERT_EQ(r.exit_code, 0) << superball::test::describe(r);
   EXPECT_TRUE(r.err.empty()) << r.err;
   EXPECT_EQ(r.out, run({"derive", "--all", "--alphas", "2"}).out);
-  // On a terminal too, where --progress draws its line.
-  const RunResult t = run_on_terminal({"derive", "--all", "--alphas", "2", "-q"});
-  EXPECT_EQ(t.exit_code, 0) << superball::test::describe(t);
-  EXPECT_TRUE(t.err.empty()) << t.err;
   superball::test::expect_bad_input(run({"derive", "--all", "--alphas", "2", "--quiet", "--progress"}), {"--quiet", "--progress"});
   const RunResult help = run({"derive", "--help"});
   for (const char* piece : {"--quiet", "--progress", "derive: case 3 of 16 ({2-3,4-5})"})
     EXPECT_NE(help.out.find(piece), std::string::npos) << piece;
+  // On a terminal too, where --progress draws its line.
+  if (!superball::test::pseudo_terminals_available()) GTEST_SKIP() << "no pseudo-terminal on this machine";
+  const RunResult t = run_on_terminal({"derive", "--all", "--alphas", "2", "-q"});
+  EXPECT_EQ(t.exit_code, 0) << superball::test::describe(t);
+  EXPECT_TRUE(t.err.empty()) << t.err;
 }
 
 TEST(CliDerive, ProgressOnATerminalIsOneLineRedrawnThenErased) {
+  if (!superball::test::pseudo_terminals_available()) GTEST_SKIP() << "no pseudo-terminal on this machine";
   const RunResult t = run_on_terminal({"derive", "--all", "--alphas", "2", "--progress"});
   ASSERT_EQ(t.exit_code, 0) << superball::test::describe(t);
   EXPECT_NE(t.err.find("\rderive: case 1 of 8 (3.3 {})\033[K"), std::string::npos) << t.err;
