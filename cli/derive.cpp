@@ -2,10 +2,12 @@
 // and print the velocities, reactions and conditions as text, LaTeX or JSON.
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <memory>
 #include <sstream>
 
 #include "commands.hpp"
+#include "progress.hpp"
 #include "selection.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
@@ -96,6 +98,7 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
 void add_derive(CLI::App& app, Action& action) {
   struct Options {
     SelectionOptions selection;
+    ProgressOptions progress;
     std::string format = "text", output;
   };
   auto o = std::make_shared<Options>();
@@ -121,7 +124,14 @@ void add_derive(CLI::App& app, Action& action) {
       "  superball derive --closed 2-3 --alphas 5 --order 1      one more order of epsilon\n"
       "  superball derive --case 1 --alphas 2 --scaling m1=1,K14=-1,alpha2=-1\n"
       "  superball derive --bodies 5 --pairs near2 --coupling near2 --all\n"
-      "  superball derive --scene cases/scenes/paper-fig5-alpha5.toml --case 3.2 --obstacle finite\n\n"
+      "  superball derive --scene cases/scenes/paper-fig5-alpha5.toml --case 3.2 --obstacle finite\n"
+      "  superball derive --bodies 6 --pairs near2 --all --progress 2> progress.log\n\n"
+      "Progress.  A derivation that runs longer than " + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kProgressDelay).count()) +
+      " s shows on standard error, when it is a terminal, the case it is\n"
+      "at (\"derive: case 3 of 16 ({2-3,4-5})\"), then \"derive: writing 16 cases as text\", on one line redrawn in\n"
+      "place and erased before the output is written; nothing is shown when standard error is not a terminal or\n"
+      "with --quiet.  --progress shows it from the first case, one line each when standard error is not a\n"
+      "terminal (a log).\n\n"
       "Names (JSON and --scaling): m1..mn, K12 (K1_10 past 9 bodies), alpha1..alpha7 (n = 4), c_12_14 for a\n"
       "coupling of the pairs 1-2 and 1-4, a for the fall speed, U1.. for the velocities after.");
   add_selection_options(cmd, o->selection);
@@ -129,25 +139,35 @@ void add_derive(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"text", "latex", "json"}))
       ->capture_default_str();
   cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output")->check(non_empty());
+  add_progress_options(cmd, o->progress, "case");
   cmd->callback([o, &action] {
     action = [o] {
       const Selection selection = resolve(o->selection);
       const Deriver& deriver = *selection.deriver;
       std::vector<Derivation> results;
-      for (const ContactSet& c : selection.cases) results.push_back(deriver.derive(c));
       std::string text;
-      if (o->format == "json") {
-        nlohmann::ordered_json j = nlohmann::ordered_json::array();
-        for (const Derivation& d : results) j.push_back(derivation_json(d, deriver));
-        text = (results.size() == 1 ? j[0] : j).dump(2) + "\n";
-      } else if (o->format == "latex") {
-        text = latex_document(results, deriver);
-      } else {
-        // Several cases: the conditions on M, the same in every case, once before them.
-        const bool shared = results.size() > 1;
-        if (shared) text += report_psd(deriver, Style::Text) + "\n";
-        for (const Derivation& d : results) text += report(d, deriver, Style::Text, !shared) + "\n";
-      }
+      {
+        StepProgress progress("derive", "case", static_cast<int>(selection.cases.size()), o->progress.mode());
+        for (std::size_t k = 0; k < selection.cases.size(); ++k) {
+          const ContactSet& c = selection.cases[k];
+          const std::string name = Vocabulary::paper().case_name(c);
+          progress.step(static_cast<int>(k + 1), name == c.to_string() ? name : name + " " + c.to_string());
+          results.push_back(deriver.derive(c));
+        }
+        progress.note("writing " + std::to_string(results.size()) + (results.size() == 1 ? " case" : " cases") + " as " + o->format);
+        if (o->format == "json") {
+          nlohmann::ordered_json j = nlohmann::ordered_json::array();
+          for (const Derivation& d : results) j.push_back(derivation_json(d, deriver));
+          text = (results.size() == 1 ? j[0] : j).dump(2) + "\n";
+        } else if (o->format == "latex") {
+          text = latex_document(results, deriver);
+        } else {
+          // Several cases: the conditions on M, the same in every case, once before them.
+          const bool shared = results.size() > 1;
+          if (shared) text += report_psd(deriver, Style::Text) + "\n";
+          for (const Derivation& d : results) text += report(d, deriver, Style::Text, !shared) + "\n";
+        }
+      }  // the progress line is erased before anything is written
       write_output(o->output, text);
       return ok;
     };

@@ -56,11 +56,11 @@ std::string numbered(std::size_t k) {
   return std::string(s.size() < 4 ? 4 - s.size() : 0, '0') + s;
 }
 
-/// A progress bar on stderr, drawn only when stderr is a terminal and the
-/// run has lasted progress_delay; erased at the end.
+/// A progress bar on stderr, drawn only when \p shown (not --quiet), stderr
+/// is a terminal and the run has lasted progress_delay; erased at the end.
 class Progress {
  public:
-  explicit Progress(int tasks) : tasks_(tasks), terminal_(::isatty(STDERR_FILENO) == 1) {}
+  Progress(int tasks, bool shown) : tasks_(tasks), terminal_(shown && ::isatty(STDERR_FILENO) == 1) {}
   ~Progress() {
     if (drawn_) std::cerr << "\r\033[K" << std::flush;
   }
@@ -93,7 +93,7 @@ void add_verify(CLI::App& app, Action& action) {
     std::string epsilons = "1e-2,1e-3,1e-4,1e-5,1e-6", out;
     int samples = verify::VerifyOptions{}.samples, boundary_pairs = verify::VerifyOptions{}.boundary_pairs, threads = 0;
     std::uint64_t seed = 1;
-    bool json = false;
+    bool json = false, quiet = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("verify", "Check a case's derived conditions against exact solutions at sampled points, over epsilon");
@@ -118,7 +118,7 @@ void add_verify(CLI::App& app, Action& action) {
       "of them are near its boundary, and the agreement of each form with that condition alone.\n"
       "Every point where a form disagrees is written to --out as a scene file (its comment says what disagreed\n"
       "and how to rerun it); nothing is written when there is none.  A progress bar is shown on a terminal for\n"
-      "runs longer than a second.\n\n"
+      "runs longer than a second (not with --quiet).\n\n"
       "Examples:\n"
       "  superball verify --case 1 --alphas 2                       the paper's §4.1 case\n"
       "  superball verify --all --alphas 2 --threads 2\n"
@@ -134,6 +134,7 @@ void add_verify(CLI::App& app, Action& action) {
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--out", o->out, "Write each disagreeing point as a scene file in this folder (created)")->check(non_empty());
   cmd->add_flag("--json", o->json, "Print JSON for programs");
+  cmd->add_flag("--quiet,-q", o->quiet, "No progress bar on standard error");
   cmd->callback([o, &action] {
     action = [o] {
       verify::VerifyOptions options;
@@ -147,7 +148,7 @@ void add_verify(CLI::App& app, Action& action) {
       const Selection selection = resolve(o->selection);
       std::vector<verify::Verification> results;
       {
-        Progress progress(static_cast<int>(selection.cases.size()));
+        Progress progress(static_cast<int>(selection.cases.size()), !o->quiet);
         for (std::size_t k = 0; k < selection.cases.size(); ++k) {
           const std::string label = "case " + Vocabulary::paper().case_name(selection.cases[k]) +
                                     (selection.cases.size() > 1 ? " (" + std::to_string(k + 1) + "/" + std::to_string(selection.cases.size()) + ")" : "");

@@ -371,6 +371,16 @@ TEST(Verify, SixBodyPatternExactFormsAgreeOnBothSides) {
   EXPECT_GE(both_sides, 2) << "the points must fall on both sides of some conditions for the check to mean something";
 }
 
+TEST(Verify, QuietDrawsNoProgressBarOnATerminal) {
+  if (!superball::test::pseudo_terminals_available()) GTEST_SKIP() << "no pseudo-terminal on this machine";
+  // About a second in a Release build, longer under the sanitizers: the bar would be drawn without --quiet.
+  const RunResult r = superball::test::run_on_terminal(
+      {"verify", "--case", "1", "--alphas", "2", "--samples", "2000", "--epsilons", "1e-2,1e-4", "--threads", "2", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_NE(r.out.find("exact agree"), std::string::npos) << r.out;
+}
+
 TEST(Verify, JsonIsTheSameWithOneAndTwoThreads) {
   const std::vector<std::string> args = {"verify", "--case", "3.2", "--alphas", "5", "--samples", "80", "--epsilons", "1e-2,1e-4", "--json", "--threads"};
   std::vector<std::string> one = args, two = args;

@@ -6,7 +6,9 @@
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <spawn.h>
+#include <stdlib.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -87,6 +89,67 @@ inline RunResult run(const std::vector<std::string>& args, const StandardOutput&
   r.err = slurp(err);
   std::remove(out.c_str());
   std::remove(err.c_str());
+  return r;
+}
+
+/// Whether this machine can make a pseudo-terminal (a container may have no
+/// /dev/ptmx): tests of run_on_terminal() skip without one.
+inline bool pseudo_terminals_available() {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0) return false;
+  const bool ok = ::grantpt(master) == 0 && ::unlockpt(master) == 0 && ::ptsname(master) != nullptr;
+  ::close(master);
+  return ok;
+}
+
+/// Run `superball ARGS...` with its standard error on a terminal (a new
+/// pseudo-terminal: what it wrote there, with the terminal's \\r\\n for \\n,
+/// is `err`), standard output captured.  For the output a command shows only
+/// on a terminal (progress).  Fails the test when no pseudo-terminal can be
+/// made (check pseudo_terminals_available() first).
+inline RunResult run_on_terminal(const std::vector<std::string>& args) {
+  static int counter = 0;
+  RunResult r;
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0 || !::ptsname(master)) {
+    ADD_FAILURE() << "run_on_terminal(): no pseudo-terminal";
+    if (master >= 0) ::close(master);
+    return r;
+  }
+  const std::string terminal = ::ptsname(master);
+  const std::string exe = SUPERBALL_EXE;
+  const std::string out = ::testing::TempDir() + "superball-tty-" + std::to_string(::getpid()) + "-" + std::to_string(++counter) + ".out";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, 2, terminal.c_str(), O_RDWR | O_NOCTTY, 0);
+  posix_spawn_file_actions_addclose(&actions, master);
+  std::vector<std::string> argv_s = {exe};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ) == 0) {
+    // Read the terminal while the command runs (a full terminal would block it), then what is left.
+    auto drain = [&](int timeout_ms) {
+      pollfd p{master, POLLIN, 0};
+      char buffer[4096];
+      while (::poll(&p, 1, timeout_ms) > 0 && (p.revents & POLLIN)) {
+        const ssize_t got = ::read(master, buffer, sizeof buffer);
+        if (got <= 0) break;
+        r.err.append(buffer, static_cast<std::size_t>(got));
+      }
+    };
+    int status = 0;
+    while (::waitpid(pid, &status, WNOHANG) == 0) drain(50);
+    drain(0);
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  }
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(master);
+  r.out = slurp(out);
+  std::remove(out.c_str());
   return r;
 }
 

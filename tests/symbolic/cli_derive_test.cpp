@@ -19,6 +19,7 @@
 namespace {
 
 using superball::test::run;
+using superball::test::run_on_terminal;
 using superball::test::RunResult;
 
 /// A GiNaC reader knowing the symbols the JSON lists (plain symbols: any CAS reads the text).
@@ -138,6 +139,56 @@ TEST(CliDerive, BadInputIsOneLine) {
     EXPECT_EQ(r.err.rfind("superball: ", 0), 0u) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
+}
+
+// Progress on standard error: the case derive is at ("derive: case k of N (...)").
+
+TEST(CliDerive, ProgressIsOneLinePerCaseWhenAskedForALog) {
+  const RunResult plain = run({"derive", "--all", "--alphas", "2"});
+  const RunResult r = run({"derive", "--all", "--alphas", "2", "--progress"});
+  ASSERT_EQ(r.exit_code, 0) << superball::test::describe(r);
+  EXPECT_TRUE(plain.err.empty()) << plain.err;  // not a terminal: nothing by default
+  EXPECT_EQ(r.out, plain.out);
+  const std::vector<std::string> lines = r.err_lines();
+  ASSERT_EQ(lines.size(), 9u) << r.err;
+  EXPECT_EQ(lines[0], "derive: case 1 of 8 (3.3 {})");
+  EXPECT_EQ(lines[4], "derive: case 5 of 8 (2.2 {3-4})");
+  EXPECT_EQ(lines[7], "derive: case 8 of 8 (0 {1-2,2-3,3-4})");
+  EXPECT_EQ(lines[8], "derive: writing 8 cases as text");
+  const RunResult general = run({"derive", "--bodies", "5", "--pairs", "near", "--closed", "2-3,4-5", "--progress"});
+  EXPECT_EQ(general.err, "derive: case 1 of 1 ({2-3,4-5})\nderive: writing 1 case as text\n");
+}
+
+TEST(CliDerive, QuietPrintsNothingOnStandardError) {
+  const RunResult r = run({"derive", "--all", "--alphas", "2", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << superball::test::describe(r);
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_EQ(r.out, run({"derive", "--all", "--alphas", "2"}).out);
+  superball::test::expect_bad_input(run({"derive", "--all", "--alphas", "2", "--quiet", "--progress"}), {"--quiet", "--progress"});
+  const RunResult help = run({"derive", "--help"});
+  for (const char* piece : {"--quiet", "--progress", "derive: case 3 of 16 ({2-3,4-5})"})
+    EXPECT_NE(help.out.find(piece), std::string::npos) << piece;
+  // On a terminal too, where --progress draws its line.
+  if (!superball::test::pseudo_terminals_available()) GTEST_SKIP() << "no pseudo-terminal on this machine";
+  const RunResult t = run_on_terminal({"derive", "--all", "--alphas", "2", "-q"});
+  EXPECT_EQ(t.exit_code, 0) << superball::test::describe(t);
+  EXPECT_TRUE(t.err.empty()) << t.err;
+}
+
+TEST(CliDerive, ProgressOnATerminalIsOneLineRedrawnThenErased) {
+  if (!superball::test::pseudo_terminals_available()) GTEST_SKIP() << "no pseudo-terminal on this machine";
+  const RunResult t = run_on_terminal({"derive", "--all", "--alphas", "2", "--progress"});
+  ASSERT_EQ(t.exit_code, 0) << superball::test::describe(t);
+  EXPECT_NE(t.err.find("\rderive: case 1 of 8 (3.3 {})\033[K"), std::string::npos) << t.err;
+  EXPECT_NE(t.err.find("\rderive: case 8 of 8 (0 {1-2,2-3,3-4})\033[K"), std::string::npos) << t.err;
+  EXPECT_NE(t.err.find("\rderive: writing 8 cases as text\033[K"), std::string::npos) << t.err;
+  EXPECT_EQ(t.err.find('\n'), std::string::npos) << t.err;  // redrawn in place, never a new line
+  ASSERT_GE(t.err.size(), 4u);
+  EXPECT_EQ(t.err.substr(t.err.size() - 4), "\r\033[K");  // erased before the output
+  // By default a derivation this short ends before the progress would appear.
+  const RunResult quick = run_on_terminal({"derive", "--case", "1", "--alphas", "2"});
+  EXPECT_EQ(quick.exit_code, 0);
+  EXPECT_TRUE(quick.err.empty()) << quick.err;
 }
 
 TEST(CliAudit, JsonHasEveryPrintedCondition) {
