@@ -301,6 +301,74 @@ std::vector<cln::cl_I> Poly::univariate(int keep, const std::vector<cln::cl_I>& 
   return out;
 }
 
+namespace mod61 {
+
+std::uint64_t reduce(const cln::cl_I& x) { return cln::cl_I_to_UQ(cln::mod(x, cln::cl_I(prime))); }
+
+std::uint64_t multiply(std::uint64_t a, std::uint64_t b) {
+  const unsigned __int128 r = static_cast<unsigned __int128>(a) * b;  // < 2^122
+  std::uint64_t x = static_cast<std::uint64_t>(r & prime) + static_cast<std::uint64_t>(r >> 61);
+  x = (x & prime) + (x >> 61);
+  return x >= prime ? x - prime : x;
+}
+
+std::uint64_t add(std::uint64_t a, std::uint64_t b) {
+  const std::uint64_t x = a + b;
+  return x >= prime ? x - prime : x;
+}
+
+namespace {
+
+std::uint64_t inverse(std::uint64_t a) {  // a^(p−2), a ≠ 0
+  std::uint64_t result = 1, base = a;
+  for (std::uint64_t e = prime - 2; e; e >>= 1) {
+    if (e & 1) result = multiply(result, base);
+    base = multiply(base, base);
+  }
+  return result;
+}
+
+}  // namespace
+
+int gcd_degree(std::vector<std::uint64_t> a, std::vector<std::uint64_t> b) {
+  if (a.size() < b.size()) std::swap(a, b);
+  while (!b.empty()) {
+    // a mod b
+    const std::uint64_t lead = inverse(b.back());
+    while (a.size() >= b.size() && !a.empty()) {
+      const std::uint64_t f = multiply(a.back(), lead);
+      const std::size_t shift = a.size() - b.size();
+      for (std::size_t k = 0; k < b.size(); ++k) a[shift + k] = add(a[shift + k], prime - multiply(f, b[k]));
+      while (!a.empty() && a.back() == 0) a.pop_back();
+    }
+    std::swap(a, b);
+  }
+  return static_cast<int>(a.size()) - 1;
+}
+
+}  // namespace mod61
+
+std::vector<std::uint64_t> Poly::univariate_mod(int keep, const std::vector<std::uint64_t>& point) const {
+  std::vector<std::uint64_t> out(static_cast<std::size_t>(degree(keep) + 1), 0);
+  std::vector<std::vector<std::uint64_t>> powers(static_cast<std::size_t>(vars_));
+  for (std::size_t t = 0; t < size(); ++t) {
+    std::uint64_t v = mod61::reduce(coef_[t]);
+    for (int k = 0; k < vars_ && v; ++k) {
+      if (k == keep) continue;
+      const int e = exponent(t, k);
+      if (!e) continue;
+      auto& table = powers[static_cast<std::size_t>(k)];
+      if (table.empty()) table.push_back(1);
+      while (static_cast<int>(table.size()) <= e) table.push_back(mod61::multiply(table.back(), point[static_cast<std::size_t>(k)]));
+      v = mod61::multiply(v, table[static_cast<std::size_t>(e)]);
+    }
+    std::uint64_t& slot = out[static_cast<std::size_t>(exponent(t, keep))];
+    slot = mod61::add(slot, v);
+  }
+  while (!out.empty() && out.back() == 0) out.pop_back();
+  return out;
+}
+
 cln::cl_I Poly::evaluate(const std::vector<cln::cl_I>& point) const {
   if (vars_ == 0) return is_zero() ? cln::cl_I(0) : coef_.front();
   // x_0 is kept as the univariate variable, then evaluated.

@@ -90,6 +90,9 @@ class Poly {
   /// The value with x_k = point[k] for every k except \p keep, as the
   /// coefficients c_0 … c_d of a polynomial in x_keep.
   std::vector<cln::cl_I> univariate(int keep, const std::vector<cln::cl_I>& point) const;
+  /// univariate() modulo the prime 2⁶¹ − 1 (\p point already reduced):
+  /// coefficients c_0 … c_d in [0, 2⁶¹ − 1), trailing zeros dropped.
+  std::vector<std::uint64_t> univariate_mod(int keep, const std::vector<std::uint64_t>& point) const;
   /// The value at \p point (one integer a symbol).
   cln::cl_I evaluate(const std::vector<cln::cl_I>& point) const;
 
@@ -105,6 +108,18 @@ class Poly {
   void push(const std::uint64_t* m, const cln::cl_I& c);
   friend Poly from_terms(int vars, std::vector<std::uint64_t>&& mono, std::vector<cln::cl_I>&& coef);
 };
+
+/// Arithmetic modulo the Mersenne prime 2⁶¹ − 1, for the fast coprimality proof (polynomial.hpp).
+namespace mod61 {
+constexpr std::uint64_t prime = (std::uint64_t{1} << 61) - 1;
+/// \p x reduced into [0, prime).
+std::uint64_t reduce(const cln::cl_I& x);
+std::uint64_t multiply(std::uint64_t a, std::uint64_t b);
+std::uint64_t add(std::uint64_t a, std::uint64_t b);
+/// The degree of gcd(a, b) of two polynomials modulo the prime (coefficients low to high,
+/// no trailing zeros, neither zero).
+int gcd_degree(std::vector<std::uint64_t> a, std::vector<std::uint64_t> b);
+}  // namespace mod61
 
 /// det of the square matrix \p m of polynomials (row-major, \p n × \p n, n ≤ 20):
 /// Laplace expansion along the rows with every minor of the bottom rows

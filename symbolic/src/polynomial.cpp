@@ -109,6 +109,9 @@ Denominator::Denominator(const Poly& q, const Symbols& symbols) : symbols_(&symb
       const std::vector<cln::cl_I> at = q_.univariate(x, probe.point);
       if (static_cast<int>(at.size()) - 1 != degree || cln::zerop(at.back())) continue;  // the leading coefficient vanishes there
       probe.q_at = univariate_ex(at, symbols.all()[static_cast<std::size_t>(x)].symbol);
+      for (const cln::cl_I& v : probe.point) probe.point_mod.push_back(mod61::reduce(v));
+      probe.q_mod = q_.univariate_mod(x, probe.point_mod);
+      if (static_cast<int>(probe.q_mod.size()) - 1 != degree) probe.q_mod.clear();
       probes_.push_back(std::move(probe));
       found = true;
     }
@@ -123,6 +126,10 @@ bool Denominator::coprime_with(const Poly& p) const {
     if (p.has(x)) return false;
   for (const Probe& probe : probes_) {
     if (!p.has(probe.x)) continue;
+    if (!probe.q_mod.empty()) {
+      const std::vector<std::uint64_t> p_mod = p.univariate_mod(probe.x, probe.point_mod);
+      if (!p_mod.empty() && mod61::gcd_degree(p_mod, probe.q_mod) == 0) continue;  // proved for x, modulo the prime
+    }
     const GiNaC::ex& x = symbols_->all()[static_cast<std::size_t>(probe.x)].symbol;
     const GiNaC::ex g = GiNaC::gcd(univariate_ex(p.univariate(probe.x, probe.point), x), probe.q_at);
     if (g.degree(x) > 0) return false;

@@ -52,7 +52,10 @@ class Denominator {
   /// Whether gcd(p, q) is a constant, proved by specialisation: for every
   /// symbol x of both, the univariate gcd at the probe point is a constant,
   /// so a common factor cannot involve x (it would keep its degree in x
-  /// there, its leading coefficient dividing q's).  False means "not proved".
+  /// there, its leading coefficient dividing q's).  The gcd is first taken
+  /// modulo the prime 2⁶¹ − 1, which proves the same when q's leading
+  /// coefficient does not vanish modulo it (a common factor would keep its
+  /// degree there too); only otherwise over the integers.  False means "not proved".
   bool coprime_with(const Poly& p) const;
 
   /// A fraction p / q in lowest terms.
@@ -71,6 +74,7 @@ class Denominator {
     int x = 0;                    ///< index of the symbol kept
     std::vector<cln::cl_I> point; ///< one integer a symbol (x's entry unused)
     GiNaC::ex q_at;               ///< q at the point: a polynomial in x only
+    std::vector<std::uint64_t> point_mod, q_mod;  ///< the same modulo 2⁶¹ − 1 (q_mod empty when its leading coefficient vanishes there)
   };
   const Symbols* symbols_;
   Poly q_;

@@ -97,6 +97,36 @@ TEST(CheckPoly, MonomialDivisionContentAndSpecialisation) {
   }
 }
 
+TEST(CheckPoly, ModularSpecialisationAndGcdAgreeWithGinac) {
+  const Symbols& s = symbols();
+  Random random(61);
+  const int vars = static_cast<int>(s.all().size());
+  const GiNaC::ex& x = s.all().front().symbol;
+  for (int round = 0; round < 100; ++round) {
+    // Two polynomials with a known common factor (or none), specialised at integers but x.
+    const GiNaC::ex common = round % 2 ? random.polynomial(s, 3) + x : GiNaC::ex(1);
+    const GiNaC::ex f = GiNaC::expand(common * (random.polynomial(s, 5) + x)), g = GiNaC::expand(common * (random.polynomial(s, 5) + 1));
+    std::vector<cln::cl_I> point;
+    std::vector<std::uint64_t> point_mod;
+    GiNaC::exmap at;
+    for (int k = 0; k < vars; ++k) {
+      point.push_back(random.below(2001) - 1000);
+      point_mod.push_back(detail::mod61::reduce(point.back()));
+      if (k) at[s.all()[static_cast<std::size_t>(k)].symbol] = GiNaC::numeric(cln::cl_N(point.back()));
+    }
+    const Poly pf = Poly::from_ex(f, s), pg = Poly::from_ex(g, s);
+    const std::vector<cln::cl_I> exact = pf.univariate(0, point);
+    const std::vector<std::uint64_t> reduced = pf.univariate_mod(0, point_mod);
+    for (std::size_t d = 0; d < reduced.size(); ++d) EXPECT_EQ(reduced[d], detail::mod61::reduce(exact[d]));
+    const GiNaC::ex fa = GiNaC::expand(f.subs(at)), ga = GiNaC::expand(g.subs(at));
+    const std::vector<std::uint64_t> gm = pg.univariate_mod(0, point_mod);
+    if (reduced.empty() || gm.empty()) continue;
+    const int expected = GiNaC::gcd(fa, ga).degree(x);
+    // Modulo the prime the gcd can only be as large or larger; with these small integers it is the same.
+    EXPECT_EQ(detail::mod61::gcd_degree(reduced, gm), expected) << "round " << round;
+  }
+}
+
 TEST(CheckPoly, BandedDeterminantsAgreeWithGinac) {
   const Symbols& s = symbols();
   Random random(42);
