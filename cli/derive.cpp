@@ -23,12 +23,13 @@ nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s) {
   nlohmann::ordered_json j;
   j["kind"] = to_string(c.kind);
   j["about"] = c.about;
-  j["exact"] = format_condition(c.exact, c.relation, s, Style::Ascii);
-  j["asymptotic"] = format_condition(c.asymptotic, c.relation, s, Style::Ascii);
-  j["text"] = format_condition(c.exact, c.relation, s, Style::Text);
-  j["latex"] = format_condition(c.exact, c.relation, s, Style::Latex);
-  j["asymptotic_text"] = format_condition(c.asymptotic, c.relation, s, Style::Text);
-  j["asymptotic_latex"] = format_condition(c.asymptotic, c.relation, s, Style::Latex);
+  const StyledText exact = format_condition_styles(c.exact, c.relation, s), asymptotic = format_condition_styles(c.asymptotic, c.relation, s);
+  j["exact"] = exact.ascii;
+  j["asymptotic"] = asymptotic.ascii;
+  j["text"] = exact.text;
+  j["latex"] = exact.latex;
+  j["asymptotic_text"] = asymptotic.text;
+  j["asymptotic_latex"] = asymptotic.latex;
   if (c.finite) j["finite"] = format_condition(*c.finite, c.relation, s, Style::Ascii);
   // The same conditions as a person writes them (isolated or grouped; derivation.hpp, Readable).
   nlohmann::ordered_json readable = nlohmann::ordered_json::object();

@@ -260,9 +260,11 @@ std::string format_fraction(const Fraction& f, const Symbols& symbols, Style sty
   return (single_num ? num : "(" + num + ")") + "/" + (single_den ? den : "(" + den + ")");
 }
 
-std::string format_condition(const GiNaC::ex& p, Relation relation, const Symbols& symbols, Style style) {
-  if (style == Style::Ascii) return format_polynomial(p, symbols, style) + " " + relation_text(relation, false, style) + " 0";
-  const auto ts = sorted_terms(p, symbols);
+namespace {
+
+/// format_condition() of the polynomial whose sorted terms are \p ts.
+std::string condition_from_terms(const std::vector<detail::Term>& ts, Relation relation, const Symbols& symbols, Style style) {
+  if (style == Style::Ascii) return join(ts, symbols, style) + " " + relation_text(relation, false, style) + " 0";
   std::vector<detail::Term> pos, neg;
   for (const detail::Term& t : ts) (t.coefficient.is_positive() ? pos : neg).push_back(t);
   const std::string rel = relation_text(relation, false, style), turned = relation_text(relation, true, style);
@@ -281,6 +283,21 @@ std::string format_condition(const GiNaC::ex& p, Relation relation, const Symbol
   const bool swap = neg.size() < pos.size() || (neg.size() == pos.size() && couples(neg) && !couples(pos));
   if (swap) return join(neg, symbols, style, true) + " " + turned + " " + join(pos, symbols, style);
   return join(pos, symbols, style) + " " + rel + " " + join(neg, symbols, style, true);
+}
+
+}  // namespace
+
+std::string format_condition(const GiNaC::ex& p, Relation relation, const Symbols& symbols, Style style) {
+  return condition_from_terms(sorted_terms(p, symbols), relation, symbols, style);
+}
+
+StyledText format_condition_styles(const ConditionForm& form, Relation relation, const Symbols& symbols) {
+  if (!form.sign_proved())
+    return {format_condition(form, relation, symbols, Style::Ascii), format_condition(form, relation, symbols, Style::Text),
+            format_condition(form, relation, symbols, Style::Latex)};
+  const auto ts = sorted_terms(form.numerator, symbols);  // once for the three
+  return {condition_from_terms(ts, relation, symbols, Style::Ascii), condition_from_terms(ts, relation, symbols, Style::Text),
+          condition_from_terms(ts, relation, symbols, Style::Latex)};
 }
 
 std::string format_condition(const ConditionForm& form, Relation relation, const Symbols& symbols, Style style) {

@@ -44,6 +44,16 @@ std::string format_condition(const GiNaC::ex& p, Relation relation, const Symbol
 /// ("(N)/(D) > 0 (sign of the denominator not proved)").
 std::string format_condition(const ConditionForm& form, Relation relation, const Symbols& symbols, Style style);
 
+/// One formula in the three notations.
+struct StyledText {
+  std::string ascii, text, latex;
+};
+
+/// format_condition() of \p form in the three styles at once (the terms
+/// are walked and sorted once: a condition of thousands of terms costs a
+/// third).
+StyledText format_condition_styles(const ConditionForm& form, Relation relation, const Symbols& symbols);
+
 /// S₁ (text), S_{1} (LaTeX), S1 (ASCII): the name of the named part \p k of a case.
 std::string named_part_name(int k, Style style);
 
