@@ -305,8 +305,10 @@ namespace mod61 {
 
 std::uint64_t reduce(const cln::cl_I& x) { return cln::cl_I_to_UQ(cln::mod(x, cln::cl_I(prime))); }
 
+__extension__ typedef unsigned __int128 wide;  // GCC and Clang's 128-bit integer
+
 std::uint64_t multiply(std::uint64_t a, std::uint64_t b) {
-  const unsigned __int128 r = static_cast<unsigned __int128>(a) * b;  // < 2^122
+  const wide r = static_cast<wide>(a) * b;  // < 2^122
   std::uint64_t x = static_cast<std::uint64_t>(r & prime) + static_cast<std::uint64_t>(r >> 61);
   x = (x & prime) + (x >> 61);
   return x >= prime ? x - prime : x;

@@ -102,7 +102,7 @@ Denominator::Denominator(const Poly& q, const Symbols& symbols) : symbols_(&symb
     if (!degree) continue;
     bool found = false;
     for (int attempt = 0; attempt < 3 && !found; ++attempt) {
-      Probe probe{x, std::vector<cln::cl_I>(static_cast<std::size_t>(vars), 0), 0};
+      Probe probe{x, std::vector<cln::cl_I>(static_cast<std::size_t>(vars), 0), 0, {}, {}};
       int k = 0;
       for (int other = 0; other < vars; ++other)
         if (other != x) probe.point[static_cast<std::size_t>(other)] = values[(k++ * 7 + attempt * 5 + 1) % count] + attempt;

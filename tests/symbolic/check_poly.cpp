@@ -63,7 +63,9 @@ TEST(CheckPoly, ArithmeticAgreesWithGinac) {
     const int k = random.below(static_cast<int>(s.all().size()));
     const GiNaC::ex& xk = s.all()[static_cast<std::size_t>(k)].symbol;
     EXPECT_EQ(px.degree(k), x.degree(xk));
-    if (!x.is_zero()) EXPECT_TRUE(same(px.leading_coefficient(k), x.lcoeff(xk), s)) << "round " << round;
+    if (!x.is_zero()) {
+      EXPECT_TRUE(same(px.leading_coefficient(k), x.lcoeff(xk), s)) << "round " << round;
+    }
   }
 }
 
