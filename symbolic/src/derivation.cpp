@@ -240,13 +240,19 @@ detail::Poly Deriver::strip(const detail::Poly& p, GiNaC::ex* removed) const {
     return out;
   }
   // Large: the positive content and the monomial of positive symbols common to every term.
+  detail::Poly g;
+  detail::Poly rest = without_positive_monomial(p, g);
+  if (removed) *removed = g.to_ex(sy);
+  return rest;
+}
+
+detail::Poly Deriver::without_positive_monomial(const detail::Poly& p, detail::Poly& g) const {
   const cln::cl_I content = p.content();
   std::vector<int> common = p.common_exponents();
   for (int k : couplings_) common[static_cast<std::size_t>(k)] = 0;
-  GiNaC::ex gone = GiNaC::numeric(cln::cl_N(content));
+  g = detail::Poly::constant(p.vars(), content);
   for (int k = 0; k < p.vars(); ++k)
-    if (common[static_cast<std::size_t>(k)]) gone *= GiNaC::pow(sy.all()[static_cast<std::size_t>(k)].symbol, common[static_cast<std::size_t>(k)]);
-  if (removed) *removed = gone;
+    if (common[static_cast<std::size_t>(k)]) g = g.times_power(k, common[static_cast<std::size_t>(k)]);
   return p.divided(content).divided_by_monomial(common);
 }
 
@@ -258,8 +264,7 @@ detail::Poly Deriver::dominant(const detail::Poly& p, GiNaC::numeric* leading) c
   std::vector<GiNaC::numeric> weight(p.size(), 0);
   std::vector<GiNaC::numeric> levels;
   for (std::size_t t = 0; t < p.size(); ++t) {
-    for (int k = 0; k < p.vars(); ++k)
-      if (const int e = p.exponent(t, k); e && !orders_[static_cast<std::size_t>(k)].is_zero()) weight[t] += orders_[static_cast<std::size_t>(k)] * e;
+    weight[t] = term_order(p, t);
     if (std::none_of(levels.begin(), levels.end(), [&](const GiNaC::numeric& w) { return w == weight[t]; })) levels.push_back(weight[t]);
   }
   std::sort(levels.begin(), levels.end(), [](const GiNaC::numeric& x, const GiNaC::numeric& y) { return x < y; });
@@ -348,12 +353,7 @@ std::optional<Readable> Deriver::readable(const detail::Poly& p, detail::Naming&
     const Poly positive = c.sigma < 0 ? -A : A;
     if (!positive_terms(positive)) continue;  // the sign of x's coefficient is not proved
     // g: the content and the monomial of positive symbols common to the coefficient's terms.
-    std::vector<int> common = positive.common_exponents();
-    for (int k : couplings_) common[static_cast<std::size_t>(k)] = 0;
-    c.g = Poly::constant(vars, positive.content());
-    for (int k = 0; k < vars; ++k)
-      if (common[static_cast<std::size_t>(k)]) c.g = c.g.times_power(k, common[static_cast<std::size_t>(k)]);
-    c.S = positive.divided(positive.content()).divided_by_monomial(common);
+    c.S = without_positive_monomial(positive, c.g);
     const Poly T = -p.coefficient_of(x, 0);  // P = σ g S x − T
     if (c.S.is_constant()) {
       // Without a division the isolated form pays only when the other side has one sign
@@ -402,12 +402,17 @@ GiNaC::numeric Deriver::epsilon_order(const detail::Poly& p) const {
   if (p.is_zero()) throw std::invalid_argument("epsilon_order(): the zero polynomial has no order");
   GiNaC::numeric lowest = 0;
   for (std::size_t t = 0; t < p.size(); ++t) {
-    GiNaC::numeric w = 0;
-    for (int k = 0; k < p.vars(); ++k)
-      if (const int e = p.exponent(t, k); e && !orders_[static_cast<std::size_t>(k)].is_zero()) w += orders_[static_cast<std::size_t>(k)] * e;
+    const GiNaC::numeric w = term_order(p, t);
     if (t == 0 || w < lowest) lowest = w;
   }
   return lowest;
+}
+
+GiNaC::numeric Deriver::term_order(const detail::Poly& p, std::size_t t) const {
+  GiNaC::numeric w = 0;
+  for (int k = 0; k < p.vars(); ++k)
+    if (const int e = p.exponent(t, k); e && !orders_[static_cast<std::size_t>(k)].is_zero()) w += orders_[static_cast<std::size_t>(k)] * e;
+  return w;
 }
 
 Condition Deriver::make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
@@ -600,6 +605,8 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   const Poly D = detail::determinant(B, k, vars);
   if (D.is_zero()) throw std::logic_error("Deriver::derive(): the reduced system of case " + closed.to_string() + " is singular");
   const detail::Denominator denominator(D, sy);
+  std::vector<Poly> uD(N, Poly(vars));  // u_j D, the velocities before times D
+  for (std::size_t j = 0; j < N; ++j) uD[j] = u[j] * D;
   // Cramer's rule, fraction-free: V_c = det(B with column c replaced by rhs) / D.
   std::vector<Poly> Wh(N, Poly(vars));  // D · W
   std::vector<Poly> Vh(Kc, Poly(vars));
@@ -610,15 +617,18 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   }
   for (int i = 0; i < n; ++i) {
     const int ci = cluster[static_cast<std::size_t>(i)];
-    Wh[static_cast<std::size_t>(i)] = ci == fixed_cluster ? u_obstacle * D : Vh[static_cast<std::size_t>(ci)];
+    Wh[static_cast<std::size_t>(i)] = ci == fixed_cluster ? uD[N - 1] : Vh[static_cast<std::size_t>(ci)];
   }
-  // Row i of the equations of motion times D, without the reactions: its
-  // inertia m_i(W_i − u_i D) and dissipation Σ_j K_ij (W_j + u_j D) parts.
-  auto inertia_of = [&](int i) { return m[static_cast<std::size_t>(i)] * (Wh[static_cast<std::size_t>(i)] - u[static_cast<std::size_t>(i)] * D); };
-  auto dissipation_of = [&](int i) {
+  // Row i of the equations of motion times D, without the reactions, for
+  // velocities times D `V`: its inertia m_i(V_i − u_i D) and dissipation
+  // Σ_j K_ij (V_j + u_j D) parts.
+  auto inertia_of = [&](int i, const std::vector<Poly>& V) {
+    return m[static_cast<std::size_t>(i)] * (V[static_cast<std::size_t>(i)] - uD[static_cast<std::size_t>(i)]);
+  };
+  auto dissipation_of = [&](int i, const std::vector<Poly>& V) {
     Poly r(vars);
     for (int j = 0; j < n; ++j)
-      if (!Kij(i, j).is_zero()) r += Kij(i, j) * (Wh[static_cast<std::size_t>(j)] + u[static_cast<std::size_t>(j)] * D);
+      if (!Kij(i, j).is_zero()) r += Kij(i, j) * (V[static_cast<std::size_t>(j)] + uD[static_cast<std::size_t>(j)]);
     return r;
   };
   // λ_c · D on closed contacts: running sums from the cluster's top body.
@@ -627,8 +637,8 @@ Derivation Deriver::derive(const ContactSet& closed) const {
     if (!closed.closed(c)) continue;
     Poly in(vars), dis(vars);
     for (int i = top[static_cast<std::size_t>(cluster[static_cast<std::size_t>(c)])]; i <= c; ++i) {
-      in += inertia_of(i);
-      dis += dissipation_of(i);
+      in += inertia_of(i, Wh);
+      dis += dissipation_of(i, Wh);
     }
     inertia[static_cast<std::size_t>(c)] = in;
     dissipation[static_cast<std::size_t>(c)] = dis;
@@ -642,8 +652,8 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   out.determinant = denominator.value();
   out.free_clusters = k;
   const GiNaC::exmap ref = reference_point(sy);
-  // Each result is stored in lowest terms; `scale` records how to get D times
-  // it back: numerator · (D / denominator), checked below.
+  // Each result is stored in lowest terms, with how it was reduced (content,
+  // sign) so that the check below can multiply it back by D.
   struct Stored {
     Fraction fraction;
     detail::Denominator::Reduced reduced;
@@ -674,7 +684,9 @@ Derivation Deriver::derive(const ContactSet& closed) const {
     const Fraction& f = s.fraction;
     if (s.reduced.whole) {  // numerator = ±P / content, denominator = ±D / content
       const cln::cl_I c = s.reduced.content * s.sign;
-      if (Poly::from_ex(f.denominator, sy).scaled(c) != D)
+      // The denominator is usually D's own expression (content 1, sign +): no need to read it back.
+      const bool own = c == 1 && f.denominator.is_equal(denominator.value());
+      if (!own && Poly::from_ex(f.denominator, sy).scaled(c) != D)
         throw std::logic_error(std::string("Deriver::derive(): the denominator of ") + what + " is not det(Z^T A Z) over its content");
       return Poly::from_ex(f.numerator, sy).scaled(c);
     }
@@ -688,9 +700,7 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   for (int c = 0; c + 1 < n; ++c)
     if (closed.closed(c)) L[static_cast<std::size_t>(c)] = -times_D(reactions[static_cast<std::size_t>(c)], "a reaction");
   for (int i = 0; i < free_bodies; ++i) {
-    Poly r = m[static_cast<std::size_t>(i)] * (W[static_cast<std::size_t>(i)] - u[static_cast<std::size_t>(i)] * D);
-    for (int j = 0; j < n; ++j)
-      if (!Kij(i, j).is_zero()) r += Kij(i, j) * (W[static_cast<std::size_t>(j)] + u[static_cast<std::size_t>(j)] * D);
+    Poly r = inertia_of(i, W) + dissipation_of(i, W);
     if (i + 1 < n) r -= L[static_cast<std::size_t>(i)];
     if (i > 0) r += L[static_cast<std::size_t>(i - 1)];
     if (!r.is_zero())
@@ -700,7 +710,7 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   for (int c = 0; c + 1 < n; ++c)
     if (closed.closed(c) && W[static_cast<std::size_t>(c)] != W[static_cast<std::size_t>(c + 1)])
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": contact " + Pair{c + 1, c + 2}.name() + " does not stay closed");
-  if (fixed && W[N - 1] != u_obstacle * D) throw std::logic_error("Deriver::derive(): the fixed obstacle moves");
+  if (fixed && W[N - 1] != uD[N - 1]) throw std::logic_error("Deriver::derive(): the fixed obstacle moves");
   out.check = "substituted back: the " + std::to_string(free_bodies) +
               " equations of motion with the reactions hold exactly (times det(Z^T A Z) they expand to 0), closed contacts keep equal "
               "velocities" + std::string(fixed ? ", the obstacle stays at rest" : "");

@@ -42,11 +42,15 @@ bool check_form(const ConditionForm& form, Relation rel, const Derivation& d, st
   const bool isolated = !r.subject.is_zero();
   const GiNaC::ex rebuilt = isolated ? r.subject * S - (r.quotient * S + r.remainder) : r.quotient * S + r.remainder;
   EXPECT_TRUE(GiNaC::expand(form.numerator - rebuilt).is_zero()) << where << ": P != the readable form's polynomial";
-  if (isolated && r.named) EXPECT_TRUE(d.named.at(static_cast<std::size_t>(r.named - 1)).positive) << where << ": divides by a part not proved positive";
+  if (isolated && r.named) {
+    EXPECT_TRUE(d.named.at(static_cast<std::size_t>(r.named - 1)).positive) << where << ": divides by a part not proved positive";
+  }
   for (int k = 0; k < 3; ++k) {
     const GiNaC::exmap at = random_point(*d.symbols, rng);
     const GiNaC::numeric s = value(S, at);
-    if (isolated) EXPECT_TRUE(s.is_positive()) << where;
+    if (isolated) {
+      EXPECT_TRUE(s.is_positive()) << where;
+    }
     const GiNaC::numeric p = value(form.numerator, at);
     const GiNaC::numeric readable = isolated ? value(r.subject, at) - value(r.quotient, at) - value(r.remainder, at) / s
                                              : value(r.quotient, at) * s + value(r.remainder, at);

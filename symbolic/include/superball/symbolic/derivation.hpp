@@ -213,6 +213,11 @@ class Deriver {
   Verdict verdict(const detail::Poly& p, Relation rel) const;
   detail::Poly strip(const detail::Poly& p, GiNaC::ex* removed = nullptr) const;
   detail::Poly dominant(const detail::Poly& p, GiNaC::numeric* leading) const;
+  /// The ε-order of term \p t of \p p.
+  GiNaC::numeric term_order(const detail::Poly& p, std::size_t t) const;
+  /// \p p divided by g, the positive integer content times the monomial of
+  /// positive symbols common to its terms (g receives it).
+  detail::Poly without_positive_monomial(const detail::Poly& p, detail::Poly& g) const;
   void build_psd();
 
   std::shared_ptr<const Symbols> symbols_;
