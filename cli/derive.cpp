@@ -43,6 +43,19 @@ nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s) {
   if (c.finite) add("finite", *c.finite);
   add("asymptotic", c.asymptotic);
   if (!readable.empty()) j["readable"] = readable;
+  // Long forms through the case's elimination (derivation.hpp, Elimination): Σ ℓ_c V_c + β REL 0.
+  nlohmann::ordered_json eliminated = nlohmann::ordered_json::object();
+  auto add_eliminated = [&](const char* key, const ConditionForm& form) {
+    if (!form.eliminated) return;
+    eliminated[key] = {{"ascii", format_eliminated(*form.eliminated, c.relation, s, Style::Ascii)},
+                       {"text", format_eliminated(*form.eliminated, c.relation, s, Style::Text)},
+                       {"latex", format_eliminated(*form.eliminated, c.relation, s, Style::Latex)},
+                       {"limit", form.eliminated->limit}};
+  };
+  add_eliminated("exact", c.exact);
+  if (c.finite) add_eliminated("finite", *c.finite);
+  add_eliminated("asymptotic", c.asymptotic);
+  if (!eliminated.empty()) j["eliminated"] = eliminated;
   std::ostringstream order;
   order << c.leading_order;
   j["order"] = order.str();
@@ -86,6 +99,19 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
                      {"latex", format_polynomial(p.value, s, Style::Latex)},
                      {"positive", p.positive}});
   j["named"] = named;
+  if (d.elimination) {
+    const Elimination& e = *d.elimination;
+    nlohmann::ordered_json order = nlohmann::ordered_json::array(), small = nlohmann::ordered_json::array(),
+                           definitions = nlohmann::ordered_json::array();
+    for (int c : e.order) order.push_back(c + 1);
+    for (const GiNaC::ex& x : e.small) small.push_back(s.info(x).ascii);
+    const auto ascii = elimination_definitions(e, s, Style::Ascii), text = elimination_definitions(e, s, Style::Text),
+               latex = elimination_definitions(e, s, Style::Latex);
+    for (std::size_t k = 0; k < ascii.size(); ++k)
+      definitions.push_back({{"name", ascii[k].first}, {"value", ascii[k].second}, {"text", text[k].first + " = " + text[k].second},
+                             {"latex", latex[k].first + " = " + latex[k].second}});
+    j["elimination"] = {{"order", order}, {"small", small}, {"definitions", definitions}};
+  }
   j["actual"] = to_string(d.actual);
   if (d.actual == Verdict::Never) j["actual_reason"] = d.actual_reason;
   nlohmann::ordered_json conditions = nlohmann::ordered_json::array();

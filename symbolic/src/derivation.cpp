@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
+
+#include <cln/rational.h>
 
 #include "poly.hpp"
 #include "polynomial.hpp"
@@ -415,9 +419,77 @@ GiNaC::numeric Deriver::term_order(const detail::Poly& p, std::size_t t) const {
   return w;
 }
 
+namespace {
+
+/// Which multipliers l_ij of the elimination of the k×k matrix \p B in
+/// \p order are structurally nonzero (Elimination): B_ij ≠ 0, or fill-in
+/// through a cluster eliminated before j.
+std::vector<char> multipliers(const std::vector<detail::Poly>& B, int k, const std::vector<int>& order) {
+  const auto K = static_cast<std::size_t>(k);
+  std::vector<char> present(K * K, 0);
+  for (std::size_t a = 0; a < K; ++a) {
+    const auto j = static_cast<std::size_t>(order[a]);
+    for (std::size_t b = a + 1; b < K; ++b) {
+      const auto i = static_cast<std::size_t>(order[b]);
+      bool nonzero = !B[i * K + j].is_zero();
+      for (std::size_t c = 0; c < a && !nonzero; ++c) {
+        const auto t = static_cast<std::size_t>(order[c]);
+        nonzero = present[i * K + t] && present[j * K + t];
+      }
+      present[i * K + j] = nonzero;
+    }
+  }
+  return present;
+}
+
+/// The cluster velocities of the elimination (Elimination) with b_ij = \p B
+/// and r_i = \p r, numbers; nothing when a pivot vanishes.
+std::optional<std::vector<cln::cl_RA>> eliminated_velocities(const std::vector<cln::cl_RA>& B, const std::vector<cln::cl_RA>& r, int k,
+                                                             const std::vector<char>& present, const std::vector<int>& order) {
+  const auto K = static_cast<std::size_t>(k);
+  std::vector<cln::cl_RA> p(K), y(K), V(K), l(K * K, 0);
+  for (std::size_t a = 0; a < K; ++a) {
+    const auto j = static_cast<std::size_t>(order[a]);
+    cln::cl_RA pj = B[j * K + j], yj = r[j];
+    for (std::size_t c = 0; c < a; ++c) {
+      const auto t = static_cast<std::size_t>(order[c]);
+      if (!present[j * K + t]) continue;
+      pj -= l[j * K + t] * l[j * K + t] * p[t];
+      yj -= l[j * K + t] * y[t];
+    }
+    if (cln::zerop(pj)) return std::nullopt;
+    p[j] = pj;
+    y[j] = yj;
+    for (std::size_t b = a + 1; b < K; ++b) {
+      const auto i = static_cast<std::size_t>(order[b]);
+      if (!present[i * K + j]) continue;
+      cln::cl_RA v = B[i * K + j];
+      for (std::size_t c = 0; c < a; ++c) {
+        const auto t = static_cast<std::size_t>(order[c]);
+        if (present[i * K + t] && present[j * K + t]) v -= l[i * K + t] * l[j * K + t] * p[t];
+      }
+      l[i * K + j] = v / pj;
+    }
+  }
+  for (std::size_t a = K; a-- > 0;) {
+    const auto j = static_cast<std::size_t>(order[a]);
+    V[j] = y[j] / p[j];
+    for (std::size_t b = a + 1; b < K; ++b) {
+      const auto i = static_cast<std::size_t>(order[b]);
+      if (present[i * K + j]) V[j] -= l[i * K + j] * V[i];
+    }
+  }
+  return V;
+}
+
+/// Terms of an expanded polynomial.
+std::size_t terms_of(const GiNaC::ex& p) { return GiNaC::is_a<GiNaC::add>(p) ? p.nops() : 1; }
+
+}  // namespace
+
 Condition Deriver::make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
                                   const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts,
-                                  detail::Naming& naming) const {
+                                  detail::Naming& naming, const EliminatedForm* eliminated, bool limit) const {
   const Symbols& sy = *symbols_;
   Condition c;
   c.kind = kind;
@@ -480,6 +552,22 @@ Condition Deriver::make_condition(ConditionKind kind, const std::string& about, 
   c.asymptotic.verdict = c.asymptotic.sign_proved() ? verdict(dominant_balance, relation) : Verdict::Depends;
   if (c.asymptotic.verdict == Verdict::Depends && c.asymptotic.sign_proved()) c.asymptotic.readable = readable(dominant_balance, naming);
   c.orders_kept = 1 + order_;
+  // Long forms through the case's elimination (the expanded ones stay).
+  if (eliminated) {
+    auto is_long = [&](const ConditionForm& f, std::size_t most) {
+      if (!f.sign_proved() || f.verdict != Verdict::Depends || terms_of(f.numerator) <= most) return false;
+      if (!f.readable) return true;
+      const Readable& r = *f.readable;
+      const std::size_t named = r.named ? naming.named[static_cast<std::size_t>(r.named - 1)].size() : 0;
+      return terms_of(r.quotient) + terms_of(r.remainder) + named > most;
+    };
+    ConditionForm& regime_form = c.finite ? *c.finite : c.exact;
+    if (is_long(regime_form, max_inline_exact_terms)) regime_form.eliminated = *eliminated;
+    if (limit && is_long(c.asymptotic, max_inline_terms)) {
+      c.asymptotic.eliminated = *eliminated;
+      c.asymptotic.eliminated->limit = true;
+    }
+  }
   // Did the leading orders of the parts cancel (the paper's superball condition)?
   if (!raw.is_zero()) {
     const GiNaC::numeric whole = epsilon_order(raw);
@@ -715,22 +803,147 @@ Derivation Deriver::derive(const ContactSet& closed) const {
               " equations of motion with the reactions hold exactly (times det(Z^T A Z) they expand to 0), closed contacts keep equal "
               "velocities" + std::string(fixed ? ", the obstacle stays at rest" : "");
 
-  // Conditions (paper §4).
+  // Conditions (paper §4), each also as a linear form in the cluster
+  // velocities: raw = Σ_c ℓ_c Vh_c + β D, so that raw / D = Σ_c ℓ_c V_c + β.
+  struct Linear {
+    std::vector<Poly> coefficients;
+    Poly constant;
+  };
+  auto linear = [&]() { return Linear{std::vector<Poly>(Kc, Poly(vars)), Poly(vars)}; };
+  auto add_velocity = [&](Linear& f, int i, const Poly& coefficient) {  // + coefficient · W_i
+    const int ci = cluster[static_cast<std::size_t>(i)];
+    if (ci == fixed_cluster)
+      f.constant += coefficient * u[N - 1];
+    else
+      f.coefficients[static_cast<std::size_t>(ci)] += coefficient;
+  };
+  const Poly one = Poly::constant(vars, 1);
+  struct Pending {
+    ConditionKind kind;
+    std::string about;
+    Relation relation;
+    Poly raw;
+    std::vector<const Poly*> parts;
+    Linear form;
+  };
+  std::vector<Pending> pending;
   const Poly aD = symbol(a) * D;
+  {
+    Linear f = linear();
+    add_velocity(f, 0, one);
+    f.constant -= symbol(a);
+    pending.push_back({ConditionKind::Superball, "U1 > a", Relation::Greater, Wh[0] - aD, {&Wh[0], &aD}, f});
+  }
+  for (int c = 0; c + 1 < n; ++c) {
+    if (closed.closed(c)) continue;
+    Linear f = linear();
+    add_velocity(f, c, one);
+    add_velocity(f, c + 1, -one);
+    pending.push_back({ConditionKind::Evolution, Pair{c + 1, c + 2}.name(), Relation::Greater,
+                       Wh[static_cast<std::size_t>(c)] - Wh[static_cast<std::size_t>(c + 1)],
+                       {&Wh[static_cast<std::size_t>(c)], &Wh[static_cast<std::size_t>(c + 1)]}, f});
+  }
+  std::vector<Linear> reaction_forms(N - 1, linear());
+  for (int c = 0; c + 1 < n; ++c) {
+    if (!closed.closed(c)) continue;
+    Linear& f = reaction_forms[static_cast<std::size_t>(c)];
+    for (int i = top[static_cast<std::size_t>(cluster[static_cast<std::size_t>(c)])]; i <= c; ++i) {
+      add_velocity(f, i, m[static_cast<std::size_t>(i)]);
+      f.constant -= m[static_cast<std::size_t>(i)] * u[static_cast<std::size_t>(i)];
+      for (int j = 0; j < n; ++j) {
+        if (Kij(i, j).is_zero()) continue;
+        add_velocity(f, j, Kij(i, j));
+        f.constant += Kij(i, j) * u[static_cast<std::size_t>(j)];
+      }
+    }
+    pending.push_back({ConditionKind::Contact, Pair{c + 1, c + 2}.name(), Relation::GreaterEqual, Lh[static_cast<std::size_t>(c)],
+                       {&inertia[static_cast<std::size_t>(c)], &dissipation[static_cast<std::size_t>(c)]}, f});
+  }
+
+  // The elimination (Elimination), when something of the case is long:
+  // checked against the Cramer solution and every linear form exactly at a
+  // random point, and at the same point with the small parameters at 0 for
+  // the asymptotic forms.
+  bool long_case = false;
+  for (const Pending& p : pending) long_case = long_case || p.raw.size() > max_inline_terms;
+  for (const Poly& v : Vh) long_case = long_case || v.size() > max_inline_exact_terms;
+  long_case = long_case && k >= min_eliminated_clusters;
+  std::vector<char> limit(pending.size(), 0);
+  if (long_case) {
+    Elimination e;
+    e.size = k;
+    for (int c = k; c-- > 0;) e.order.push_back(c);
+    e.multiplier = multipliers(B, k, e.order);
+    for (const Poly& b : B) e.matrix.push_back(b.to_ex(sy));
+    for (const Poly& r : rhs) e.rhs.push_back(r.to_ex(sy));
+    bool small_only = order_ == 0;  // the asymptotic forms are the ε⁰ parts: no parameter of negative order
+    for (const GiNaC::numeric& o : orders_) small_only = small_only && !o.is_negative();
+    small_only = small_only && epsilon_order(D).is_zero();
+    // A point with 62-bit coordinates, drawn from the case (the output does not depend on it).
+    std::mt19937_64 draw(0x5eedu + closed.to_string().size() * 7919u + std::hash<std::string>{}(closed.to_string()));
+    std::vector<cln::cl_I> point(static_cast<std::size_t>(vars)), zeroed;
+    for (auto& x : point) x = cln::cl_I(static_cast<std::uint64_t>(draw() >> 2) + 1);
+    zeroed = point;
+    for (std::size_t s = 0; s < orders_.size(); ++s)
+      if (orders_[s].is_positive()) zeroed[s] = 0;
+    auto velocities_at = [&](const std::vector<cln::cl_I>& x) {
+      std::vector<cln::cl_RA> Bx, rx;
+      for (const Poly& b : B) Bx.push_back(b.evaluate(x));
+      for (const Poly& r : rhs) rx.push_back(r.evaluate(x));
+      return eliminated_velocities(Bx, rx, k, e.multiplier, e.order);
+    };
+    auto value_at = [&](const Linear& f, const std::vector<cln::cl_RA>& V, const std::vector<cln::cl_I>& x) {
+      cln::cl_RA v = f.constant.evaluate(x);
+      for (std::size_t c = 0; c < Kc; ++c)
+        if (!f.coefficients[c].is_zero()) v += f.coefficients[c].evaluate(x) * V[c];
+      return v;
+    };
+    const auto V = velocities_at(point);
+    if (V) {
+      const cln::cl_I Dx = D.evaluate(point);
+      for (std::size_t c = 0; c < Kc; ++c)
+        if ((*V)[c] * Dx != Vh[c].evaluate(point))
+          throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the elimination's velocity of cluster " +
+                                 std::to_string(c + 1) + " is not the Cramer solution");
+      for (const Pending& p : pending)
+        if (value_at(p.form, *V, point) * Dx != p.raw.evaluate(point))
+          throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the condition on " + p.about +
+                                 " through the elimination is not the condition");
+      const auto V0 = small_only ? velocities_at(zeroed) : std::nullopt;
+      if (V0) {
+        const cln::cl_I D0 = D.evaluate(zeroed);
+        for (std::size_t q = 0; q < pending.size(); ++q) {
+          const Pending& p = pending[q];
+          if (p.raw.is_zero() || !epsilon_order(p.raw).is_zero()) continue;  // the ε⁰ part vanishes: not the dominant balance
+          if (value_at(p.form, *V0, zeroed) * D0 != p.raw.evaluate(zeroed))
+            throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the condition on " + p.about +
+                                   " through the elimination at order ε^0 is not the condition's");
+          limit[q] = 1;
+        }
+        for (std::size_t s = 0; s < orders_.size(); ++s)
+          if (orders_[s].is_positive()) e.small.push_back(sy.all()[s].symbol);
+      }
+      out.elimination = e;
+    }
+  }
+  auto eliminated = [&](const Linear& f) {
+    EliminatedForm e;
+    for (const Poly& c : f.coefficients) e.coefficients.push_back(c.to_ex(sy));
+    e.constant = f.constant.to_ex(sy);
+    return e;
+  };
+  if (out.elimination)
+    for (const Linear& f : reaction_forms) out.reactions_eliminated.push_back(eliminated(f));
+
   detail::Naming naming;  // the case's named parts, and the diagonal of ZᵀAZ as candidates
   for (std::size_t c = 0; c < Kc; ++c)
     if (!B[c * Kc + c].is_constant()) naming.candidates.push_back(B[c * Kc + c]);
-  out.conditions.push_back(make_condition(ConditionKind::Superball, "U1 > a", Relation::Greater, Wh[0] - aD, denominator, {&Wh[0], &aD}, naming));
-  for (int c = 0; c + 1 < n; ++c)
-    if (!closed.closed(c))
-      out.conditions.push_back(make_condition(ConditionKind::Evolution, Pair{c + 1, c + 2}.name(), Relation::Greater,
-                                              Wh[static_cast<std::size_t>(c)] - Wh[static_cast<std::size_t>(c + 1)], denominator,
-                                              {&Wh[static_cast<std::size_t>(c)], &Wh[static_cast<std::size_t>(c + 1)]}, naming));
-  for (int c = 0; c + 1 < n; ++c)
-    if (closed.closed(c))
-      out.conditions.push_back(make_condition(ConditionKind::Contact, Pair{c + 1, c + 2}.name(), Relation::GreaterEqual,
-                                              Lh[static_cast<std::size_t>(c)], denominator,
-                                              {&inertia[static_cast<std::size_t>(c)], &dissipation[static_cast<std::size_t>(c)]}, naming));
+  for (std::size_t q = 0; q < pending.size(); ++q) {
+    const Pending& p = pending[q];
+    const EliminatedForm form = out.elimination ? eliminated(p.form) : EliminatedForm{};
+    out.conditions.push_back(make_condition(p.kind, p.about, p.relation, p.raw, denominator, p.parts, naming,
+                                            out.elimination ? &form : nullptr, limit[q] != 0));
+  }
   for (std::size_t k = 0; k < naming.named.size(); ++k)
     out.named.push_back(NamedPart{static_cast<int>(k) + 1, naming.named[k].to_ex(sy), positive_terms(naming.named[k])});
   // The case as a whole: never actual when one of its conditions never holds.

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "polynomial.hpp"
 #include "superball/cases/vocabulary.hpp"
@@ -363,7 +365,145 @@ std::string format_readable(const Readable& r, Relation relation, const Symbols&
 }
 
 std::string format_form(const ConditionForm& form, Relation relation, const Symbols& symbols, Style style) {
+  if (form.eliminated) return format_eliminated(*form.eliminated, relation, symbols, style);
   return form.readable ? format_readable(*form.readable, relation, symbols, style) : format_condition(form, relation, symbols, style);
+}
+
+// ---------------------------------------------------------------------------
+// The elimination of a case's reduced system (derivation.hpp, Elimination).
+namespace {
+
+/// "p₅", "l₄₅", "y₅", "V₁" (text); "p_{5}", "l_{45}" (LaTeX); "p5", "l4_5" (ASCII); clusters 0-based.
+std::string elimination_name(const char* letter, std::size_t i, std::optional<std::size_t> j, Style style) {
+  std::string digits = std::to_string(i + 1);
+  if (j) digits += (style == Style::Ascii || i + 1 >= 10 || *j + 1 >= 10 ? (style == Style::Ascii ? "_" : ",") : "") + std::to_string(*j + 1);
+  if (style == Style::Latex) return std::string(letter) + "_{" + digits + "}";
+  if (style == Style::Text) return letter + subscript_digits(digits);
+  return letter + digits;
+}
+
+/// Factors of a product in \p style: "l₄₅²p₅", "l_{45}^{2} p_{5}", "l4_5^2*p5".
+std::string product(const std::vector<std::string>& factors, Style style) {
+  std::string out;
+  for (const std::string& f : factors) out += (out.empty() ? "" : style == Style::Ascii ? "*" : style == Style::Latex ? " " : "") + f;
+  return out;
+}
+
+std::string squared(const std::string& name, Style style) {
+  return name + (style == Style::Latex ? "^{2}" : style == Style::Ascii ? "^2" : "²");
+}
+
+/// "first − piece − piece": \p first a polynomial (0: left out), the pieces subtracted.
+std::string difference(const GiNaC::ex& first, const std::vector<std::string>& pieces, const Symbols& symbols, Style style, bool* several) {
+  std::string out = first.is_zero() ? "" : format_polynomial(first, symbols, style);
+  std::size_t count = first.is_zero() ? 0 : detail::terms(GiNaC::expand(first)).size();
+  for (const std::string& piece : pieces) {
+    out += out.empty() ? std::string(minus(style)) : std::string(" ") + minus(style) + " ";
+    out += piece;
+    ++count;
+  }
+  if (several) *several = count > 1;
+  return out.empty() ? "0" : out;
+}
+
+std::string quotient(const std::string& top, bool several, const std::string& bottom, Style style) {
+  if (style == Style::Latex) return "\\frac{" + top + "}{" + bottom + "}";
+  return (several ? "(" + top + ")" : top) + "/" + bottom;
+}
+
+/// A coefficient times a name: "V₁", "−V₂", "2m₁V₁", "(m₂ + K₁₂)V₁"; \p negative receives
+/// whether every term of the coefficient is negative (the text is then of its negation).
+std::string scaled_name(const GiNaC::ex& coefficient, const std::string& name, const Symbols& symbols, Style style, bool* negative) {
+  const auto ts = detail::terms(GiNaC::expand(coefficient));
+  *negative = std::all_of(ts.begin(), ts.end(), [](const detail::Term& t) { return t.coefficient.is_negative(); });
+  const GiNaC::ex c = *negative ? GiNaC::ex(-coefficient) : coefficient;
+  if (c.is_equal(1)) return name;
+  const std::string text = format_polynomial(c, symbols, style);
+  const std::string factor = ts.size() == 1 ? text : "(" + text + ")";
+  return factor + (style == Style::Ascii ? "*" : style == Style::Latex && ts.size() == 1 ? " " : "") + name;
+}
+
+/// The pieces of Σ_c ℓ_c V_c + β, each with its sign: the positive ones and the negated negative ones.
+void linear_pieces(const EliminatedForm& f, const Symbols& symbols, Style style, std::vector<std::string>& positive, std::vector<std::string>& negative) {
+  for (std::size_t c = 0; c < f.coefficients.size(); ++c) {
+    if (f.coefficients[c].is_zero()) continue;
+    bool neg = false;
+    const std::string piece = scaled_name(f.coefficients[c], cluster_velocity_name(static_cast<int>(c) + 1, style), symbols, style, &neg);
+    (neg ? negative : positive).push_back(piece);
+  }
+  std::vector<detail::Term> plus, less;
+  for (detail::Term& t : sorted_terms(f.constant, symbols)) (t.coefficient.is_negative() ? less : plus).push_back(std::move(t));
+  if (!plus.empty()) positive.push_back(join(plus, symbols, style));
+  if (!less.empty()) negative.push_back(join(less, symbols, style, true));
+}
+
+std::string joined(const std::vector<std::string>& pieces) {
+  std::string out;
+  for (const std::string& p : pieces) out += (out.empty() ? "" : " + ") + p;
+  return out.empty() ? "0" : out;
+}
+
+}  // namespace
+
+std::string cluster_velocity_name(int c, Style style) { return elimination_name("V", static_cast<std::size_t>(c - 1), std::nullopt, style); }
+
+std::vector<std::pair<std::string, std::string>> elimination_definitions(const Elimination& e, const Symbols& symbols, Style style) {
+  const auto K = static_cast<std::size_t>(e.size);
+  auto p = [&](std::size_t j) { return elimination_name("p", j, std::nullopt, style); };
+  auto y = [&](std::size_t j) { return elimination_name("y", j, std::nullopt, style); };
+  auto l = [&](std::size_t i, std::size_t j) { return elimination_name("l", i, j, style); };
+  auto present = [&](std::size_t i, std::size_t j) { return e.multiplier[i * K + j] != 0; };
+  std::vector<std::pair<std::string, std::string>> out;
+  for (std::size_t a = 0; a < K; ++a) {
+    const auto j = static_cast<std::size_t>(e.order[a]);
+    std::vector<std::string> pivot, rhs;
+    for (std::size_t c = 0; c < a; ++c) {
+      const auto t = static_cast<std::size_t>(e.order[c]);
+      if (!present(j, t)) continue;
+      pivot.push_back(product({squared(l(j, t), style), p(t)}, style));
+      rhs.push_back(product({l(j, t), y(t)}, style));
+    }
+    out.emplace_back(p(j), difference(e.matrix[j * K + j], pivot, symbols, style, nullptr));
+    for (std::size_t b = a + 1; b < K; ++b) {
+      const auto i = static_cast<std::size_t>(e.order[b]);
+      if (!present(i, j)) continue;
+      std::vector<std::string> fill;
+      for (std::size_t c = 0; c < a; ++c) {
+        const auto t = static_cast<std::size_t>(e.order[c]);
+        if (present(i, t) && present(j, t)) fill.push_back(product({l(i, t), l(j, t), p(t)}, style));
+      }
+      bool several = false;
+      const std::string top = difference(e.matrix[i * K + j], fill, symbols, style, &several);
+      out.emplace_back(l(i, j), quotient(top, several, p(j), style));
+    }
+    out.emplace_back(y(j), difference(e.rhs[j], rhs, symbols, style, nullptr));
+  }
+  for (std::size_t a = K; a-- > 0;) {
+    const auto j = static_cast<std::size_t>(e.order[a]);
+    std::string value = quotient(y(j), false, p(j), style);
+    for (std::size_t b = a + 1; b < K; ++b) {
+      const auto i = static_cast<std::size_t>(e.order[b]);
+      if (present(i, j)) value += std::string(" ") + minus(style) + " " + product({l(i, j), cluster_velocity_name(static_cast<int>(i) + 1, style)}, style);
+    }
+    out.emplace_back(cluster_velocity_name(static_cast<int>(j) + 1, style), value);
+  }
+  return out;
+}
+
+std::string format_eliminated(const EliminatedForm& f, Relation relation, const Symbols& symbols, Style style) {
+  std::vector<std::string> positive, negative;
+  linear_pieces(f, symbols, style, positive, negative);
+  return joined(positive) + " " + relation_text(relation, false, style) + " " + joined(negative);
+}
+
+std::string format_linear(const EliminatedForm& f, const Symbols& symbols, Style style, bool negate) {
+  std::vector<std::string> positive, negative;
+  linear_pieces(f, symbols, style, positive, negative);
+  if (negate) std::swap(positive, negative);
+  std::string out;
+  for (const std::string& p : positive) out += (out.empty() ? "" : " + ") + p;
+  for (const std::string& p : negative) out += (out.empty() ? std::string(minus(style)) : std::string(" ") + minus(style) + " ") + (p.find(" + ") != std::string::npos ? "(" + p + ")" : p);
+  return out.empty() ? "0" : out;
 }
 
 std::string velocity_name(int body, Style style) {
@@ -802,7 +942,7 @@ void write_formula(std::ostream& os, Style style, const std::string& label, cons
 }
 
 /// One condition of a report: its title, forms and proof note.
-void write_condition(std::ostream& os, const Condition& c, const Symbols& sy, Style style) {
+void write_condition(std::ostream& os, const Condition& c, const Symbols& sy, Style style, const std::string& limit) {
   const bool tex = style == Style::Latex;
   if (tex)
     os << "\\medskip\\noindent " << condition_title(c, style) << "\\par\n";
@@ -812,7 +952,9 @@ void write_condition(std::ostream& os, const Condition& c, const Symbols& sy, St
   write_formula(os, style, tex ? "\\quad exact:" : "    exact:     ", format_form(c.exact, c.relation, sy, style),
                 c.exact.verdict == Verdict::Depends ? "" : std::string("  [") + to_string(c.exact.verdict) + "]");
   write_formula(os, style, tex ? "\\quad asymptotic:" : "    asymptotic:", format_form(c.asymptotic, c.relation, sy, style),
-                "  [" + (c.asymptotic.verdict == Verdict::Depends ? "" : std::string(to_string(c.asymptotic.verdict)) + ", ") + order_note(c, style) + "]");
+                "  [" + (c.asymptotic.verdict == Verdict::Depends ? "" : std::string(to_string(c.asymptotic.verdict)) + ", ") +
+                    (c.asymptotic.eliminated && c.asymptotic.eliminated->limit && !limit.empty() ? math(limit, style) + " in the elimination, " : "") +
+                    order_note(c, style) + "]");
   // "always"/"never" with nothing left but a constant: the positive factor divided out says why.
   if (c.kind != ConditionKind::Psd && !c.finite && c.exact.verdict != Verdict::Depends && c.exact.sign_proved() &&
       GiNaC::is_a<GiNaC::numeric>(c.exact.numerator) && !c.removed.is_equal(1)) {
@@ -866,37 +1008,67 @@ std::string report(const Derivation& d, const Deriver& deriver, Style style, boo
   // LaTeX: det(ZᵀAZ) is named \Delta once, and long velocities and reactions are written over it.
   const bool named_determinant = tex && !GiNaC::is_a<GiNaC::numeric>(d.determinant);
   const std::string unknowns = std::to_string(d.free_clusters) + " unknown velocit" + (d.free_clusters == 1 ? "y" : "ies") + ",";
+  // A long case is written through its elimination (Elimination): det(ZᵀAZ) as the product of the pivots,
+  // long velocities as cluster velocities V, long reactions as sums over them.
+  const Elimination* e = d.elimination ? &*d.elimination : nullptr;
+  auto is_long = [&](const GiNaC::ex& p) { return e && (GiNaC::is_a<GiNaC::add>(p) ? p.nops() : 1) > max_inline_exact_terms; };
+  std::string determinant = format_polynomial(d.determinant, sy, style);
+  if (is_long(d.determinant)) {
+    std::vector<std::string> pivots;
+    for (int c = 1; c <= e->size; ++c) pivots.push_back(elimination_name("p", static_cast<std::size_t>(c - 1), std::nullopt, style));
+    determinant = product(pivots, style);
+  }
   if (tex)
-    formula("reduced system: " + unknowns, (named_determinant ? "\\Delta = " : "") + std::string("\\det(Z^{T}AZ) = ") + format_polynomial(d.determinant, sy, style), "");
+    formula("reduced system: " + unknowns, (named_determinant ? "\\Delta = " : "") + std::string("\\det(Z^{T}AZ) = ") + determinant, "");
   else
-    line("reduced system:", unknowns + " " + prose("det(Z^T A Z)", style) + " = " + format_polynomial(d.determinant, sy, style));
+    line("reduced system:", unknowns + " " + prose("det(Z^T A Z)", style) + " = " + determinant);
   // Velocities and reactions: in LaTeX one align* per group, aligned on "=", a long fraction over \Delta
   // (or over a named denominator, given after the group) with its terms broken over rows.
-  auto fractions = [&](const std::string& heading, const std::vector<std::pair<std::string, const Fraction*>>& entries) {
+  // Entries: (name, fraction, its value through the elimination when the fraction is long).
+  using Entry = std::tuple<std::string, const Fraction*, std::string>;
+  auto fractions = [&](const std::string& heading, const std::vector<Entry>& entries) {
     if (!tex) {
       os << "  " << heading << '\n';
-      for (const auto& [name, f] : entries) line("  ", name + " = " + format_fraction(*f, sy, style));
+      for (const auto& [name, f, through] : entries) line("  ", name + " = " + (through.empty() ? format_fraction(*f, sy, style) : through));
       return;
     }
     std::vector<std::pair<std::string, std::string>> where;
     std::string rows;
     for (std::size_t k = 0; k < entries.size(); ++k) {
-      const std::string& name = entries[k].first;
+      const auto& [name, f, through] = entries[k];
       const double room = kDisplayRowPt - latex_width(name) - kRelationPt;
       const std::string den_name = "D_{" + std::to_string(where.size() + 1) + "}";
-      rows += (k ? " \\\\\n" : "") + display_rows(name + " = " + latex_fraction(*entries[k].second, sy, d.determinant, room, den_name, where), kDisplayRowPt);
+      rows += (k ? " \\\\\n" : "") +
+              display_rows(name + " = " + (through.empty() ? latex_fraction(*f, sy, d.determinant, room, den_name, where) : through), kDisplayRowPt);
     }
     if (!where.empty()) rows += " \\\\\n\\intertext{where}\n";
     for (std::size_t k = 0; k < where.size(); ++k) rows += (k ? " \\\\\n" : "") + display_rows(where[k].first + " = " + where[k].second, kDisplayRowPt);
     os << "\\noindent " << heading << "\n\\begin{align*}\n" << rows << "\n\\end{align*}\n";
   };
-  std::vector<std::pair<std::string, const Fraction*>> velocities, reactions;
-  for (int i = 1; i <= n; ++i) velocities.emplace_back(velocity_name(i, style), &d.velocities[static_cast<std::size_t>(i - 1)]);
+  std::vector<Entry> velocities, reactions;
+  for (int i = 1, c = 1; i <= n; ++i) {
+    const Fraction& f = d.velocities[static_cast<std::size_t>(i - 1)];
+    velocities.emplace_back(velocity_name(i, style), &f, is_long(f.numerator) ? cluster_velocity_name(c, style) : "");
+    if (i < n && !d.closed.closed(i - 1)) ++c;  // the next body starts a cluster
+  }
   fractions("velocities after the collision:", velocities);
-  for (int c = 0; c + 1 < n; ++c)
-    if (d.closed.closed(c)) reactions.emplace_back(reaction_name(Pair{c + 1, c + 2}, style), &d.reactions[static_cast<std::size_t>(c)]);
+  for (int c = 0; c + 1 < n; ++c) {
+    if (!d.closed.closed(c)) continue;
+    const Fraction& f = d.reactions[static_cast<std::size_t>(c)];
+    reactions.emplace_back(reaction_name(Pair{c + 1, c + 2}, style), &f,
+                           is_long(f.numerator) ? format_linear(d.reactions_eliminated[static_cast<std::size_t>(c)], sy, style, true) : "");
+  }
   if (!reactions.empty()) fractions("reactions on the closed contacts:", reactions);
   line("check:", words(d.check));
+  std::string small;  // "m₁ = 0": the limit the marked asymptotic forms take in the elimination
+  if (e) {
+    for (const GiNaC::ex& x : e->small) small += (small.empty() ? "" : ", ") + sy.info(x).name(style) + " = 0";
+    line("elimination:", "of " + math(tex ? "(Z^{T}AZ)V = Z^{T}b" : "(ZᵀAZ)V = Zᵀb", style) + " cluster by cluster from the obstacle up, " + math(cluster_velocity_name(1, style), style) +
+                             " the velocity of the top cluster; pivots " + math("p > 0", style) + ", multipliers " + math("l", style) +
+                             ", eliminated right-hand sides " + math("y", style) +
+                             (small.empty() ? "" : "; the asymptotic forms marked so take " + math(small, style) + " in these"));
+    for (const auto& [name, value] : elimination_definitions(*e, sy, style)) formula(tex ? "\\quad" : "     ", name + " = " + value, "");
+  }
   for (const NamedPart& p : d.named)
     formula(p.index == 1 ? "where" : (tex ? "\\quad" : "     "), named_part_name(p.index, style) + " = " + format_polynomial(p.value, sy, style) + (p.positive ? " > 0" : ""),
             p.positive ? " (every term positive)" : words(" (a diagonal entry of Z^T A Z)"));
@@ -909,7 +1081,7 @@ std::string report(const Derivation& d, const Deriver& deriver, Style style, boo
                           (finite ? " of the finite-obstacle form" : "") + " for " + math(deriver.scaling().describe(sy, style), style) +
                           ", keeping " + orders_kept_text(deriver.order()));
   for (const Condition& c : d.conditions)
-    if (with_psd || c.kind != ConditionKind::Psd) write_condition(os, c, sy, style);
+    if (with_psd || c.kind != ConditionKind::Psd) write_condition(os, c, sy, style, small);
   return os.str();
 }
 
@@ -921,7 +1093,7 @@ std::string report_psd(const Deriver& deriver, Style style) {
     os << "\\subsection*{" << title << "}\n";
   else
     os << title << '\n';
-  for (const Condition& c : deriver.psd()) write_condition(os, c, deriver.symbols(), style);
+  for (const Condition& c : deriver.psd()) write_condition(os, c, deriver.symbols(), style, "");
   return os.str();
 }
 

@@ -110,6 +110,48 @@ struct Readable {
   int named = 0;            ///< the k of the named part S = S_k, 0 when S = 1
 };
 
+/// The reduced system (ZᵀAZ)V = Zᵀb of a case, eliminated cluster by cluster
+/// from the obstacle up (Gaussian elimination without square roots,
+/// ZᵀAZ = LPLᵀ): what lets a condition of thousands of monomials be written
+/// in a few lines.  With b_ij = (ZᵀAZ)_ij, r_i = (Zᵀb)_i and clusters
+/// numbered 1 (top) … k, "t before j" meaning t is eliminated first (t > j):
+///
+///     p_j  = b_jj − Σ_{t before j} l_jt² p_t                   (pivots, > 0: ZᵀAZ is positive definite)
+///     l_ij = (b_ij − Σ_{t before j} l_it l_jt p_t) / p_j      (i after j; only where structurally ≠ 0)
+///     y_j  = r_j − Σ_{t before j} l_jt y_t
+///     V_j  = y_j / p_j − Σ_{i after j} l_ij V_i                (back substitution, the top cluster first)
+///
+/// so det(ZᵀAZ) = Π p_j and V₁ = y₁/p₁: the whole stack below the top
+/// cluster enters its velocity through p₁ and y₁ only.  For banded patterns
+/// (near, near2) the multipliers stay in the band, so a case has O(k)
+/// definitions of a few terms each.  Deriver::derive() checks the
+/// definitions against the Cramer solution exactly at a point with 62-bit
+/// random coordinates (a wrong definition passes with probability below
+/// degree/2⁶², Schwartz–Zippel).
+struct Elimination {
+  int size = 0;                    ///< k, the free clusters
+  std::vector<GiNaC::ex> matrix;   ///< b_ij, row-major k×k (0-based clusters), expanded polynomials
+  std::vector<GiNaC::ex> rhs;      ///< r_i
+  std::vector<char> multiplier;    ///< l_ij present (i after j), row-major k×k
+  std::vector<int> order;          ///< the clusters (0-based) in elimination order: k−1 (bottom) first
+  /// The scaling's small parameters (order > 0), set to 0 in the definitions
+  /// for the asymptotic forms that say so (EliminatedForm::limit); empty when
+  /// no asymptotic form is written that way.
+  std::vector<GiNaC::ex> small;
+};
+
+/// A condition written through the elimination: Σ_c coefficients_c V_c +
+/// constant REL 0, which is the condition divided by det(ZᵀAZ) > 0.  For
+/// the reaction on a closed contact it is λ = −R (the running sum of the
+/// cluster's equations of motion).
+struct EliminatedForm {
+  std::vector<GiNaC::ex> coefficients;  ///< one polynomial per free cluster (0 where absent)
+  GiNaC::ex constant = 0;               ///< a polynomial
+  /// The definitions taken with Elimination::small at 0: the ε⁰ part of the
+  /// condition, which is its dominant balance (the asymptotic form).
+  bool limit = false;
+};
+
 /// One form of a condition: numerator / denominator REL 0, with the
 /// denominator 1 whenever its sign was proved and cleared.
 struct ConditionForm {
@@ -117,6 +159,10 @@ struct ConditionForm {
   GiNaC::ex denominator = 1;  ///< 1, or a polynomial whose sign was not proved
   Verdict verdict = Verdict::Depends;
   std::optional<Readable> readable;  ///< the isolated form, when a coupling can be isolated (sign proved, depends)
+  /// The form through the case's elimination, when the polynomial (and its
+  /// readable form) has more than max_inline_terms (asymptotic) or
+  /// max_inline_exact_terms (exact, finite) terms.
+  std::optional<EliminatedForm> eliminated;
   bool sign_proved() const;   ///< denominator == 1
 };
 
@@ -153,6 +199,11 @@ struct Derivation {
   int free_clusters = 0;             ///< size of the reduced system
   std::vector<Condition> conditions; ///< superball, evolution, contact, then psd
   std::vector<NamedPart> named;      ///< the positive parts the readable forms divide by
+  /// The elimination that long forms are written through (ConditionForm::eliminated);
+  /// set when a velocity, a reaction or a condition of the case is long.
+  std::optional<Elimination> elimination;
+  /// λ = −R on each closed contact through the elimination (empty coefficients where open or when not set).
+  std::vector<EliminatedForm> reactions_eliminated;
   std::string check;                 ///< what the substitution check verified
   /// Whether the case can be the actual evolution: Never when one of its
   /// evolution or contact conditions fails for every admissible parameter
@@ -203,7 +254,7 @@ class Deriver {
  private:
   Condition make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
                            const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts,
-                           detail::Naming& naming) const;
+                           detail::Naming& naming, const EliminatedForm* eliminated = nullptr, bool limit = false) const;
   std::optional<Readable> readable(const detail::Poly& p, detail::Naming& naming) const;
   GiNaC::numeric epsilon_order(const detail::Poly& p) const;
   // The same rules as certainly_nonnegative(), certainly_positive(),
@@ -237,6 +288,26 @@ GiNaC::numeric epsilon_order(const GiNaC::ex& p, const Symbols& symbols, const S
 /// measured to cost about a quarter of the derivation, for forms that stay
 /// hundreds of terms long.
 inline constexpr std::size_t max_readable_terms = 1000;
+
+/// An asymptotic form with more terms than this (its readable form counted
+/// as quotient, remainder and named part) is written through the case's
+/// elimination when it can be (Elimination, EliminatedForm::limit); the
+/// expanded polynomial stays in the JSON.  The asymptotic forms are the ones
+/// a reader compares (the paper's conditions are asymptotic).
+inline constexpr std::size_t max_inline_terms = 16;
+
+/// Cases with fewer free clusters than this are never written through their
+/// elimination (with one unknown velocity, V₁ = y₁/p₁ is the formula itself).
+/// Two is enough to pay: at 6 bodies, cases of two clusters have conditions
+/// of hundreds of terms (their entries are sums over the clusters' bodies).
+inline constexpr int min_eliminated_clusters = 2;
+
+/// An exact (or finite-obstacle) condition form, a velocity, a reaction or
+/// det(ZᵀAZ) with more terms than this is written through the elimination:
+/// exact forms are references, kept expanded longer (the paper's four bodies
+/// with all seven couplings stay expanded), and no line passes about 5,000
+/// characters at 6 or 7 bodies.
+inline constexpr std::size_t max_inline_exact_terms = 100;
 
 /// Polynomials with more terms than this are not factorised by
 /// strip_positive_factors() (multivariate factorisation would dominate the

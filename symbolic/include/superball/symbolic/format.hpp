@@ -13,6 +13,7 @@
 #include <ginac/ginac.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "superball/symbolic/derivation.hpp"
@@ -65,6 +66,24 @@ std::string format_readable(const Readable& r, Relation relation, const Symbols&
 /// A condition form as a person reads it: its isolated form when it has one,
 /// else format_condition().
 std::string format_form(const ConditionForm& form, Relation relation, const Symbols& symbols, Style style);
+
+/// V₁ (text), V_{1} (LaTeX), V1 (ASCII): the velocity of free cluster \p c
+/// (1 = the top one) in a case's Elimination.
+std::string cluster_velocity_name(int c, Style style);
+
+/// The definitions of the elimination \p e (derivation.hpp, Elimination) as
+/// (name, value) pairs: for each cluster in elimination order its pivot p,
+/// its multipliers l and its eliminated right-hand side y, then the cluster
+/// velocities V by back substitution ("p₄ = m₄ + K₂₄ + K₃₄ + K₄₅ − l₄₅²p₅",
+/// "l₃₄ = (−K₃₄ − l₃₅l₄₅p₅)/p₄", "V₁ = y₁/p₁").
+std::vector<std::pair<std::string, std::string>> elimination_definitions(const Elimination& e, const Symbols& symbols, Style style);
+
+/// The condition "Σ_c ℓ_c V_c + β REL 0" of \p f as an inequality with the
+/// negative pieces moved right: "V₄ > V₅", "V₁ > a".
+std::string format_eliminated(const EliminatedForm& f, Relation relation, const Symbols& symbols, Style style);
+
+/// The value Σ_c ℓ_c V_c + β of \p f, negated when \p negate (a reaction R = −λ).
+std::string format_linear(const EliminatedForm& f, const Symbols& symbols, Style style, bool negate = false);
 
 /// U₁⁺ (text), U_{1}^{+} (LaTeX), U1 (ASCII).
 std::string velocity_name(int body, Style style);
