@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
@@ -155,8 +156,8 @@ void add_derive(CLI::App& app, Action& action) {
       "  superball derive --bodies 6 --pairs near2 --all --progress 2> progress.log\n\n"
       "Progress.  A derivation that runs longer than " + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kProgressDelay).count()) +
       " s shows on standard error, when it is a terminal, the case it is\n"
-      "at (\"derive: case 3 of 16 ({2-3,4-5})\"), then \"derive: writing 16 cases as text\", on one line redrawn in\n"
-      "place and erased before the output is written; nothing is shown when standard error is not a terminal or\n"
+      "at (\"derive: case 3 of 16 ({2-3,4-5})\"; LaTeX then \"derive: writing 16 cases as latex\"), on one line\n"
+      "redrawn in place and erased before the output is written; nothing is shown when standard error is not a terminal or\n"
       "with --quiet.  --progress shows it from the first case, one line each when standard error is not a\n"
       "terminal (a log).\n\n"
       "Names (JSON and --scaling): m1..mn, K12 (K1_10 past 9 bodies), alpha1..alpha7 (n = 4), c_12_14 for a\n"
@@ -171,31 +172,64 @@ void add_derive(CLI::App& app, Action& action) {
     action = [o] {
       const Selection selection = resolve(o->selection);
       const Deriver& deriver = *selection.deriver;
-      std::vector<Derivation> results;
+      // Each case is written as soon as it is derived and then dropped (a
+      // 7- or 8-body --all would otherwise hold every case and the whole
+      // JSON tree): into the output file's temporary with -o, else into one
+      // string written once the progress line is erased.  LaTeX needs every
+      // case at once (latex_document).
+      const bool to_file = !o->output.empty() && o->output != "-" && o->output != "/dev/stdout";
+      std::optional<Output> file;
+      if (to_file) file.emplace(o->output);
       std::string text;
+      auto emit = [&](const std::string& piece) {
+        if (file)
+          file->write(piece);
+        else
+          text += piece;
+      };
+      const std::size_t count = selection.cases.size();
+      const bool json = o->format == "json", latex = o->format == "latex";
+      const bool shared = count > 1;  // text: the conditions on M, the same in every case, once before them
+      std::vector<Derivation> kept;   // LaTeX only
       {
-        StepProgress progress("derive", "case", static_cast<int>(selection.cases.size()), o->progress.mode());
-        for (std::size_t k = 0; k < selection.cases.size(); ++k) {
+        StepProgress progress("derive", "case", static_cast<int>(count), o->progress.mode());
+        if (json && shared) emit("[\n");
+        if (!json && !latex && shared) emit(report_psd(deriver, Style::Text) + "\n");
+        for (std::size_t k = 0; k < count; ++k) {
           const ContactSet& c = selection.cases[k];
           const std::string name = Vocabulary::paper().case_name(c);
           progress.step(static_cast<int>(k + 1), name == c.to_string() ? name : name + " " + c.to_string());
-          results.push_back(deriver.derive(c));
+          Derivation d = deriver.derive(c);
+          if (latex) {
+            kept.push_back(std::move(d));
+          } else if (json) {
+            // The array's dump(2), element by element: each line of an element indented by two more.
+            const std::string element = derivation_json(d, deriver).dump(2);
+            if (!shared) {
+              emit(element + "\n");
+              continue;
+            }
+            std::string indented = "  ";
+            indented.reserve(element.size() + element.size() / 16);
+            for (char ch : element) {
+              indented += ch;
+              if (ch == '\n') indented += "  ";
+            }
+            emit(indented + (k + 1 < count ? ",\n" : "\n"));
+          } else {
+            emit(report(d, deriver, Style::Text, !shared) + "\n");
+          }
         }
-        progress.note("writing " + std::to_string(results.size()) + (results.size() == 1 ? " case" : " cases") + " as " + o->format);
-        if (o->format == "json") {
-          nlohmann::ordered_json j = nlohmann::ordered_json::array();
-          for (const Derivation& d : results) j.push_back(derivation_json(d, deriver));
-          text = (results.size() == 1 ? j[0] : j).dump(2) + "\n";
-        } else if (o->format == "latex") {
-          text = latex_document(results, deriver);
-        } else {
-          // Several cases: the conditions on M, the same in every case, once before them.
-          const bool shared = results.size() > 1;
-          if (shared) text += report_psd(deriver, Style::Text) + "\n";
-          for (const Derivation& d : results) text += report(d, deriver, Style::Text, !shared) + "\n";
+        if (json && shared) emit("]\n");
+        if (latex) {
+          progress.note("writing " + std::to_string(count) + (count == 1 ? " case" : " cases") + " as latex");
+          emit(latex_document(kept, deriver));
         }
-      }  // the progress line is erased before anything is written
-      write_output(o->output, text);
+      }  // the progress line is erased before anything is written to standard output
+      if (file)
+        file->commit();
+      else
+        write_output(o->output, text);
       return ok;
     };
   });

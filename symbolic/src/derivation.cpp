@@ -277,6 +277,7 @@ detail::Poly Deriver::dominant(const detail::Poly& p, GiNaC::numeric* leading) c
   std::vector<std::size_t> terms;
   for (std::size_t t = 0; t < p.size(); ++t)
     if (weight[t] <= last) terms.push_back(t);
+  if (terms.size() == p.size()) return p;  // every term kept: p is already stripped (make_condition)
   const detail::Poly kept = p.subset(terms);
   const detail::Poly stripped = strip(kept);
   if (!stripped.is_constant()) return stripped;
@@ -496,7 +497,7 @@ Condition Deriver::make_condition(ConditionKind kind, const std::string& about, 
   c.about = about;
   c.relation = relation;
   // raw / det(ZᵀAZ) in lowest terms (at most one numer_denom per condition).
-  const detail::Denominator::Reduced reduced = determinant.lowest_terms(raw);
+  const detail::Denominator::Reduced reduced = determinant.lowest_terms(raw, false);
   const GiNaC::ex& denominator = reduced.denominator;
   int sign = 1;
   ConditionForm form;
@@ -548,9 +549,11 @@ Condition Deriver::make_condition(ConditionKind kind, const std::string& about, 
   const ConditionForm& regime = c.finite ? *c.finite : c.exact;
   c.asymptotic.denominator = regime.denominator.is_equal(1) ? GiNaC::ex(1) : asymptotic(regime.denominator);
   const detail::Poly dominant_balance = dominant(kept, &c.leading_order);
-  c.asymptotic.numerator = dominant_balance.to_ex(sy);
-  c.asymptotic.verdict = c.asymptotic.sign_proved() ? verdict(dominant_balance, relation) : Verdict::Depends;
-  if (c.asymptotic.verdict == Verdict::Depends && c.asymptotic.sign_proved()) c.asymptotic.readable = readable(dominant_balance, naming);
+  const bool same = dominant_balance == kept && regime.sign_proved();  // every term is of the leading order: the regime's form again
+  c.asymptotic.numerator = same ? regime.numerator : dominant_balance.to_ex(sy);
+  c.asymptotic.verdict = c.asymptotic.sign_proved() ? (same ? regime.verdict : verdict(dominant_balance, relation)) : Verdict::Depends;
+  if (c.asymptotic.verdict == Verdict::Depends && c.asymptotic.sign_proved())
+    c.asymptotic.readable = same ? regime.readable : readable(dominant_balance, naming);
   c.orders_kept = 1 + order_;
   // Long forms through the case's elimination (the expanded ones stay).
   if (eliminated) {

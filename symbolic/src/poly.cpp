@@ -303,7 +303,14 @@ std::vector<cln::cl_I> Poly::univariate(int keep, const std::vector<cln::cl_I>& 
 
 namespace mod61 {
 
-std::uint64_t reduce(const cln::cl_I& x) { return cln::cl_I_to_UQ(cln::mod(x, cln::cl_I(prime))); }
+std::uint64_t reduce(const cln::cl_I& x) {
+  if (cln::integer_length(x) < 62) {  // the usual small coefficient: no bignum division
+    const long long v = cln::cl_I_to_Q(x);
+    const long long r = v % static_cast<long long>(prime);
+    return static_cast<std::uint64_t>(r < 0 ? r + static_cast<long long>(prime) : r);
+  }
+  return cln::cl_I_to_UQ(cln::mod(x, cln::cl_I(prime)));
+}
 
 __extension__ typedef unsigned __int128 wide;  // GCC and Clang's 128-bit integer
 
@@ -355,14 +362,19 @@ std::vector<std::uint64_t> Poly::univariate_mod(int keep, const std::vector<std:
   std::vector<std::vector<std::uint64_t>> powers(static_cast<std::size_t>(vars_));
   for (std::size_t t = 0; t < size(); ++t) {
     std::uint64_t v = mod61::reduce(coef_[t]);
-    for (int k = 0; k < vars_ && v; ++k) {
-      if (k == keep) continue;
-      const int e = exponent(t, k);
-      if (!e) continue;
-      auto& table = powers[static_cast<std::size_t>(k)];
-      if (table.empty()) table.push_back(1);
-      while (static_cast<int>(table.size()) <= e) table.push_back(mod61::multiply(table.back(), point[static_cast<std::size_t>(k)]));
-      v = mod61::multiply(v, table[static_cast<std::size_t>(e)]);
+    // The packed exponents word by word: a term has few symbols, most words and bytes are 0.
+    const std::uint64_t* m = mono(t);
+    for (int w = 0; w < words_ && v; ++w) {
+      for (std::uint64_t word = m[w]; word && v;) {
+        const int k = 8 * w + __builtin_clzll(word) / 8;  // the first nonzero exponent left in the word (shift_of: byte 0 is x_{8w})
+        const int e = static_cast<int>((word >> shift_of(k)) & 0xFF);
+        word &= ~(std::uint64_t{0xFF} << shift_of(k));
+        if (k == keep) continue;
+        auto& table = powers[static_cast<std::size_t>(k)];
+        if (table.empty()) table.push_back(1);
+        while (static_cast<int>(table.size()) <= e) table.push_back(mod61::multiply(table.back(), point[static_cast<std::size_t>(k)]));
+        v = mod61::multiply(v, table[static_cast<std::size_t>(e)]);
+      }
     }
     std::uint64_t& slot = out[static_cast<std::size_t>(exponent(t, keep))];
     slot = mod61::add(slot, v);

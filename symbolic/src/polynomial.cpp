@@ -137,7 +137,7 @@ bool Denominator::coprime_with(const Poly& p) const {
   return true;
 }
 
-Denominator::Reduced Denominator::lowest_terms(const Poly& num) const {
+Denominator::Reduced Denominator::lowest_terms(const Poly& num, bool with_numerator) const {
   Reduced r;
   if (num.is_zero()) {
     r.numerator = 0;
@@ -147,7 +147,7 @@ Denominator::Reduced Denominator::lowest_terms(const Poly& num) const {
   if (coprime_with(num)) {
     r.whole = true;
     r.content = cln::gcd(num.content(), q_.content());
-    r.numerator = num.divided(r.content).to_ex(*symbols_);
+    if (with_numerator) r.numerator = num.divided(r.content).to_ex(*symbols_);
     r.denominator = r.content == 1 ? q_ex_ : q_.divided(r.content).to_ex(*symbols_);
     return r;
   }

@@ -67,7 +67,9 @@ class Denominator {
   /// \p num / q in lowest terms: common polynomial factors cancelled
   /// (GiNaC::numer_denom, once, unless coprime_with() proves there are none)
   /// and the common rational content divided out.
-  Reduced lowest_terms(const Poly& num) const;
+  /// \p with_numerator false leaves Reduced::numerator unset when whole
+  /// (the caller keeps num / content as a Poly).
+  Reduced lowest_terms(const Poly& num, bool with_numerator = true) const;
 
  private:
   struct Probe {

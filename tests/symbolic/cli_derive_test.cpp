@@ -150,13 +150,14 @@ TEST(CliDerive, ProgressIsOneLinePerCaseWhenAskedForALog) {
   EXPECT_TRUE(plain.err.empty()) << plain.err;  // not a terminal: nothing by default
   EXPECT_EQ(r.out, plain.out);
   const std::vector<std::string> lines = r.err_lines();
-  ASSERT_EQ(lines.size(), 9u) << r.err;
+  ASSERT_EQ(lines.size(), 8u) << r.err;  // each case is written as it is derived: no "writing" step
   EXPECT_EQ(lines[0], "derive: case 1 of 8 (3.3 {})");
   EXPECT_EQ(lines[4], "derive: case 5 of 8 (2.2 {3-4})");
   EXPECT_EQ(lines[7], "derive: case 8 of 8 (0 {1-2,2-3,3-4})");
-  EXPECT_EQ(lines[8], "derive: writing 8 cases as text");
   const RunResult general = run({"derive", "--bodies", "5", "--pairs", "near", "--closed", "2-3,4-5", "--progress"});
-  EXPECT_EQ(general.err, "derive: case 1 of 1 ({2-3,4-5})\nderive: writing 1 case as text\n");
+  EXPECT_EQ(general.err, "derive: case 1 of 1 ({2-3,4-5})\n");
+  const RunResult tex = run({"derive", "--case", "1", "--alphas", "2", "--progress", "--format", "latex"});
+  EXPECT_EQ(tex.err, "derive: case 1 of 1 (1 {2-3,3-4})\nderive: writing 1 case as latex\n");
 }
 
 TEST(CliDerive, QuietPrintsNothingOnStandardError) {
@@ -181,7 +182,10 @@ TEST(CliDerive, ProgressOnATerminalIsOneLineRedrawnThenErased) {
   ASSERT_EQ(t.exit_code, 0) << superball::test::describe(t);
   EXPECT_NE(t.err.find("\rderive: case 1 of 8 (3.3 {})\033[K"), std::string::npos) << t.err;
   EXPECT_NE(t.err.find("\rderive: case 8 of 8 (0 {1-2,2-3,3-4})\033[K"), std::string::npos) << t.err;
-  EXPECT_NE(t.err.find("\rderive: writing 8 cases as text\033[K"), std::string::npos) << t.err;
+  // Text and JSON are written case by case: no "writing" step; LaTeX has one.
+  EXPECT_EQ(t.err.find("writing"), std::string::npos) << t.err;
+  const RunResult tex = run_on_terminal({"derive", "--all", "--alphas", "2", "--progress", "--format", "latex", "-o", "/dev/null"});
+  EXPECT_NE(tex.err.find("\rderive: writing 8 cases as latex\033[K"), std::string::npos) << tex.err;
   EXPECT_EQ(t.err.find('\n'), std::string::npos) << t.err;  // redrawn in place, never a new line
   ASSERT_GE(t.err.size(), 4u);
   EXPECT_EQ(t.err.substr(t.err.size() - 4), "\r\033[K");  // erased before the output
