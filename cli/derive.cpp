@@ -24,7 +24,10 @@ nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s) {
   nlohmann::ordered_json j;
   j["kind"] = to_string(c.kind);
   j["about"] = c.about;
-  const StyledText exact = format_condition_styles(c.exact, c.relation, s), asymptotic = format_condition_styles(c.asymptotic, c.relation, s);
+  const StyledText exact = format_condition_styles(c.exact, c.relation, s);
+  // The asymptotic form is often the exact one again (every term of the leading order): formatted once.
+  const bool same = c.asymptotic.numerator.is_equal(c.exact.numerator) && c.asymptotic.denominator.is_equal(c.exact.denominator);
+  const StyledText asymptotic = same ? exact : format_condition_styles(c.asymptotic, c.relation, s);
   j["exact"] = exact.ascii;
   j["asymptotic"] = asymptotic.ascii;
   j["text"] = exact.text;

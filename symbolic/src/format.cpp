@@ -82,13 +82,8 @@ bool has_coupling(const detail::Term& t, const Symbols& symbols) {
   return std::any_of(t.powers.begin(), t.powers.end(), [&](const auto& pe) { return symbols.is_coupling(pe.first); });
 }
 
-std::vector<detail::Term> sorted_terms(const GiNaC::ex& p, const Symbols& symbols) {
-  std::vector<detail::Term> ts;
-  try {
-    ts = detail::terms(GiNaC::expand(p));
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(std::string("format_polynomial(): ") + e.what());
-  }
+/// \p ts in the canonical order (format.hpp).
+std::vector<detail::Term> sort_terms(std::vector<detail::Term> ts, const Symbols& symbols) {
   // Each key once (a long polynomial has thousands of terms), then one stable sort.
   std::vector<std::pair<bool, std::vector<int>>> keys;
   keys.reserve(ts.size());
@@ -100,6 +95,14 @@ std::vector<detail::Term> sorted_terms(const GiNaC::ex& p, const Symbols& symbol
   out.reserve(ts.size());
   for (std::size_t k : order) out.push_back(std::move(ts[k]));
   return out;
+}
+
+std::vector<detail::Term> sorted_terms(const GiNaC::ex& p, const Symbols& symbols) {
+  try {
+    return sort_terms(detail::terms(GiNaC::expand(p)), symbols);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("format_polynomial(): ") + e.what());
+  }
 }
 
 /// Terms joined with signs; the first term carries its own sign.
@@ -124,14 +127,14 @@ std::string join(const std::vector<detail::Term>& ts, const Symbols& symbols, St
 struct Split {
   GiNaC::numeric content = 1;
   GiNaC::ex monomial = 1;
-  GiNaC::ex rest = 0;
+  std::vector<detail::Term> rest;  ///< the primitive rest, term by term (unsorted)
 };
 
 Split split_common(const GiNaC::ex& p, const Symbols& symbols) {
   Split s;
-  const auto ts = detail::terms(GiNaC::expand(p));
+  auto ts = detail::terms(GiNaC::expand(p));
   if (ts.size() <= 1) {
-    s.rest = GiNaC::expand(p);
+    s.rest = std::move(ts);
     return s;
   }
   GiNaC::numeric num = 0, den = 1;
@@ -158,26 +161,25 @@ Split split_common(const GiNaC::ex& p, const Symbols& symbols) {
   }
   (void)symbols;
   // The rest, term by term (the content and the monomial divide every term exactly).
-  GiNaC::exvector rest;
-  rest.reserve(ts.size());
-  for (const detail::Term& t : ts) {
-    GiNaC::ex term = t.coefficient / s.content;
-    for (const auto& [sym, e] : t.powers) {
+  s.rest.reserve(ts.size());
+  for (detail::Term& t : ts) {
+    detail::Term r;
+    r.coefficient = t.coefficient / s.content;
+    for (auto& [sym, e] : t.powers) {
       int left = e;
       for (const auto& [c, low] : common)
         if (c.is_equal(sym)) left -= low;
-      if (left) term *= GiNaC::pow(sym, left);
+      if (left) r.powers.emplace_back(sym, left);
     }
-    rest.push_back(term);
+    s.rest.push_back(std::move(r));
   }
-  s.rest = GiNaC::ex(GiNaC::add(rest));
   return s;
 }
 
 /// "a(K₁₄ + α₂ − m₁)", "−2(…)", "m₁ + K₁₂" (no common factor), "3a".
 std::string factored(const GiNaC::ex& p, const Symbols& symbols, Style style, bool* single) {
-  const Split s = split_common(p, symbols);
-  const auto rest = sorted_terms(s.rest, symbols);
+  Split s = split_common(p, symbols);
+  const auto rest = sort_terms(std::move(s.rest), symbols);
   std::string prefix;
   GiNaC::ex front = s.content * s.monomial;
   if (!front.is_equal(1)) {
@@ -894,8 +896,8 @@ std::string latex_fraction(const Fraction& f, const Symbols& sy, const GiNaC::ex
                            std::vector<std::pair<std::string, std::string>>& where) {
   const std::string whole = format_fraction(f, sy, Style::Latex);
   if (latex_width(whole) <= width) return whole;
-  const Split num = split_common(f.numerator, sy);
-  const auto rest = sorted_terms(num.rest, sy);
+  Split num = split_common(f.numerator, sy);
+  const auto rest = sort_terms(std::move(num.rest), sy);
   const GiNaC::ex front = num.content * num.monomial;
   const bool negative = num.content.is_negative();
   const std::string prefix = front.is_equal(1) || front.is_equal(-1) ? "1" : join(detail::terms(GiNaC::expand(negative ? -front : front)), sy, Style::Latex);
