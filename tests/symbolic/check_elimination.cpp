@@ -18,19 +18,12 @@
 
 #include "superball/symbolic/derivation.hpp"
 #include "superball/symbolic/format.hpp"
+#include "random_point.hpp"
 
 namespace superball::symbolic {
 namespace {
 
-/// A random admissible point (masses, K's, a in [1/7, 10], couplings small against the K's).
-GiNaC::exmap random_point(const Symbols& s, std::mt19937_64& rng) {
-  std::uniform_int_distribution<int> num(1, 70), den(1, 7), coupling(-6, 6);
-  const auto couplings = static_cast<int>(s.pattern().couplings.size()) + 1;
-  GiNaC::exmap at;
-  for (const SymbolInfo& info : s.all())
-    at[info.symbol] = info.kind == SymbolKind::Coupling ? GiNaC::numeric(coupling(rng), 7 * couplings) : GiNaC::numeric(num(rng), den(rng));
-  return at;
-}
+using test::random_point;
 
 GiNaC::numeric value(const GiNaC::ex& e, const GiNaC::exmap& at) { return GiNaC::ex_to<GiNaC::numeric>(GiNaC::ex(e.subs(at)).evalm()); }
 
