@@ -70,7 +70,10 @@ nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s) {
   return j;
 }
 
-nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriver) {
+/// \p psd: the JSON of the conditions on M (Deriver::psd(), the same in
+/// every case), made on the first call and reused: with many cases they
+/// were most of the conditions written.
+nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriver, std::vector<nlohmann::ordered_json>& psd) {
   const Symbols& s = *d.symbols;
   nlohmann::ordered_json j;
   j["case"] = d.case_name;
@@ -119,7 +122,11 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
   j["actual"] = to_string(d.actual);
   if (d.actual == Verdict::Never) j["actual_reason"] = d.actual_reason;
   nlohmann::ordered_json conditions = nlohmann::ordered_json::array();
-  for (const Condition& c : d.conditions) conditions.push_back(condition_json(c, s));
+  if (psd.empty())
+    for (const Condition& c : deriver.psd()) psd.push_back(condition_json(c, s));
+  for (const Condition& c : d.conditions)
+    if (c.kind != ConditionKind::Psd) conditions.push_back(condition_json(c, s));
+  for (const nlohmann::ordered_json& c : psd) conditions.push_back(c);
   j["conditions"] = conditions;
   return j;
 }
@@ -194,6 +201,7 @@ void add_derive(CLI::App& app, Action& action) {
       const bool json = o->format == "json", latex = o->format == "latex";
       const bool shared = count > 1;  // text: the conditions on M, the same in every case, once before them
       std::vector<Derivation> kept;   // LaTeX only
+      std::vector<nlohmann::ordered_json> psd;  // JSON: the conditions on M, once
       {
         StepProgress progress("derive", "case", static_cast<int>(count), o->progress.mode());
         if (json && shared) emit("[\n");
@@ -207,7 +215,7 @@ void add_derive(CLI::App& app, Action& action) {
             kept.push_back(std::move(d));
           } else if (json) {
             // The array's dump(2), element by element: each line of an element indented by two more.
-            const std::string element = derivation_json(d, deriver).dump(2);
+            const std::string element = derivation_json(d, deriver, psd).dump(2);
             if (!shared) {
               emit(element + "\n");
               continue;

@@ -947,6 +947,19 @@ Derivation Deriver::derive(const ContactSet& closed) const {
     out.conditions.push_back(make_condition(p.kind, p.about, p.relation, p.raw, denominator, p.parts, naming,
                                             out.elimination ? &form : nullptr, limit[q] != 0));
   }
+  // The elimination is kept only when something is written through it.
+  if (out.elimination) {
+    // (report() writes a velocity, a reaction or det(ZᵀAZ) through it by the same count of terms)
+    bool used = terms_of(out.determinant) > max_inline_exact_terms;
+    for (const Fraction& f : out.velocities) used = used || terms_of(f.numerator) > max_inline_exact_terms;
+    for (const Fraction& f : out.reactions) used = used || terms_of(f.numerator) > max_inline_exact_terms;
+    for (const Condition& c : out.conditions)
+      used = used || c.exact.eliminated || c.asymptotic.eliminated || (c.finite && c.finite->eliminated);
+    if (!used) {
+      out.elimination.reset();
+      out.reactions_eliminated.clear();
+    }
+  }
   for (std::size_t k = 0; k < naming.named.size(); ++k)
     out.named.push_back(NamedPart{static_cast<int>(k) + 1, naming.named[k].to_ex(sy), positive_terms(naming.named[k])});
   // The case as a whole: never actual when one of its conditions never holds.

@@ -425,7 +425,8 @@ std::string scaled_name(const GiNaC::ex& coefficient, const std::string& name, c
   return factor + (style == Style::Ascii ? "*" : style == Style::Latex && ts.size() == 1 ? " " : "") + name;
 }
 
-/// The pieces of Σ_c ℓ_c V_c + β, each with its sign: the positive ones and the negated negative ones.
+/// The pieces of Σ_c ℓ_c V_c + β, each a product (never a sum) with its
+/// sign: the positive ones and the negated negative ones; β term by term.
 void linear_pieces(const EliminatedForm& f, const Symbols& symbols, Style style, std::vector<std::string>& positive, std::vector<std::string>& negative) {
   for (std::size_t c = 0; c < f.coefficients.size(); ++c) {
     if (f.coefficients[c].is_zero()) continue;
@@ -433,10 +434,7 @@ void linear_pieces(const EliminatedForm& f, const Symbols& symbols, Style style,
     const std::string piece = scaled_name(f.coefficients[c], cluster_velocity_name(static_cast<int>(c) + 1, style), symbols, style, &neg);
     (neg ? negative : positive).push_back(piece);
   }
-  std::vector<detail::Term> plus, less;
-  for (detail::Term& t : sorted_terms(f.constant, symbols)) (t.coefficient.is_negative() ? less : plus).push_back(std::move(t));
-  if (!plus.empty()) positive.push_back(join(plus, symbols, style));
-  if (!less.empty()) negative.push_back(join(less, symbols, style, true));
+  for (const detail::Term& t : sorted_terms(f.constant, symbols)) (t.coefficient.is_negative() ? negative : positive).push_back(term_text(t, symbols, style));
 }
 
 std::string joined(const std::vector<std::string>& pieces) {
@@ -504,7 +502,7 @@ std::string format_linear(const EliminatedForm& f, const Symbols& symbols, Style
   if (negate) std::swap(positive, negative);
   std::string out;
   for (const std::string& p : positive) out += (out.empty() ? "" : " + ") + p;
-  for (const std::string& p : negative) out += (out.empty() ? std::string(minus(style)) : std::string(" ") + minus(style) + " ") + (p.find(" + ") != std::string::npos ? "(" + p + ")" : p);
+  for (const std::string& p : negative) out += (out.empty() ? std::string(minus(style)) : std::string(" ") + minus(style) + " ") + p;
   return out.empty() ? "0" : out;
 }
 
