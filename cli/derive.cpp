@@ -12,8 +12,10 @@
 #include "selection.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/parallel.hpp"
 #include "superball/symbolic/derivation.hpp"
 #include "superball/symbolic/format.hpp"
+#include "workers.hpp"
 
 namespace superball::cli {
 namespace {
@@ -138,6 +140,7 @@ void add_derive(CLI::App& app, Action& action) {
     SelectionOptions selection;
     ProgressOptions progress;
     std::string format = "text", output;
+    int jobs = 0;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("derive", "Solve evolution cases symbolically: velocities, reactions and the conditions, exact and asymptotic");
@@ -178,6 +181,9 @@ void add_derive(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output")->check(non_empty());
   add_progress_options(cmd, o->progress, "case");
+  cmd->add_option("--jobs,-j", o->jobs, "Worker processes (default: all cores); the output does not depend on it")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   cmd->callback([o, &action] {
     action = [o] {
       const Selection selection = resolve(o->selection);
@@ -200,43 +206,49 @@ void add_derive(CLI::App& app, Action& action) {
       const std::size_t count = selection.cases.size();
       const bool json = o->format == "json", latex = o->format == "latex";
       const bool shared = count > 1;  // text: the conditions on M, the same in every case, once before them
-      std::vector<Derivation> kept;   // LaTeX only
-      std::vector<nlohmann::ordered_json> psd;  // JSON: the conditions on M, once
-      {
+      auto name = [&](std::size_t k) {
+        const ContactSet& c = selection.cases[k];
+        const std::string paper = Vocabulary::paper().case_name(c);
+        return paper == c.to_string() ? paper : paper + " " + c.to_string();
+      };
+      if (latex) {  // latex_document() needs every case: derived here, in order
+        StepProgress progress("derive", "case", static_cast<int>(count), o->progress.mode());
+        std::vector<Derivation> kept;
+        for (std::size_t k = 0; k < count; ++k) {
+          progress.step(static_cast<int>(k + 1), name(k));
+          kept.push_back(deriver.derive(selection.cases[k]));
+        }
+        progress.note("writing " + std::to_string(count) + (count == 1 ? " case" : " cases") + " as latex");
+        emit(latex_document(kept, deriver));
+      } else {
+        // One case's text: its report, or its JSON as the array's dump(2) would
+        // write it (each line indented by two more).  Runs in a worker process.
+        std::vector<nlohmann::ordered_json> psd;  // JSON: the conditions on M, made once per process
+        auto task = [&](std::size_t k) {
+          const Derivation d = deriver.derive(selection.cases[k]);
+          if (!json) return report(d, deriver, Style::Text, !shared) + "\n";
+          const std::string element = derivation_json(d, deriver, psd).dump(2);
+          if (!shared) return element + "\n";
+          std::string indented = "  ";
+          indented.reserve(element.size() + element.size() / 16);
+          for (char ch : element) {
+            indented += ch;
+            if (ch == '\n') indented += "  ";
+          }
+          return indented;
+        };
+        Workers workers(count, numeric::thread_count(o->jobs), task);  // forked before the progress starts its thread
         StepProgress progress("derive", "case", static_cast<int>(count), o->progress.mode());
         if (json && shared) emit("[\n");
-        if (!json && !latex && shared) emit(report_psd(deriver, Style::Text) + "\n");
-        for (std::size_t k = 0; k < count; ++k) {
-          const ContactSet& c = selection.cases[k];
-          const std::string name = Vocabulary::paper().case_name(c);
-          progress.step(static_cast<int>(k + 1), name == c.to_string() ? name : name + " " + c.to_string());
-          Derivation d = deriver.derive(c);
-          if (latex) {
-            kept.push_back(std::move(d));
-          } else if (json) {
-            // The array's dump(2), element by element: each line of an element indented by two more.
-            const std::string element = derivation_json(d, deriver, psd).dump(2);
-            if (!shared) {
-              emit(element + "\n");
-              continue;
-            }
-            std::string indented = "  ";
-            indented.reserve(element.size() + element.size() / 16);
-            for (char ch : element) {
-              indented += ch;
-              if (ch == '\n') indented += "  ";
-            }
-            emit(indented + (k + 1 < count ? ",\n" : "\n"));
-          } else {
-            emit(report(d, deriver, Style::Text, !shared) + "\n");
-          }
-        }
+        if (!json && shared) emit(report_psd(deriver, Style::Text) + "\n");
+        if (count) progress.step(1, name(0));
+        workers.run([&](std::size_t k, std::string&& piece) {
+          // The case shown is the one the output waits for next, as when the cases run one after the other.
+          if (k + 1 < count) progress.step(static_cast<int>(k + 2), name(k + 1));
+          emit(json && shared ? piece + (k + 1 < count ? ",\n" : "\n") : piece);
+        });
         if (json && shared) emit("]\n");
-        if (latex) {
-          progress.note("writing " + std::to_string(count) + (count == 1 ? " case" : " cases") + " as latex");
-          emit(latex_document(kept, deriver));
-        }
-      }  // the progress line is erased before anything is written to standard output
+      }  // either way the progress line is erased before anything is written to standard output
       if (file)
         file->commit();
       else

@@ -143,6 +143,21 @@ TEST(CliDerive, BadInputIsOneLine) {
 
 // Progress on standard error: the case derive is at ("derive: case k of N (...)").
 
+TEST(CliDerive, TheOutputDoesNotDependOnTheNumberOfWorkers) {
+  // Cases are derived in worker processes (GiNaC is not thread-safe) and written in order.
+  for (const char* format : {"json", "text"}) {
+    const RunResult one = run({"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--all", "--format", format, "-j", "1"});
+    ASSERT_EQ(one.exit_code, 0) << superball::test::describe(one);
+    for (const char* jobs : {"2", "3", "0"}) {
+      const RunResult many = run({"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--all", "--format", format, "-j", jobs});
+      ASSERT_EQ(many.exit_code, 0) << superball::test::describe(many);
+      EXPECT_EQ(many.out, one.out) << format << ", -j " << jobs;
+    }
+  }
+  const RunResult bad = run({"derive", "--all", "--alphas", "2", "-j", "-1"});
+  EXPECT_EQ(bad.exit_code, 2);
+}
+
 TEST(CliDerive, ProgressIsOneLinePerCaseWhenAskedForALog) {
   const RunResult plain = run({"derive", "--all", "--alphas", "2"});
   const RunResult r = run({"derive", "--all", "--alphas", "2", "--progress"});

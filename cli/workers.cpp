@@ -1,0 +1,229 @@
+#include "workers.hpp"
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <vector>
+
+namespace superball::cli {
+namespace {
+
+constexpr std::uint64_t kStop = ~std::uint64_t{0};  ///< the task index that tells a worker to exit
+
+/// What a worker sends back for one task.
+enum class Kind : std::uint8_t { Result = 0, InvalidArgument = 1, LogicError = 2, RuntimeError = 3 };
+
+bool write_all(int fd, const void* data, std::size_t size) {
+  const char* p = static_cast<const char*>(data);
+  while (size) {
+    const ssize_t n = ::write(fd, p, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+/// Reads exactly \p size bytes; false at end of file or on an error.
+bool read_all(int fd, void* data, std::size_t size) {
+  char* p = static_cast<char*>(data);
+  while (size) {
+    const ssize_t n = ::read(fd, p, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    p += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+/// A worker's loop: read a task index, run it, send (index, kind, length, text); exit on kStop.
+[[noreturn]] void work(int tasks_fd, int results_fd, const std::function<std::string(std::size_t)>& task) {
+  std::uint64_t k = 0;
+  while (read_all(tasks_fd, &k, sizeof k) && k != kStop) {
+    Kind kind = Kind::Result;
+    std::string text;
+    try {
+      text = task(static_cast<std::size_t>(k));
+    } catch (const std::invalid_argument& e) {
+      kind = Kind::InvalidArgument;
+      text = e.what();
+    } catch (const std::logic_error& e) {
+      kind = Kind::LogicError;
+      text = e.what();
+    } catch (const std::exception& e) {
+      kind = Kind::RuntimeError;
+      text = e.what();
+    }
+    const std::uint64_t size = text.size();
+    if (!write_all(results_fd, &k, sizeof k) || !write_all(results_fd, &kind, sizeof kind) || !write_all(results_fd, &size, sizeof size) ||
+        !write_all(results_fd, text.data(), text.size()))
+      ::_exit(3);
+    if (kind != Kind::Result) ::_exit(1);
+  }
+  ::_exit(0);  // no destructors, no atexit handlers: the parent owns every file and the output
+}
+
+}  // namespace
+
+struct Workers::Worker {
+  pid_t pid = -1;
+  int tasks = -1, results = -1;  ///< our ends of its two pipes
+  std::uint64_t running = kStop; ///< the task it is working on
+};
+
+namespace {
+
+/// Stops and reaps every worker still alive.
+void stop_all(std::vector<Workers::Worker>& workers) {
+  for (auto& w : workers) {
+    if (w.tasks >= 0) ::close(w.tasks);
+    if (w.results >= 0) ::close(w.results);
+    w.tasks = w.results = -1;
+    if (w.pid > 0) {
+      ::kill(w.pid, SIGKILL);
+      while (::waitpid(w.pid, nullptr, 0) < 0 && errno == EINTR) {
+      }
+      w.pid = -1;
+    }
+  }
+}
+
+}  // namespace
+
+Workers::Workers(std::size_t count, int jobs, Task task) : count_(count), task_(std::move(task)) {
+  if (jobs <= 1 || count <= 1) return;
+  workers_.resize(std::min<std::size_t>(static_cast<std::size_t>(jobs), count));
+  try {
+    for (std::size_t i = 0; i < workers_.size(); ++i) {
+      int to_worker[2], from_worker[2];
+      if (::pipe(to_worker) != 0) throw std::runtime_error(std::string("Workers: pipe: ") + std::strerror(errno));
+      if (::pipe(from_worker) != 0) {
+        ::close(to_worker[0]);
+        ::close(to_worker[1]);
+        throw std::runtime_error(std::string("Workers: pipe: ") + std::strerror(errno));
+      }
+      const pid_t pid = ::fork();
+      if (pid < 0) {
+        for (int fd : {to_worker[0], to_worker[1], from_worker[0], from_worker[1]}) ::close(fd);
+        throw std::runtime_error(std::string("Workers: fork: ") + std::strerror(errno));
+      }
+      if (pid == 0) {
+        ::close(to_worker[1]);
+        ::close(from_worker[0]);
+        for (std::size_t j = 0; j < i; ++j)  // the ends of the workers made before this one
+          for (int fd : {workers_[j].tasks, workers_[j].results}) ::close(fd);
+        ::signal(SIGPIPE, SIG_DFL);
+        work(to_worker[0], from_worker[1], task_);
+      }
+      ::close(to_worker[0]);
+      ::close(from_worker[1]);
+      workers_[i].pid = pid;
+      workers_[i].tasks = to_worker[1];
+      workers_[i].results = from_worker[0];
+    }
+  } catch (...) {
+    stop_all(workers_);
+    throw;
+  }
+}
+
+Workers::~Workers() { stop_all(workers_); }
+
+void Workers::run(const Deliver& deliver) {
+  const std::size_t count = count_;
+  if (workers_.empty()) {
+    for (std::size_t k = 0; k < count; ++k) deliver(k, task_(k));
+    return;
+  }
+  struct Guard {  // every worker stopped however this function is left
+    std::vector<Worker>& w;
+    ~Guard() { stop_all(w); }
+  } guard{workers_};
+  std::vector<Worker>& workers = workers_;
+  // SIGPIPE from a worker that died: a failed write is seen as such below.
+  struct sigaction ignore {}, previous {};
+  ignore.sa_handler = SIG_IGN;
+  ::sigaction(SIGPIPE, &ignore, &previous);
+  struct Restore {
+    struct sigaction& previous;
+    ~Restore() { ::sigaction(SIGPIPE, &previous, nullptr); }
+  } restore{previous};
+
+  std::size_t next = 0, delivered = 0;
+  std::map<std::size_t, std::string> waiting;  // results that came before an earlier one
+  auto hand_out = [&](Worker& w) {
+    const std::uint64_t k = next < count ? next++ : kStop;
+    if (!write_all(w.tasks, &k, sizeof k)) throw std::runtime_error("worker for task " + std::to_string(k + 1) + " died before it started");
+    w.running = k;
+  };
+  for (Worker& w : workers) hand_out(w);
+  while (delivered < count) {
+    std::vector<pollfd> fds;
+    std::vector<Worker*> owners;
+    for (Worker& w : workers)
+      if (w.running != kStop) {
+        fds.push_back({w.results, POLLIN, 0});
+        owners.push_back(&w);
+      }
+    if (fds.empty()) throw std::logic_error("run_in_workers(): no worker is running and results are missing");
+    if (::poll(fds.data(), fds.size(), -1) < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(std::string("run_in_workers(): poll: ") + std::strerror(errno));
+    }
+    for (std::size_t i = 0; i < fds.size(); ++i) {
+      if (!(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
+      Worker& w = *owners[i];
+      std::uint64_t k = 0, size = 0;
+      Kind kind = Kind::Result;
+      std::string text;
+      bool ok = read_all(w.results, &k, sizeof k) && read_all(w.results, &kind, sizeof kind) && read_all(w.results, &size, sizeof size);
+      if (ok) {
+        text.resize(static_cast<std::size_t>(size));
+        ok = read_all(w.results, text.data(), text.size());
+      }
+      if (!ok || k != w.running) {
+        int status = 0;
+        ::waitpid(w.pid, &status, 0);
+        w.pid = -1;
+        const std::string how = WIFSIGNALED(status) ? std::string("signal ") + std::to_string(WTERMSIG(status)) + " (" + ::strsignal(WTERMSIG(status)) + ")"
+                                                    : "exit status " + std::to_string(WEXITSTATUS(status));
+        throw std::runtime_error("worker for task " + std::to_string(w.running + 1) + " died: " + how);
+      }
+      switch (kind) {
+        case Kind::Result: break;
+        case Kind::InvalidArgument: throw std::invalid_argument(text);
+        case Kind::LogicError: throw std::logic_error(text);
+        case Kind::RuntimeError: throw std::runtime_error(text);
+      }
+      hand_out(w);
+      waiting.emplace(static_cast<std::size_t>(k), std::move(text));
+      for (auto it = waiting.find(delivered); it != waiting.end(); it = waiting.find(delivered)) {
+        deliver(delivered, std::move(it->second));
+        waiting.erase(it);
+        ++delivered;
+      }
+    }
+  }
+  // Every worker has been told to stop (kStop) by now; reap them.
+  for (Worker& w : workers) {
+    ::close(w.tasks);
+    ::close(w.results);
+    w.tasks = w.results = -1;
+    int status = 0;
+    while (::waitpid(w.pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    w.pid = -1;
+  }
+}
+
+}  // namespace superball::cli

@@ -1,0 +1,104 @@
+// cli::Workers (workers.hpp): tasks in forked worker processes, results in
+// task order whatever the number of workers, a task's exception thrown
+// again in the parent with its type and message, a dead worker reported,
+// and no worker left behind.
+#include "workers.hpp"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace superball::cli {
+namespace {
+
+/// No child process is left: every worker was reaped.
+bool no_children() { return ::waitpid(-1, nullptr, WNOHANG) < 0 && errno == ECHILD; }
+
+std::vector<std::string> run(std::size_t count, int jobs, const Workers::Task& task) {
+  std::vector<std::string> out;
+  Workers workers(count, jobs, task);
+  workers.run([&](std::size_t k, std::string&& s) {
+    EXPECT_EQ(k, out.size());  // in task order
+    out.push_back(std::move(s));
+  });
+  return out;
+}
+
+TEST(Workers, ResultsInTaskOrderWhateverTheNumberOfWorkers) {
+  const pid_t parent = ::getpid();
+  // Early tasks take longest, so later ones finish first in the workers.
+  auto task = [&](std::size_t k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(k < 3 ? 30 - 10 * static_cast<int>(k) : 1));
+    return "task " + std::to_string(k) + (::getpid() == parent ? " here" : " in a worker") + std::string(k * 10000, 'x');
+  };
+  for (int jobs : {1, 2, 3, 8}) {
+    const std::vector<std::string> out = run(12, jobs, task);
+    ASSERT_EQ(out.size(), 12u);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      EXPECT_EQ(out[k].substr(0, out[k].find(' ', 5)), "task " + std::to_string(k));
+      EXPECT_EQ(out[k].find(jobs == 1 ? " in a worker" : " here"), std::string::npos) << jobs;
+      EXPECT_EQ(std::count(out[k].begin(), out[k].end(), 'x'), static_cast<long>(k * 10000)) << "a large result crosses whole";
+    }
+    EXPECT_TRUE(no_children()) << jobs;
+  }
+  EXPECT_TRUE(run(0, 4, task).empty());
+}
+
+TEST(Workers, ATaskExceptionComesBackWithItsTypeAndMessage) {
+  auto failing = [](std::size_t k) -> std::string {
+    if (k == 5) throw std::invalid_argument("bad input on task 5");
+    if (k == 7) throw std::logic_error("internal error on task 7");
+    return std::to_string(k);
+  };
+  for (int jobs : {1, 3}) {
+    try {
+      run(10, jobs, failing);
+      ADD_FAILURE() << "no exception, jobs " << jobs;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "bad input on task 5");
+    }
+    EXPECT_TRUE(no_children()) << jobs;
+  }
+  auto logic = [](std::size_t k) -> std::string {
+    if (k == 2) throw std::logic_error("internal error on task 2");
+    return "";
+  };
+  EXPECT_THROW(run(4, 2, logic), std::logic_error);
+  EXPECT_TRUE(no_children());
+}
+
+TEST(Workers, AWorkerThatDiesIsReportedWithItsTask) {
+  const pid_t parent = ::getpid();
+  auto dying = [&](std::size_t k) -> std::string {
+    if (k == 3 && ::getpid() != parent) ::raise(SIGKILL);
+    return std::to_string(k);
+  };
+  try {
+    run(6, 2, dying);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("worker for task 4 died: signal 9"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(no_children());
+}
+
+TEST(Workers, ADeliverThatThrowsStopsTheWorkers) {
+  Workers workers(20, 3, [](std::size_t k) { return std::to_string(k); });
+  EXPECT_THROW(workers.run([](std::size_t k, std::string&&) {
+    if (k == 4) throw std::runtime_error("disk full");
+  }),
+               std::runtime_error);
+  EXPECT_TRUE(no_children());
+}
+
+}  // namespace
+}  // namespace superball::cli
