@@ -173,6 +173,10 @@ void add_derive(CLI::App& app, Action& action) {
       "redrawn in place and erased before the output is written; nothing is shown when standard error is not a terminal or\n"
       "with --quiet.  --progress shows it from the first case, one line each when standard error is not a\n"
       "terminal (a log).\n\n"
+      "Workers.  Text and JSON: the cases are derived in --jobs worker processes (all cores by default; GiNaC is\n"
+      "not thread-safe, so processes, each a copy of this one) and written in case order as they come: the output\n"
+      "does not depend on --jobs; the memory is that of the cases being derived at once (one per worker).  LaTeX\n"
+      "derives every case here, in order.\n\n"
       "Names (JSON and --scaling): m1..mn, K12 (K1_10 past 9 bodies), alpha1..alpha7 (n = 4), c_12_14 for a\n"
       "coupling of the pairs 1-2 and 1-4, a for the fall speed, U1.. for the velocities after.");
   add_selection_options(cmd, o->selection);
