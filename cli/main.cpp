@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
       "directly.");
   app.require_subcommand(1);
   guard_standard_descriptors();
-  app.set_version_flag("--version", "superball 0.1.0");
+  app.set_version_flag("--version", "superball " SUPERBALL_VERSION);
   Action action;
   add_solve(app, action);
   add_sweep(app, action);

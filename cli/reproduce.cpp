@@ -518,10 +518,24 @@ void verification_and_patterns(const std::vector<verify::Verification>& runs, co
 }
 
 /// cases/scenes below the working folder when there is one (paths in the
-/// report stay relative), else the source tree's.
+/// report stay relative), else the installed scenes beside the command
+/// (share/superball/scenes), else the source tree's.
 std::string default_scenes() {
-  struct stat st {};
-  return ::stat("cases/scenes", &st) == 0 && S_ISDIR(st.st_mode) ? "cases/scenes" : SUPERBALL_SCENES_DIR;
+  const auto is_folder = [](const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+  };
+  if (is_folder("cases/scenes")) return "cases/scenes";
+#ifdef SUPERBALL_INSTALLED_SCENES
+  char self[4096];
+  const ssize_t n = ::readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n > 0) {
+    std::string installed(self, static_cast<std::size_t>(n));
+    installed = installed.substr(0, installed.rfind('/') + 1) + SUPERBALL_INSTALLED_SCENES;
+    if (is_folder(installed)) return installed;
+  }
+#endif
+  return SUPERBALL_SCENES_DIR;
 }
 
 /// Create the report folder \p out if missing and make sure files can be

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Install, build and run every test (what CI runs), in four stages:
-#   1. the test suite (Release build, ctest)
+#   1. the test suite (Release build, ctest), then the install: `cmake --install` into a
+#      temporary prefix, examples/cpp built and run against it (CMake and pkg-config)
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer
 #   3. the libFuzzer target over scene parsing and solving, 60 s from tests/fuzz/corpus
 #   4. the red-team suite (tests/redteam), hostile scenes and command lines for 60 s
@@ -26,12 +27,43 @@ run_ctest() {
   rm -f "$log"
 }
 
+# install_check: install BUILD_DIR into a temporary prefix, build examples/cpp against
+# that prefix only (find_package, then pkg-config), run it and the installed command.
+install_check() {
+  local work prefix
+  work="$(mktemp -d)"
+  prefix="$work/prefix"
+  cmake --install "$BUILD_DIR" --prefix "$prefix" > "$work/install.log"
+  cmake -S "$ROOT/examples/cpp" -B "$work/example" -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" > "$work/configure.log"
+  cmake --build "$work/example" -j "$(nproc)"
+  "$work/example/superball_example"
+  # Every superball library the example loads comes from the prefix, none from the build tree.
+  if ldd "$work/example/superball_example" | grep libsuperball_ | grep -v -- "=> $prefix/"; then
+    echo "install: the example loads a superball library from outside $prefix" >&2
+    exit 1
+  fi
+  local pc="$prefix/lib/pkgconfig"
+  [ -d "$pc" ] || pc="$(dirname "$(find "$prefix" -name superball.pc | head -n 1)")"
+  # shellcheck disable=SC2046
+  c++ -std=c++17 -O1 -o "$work/example-pc" "$ROOT/examples/cpp/main.cpp" \
+    -DSUPERBALL_EXAMPLE_SCENE="\"$prefix/share/superball/scenes/paper-4.4-alpha2.toml\"" \
+    $(PKG_CONFIG_PATH="$pc" pkg-config --cflags --libs superball) -Wl,-rpath,"$(PKG_CONFIG_PATH="$pc" pkg-config --variable=libdir superball)"
+  "$work/example-pc" > "$work/example-pc.out"
+  cmp "$work/example-pc.out" <("$work/example/superball_example")
+  "$prefix/bin/superball" solve "$prefix/share/superball/scenes/paper-4.4-alpha2.toml" --precision exact > /dev/null
+  [ -s "$prefix/share/man/man1/superball.1" ]
+  echo "install: examples/cpp built and run against the installed tree (find_package and pkg-config), $(find "$prefix" -type f | wc -l) files" >> "$summary"
+  rm -rf "$work"
+}
+
 for stage in $STAGES; do
   case "$stage" in
     1)
       echo "== stage 1: test suite"
       configure_and_build -DSUPERBALL_BUILD_TESTS=ON
       run_ctest "$BUILD_DIR" "suite"
+      echo "== stage 1: install into a temporary prefix, examples/cpp against it"
+      install_check
       ;;
     2)
       echo "== stage 2: test suite under AddressSanitizer + UndefinedBehaviorSanitizer"
