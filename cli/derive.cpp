@@ -13,127 +13,15 @@
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/parallel.hpp"
+#include "superball/present/derivation.hpp"
 #include "superball/symbolic/derivation.hpp"
 #include "superball/symbolic/format.hpp"
 #include "workers.hpp"
 
 namespace superball::cli {
-namespace {
 
 using namespace superball::symbolic;
-
-nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s) {
-  nlohmann::ordered_json j;
-  j["kind"] = to_string(c.kind);
-  j["about"] = c.about;
-  const StyledText exact = format_condition_styles(c.exact, c.relation, s);
-  // The asymptotic form is often the exact one again (every term of the leading order): formatted once.
-  const bool same = c.asymptotic.numerator.is_equal(c.exact.numerator) && c.asymptotic.denominator.is_equal(c.exact.denominator);
-  const StyledText asymptotic = same ? exact : format_condition_styles(c.asymptotic, c.relation, s);
-  j["exact"] = exact.ascii;
-  j["asymptotic"] = asymptotic.ascii;
-  j["text"] = exact.text;
-  j["latex"] = exact.latex;
-  j["asymptotic_text"] = asymptotic.text;
-  j["asymptotic_latex"] = asymptotic.latex;
-  if (c.finite) j["finite"] = format_condition(*c.finite, c.relation, s, Style::Ascii);
-  // The same conditions as a person writes them (isolated or grouped; derivation.hpp, Readable).
-  nlohmann::ordered_json readable = nlohmann::ordered_json::object();
-  auto add = [&](const char* key, const ConditionForm& form) {
-    if (!form.readable) return;
-    readable[key] = {{"ascii", format_readable(*form.readable, c.relation, s, Style::Ascii)},
-                     {"text", format_readable(*form.readable, c.relation, s, Style::Text)},
-                     {"latex", format_readable(*form.readable, c.relation, s, Style::Latex)}};
-  };
-  add("exact", c.exact);
-  if (c.finite) add("finite", *c.finite);
-  add("asymptotic", c.asymptotic);
-  if (!readable.empty()) j["readable"] = readable;
-  // Long forms through the case's elimination (derivation.hpp, Elimination): Σ ℓ_c V_c + β REL 0.
-  nlohmann::ordered_json eliminated = nlohmann::ordered_json::object();
-  auto add_eliminated = [&](const char* key, const ConditionForm& form) {
-    if (!form.eliminated) return;
-    eliminated[key] = {{"ascii", format_eliminated(*form.eliminated, c.relation, s, Style::Ascii)},
-                       {"text", format_eliminated(*form.eliminated, c.relation, s, Style::Text)},
-                       {"latex", format_eliminated(*form.eliminated, c.relation, s, Style::Latex)},
-                       {"limit", form.eliminated->limit}};
-  };
-  add_eliminated("exact", c.exact);
-  if (c.finite) add_eliminated("finite", *c.finite);
-  add_eliminated("asymptotic", c.asymptotic);
-  if (!eliminated.empty()) j["eliminated"] = eliminated;
-  std::ostringstream order;
-  order << c.leading_order;
-  j["order"] = order.str();
-  j["orders_kept"] = c.orders_kept;
-  j["verdict"] = to_string(c.exact.verdict);
-  j["asymptotic_verdict"] = to_string(c.asymptotic.verdict);
-  j["proof"] = c.proof;
-  return j;
-}
-
-/// \p psd: the JSON of the conditions on M (Deriver::psd(), the same in
-/// every case), made on the first call and reused: with many cases they
-/// were most of the conditions written.
-nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriver, std::vector<nlohmann::ordered_json>& psd) {
-  const Symbols& s = *d.symbols;
-  nlohmann::ordered_json j;
-  j["case"] = d.case_name;
-  j["closed_contacts"] = d.closed.closed_names();
-  j["pattern"] = s.pattern().describe();
-  j["obstacle"] = s.obstacle() == Obstacle::Infinite ? "infinite" : "finite";
-  j["scaling"] = deriver.scaling().describe(s, Style::Ascii);
-  nlohmann::ordered_json symbols = nlohmann::ordered_json::array();
-  for (const SymbolInfo& i : s.all()) {
-    const char* kind = i.kind == SymbolKind::Mass ? "mass" : i.kind == SymbolKind::Diagonal ? "K" : i.kind == SymbolKind::Coupling ? "coupling" : "fall_speed";
-    nlohmann::ordered_json sym{{"name", i.ascii}, {"kind", kind}, {"text", i.text}, {"latex", i.latex}, {"positive", i.kind != SymbolKind::Coupling}};
-    if (i.kind == SymbolKind::Diagonal || i.kind == SymbolKind::Coupling) sym["pairs"] = {i.first.name(), i.second.name()};
-    symbols.push_back(sym);
-  }
-  j["symbols"] = symbols;
-  nlohmann::ordered_json v = nlohmann::ordered_json::object();
-  for (int i = 1; i <= s.bodies(); ++i) v["U" + std::to_string(i)] = format_fraction(d.velocities[static_cast<std::size_t>(i - 1)], s, Style::Ascii);
-  j["velocities_after"] = v;
-  nlohmann::ordered_json r = nlohmann::ordered_json::object();
-  for (int c = 0; c + 1 < s.bodies(); ++c)
-    if (d.closed.closed(c)) r[Pair{c + 1, c + 2}.name()] = format_fraction(d.reactions[static_cast<std::size_t>(c)], s, Style::Ascii);
-  j["reactions"] = r;
-  j["determinant"] = format_polynomial(d.determinant, s, Style::Ascii);
-  j["check"] = d.check;
-  nlohmann::ordered_json named = nlohmann::ordered_json::array();
-  for (const NamedPart& p : d.named)
-    named.push_back({{"name", named_part_name(p.index, Style::Ascii)},
-                     {"value", format_polynomial(p.value, s, Style::Ascii)},
-                     {"text", format_polynomial(p.value, s, Style::Text)},
-                     {"latex", format_polynomial(p.value, s, Style::Latex)},
-                     {"positive", p.positive}});
-  j["named"] = named;
-  if (d.elimination) {
-    const Elimination& e = *d.elimination;
-    nlohmann::ordered_json order = nlohmann::ordered_json::array(), small = nlohmann::ordered_json::array(),
-                           definitions = nlohmann::ordered_json::array();
-    for (int c : e.order) order.push_back(c + 1);
-    for (const GiNaC::ex& x : e.small) small.push_back(s.info(x).ascii);
-    const auto ascii = elimination_definitions(e, s, Style::Ascii), text = elimination_definitions(e, s, Style::Text),
-               latex = elimination_definitions(e, s, Style::Latex);
-    for (std::size_t k = 0; k < ascii.size(); ++k)
-      definitions.push_back({{"name", ascii[k].first}, {"value", ascii[k].second}, {"text", text[k].first + " = " + text[k].second},
-                             {"latex", latex[k].first + " = " + latex[k].second}});
-    j["elimination"] = {{"order", order}, {"small", small}, {"definitions", definitions}};
-  }
-  j["actual"] = to_string(d.actual);
-  if (d.actual == Verdict::Never) j["actual_reason"] = d.actual_reason;
-  nlohmann::ordered_json conditions = nlohmann::ordered_json::array();
-  if (psd.empty())
-    for (const Condition& c : deriver.psd()) psd.push_back(condition_json(c, s));
-  for (const Condition& c : d.conditions)
-    if (c.kind != ConditionKind::Psd) conditions.push_back(condition_json(c, s));
-  for (const nlohmann::ordered_json& c : psd) conditions.push_back(c);
-  j["conditions"] = conditions;
-  return j;
-}
-
-}  // namespace
+using present::derivation_json;
 
 void add_derive(CLI::App& app, Action& action) {
   struct Options {

@@ -1,44 +1,19 @@
 #pragma once
 /// \file present.hpp
-/// A solution as people and programs read it: values scaled from the
-/// solver's velocity unit to SI, as JSON and as text.
-
-#include <nlohmann/json.hpp>
+/// A solution as people and programs read it (superball/present/solution.hpp,
+/// shared with the Python module), and its flight drawn with gnuplot.
 
 #include <string>
 
-#include "superball/numeric/collision.hpp"
-#include "superball/numeric/flight.hpp"
-#include "superball/numeric/precision.hpp"
+#include "superball/present/solution.hpp"
 
 namespace superball::cli {
 
-/// One solved scene, in any precision, flattened for output.
-struct Presented {
-  std::string origin, title, precision, status, case_name;
-  int n = 0, pivots = 0;
-  bool fixed_bottom = false, superball = false;
-  std::vector<double> masses, before, after, reactions;
-  std::vector<std::string> after_text, reaction_text;  ///< full precision (exact: fractions)
-  std::vector<std::string> closed;
-  double ke_before = 0, ke_after = 0, dissipation = 0, momentum_before = 0, momentum_after = 0;
-  double residual_motion = 0, residual_complementarity = 0;
-  bool exact = false;
-  std::vector<numeric::BodyFlight> flight;  ///< only when the scene asks for it ([flight])
-  std::string requested;                    ///< "auto" when the precision was chosen by certification
-  double error_bound = -1;                  ///< certified relative velocity error (auto only)
-  std::vector<std::string> escalation;      ///< what auto tried
-  double g = 9.81, flight_duration = 0;
-};
-
-/// Solve \p scene in \p precision and flatten the result.
-Presented solve_scene(const Scene& scene, const numeric::Precision& precision);
-/// Solve \p scene with `--precision auto`: the first of double, long double
-/// and exact whose result is certified to \p rtol (numeric/certify.hpp).
-Presented solve_scene_auto(const Scene& scene, double rtol);
-
-nlohmann::json to_json(const Presented& p);
-std::string to_text(const Presented& p);
+using present::Presented;
+using present::solve_scene;
+using present::solve_scene_auto;
+using present::to_json;
+using present::to_text;
 
 /// Draw the flights of \p p (which must have them) as DIR/trajectories.png and .svg.
 void draw_flight(const Presented& p, const std::string& dir);

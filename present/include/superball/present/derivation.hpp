@@ -1,0 +1,27 @@
+#pragma once
+/// \file derivation.hpp
+/// A derivation for programs: the JSON of `superball derive --format json`,
+/// shared by the command and the Python module; not installed.
+
+#include <nlohmann/json.hpp>
+
+#include <vector>
+
+#include "superball/symbolic/derivation.hpp"
+
+namespace superball::present {
+
+/// One condition: kind, about, the exact and asymptotic forms in ASCII
+/// (GiNaC's syntax), text and LaTeX, the readable and eliminated forms when
+/// there are, the order in ε, the verdicts and the proof.
+nlohmann::ordered_json condition_json(const symbolic::Condition& c, const symbolic::Symbols& s);
+
+/// The case \p d of \p deriver: symbols, velocities, reactions, the
+/// determinant, named parts, the elimination when set, and the conditions.
+/// \p psd holds the JSON of the conditions on M (Deriver::psd(), the same in
+/// every case), made on the first call and reused: with many cases they
+/// were most of the conditions written.
+nlohmann::ordered_json derivation_json(const symbolic::Derivation& d, const symbolic::Deriver& deriver,
+                                       std::vector<nlohmann::ordered_json>& psd);
+
+}  // namespace superball::present

@@ -1,0 +1,47 @@
+#pragma once
+/// \file solution.hpp
+/// A solution as people and programs read it: values scaled from the
+/// solver's velocity unit to SI, as JSON and as text.  Shared by the
+/// `superball` command and the Python module (the two fronts of the
+/// libraries); not installed.
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "superball/numeric/collision.hpp"
+#include "superball/numeric/flight.hpp"
+#include "superball/numeric/precision.hpp"
+
+namespace superball::present {
+
+/// One solved scene, in any precision, flattened for output.
+struct Presented {
+  std::string origin, title, precision, status, case_name;
+  int n = 0, pivots = 0;
+  bool fixed_bottom = false, superball = false;
+  std::vector<double> masses, before, after, reactions;
+  std::vector<std::string> after_text, reaction_text;  ///< full precision (exact: fractions)
+  std::vector<std::string> closed;
+  double ke_before = 0, ke_after = 0, dissipation = 0, momentum_before = 0, momentum_after = 0;
+  double residual_motion = 0, residual_complementarity = 0;
+  bool exact = false;
+  std::vector<numeric::BodyFlight> flight;  ///< only when the scene asks for it ([flight])
+  std::string requested;                    ///< "auto" when the precision was chosen by certification
+  double error_bound = -1;                  ///< certified relative velocity error (auto only)
+  std::vector<std::string> escalation;      ///< what auto tried
+  double g = 9.81, flight_duration = 0;
+};
+
+/// Solve \p scene in \p precision and flatten the result.
+Presented solve_scene(const Scene& scene, const numeric::Precision& precision);
+/// Solve \p scene with `--precision auto`: the first of double, long double
+/// and exact whose result is certified to \p rtol (numeric/certify.hpp).
+Presented solve_scene_auto(const Scene& scene, double rtol);
+
+/// Every field of \p p, for programs (`superball solve --json`).
+nlohmann::json to_json(const Presented& p);
+/// \p p for people (`superball solve`).
+std::string to_text(const Presented& p);
+
+}  // namespace superball::present

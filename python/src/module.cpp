@@ -1,0 +1,419 @@
+// _superball: the C++ side of the Python module `superball` (python/superball
+// wraps it in Python's idioms).  A thin front over the libraries, as the
+// `superball` command is: every computation is a library call, and what the
+// two fronts share (a solution flattened for output, a derivation's JSON, the
+// choice of a pattern by name) lives in present/.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cln/dfloat.h>
+#include <cln/rational.h>
+#include <cln/real.h>
+
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "superball/cases/error.hpp"
+#include "superball/cases/parameter.hpp"
+#include "superball/cases/printed_conditions.hpp"
+#include "superball/cases/scene_file.hpp"
+#include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/certify.hpp"
+#include "superball/numeric/parallel.hpp"
+#include "superball/numeric/sweep.hpp"
+#include "superball/present/audit.hpp"
+#include "superball/present/derivation.hpp"
+#include "superball/present/selection.hpp"
+#include "superball/present/solution.hpp"
+#include "superball/symbolic/format.hpp"
+#include "superball/verify/audit.hpp"
+#include "superball/verify/explore.hpp"
+#include "superball/verify/verification.hpp"
+
+namespace py = pybind11;
+
+namespace superball::python {
+namespace {
+
+/// Exact parameter values of a sweep, made once (from decimal or fraction
+/// text, from doubles, or as the command line's linspace) and handed to the
+/// library as they are.
+struct Values {
+  std::vector<cln::cl_RA> exact;
+};
+
+/// The exact rational value of the finite double \p x.
+cln::cl_RA exact_double(double x) {
+  if (!std::isfinite(x)) throw std::invalid_argument("values: " + numeric::to_string(x) + " is not a finite number");
+  return cln::rational(cln::cl_DF(x));
+}
+
+/// The exact value of a number spelled as in a scene file ("0.001", "1/3", "5e6").
+cln::cl_RA parse_exact(const std::string& text) { return numeric::parse_rational(Number::parse(text).fraction()); }
+
+Values values_from_text(const std::vector<std::string>& texts) {
+  Values v;
+  v.exact.reserve(texts.size());
+  for (const auto& t : texts) {
+    try {
+      v.exact.push_back(parse_exact(t));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("values: '" + printable(t) + "': " + without_function_prefix(e.what()));
+    }
+  }
+  return v;
+}
+
+Values values_from_doubles(const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
+  if (a.ndim() != 1) throw std::invalid_argument("values: expected a one-dimensional array, got " + std::to_string(a.ndim()) + " dimensions");
+  Values v;
+  v.exact.reserve(static_cast<std::size_t>(a.size()));
+  const double* x = a.data();
+  for (py::ssize_t k = 0; k < a.size(); ++k) v.exact.push_back(exact_double(x[k]));
+  return v;
+}
+
+Values values_linspace(const std::string& from, const std::string& to, int steps) {
+  if (steps < 2) throw std::invalid_argument("linspace: steps must be at least 2 (got " + std::to_string(steps) + ")");
+  const cln::cl_RA a = parse_exact(from), b = parse_exact(to);
+  if (a == b) throw std::invalid_argument("linspace: start and stop are equal");
+  return Values{numeric::linspace(a, b, steps)};
+}
+
+py::array_t<double> values_as_doubles(const Values& v) {
+  py::array_t<double> out(static_cast<py::ssize_t>(v.exact.size()));
+  double* y = out.mutable_data();
+  for (std::size_t k = 0; k < v.exact.size(); ++k) y[k] = cln::double_approx(v.exact[k]);
+  return out;
+}
+
+std::vector<std::string> values_as_text(const Values& v) {
+  std::vector<std::string> out;
+  out.reserve(v.exact.size());
+  for (const auto& x : v.exact) out.push_back(numeric::to_string(x));
+  return out;
+}
+
+/// The bit mask of a case (bit c: contact (c+1, c+2) closed).
+std::uint64_t mask_of(const ContactSet& s) {
+  std::uint64_t m = 0;
+  for (int c = 0; c < s.contacts() && c < 64; ++c)
+    if (s.closed(c)) m |= std::uint64_t{1} << c;
+  return m;
+}
+
+/// The scene's copy with \p key set to \p value through Parameter::set() (the loader's checks).
+Scene with_value(const Scene& scene, const std::string& key, const std::string& value) {
+  const Parameter p = Parameter::parse(key, scene);
+  Number n;
+  try {
+    n = Number::parse(value);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(key + " = '" + printable(value) + "': " + without_function_prefix(e.what()));
+  }
+  Scene copy = scene;
+  p.set(copy, n);
+  return copy;
+}
+
+present::Presented solve(const Scene& scene, const std::string& precision, py::object rtol) {
+  const bool automatic = precision == "auto";
+  if (!automatic && !rtol.is_none())
+    throw std::invalid_argument("rtol is the certified error of precision='auto'; precision='" + printable(precision) + "' has none");
+  const double r = rtol.is_none() ? numeric::default_rtol : rtol.cast<double>();
+  if (automatic && !(r >= 0 && r <= 1)) throw std::invalid_argument("rtol must be a number from 0 to 1, got " + numeric::to_string(r));
+  const auto p = automatic ? numeric::Precision{} : numeric::Precision::parse(precision);
+  py::gil_scoped_release release;
+  return automatic ? present::solve_scene_auto(scene, r) : present::solve_scene(scene, p);
+}
+
+/// sweep(): values, U (one row per value), case masks, statuses; the GIL is released while it solves.
+py::tuple sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads) {
+  const Parameter parameter = Parameter::parse(key, scene);
+  const auto p = numeric::Precision::parse(precision);
+  if (values.exact.empty()) throw std::invalid_argument("sweep: no value to solve");
+  const auto n = static_cast<py::ssize_t>(scene.size());
+  const auto count = static_cast<py::ssize_t>(values.exact.size());
+  py::array_t<double> u({count, n});
+  py::array_t<std::uint64_t> masks(count);
+  py::array_t<std::int8_t> status(count);
+  {
+    double* ud = u.mutable_data();
+    std::uint64_t* md = masks.mutable_data();
+    std::int8_t* sd = status.mutable_data();
+    py::gil_scoped_release release;
+    const auto points = numeric::sweep(scene, parameter, values.exact, p, threads);
+    for (py::ssize_t k = 0; k < count; ++k) {
+      const auto& pt = points[static_cast<std::size_t>(k)];
+      for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
+      md[k] = mask_of(pt.closed);
+      sd[k] = static_cast<std::int8_t>(pt.status);
+    }
+  }
+  return py::make_tuple(values_as_doubles(values), u, masks, status);
+}
+
+/// switch_points(): one tuple per change of case, in increasing value:
+/// (low, high, middle as decimal text, bracket width as decimal text, below mask, above mask).
+std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key, const Values& values, int bits, int threads) {
+  const Parameter parameter = Parameter::parse(key, scene);
+  if (values.exact.size() < 2) throw std::invalid_argument("switch_points: at least two values are needed");
+  if (bits < 1 || bits > 1024) throw std::invalid_argument("switch_points: bits must be 1..1024 (got " + std::to_string(bits) + ")");
+  std::vector<numeric::SwitchPoint> found;
+  {
+    py::gil_scoped_release release;
+    found = numeric::switch_points(scene, parameter, values.exact, bits, threads);
+  }
+  std::vector<py::tuple> out;
+  for (const auto& s : found)
+    out.push_back(py::make_tuple(numeric::to_string(s.low), numeric::to_string(s.high), numeric::to_decimal((s.low + s.high) / 2, 17),
+                                 numeric::to_decimal(s.high - s.low, 3), mask_of(s.below), mask_of(s.above)));
+  return out;
+}
+
+/// The paper's name of the case \p mask for \p bodies bodies, else "{2-3,3-4}".
+std::string case_name(std::uint64_t mask, int bodies) { return Vocabulary::paper().case_name(ContactSet::from_mask(mask, bodies)); }
+
+std::vector<std::string> closed_names(std::uint64_t mask, int bodies) { return ContactSet::from_mask(mask, bodies).closed_names(); }
+
+present::SelectionOptions selection(const py::dict& o) {
+  present::SelectionOptions s;
+  for (const auto& [k, v] : o) {
+    const auto key = k.cast<std::string>();
+    if (v.is_none()) continue;
+    if (key == "bodies") s.bodies = v.cast<int>();
+    else if (key == "order") s.order = v.cast<int>();
+    else if (key == "case") s.case_name = v.cast<std::string>();
+    else if (key == "closed") s.closed = v.cast<std::string>();
+    else if (key == "alphas") s.alphas = v.cast<std::string>();
+    else if (key == "coupling") s.coupling = v.cast<std::string>();
+    else if (key == "pairs") s.pairs = v.cast<std::string>();
+    else if (key == "scene") s.scene = v.cast<std::string>();
+    else if (key == "obstacle") s.obstacle = v.cast<std::string>();
+    else if (key == "scaling") s.scaling = v.cast<std::string>();
+    else if (key == "all") s.all = v.cast<bool>();
+    else if (key == "no_limit") s.no_limit = v.cast<bool>();
+    else throw std::invalid_argument("unknown selection option '" + printable(key) + "'");
+  }
+  if (s.obstacle != "infinite" && s.obstacle != "finite")
+    throw std::invalid_argument("obstacle must be 'infinite' or 'finite' (got '" + printable(s.obstacle) + "')");
+  if (s.order < 0 || s.order > 20) throw std::invalid_argument("order must be 0..20 (got " + std::to_string(s.order) + ")");
+  return s;
+}
+
+/// derive(): per case, the JSON of `superball derive --format json` (as text)
+/// and the text and LaTeX of the velocities and reactions and of the report.
+std::vector<py::dict> derive(const py::dict& options) {
+  const present::Selection sel = present::resolve(selection(options));
+  if (sel.cases.empty()) throw std::invalid_argument("derive: give a case (case=, closed= or all=True)");
+  const symbolic::Deriver& deriver = *sel.deriver;
+  std::vector<nlohmann::ordered_json> psd;
+  std::vector<py::dict> out;
+  for (const ContactSet& c : sel.cases) {
+    const symbolic::Derivation d = deriver.derive(c);
+    const symbolic::Symbols& s = *d.symbols;
+    py::dict x;
+    x["json"] = present::derivation_json(d, deriver, psd).dump();
+    std::vector<std::string> vt, vl, rt, rl;
+    for (const auto& f : d.velocities) {
+      vt.push_back(symbolic::format_fraction(f, s, symbolic::Style::Text));
+      vl.push_back(symbolic::format_fraction(f, s, symbolic::Style::Latex));
+    }
+    for (int k = 0; k + 1 < s.bodies(); ++k) {
+      const bool closed = d.closed.closed(k);
+      const auto& f = d.reactions[static_cast<std::size_t>(k)];
+      rt.push_back(closed ? symbolic::format_fraction(f, s, symbolic::Style::Text) : "0");
+      rl.push_back(closed ? symbolic::format_fraction(f, s, symbolic::Style::Latex) : "0");
+    }
+    x["velocities_text"] = vt;
+    x["velocities_latex"] = vl;
+    x["reactions_text"] = rt;
+    x["reactions_latex"] = rl;
+    x["report"] = symbolic::report(d, deriver, symbolic::Style::Text);
+    x["report_latex"] = symbolic::report(d, deriver, symbolic::Style::Latex);
+    out.push_back(std::move(x));
+  }
+  return out;
+}
+
+/// verify(): per case, to_json(Verification) as text, its report, and whether the exact conditions agree.
+std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<std::string>& epsilons, int samples, int boundary_pairs,
+                                    std::uint64_t seed, int threads) {
+  verify::VerifyOptions o;
+  if (!epsilons.empty()) {
+    o.epsilons.clear();
+    for (const auto& e : epsilons) {
+      cln::cl_RA x;
+      try {
+        x = parse_exact(e);
+      } catch (const std::invalid_argument& error) {
+        throw std::invalid_argument("epsilons: '" + printable(e) + "': " + without_function_prefix(error.what()));
+      }
+      if (!(x > 0) || !(x < 1)) throw std::invalid_argument("epsilons: '" + printable(e) + "' is not in (0, 1)");
+      o.epsilons.push_back(x);
+    }
+  }
+  if (samples < 1) throw std::invalid_argument("samples must be at least 1 (got " + std::to_string(samples) + ")");
+  if (boundary_pairs < 0) throw std::invalid_argument("boundary_pairs must be >= 0 (got " + std::to_string(boundary_pairs) + ")");
+  if (threads < 0) throw std::invalid_argument("threads must be >= 0 (0: all cores; got " + std::to_string(threads) + ")");
+  o.samples = samples;
+  o.boundary_pairs = boundary_pairs;
+  o.seed = seed;
+  o.threads = threads;
+  const present::Selection sel = present::resolve(selection(options));
+  if (sel.cases.empty()) throw std::invalid_argument("verify: give a case (case=, closed= or all=True)");
+  std::vector<py::tuple> out;
+  for (const ContactSet& c : sel.cases) {
+    const verify::Verification v = verify::verify_case(*sel.deriver, c, o);
+    out.push_back(py::make_tuple(verify::to_json(v).dump(), verify::to_text(v), v.exact_agrees()));
+  }
+  return out;
+}
+
+/// audit(): the JSON of `superball audit --json` as text, and its report.
+py::tuple audit(const std::string& epsilon, int samples, std::uint64_t seed) {
+  verify::AuditOptions o;
+  o.epsilon = parse_exact(epsilon);
+  if (!(o.epsilon > 0) || !(o.epsilon < 1)) throw std::invalid_argument("epsilon: '" + printable(epsilon) + "' is not in (0, 1)");
+  if (samples < 1) throw std::invalid_argument("samples must be at least 1 (got " + std::to_string(samples) + ")");
+  o.samples = samples;
+  o.seed = seed;
+  const verify::Audit a = verify::audit_paper(PrintedConditions::paper(), o);
+  return py::make_tuple(present::audit_json(a).dump(), verify::to_text(a));
+}
+
+/// explore(): per case (or per cell of the table), to_json as text and the report.
+std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::uint64_t seed, int starts, int evaluations, double box_low,
+                               double box_high) {
+  verify::ExploreOptions o;
+  o.seed = seed;
+  o.starts = starts;
+  o.evaluations = evaluations;
+  o.box_low = box_low;
+  o.box_high = box_high;
+  std::vector<py::tuple> out;
+  if (all_patterns) {
+    const verify::PatternTable t = verify::explore_all_patterns(o);
+    out.push_back(py::make_tuple(verify::to_json(t).dump(), verify::to_text(t)));
+    return out;
+  }
+  const present::Selection sel = present::resolve(selection(options));
+  if (sel.cases.empty()) throw std::invalid_argument("explore: give a case (case=, closed= or all=True) or all_patterns=True");
+  for (const ContactSet& c : sel.cases) {
+    const verify::ExploreResult r = verify::explore_case(*sel.deriver, c, o);
+    out.push_back(py::make_tuple(verify::to_json(r).dump(), verify::to_text(r), r.scene ? write_scene(*r.scene) : std::string()));
+  }
+  return out;
+}
+
+/// Translate the library's exceptions: bad input is a ValueError with the
+/// command line's one-line message, anything else superball.Error.
+void register_errors(py::module_& m) {
+  static py::exception<std::runtime_error> error(m, "Error", PyExc_Exception);
+  static py::handle input_error = [&] {
+    py::object type = py::reinterpret_steal<py::object>(
+        PyErr_NewException("_superball.InputError", py::make_tuple(error, py::handle(PyExc_ValueError)).ptr(), nullptr));
+    m.attr("InputError") = type;
+    return type.release();
+  }();
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const py::error_already_set&) {
+      throw;  // a Python exception: pybind11 restores it
+    } catch (const py::builtin_exception&) {
+      throw;  // pybind11's own (a cast that failed: TypeError, …)
+    } catch (const InputError& e) {
+      PyErr_SetString(input_error.ptr(), printable(e.what()).c_str());
+    } catch (const std::invalid_argument& e) {
+      PyErr_SetString(input_error.ptr(), printable(without_function_prefix(e.what())).c_str());
+    } catch (const std::bad_alloc&) {
+      PyErr_SetString(PyExc_MemoryError, "out of memory");
+    } catch (const std::exception& e) {
+      PyErr_SetString(error.ptr(), ("internal error: " + printable(e.what())).c_str());
+    }
+  });
+}
+
+}  // namespace
+}  // namespace superball::python
+
+PYBIND11_MODULE(_superball, m) {
+  using namespace superball;
+  using namespace superball::python;
+  m.doc() = "The C++ side of the Python module superball (use `import superball`).";
+  register_errors(m);
+
+  py::class_<Scene>(m, "Scene")
+      .def_static("load", &load_scene, py::arg("path"))
+      .def_static("parse", &parse_scene, py::arg("text"), py::arg("origin"))
+      .def("to_toml", [](const Scene& s, const std::string& comment) { return write_scene(s, comment); }, py::arg("comment") = "")
+      .def("with_value", &with_value, py::arg("key"), py::arg("value"))
+      .def_property_readonly("title", [](const Scene& s) { return s.title; })
+      .def_property_readonly("origin", [](const Scene& s) { return s.origin; })
+      .def_property_readonly("bodies", &Scene::size)
+      .def_property_readonly("masses", [](const Scene& s) {
+        std::vector<std::string> out;
+        for (const Body& b : s.bodies) out.push_back(b.infinite ? std::string("inf") : b.mass.fraction());
+        return out;
+      });
+
+  py::class_<Values>(m, "Values")
+      .def_static("from_text", &values_from_text)
+      .def_static("from_doubles", &values_from_doubles)
+      .def_static("linspace", &values_linspace)
+      .def("__len__", [](const Values& v) { return v.exact.size(); })
+      .def("as_doubles", &values_as_doubles)
+      .def("as_text", &values_as_text);
+
+  py::class_<present::Presented>(m, "Solution")
+      .def_readonly("origin", &present::Presented::origin)
+      .def_readonly("title", &present::Presented::title)
+      .def_readonly("precision", &present::Presented::precision)
+      .def_readonly("status", &present::Presented::status)
+      .def_readonly("case", &present::Presented::case_name)
+      .def_readonly("bodies", &present::Presented::n)
+      .def_readonly("pivots", &present::Presented::pivots)
+      .def_readonly("fixed_obstacle", &present::Presented::fixed_bottom)
+      .def_readonly("superball", &present::Presented::superball)
+      .def_readonly("exact", &present::Presented::exact)
+      .def_readonly("closed_contacts", &present::Presented::closed)
+      .def_readonly("after_text", &present::Presented::after_text)
+      .def_readonly("reaction_text", &present::Presented::reaction_text)
+      .def_readonly("kinetic_energy_before", &present::Presented::ke_before)
+      .def_readonly("kinetic_energy_after", &present::Presented::ke_after)
+      .def_readonly("dissipation", &present::Presented::dissipation)
+      .def_readonly("momentum_before", &present::Presented::momentum_before)
+      .def_readonly("momentum_after", &present::Presented::momentum_after)
+      .def_readonly("residual_motion", &present::Presented::residual_motion)
+      .def_readonly("residual_complementarity", &present::Presented::residual_complementarity)
+      .def_readonly("requested", &present::Presented::requested)
+      .def_readonly("error_bound", &present::Presented::error_bound)
+      .def_readonly("escalation", &present::Presented::escalation)
+      .def_property_readonly("masses", [](const present::Presented& p) { return py::array_t<double>(p.masses.size(), p.masses.data()); })
+      .def_property_readonly("before", [](const present::Presented& p) { return py::array_t<double>(p.before.size(), p.before.data()); })
+      .def_property_readonly("after", [](const present::Presented& p) { return py::array_t<double>(p.after.size(), p.after.data()); })
+      .def_property_readonly("reactions", [](const present::Presented& p) { return py::array_t<double>(p.reactions.size(), p.reactions.data()); })
+      .def("to_json", [](const present::Presented& p) { return present::to_json(p).dump(); })
+      .def("to_text", [](const present::Presented& p) { return present::to_text(p); });
+
+  m.def("solve", &solve, py::arg("scene"), py::arg("precision"), py::arg("rtol"));
+  m.def("sweep", &sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"));
+  m.def("switch_points", &switch_points, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("bits"), py::arg("threads"));
+  m.def("case_name", &case_name, py::arg("mask"), py::arg("bodies"));
+  m.def("closed_names", &closed_names, py::arg("mask"), py::arg("bodies"));
+  m.def("derive", &derive, py::arg("options"));
+  m.def("verify", &verify_cases, py::arg("options"), py::arg("epsilons"), py::arg("samples"), py::arg("boundary_pairs"), py::arg("seed"),
+        py::arg("threads"));
+  m.def("audit", &audit, py::arg("epsilon"), py::arg("samples"), py::arg("seed"));
+  m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
+        py::arg("box_low"), py::arg("box_high"));
+  m.def("thread_count", &numeric::thread_count, py::arg("requested"));
+  m.attr("default_rtol") = numeric::default_rtol;
+}

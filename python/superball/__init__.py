@@ -1,0 +1,889 @@
+"""superball: collisions of aligned balls in Frémond's theory, from Python.
+
+A stack of bodies 1 (top) … n (bottom) collides with velocities U⁻; the
+dissipation is a quadratic pseudo-potential of the relative velocities
+D_ij(U) = U_i − U_j of the pairs, with a symmetric positive semi-definite
+matrix M (diagonal K_ij, couplings α between two pairs), plus
+impenetrability on the adjacent contacts.  With K = DᵀMD and
+A = diag(m) + K, the velocities after the collision W = U⁺ solve
+
+    A W = diag(m) U⁻ − K U⁻ + Cᵀλ,   w = C W ≥ 0,  λ ≥ 0,  wᵀλ = 0,
+
+(λ = −R the reactions on the contacts, C the contact incidence), a linear
+complementarity problem with exactly one solution.  The *evolution case* is
+the set of contacts that stay closed; the *superball* is U₁⁺ > |U₁⁻|.
+
+This package is a thin front over the C++ libraries of the `superball`
+command (same answers, same messages):
+
+- :class:`Scene` — a scene (``Scene.load(path)``, ``Scene.from_dict(...)``,
+  ``Scene(bodies=..., K=..., ...)``, ``scene.with_value("K.3-4", 7)``);
+- :func:`solve` — one collision in double, long double, CLN floats of N
+  digits, exact rationals, or ``auto`` (the cheapest certified);
+- :func:`sweep` and :func:`switch_points` — one parameter varied, on all
+  cores, without the GIL; where the evolution case changes, exactly;
+- :func:`derive` — an evolution case solved symbolically (GiNaC), with its
+  conditions exact and asymptotic, as text, LaTeX and SymPy;
+- :func:`audit`, :func:`verify`, :func:`explore` — the paper's printed
+  conditions checked, derived conditions checked against exact solutions,
+  and a search for the superball in a case.
+
+Bad input raises :class:`InputError` (a ``ValueError``) with the command
+line's one-line message; any other failure raises :class:`Error`.
+"""
+
+from __future__ import annotations
+
+import html as _html
+import json as _json
+import numbers as _numbers
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _superball
+
+__all__ = [
+    "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "sweep",
+    "SwitchPoint", "switch_points", "Condition", "Derivation", "derive", "audit", "verify", "explore",
+    "DEFAULT_RTOL", "STATUSES",
+]
+
+Error = _superball.Error
+Error.__doc__ = "A failure of superball that is not bad input (an internal error: a bug to be reported)."
+Error.__module__ = "superball"
+InputError = _superball.InputError
+InputError.__doc__ = ("Bad input: a scene, a parameter, an option.  A ValueError (and a superball.Error) whose "
+                      "message is the command line's one line, e.g. 'x.toml:3:8: body[1].mass: must be > 0 (got -1)'.")
+InputError.__module__ = "superball"
+
+#: The default ``rtol`` of ``precision="auto"``: six significant digits of every velocity, certified.
+DEFAULT_RTOL: float = _superball.default_rtol
+#: A solve's status, by the code the sweep arrays hold (``SweepResult.status_codes``).
+STATUSES: Tuple[str, ...] = ("success", "numerical-issue", "no-convergence")
+
+Number = Union[int, float, Fraction, str]
+
+
+# ---------------------------------------------------------------------------
+# Scenes
+
+
+def _number_text(value: Any, what: str) -> str:
+    """The spelling of a number as a scene file reads it (exactly as written)."""
+    if isinstance(value, bool):
+        raise InputError(f"{what}: expected a number, got {value!r}")
+    if isinstance(value, str):
+        return value
+    if isinstance(value, Fraction):
+        return f"{value.numerator}/{value.denominator}"
+    if isinstance(value, _numbers.Integral):
+        return str(int(value))
+    if isinstance(value, _numbers.Real):
+        x = float(value)
+        if x == float("inf"):
+            return "inf"
+        return repr(x)  # the shortest decimal that reads back as x: 0.001 is read as 1/1000
+    try:  # decimal.Decimal and other exact types
+        return str(Fraction(value))
+    except (TypeError, ValueError):
+        raise InputError(f"{what}: expected a number, got {value!r}") from None
+
+
+def _toml_string(text: str) -> str:
+    # A TOML basic string; JSON's escapes are TOML's (control characters as \\uXXXX).
+    return _json.dumps(text, ensure_ascii=False)
+
+
+_SCENE_KEYS = ("title", "fall_speed", "drop_height", "g", "bodies", "K", "alpha", "coupling", "flight")
+
+
+def _scene_toml(d: Mapping[str, Any]) -> str:
+    unknown = [k for k in d if k not in _SCENE_KEYS]
+    if unknown:
+        raise InputError(f"Scene.from_dict: unknown key '{unknown[0]}' (expected one of: {', '.join(_SCENE_KEYS)})")
+    lines: List[str] = []
+    if d.get("title") is not None:
+        lines.append(f"title = {_toml_string(str(d['title']))}")
+    for key in ("fall_speed", "drop_height", "g"):
+        if d.get(key) is not None:
+            lines.append(f"{key} = {_toml_string(_number_text(d[key], key))}")
+    bodies = d.get("bodies")
+    if bodies is None:
+        raise InputError("Scene.from_dict: bodies: required (a list of masses, or of {'mass': …, 'velocity': …})")
+    for k, body in enumerate(bodies):
+        lines.append("[[body]]")
+        if isinstance(body, Mapping):
+            extra = [x for x in body if x not in ("mass", "velocity")]
+            if extra:
+                raise InputError(f"Scene.from_dict: bodies[{k}]: unknown key '{extra[0]}' (expected mass, velocity)")
+            if "mass" in body:
+                lines.append(f"mass = {_toml_string(_number_text(body['mass'], f'bodies[{k}].mass'))}")
+            if body.get("velocity") is not None:
+                lines.append(f"velocity = {_toml_string(_number_text(body['velocity'], f'bodies[{k}].velocity'))}")
+        else:
+            lines.append(f"mass = {_toml_string(_number_text(body, f'bodies[{k}]'))}")
+    diss: List[str] = []
+    for key in ("K", "alpha"):
+        if d.get(key):
+            items = ", ".join(f"{_toml_string(str(p))} = {_toml_string(_number_text(v, f'{key}[{p}]'))}" for p, v in d[key].items())
+            diss.append(f"{key} = {{ {items} }}")
+    if d.get("coupling"):
+        entries = []
+        for c in d["coupling"]:
+            if isinstance(c, Mapping):
+                pairs, value = c.get("pairs"), c.get("value")
+            else:
+                pairs, value = c
+            if isinstance(pairs, str):
+                pairs = pairs.split("/")
+            entries.append(f"{{ pairs = [{', '.join(_toml_string(str(p)) for p in pairs)}], "
+                           f"value = {_toml_string(_number_text(value, f'coupling {pairs}'))} }}")
+        diss.append(f"coupling = [ {', '.join(entries)} ]")
+    if diss:
+        lines.append("[dissipation]")
+        lines.extend(diss)
+    flight = d.get("flight")
+    if flight:
+        lines.append("[flight]")
+        if isinstance(flight, Mapping) and flight.get("duration") is not None:
+            lines.append(f"duration = {_toml_string(_number_text(flight['duration'], 'flight.duration'))}")
+    return "\n".join(lines) + "\n"
+
+
+class Scene:
+    """A scene: the bodies, the fall, the matrix M of dissipation (paper §1–§3).
+
+    Bodies are numbered 1 (top) … n (bottom).  Bodies without a velocity of
+    their own fall at −a, a = ``fall_speed`` or √(2 g h) with h =
+    ``drop_height``.  M is given by its declared entries: ``K`` (diagonal,
+    ``{"1-2": 7, …}``), ``alpha`` (the paper's α₁…α₇ for 4 bodies,
+    ``{2: -100}``) and ``coupling`` (``[("1-3", "2-4", 3)]`` or
+    ``[{"pairs": ["1-3", "2-4"], "value": 3}]``).
+
+    Numbers are read exactly as written: ints, ``Fraction``, strings
+    (``"1/3"``, ``"5e6"``) and floats by their shortest decimal (``0.001`` is
+    1/1000).  A mass ``float("inf")`` or ``"inf"`` is a fixed obstacle (bottom
+    body only).  Every check of a scene file applies (the same loader);
+    errors raise :class:`InputError`.
+
+    >>> s = Scene(bodies=[0.001, 10, 15, {"mass": 5e6, "velocity": 0}], fall_speed=3.13209,
+    ...           K={"1-2": 7, "1-3": 7, "1-4": 1500, "2-3": 10, "2-4": 13, "3-4": 10}, alpha={2: -100})
+    """
+
+    __slots__ = ("_scene",)
+
+    def __init__(self, bodies: Optional[Sequence[Any]] = None, *, title: Optional[str] = None, fall_speed: Optional[Number] = None,
+                 drop_height: Optional[Number] = None, g: Optional[Number] = None, K: Optional[Mapping[str, Number]] = None,
+                 alpha: Optional[Mapping[Union[int, str], Number]] = None, coupling: Optional[Sequence[Any]] = None,
+                 flight: Union[bool, Mapping[str, Number], None] = None, _scene: Any = None) -> None:
+        if _scene is not None:
+            self._scene = _scene
+            return
+        coupling = [c if isinstance(c, Mapping) or len(c) == 2 else ((c[0], c[1]), c[2]) for c in (coupling or [])]
+        d = {"title": title, "fall_speed": fall_speed, "drop_height": drop_height, "g": g, "bodies": bodies, "K": K,
+             "alpha": alpha, "coupling": coupling, "flight": flight}
+        self._scene = _superball.Scene.parse(_scene_toml(d), title or "<scene>")
+
+    @classmethod
+    def load(cls, path: Any) -> "Scene":
+        """Read a scene file (TOML, docs/SCENES.md); ``"-"`` reads standard input."""
+        return cls(_scene=_superball.Scene.load(str(path)))
+
+    @classmethod
+    def from_toml(cls, text: str, origin: str = "<string>") -> "Scene":
+        """Read a scene from TOML text; ``origin`` names it in messages."""
+        return cls(_scene=_superball.Scene.parse(text, origin))
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any]) -> "Scene":
+        """A scene from a dict with the keyword arguments of :class:`Scene` as keys
+        (``{"bodies": [...], "fall_speed": 3.13209, "K": {...}, "alpha": {...}}``)."""
+        d = dict(d)
+        if "coupling" in d and d["coupling"]:
+            d["coupling"] = [c if isinstance(c, Mapping) or len(c) == 2 else ((c[0], c[1]), c[2]) for c in d["coupling"]]
+        return cls(_scene=_superball.Scene.parse(_scene_toml(d), str(d.get("title") or "<dict>")))
+
+    def with_value(self, key: str, value: Number) -> "Scene":
+        """A copy with the parameter ``key`` set to ``value``.
+
+        ``key`` names it as the command line does: ``K.3-4`` (diagonal of M),
+        ``alpha.2``, ``coupling.1-2/1-4``, ``mass.1``, ``velocity.4``,
+        ``drop_height``, ``fall_speed``, ``g``.  The scene loader's checks
+        apply (a mass ≤ 0, g ≤ 0 … raise :class:`InputError`).
+        """
+        return Scene(_scene=self._scene.with_value(key, _number_text(value, key)))
+
+    def to_toml(self, comment: str = "") -> str:
+        """The scene as a scene file (reads back to the same exact values)."""
+        return self._scene.to_toml(comment)
+
+    @property
+    def title(self) -> str:
+        return self._scene.title
+
+    @property
+    def origin(self) -> str:
+        """The file it came from, or the label it was given."""
+        return self._scene.origin
+
+    @property
+    def bodies(self) -> int:
+        """The number of bodies n."""
+        return self._scene.bodies
+
+    @property
+    def masses(self) -> List[Union[Fraction, float]]:
+        """The masses, exact (``inf`` for a fixed obstacle)."""
+        return [float("inf") if m == "inf" else Fraction(m) for m in self._scene.masses]
+
+    def __repr__(self) -> str:
+        return f"Scene({self.origin!r}, bodies={self.bodies}, title={self.title!r})"
+
+
+# ---------------------------------------------------------------------------
+# One collision
+
+
+def _fraction_or_none(text: str) -> Optional[Fraction]:
+    return None if "sqrt" in text else Fraction(text)
+
+
+class Result:
+    """One collision solved (``superball solve``): every field of its ``--json``.
+
+    Velocities are in m/s, top body first; ``reactions[c]`` is the reaction
+    R (N s, ≤ 0) on contact (c+1, c+2), 0 where the contact opens.  In exact
+    arithmetic ``velocities_after_exact`` and ``reactions_exact`` are
+    :class:`fractions.Fraction` (``None`` when the fall speed a = √(2 g h) is
+    irrational: then ``velocities_after_text`` has ``"p/q*sqrt(a²)"``).
+    Momentum is conserved and kinetic energy does not increase:
+    Σ mᵢU⁺ᵢ = Σ mᵢU⁻ᵢ (finite bodies, no obstacle) and
+    E⁺ = E⁻ − dissipation ≤ E⁻.
+    """
+
+    __slots__ = ("_p", "_cache")
+
+    def __init__(self, presented: Any) -> None:
+        self._p = presented
+        self._cache: Dict[str, Any] = {}
+
+    # plain fields
+    origin = property(lambda self: self._p.origin, doc="The scene's file or label.")
+    title = property(lambda self: self._p.title, doc="The scene's title.")
+    precision = property(lambda self: self._p.precision, doc="The arithmetic of the answer: double, long-double, digits:N, exact.")
+    precision_requested = property(lambda self: self._p.requested or self._p.precision, doc="'auto' when chosen by certification.")
+    error_bound = property(lambda self: self._p.error_bound if self._p.requested else None,
+                           doc="auto: certified bound on max|U⁺ − exact U⁺| / max|U⁺| (None otherwise).")
+    escalation = property(lambda self: list(self._p.escalation), doc="auto: what was tried, e.g. ['double: case not certain', 'exact'].")
+    status = property(lambda self: self._p.status, doc="'success', 'numerical-issue' or 'no-convergence'.")
+    case = property(lambda self: self._p.case, doc="The evolution case: the paper's name for 4 bodies ('3.3'), else '{2-3,3-4}'.")
+    closed_contacts = property(lambda self: tuple(self._p.closed_contacts), doc="The contacts that stay closed, e.g. ('2-3',).")
+    superball = property(lambda self: self._p.superball, doc="U₁⁺ > |U₁⁻|: the top body leaves faster than it came.")
+    bodies = property(lambda self: self._p.bodies, doc="n.")
+    pivots = property(lambda self: self._p.pivots, doc="Principal pivots of the complementarity solve.")
+    exact = property(lambda self: self._p.exact, doc="Whether the arithmetic is exact (rationals).")
+    kinetic_energy_before = property(lambda self: self._p.kinetic_energy_before, doc="E⁻ = ½ Σ mᵢ(U⁻ᵢ)² over finite bodies (J).")
+    kinetic_energy_after = property(lambda self: self._p.kinetic_energy_after, doc="E⁺ (J).")
+    dissipation = property(lambda self: self._p.dissipation, doc="P·X = 2XᵀMX + R·X ≥ 0, X = D(U⁺+U⁻)/2 (J): E⁻ − E⁺.")
+    momentum_before = property(lambda self: self._p.momentum_before, doc="Σ mᵢU⁻ᵢ over finite bodies (kg m/s).")
+    momentum_after = property(lambda self: self._p.momentum_after, doc="Σ mᵢU⁺ᵢ over finite bodies (kg m/s).")
+    residual_motion = property(lambda self: self._p.residual_motion, doc="Largest relative residual of the equations of motion.")
+    residual_complementarity = property(lambda self: self._p.residual_complementarity, doc="Largest relative violation of w ≥ 0, λ ≥ 0, wλ = 0.")
+    contacts = property(lambda self: tuple(f"{c + 1}-{c + 2}" for c in range(self._p.bodies - 1)), doc="('1-2', '2-3', …).")
+
+    @property
+    def masses(self) -> np.ndarray:
+        """Masses (kg), float64, ``inf`` for a fixed obstacle."""
+        return self._p.masses
+
+    @property
+    def velocities_before(self) -> np.ndarray:
+        """U⁻ (m/s), float64, shape (n,)."""
+        return self._p.before
+
+    @property
+    def velocities_after(self) -> np.ndarray:
+        """U⁺ (m/s), float64, shape (n,): the answer rounded to double."""
+        return self._p.after
+
+    @property
+    def velocities_after_text(self) -> List[str]:
+        """U⁺ in the solve's own arithmetic, as text (exact: ``"p/q"``)."""
+        return list(self._p.after_text)
+
+    @property
+    def velocities_after_exact(self) -> Optional[List[Optional[Fraction]]]:
+        """U⁺ as Fractions when the arithmetic is exact, else None."""
+        if not self._p.exact:
+            return None
+        if "v" not in self._cache:
+            self._cache["v"] = [_fraction_or_none(t) for t in self._p.after_text]
+        return self._cache["v"]
+
+    @property
+    def reactions(self) -> np.ndarray:
+        """R on each contact (N s, ≤ 0), float64, shape (n−1,)."""
+        return self._p.reactions
+
+    @property
+    def reactions_exact(self) -> Optional[List[Optional[Fraction]]]:
+        """R as Fractions when the arithmetic is exact, else None."""
+        if not self._p.exact:
+            return None
+        return [_fraction_or_none(t) for t in self._p.reaction_text]
+
+    def to_dict(self) -> Dict[str, Any]:
+        """Every field, exactly as ``superball solve --json`` writes them."""
+        return _json.loads(self._p.to_json())
+
+    def to_text(self) -> str:
+        """The report of ``superball solve``."""
+        return self._p.to_text()
+
+    def __repr__(self) -> str:
+        v = ", ".join(f"{x:.6g}" for x in self.velocities_after)
+        return f"<superball.Result {self.origin!r} {self.precision} {self.status}: U+ = [{v}], case {self.case}, superball {self.superball}>"
+
+    def _repr_html_(self) -> str:
+        e = _html.escape
+        exact = self.exact or self.precision != "double"
+        rows = []
+        for i in range(self.bodies):
+            m = self.masses[i]
+            cells = [str(i + 1), "∞" if np.isinf(m) else f"{m:.6g}", f"{self.velocities_before[i]:.6g}", f"{self.velocities_after[i]:.6g}"]
+            if exact:
+                cells.append(e(self.velocities_after_text[i]))
+            rows.append("<tr>" + "".join(f"<td>{c}</td>" for c in cells) + "</tr>")
+        head = ["body", "mass (kg)", "U⁻ (m/s)", "U⁺ (m/s)"] + (["U⁺ exact"] if exact else [])
+        closed = ", ".join(self.closed_contacts) or "none"
+        reactions = ", ".join(f"R<sub>{c}</sub> = {r:.6g}" for c, r in zip(self.contacts, self.reactions))
+        return (f"<div><b>{e(self.origin)}</b>{': ' + e(self.title) if self.title else ''}<br>"
+                f"precision {e(self.precision)}, status {e(self.status)}<table><tr>"
+                + "".join(f"<th>{h}</th>" for h in head) + "</tr>" + "".join(rows) + "</table>"
+                f"case <b>{e(self.case)}</b> (closed contacts: {e(closed)}); reactions (N s): {reactions}<br>"
+                f"kinetic energy (J): before {self.kinetic_energy_before:.8g}, after {self.kinetic_energy_after:.8g}, "
+                f"dissipated {self.dissipation:.8g}<br>superball: <b>{'yes' if self.superball else 'no'}</b></div>")
+
+
+def solve(scene: Scene, precision: str = "auto", rtol: Optional[float] = None) -> Result:
+    """Solve the collision of ``scene`` (paper §2–§3; ``superball solve``).
+
+    ``precision``: ``"auto"`` (default: double, then long double, then exact
+    rationals, the first whose evolution case is certain and whose velocity
+    error is certified below ``rtol`` relative to max|U⁺|, default
+    :data:`DEFAULT_RTOL`), ``"double"``, ``"long-double"``, ``"digits:N"``
+    (CLN floats of N decimal digits, 10 ≤ N ≤ 10000) or ``"exact"`` (CLN
+    rationals).  ``rtol`` applies to ``"auto"`` only.
+
+    The solver finds the unique solution of the complementarity problem
+    w = q + Nλ, w ≥ 0, λ ≥ 0, wᵀλ = 0 (N = C A⁻¹ Cᵀ) by principal pivoting
+    and checks it against the equations of motion; ``Result.status`` says
+    how it ended.  The GIL is released while it solves.
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"solve: expected a superball.Scene, got {type(scene).__name__}")
+    return Result(_superball.solve(scene._scene, str(precision), None if rtol is None else float(rtol)))
+
+
+# ---------------------------------------------------------------------------
+# Sweeps
+
+
+class ExactRange:
+    """``steps`` equally spaced exact values from ``start`` to ``stop``, ends
+    included: x_k = start + (stop − start)·k/(steps − 1), as the command line's
+    ``--vary KEY=START:STOP:STEPS``.  ``np.asarray(r)`` gives them as float64."""
+
+    __slots__ = ("start", "stop", "steps", "_values")
+
+    def __init__(self, start: Number, stop: Number, steps: int) -> None:
+        self.start, self.stop, self.steps = start, stop, int(steps)
+        self._values = _superball.Values.linspace(_number_text(start, "start"), _number_text(stop, "stop"), self.steps)
+
+    def __len__(self) -> int:
+        return self.steps
+
+    def __array__(self, dtype: Any = None) -> np.ndarray:
+        a = self._values.as_doubles()
+        return a if dtype is None else a.astype(dtype)
+
+    def fractions(self) -> List[Fraction]:
+        """The values, exact."""
+        return [Fraction(t) for t in self._values.as_text()]
+
+    def __repr__(self) -> str:
+        return f"linspace({self.start!r}, {self.stop!r}, {self.steps})"
+
+
+def linspace(start: Number, stop: Number, steps: int) -> ExactRange:
+    """Exact equally spaced values (see :class:`ExactRange`), for :func:`sweep` and :func:`switch_points`."""
+    return ExactRange(start, stop, steps)
+
+
+def _values(values: Any) -> Any:
+    """The library's exact values for what a user passes: an ExactRange, a
+    NumPy array or sequence of floats (each double taken exactly), or of
+    ints, Fractions and strings (read as a scene file reads numbers)."""
+    if isinstance(values, ExactRange):
+        return values._values
+    if isinstance(values, range):
+        return _superball.Values.from_text([str(v) for v in values])
+    a = np.asarray(values)
+    if a.ndim != 1:
+        raise InputError(f"values: expected a one-dimensional sequence, got shape {a.shape}")
+    if a.dtype.kind == "f":
+        return _superball.Values.from_doubles(a.astype(np.float64, copy=False))
+    if a.dtype.kind in "iu":
+        return _superball.Values.from_text([str(int(v)) for v in a])
+    texts = []
+    for v in values:
+        texts.append(str(Fraction(v)) if isinstance(v, float) else _number_text(v, "values"))
+    return _superball.Values.from_text(texts)
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """The velocities after the collision along one parameter.
+
+    ``values``: float64 (N,); ``velocities``: float64 (N, n), row k the
+    U⁺ at ``values[k]``; ``cases``: the evolution case per value (NumPy
+    str array); ``closed``: uint64 bit masks of the closed contacts (bit c:
+    contact (c+1, c+2)); ``status_codes``: int8 (0 success, see
+    :data:`STATUSES`); ``status``: the names.
+    """
+
+    key: str
+    precision: str
+    values: np.ndarray
+    velocities: np.ndarray
+    cases: np.ndarray
+    closed: np.ndarray
+    status_codes: np.ndarray
+
+    @property
+    def status(self) -> np.ndarray:
+        return np.asarray(STATUSES, dtype=object)[self.status_codes].astype(str)
+
+    @property
+    def ok(self) -> bool:
+        """Whether every value solved with status success."""
+        return bool(np.all(self.status_codes == 0))
+
+    def __len__(self) -> int:
+        return len(self.values)
+
+
+def _names(masks: np.ndarray, bodies: int) -> np.ndarray:
+    unique, inverse = np.unique(masks, return_inverse=True)
+    names = np.array([_superball.case_name(int(m), bodies) for m in unique], dtype=str)
+    return names[inverse] if len(names) else np.array([], dtype=str)
+
+
+def sweep(scene: Scene, key: str, values: Any, precision: str = "double", threads: int = 0) -> SweepResult:
+    """Solve ``scene`` at every value of the parameter ``key`` (``superball sweep``).
+
+    ``key`` as in :meth:`Scene.with_value` (``"K.3-4"``).  ``values``: a
+    :func:`linspace` (exact, as the command line), a NumPy array or sequence
+    of floats (each double exactly), or ints, Fractions, strings.  The range
+    is checked first (every value admissible, or :class:`InputError` before
+    anything is solved).  Solved on ``threads`` threads (0: all cores) with
+    the GIL released; the result does not depend on ``threads``, bit for bit.
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"sweep: expected a superball.Scene, got {type(scene).__name__}")
+    v = _values(values)
+    if int(threads) < 0:
+        raise InputError(f"threads must be >= 0 (0: all cores), got {threads}")
+    x, u, masks, status = _superball.sweep(scene._scene, str(key), v, str(precision), int(threads))
+    return SweepResult(str(key), str(precision), x, u, _names(masks, scene.bodies), masks, status)
+
+
+@dataclass(frozen=True)
+class SwitchPoint:
+    """A change of evolution case between two parameter values, bracketed
+    exactly: the case is ``case_below`` just below ``value`` and
+    ``case_above`` just above; ``high − low`` is the width left by bisection
+    on the exact solution."""
+
+    key: str
+    value: float
+    low: Fraction
+    high: Fraction
+    width: float
+    case_below: str
+    case_above: str
+    closed_below: Tuple[str, ...]
+    closed_above: Tuple[str, ...]
+    text: str  #: the middle of the bracket, 17 significant digits, as the command line prints it
+
+
+def switch_points(scene: Scene, key: str, values: Any, bits: int = 64, threads: int = 0) -> List[SwitchPoint]:
+    """Where the evolution case changes along ``key`` (``superball sweep --switch-points``).
+
+    Between consecutive ``values`` (monotone) whose cases differ, the change
+    is bisected on the exact solution (CLN rationals) until the bracket is
+    narrower than 2^-bits of the step; a third case inside a bracket is
+    found too.  In increasing value, each starting in the case the previous
+    one ended in.  GIL released; ``threads`` as in :func:`sweep`.
+    """
+    if not isinstance(scene, Scene):
+        raise TypeError(f"switch_points: expected a superball.Scene, got {type(scene).__name__}")
+    v = _values(values)
+    if not isinstance(values, ExactRange):
+        x = [Fraction(t) for t in v.as_text()]
+        d = [b - a for a, b in zip(x, x[1:])]
+        if not (all(s > 0 for s in d) or all(s < 0 for s in d)):
+            raise InputError("switch_points: the values must be strictly increasing or strictly decreasing")
+    n = scene.bodies
+    out = []
+    for low, high, middle, width, below, above in _superball.switch_points(scene._scene, str(key), v, int(bits), int(threads)):
+        out.append(SwitchPoint(str(key), float(middle), Fraction(low), Fraction(high), float(width), _superball.case_name(below, n),
+                               _superball.case_name(above, n), tuple(_superball.closed_names(below, n)),
+                               tuple(_superball.closed_names(above, n)), middle))
+    return out
+
+
+# ---------------------------------------------------------------------------
+# Derivations
+
+
+def _sympy_relation(ascii_text: str, symbols: Sequence[Mapping[str, Any]]) -> Any:
+    import sympy  # optional: imported only here
+
+    names = {}
+    for s in symbols:
+        names[s["name"]] = sympy.Symbol(s["name"], positive=True) if s.get("positive") else sympy.Symbol(s["name"], real=True)
+    text = ascii_text.split("  (")[0].strip()  # a note after the relation ("(sign of the denominator not proved)")
+    for op, rel in ((">=", sympy.Ge), ("<=", sympy.Le), (">", sympy.Gt), ("<", sympy.Lt)):
+        if f" {op} " in text:
+            lhs, rhs = text.split(f" {op} ", 1)
+            return rel(sympy.sympify(lhs.replace("^", "**"), locals=names), sympy.sympify(rhs.replace("^", "**"), locals=names))
+    raise Error(f"to_sympy: no relation in '{ascii_text}'")
+
+
+@dataclass(frozen=True)
+class Condition:
+    """A condition of an evolution case (paper §4), "P > 0" or "P ≥ 0".
+
+    ``kind``: ``superball`` (U₁⁺ > a), ``evolution`` (an open contact opens,
+    U_i⁺ > U_{i+1}⁺), ``contact`` (a closed contact does not interpenetrate,
+    R ≤ 0) or ``psd`` (a principal minor of M ≥ 0).  ``about`` says which
+    (``"U1 > a"``, ``"2-3"``).  ``text``/``latex``: the exact form (m_n = ∞)
+    as a person writes it (−α₂ > 2m₁ + K₁₂ + K₁₃); ``exact``: the same in
+    GiNaC's ASCII syntax (m1, K12, alpha2, c_12_14, a); ``asymptotic``,
+    ``asymptotic_text``, ``asymptotic_latex``: the dominant balance in the
+    regime (m₁ ~ ε, K₁ₙ ~ 1/ε by default).  ``data``: every field of
+    ``superball derive --format json``.
+    """
+
+    kind: str
+    about: str
+    text: str
+    latex: str
+    exact: str
+    asymptotic: str
+    asymptotic_text: str
+    asymptotic_latex: str
+    verdict: str
+    order: str
+    data: Dict[str, Any] = field(repr=False, compare=False)
+    symbols: Tuple[Any, ...] = field(repr=False, compare=False, default=())
+
+    def _repr_latex_(self) -> str:
+        return f"${self.latex}$"
+
+    def __str__(self) -> str:
+        return self.text
+
+    def to_sympy(self, asymptotic: bool = False) -> Any:
+        """The condition as a SymPy relational (masses, K's and a positive
+        symbols, couplings real); SymPy is imported only when this is called."""
+        return _sympy_relation(self.asymptotic if asymptotic else self.exact, self.symbols)
+
+
+@dataclass(frozen=True)
+class Derivation:
+    """One evolution case solved symbolically (``superball derive``).
+
+    ``velocities``: U₁⁺ … U_n⁺ as GiNaC ASCII text (``velocities_text``,
+    ``velocities_latex`` as a person writes them); ``reactions``: R on each
+    contact (0 where open); ``conditions``: superball, evolution, contact,
+    then psd; ``actual``: whether the case can be the actual evolution
+    (``depends``, ``always``, ``never``); ``data``: the whole JSON.
+    """
+
+    case: str
+    closed_contacts: Tuple[str, ...]
+    velocities: List[str]
+    velocities_text: List[str]
+    velocities_latex: List[str]
+    reactions: List[str]
+    reactions_text: List[str]
+    reactions_latex: List[str]
+    conditions: List[Condition]
+    actual: str
+    report: str = field(repr=False)
+    report_latex: str = field(repr=False)
+    data: Dict[str, Any] = field(repr=False, compare=False)
+
+    def condition(self, about: str) -> Condition:
+        """The condition about ``about`` ("U1 > a", "2-3", …)."""
+        for c in self.conditions:
+            if c.about == about:
+                return c
+        raise KeyError(about)
+
+    def velocity_sympy(self, body: int) -> Any:
+        """U_body⁺ as a SymPy expression."""
+        import sympy
+
+        names = {s["name"]: sympy.Symbol(s["name"], positive=s["positive"]) if s["positive"] else sympy.Symbol(s["name"], real=True)
+                 for s in self.data["symbols"]}
+        return sympy.sympify(self.velocities[body - 1].replace("^", "**"), locals=names)
+
+    def __str__(self) -> str:
+        return self.report
+
+    def _repr_latex_(self) -> str:
+        rows = [f"U_{{{i + 1}}}^{{+}} &= {v}" for i, v in enumerate(self.velocities_latex)]
+        rows += [f"&{c.latex} && \\text{{{c.kind} {c.about}}}" for c in self.conditions]
+        return "$$\\begin{aligned}" + " \\\\ ".join(rows) + "\\end{aligned}$$"
+
+
+def _list_text(value: Any, sep: str = ",") -> Optional[str]:
+    if value is None:
+        return None
+    if isinstance(value, (str, int)):
+        return str(value)
+    return sep.join(str(v) for v in value)
+
+
+def derive(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
+           obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, all: bool = False,
+           scene: Any = None, no_limit: bool = False) -> Union[Derivation, List[Derivation]]:
+    """Solve evolution cases symbolically and give their conditions (paper §4).
+
+    The case: ``case`` (the paper's name for 4 bodies: "1", "2.1", …),
+    ``closed`` (the closed contacts, ``"2-3,3-4"`` or a list, ``"none"``) or
+    ``all=True`` (every case: a list).  The pattern of M: ``alphas`` (the
+    paper's α_k in play, 4 bodies: ``2`` or ``[1, 6]``), ``bodies``,
+    ``pairs`` (``"all"``, ``"near"``, ``"near2"`` or a list of pairs with a
+    diagonal K), ``coupling`` (``"1-2/1-4,…"``, a list, or ``"near2"``), or
+    ``scene`` (a scene file's declared entries).  ``obstacle``: ``"infinite"``
+    (m_n = ∞) or ``"finite"``; ``scaling``: orders in ε (``"m1=1,K14=-1"`` or
+    a dict; default m₁ ~ ε, K₁ₙ ~ 1/ε); ``order``: correction orders kept.
+
+    With Z the cluster incidence of the case, the velocities solve
+    (ZᵀAZ)V = Zᵀ(diag(m)u − Ku) by fraction-free determinants, the
+    reactions are running sums, and everything is substituted back into the
+    equations (a check).  The conditions: U₁⁺ > a, each open contact
+    opening, each closed contact's R ≤ 0, M ⪰ 0.
+    """
+    if isinstance(scaling, Mapping):
+        scaling = ",".join(f"{k}={v}" for k, v in scaling.items())
+    if coupling is not None and not isinstance(coupling, str):
+        coupling = ",".join(c if isinstance(c, str) else "/".join(c) for c in coupling)
+    options = {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": int(bodies),
+               "pairs": _list_text(pairs), "coupling": coupling, "obstacle": obstacle, "scaling": scaling, "order": int(order),
+               "closed": _list_text(closed), "all": bool(all), "scene": None if scene is None else str(scene),
+               "no_limit": bool(no_limit)}
+    out = []
+    for d in _superball.derive(options):
+        data = _json.loads(d["json"])
+        symbols = tuple(data["symbols"])
+        conditions = [Condition(c["kind"], c["about"], c["text"], c["latex"], c["exact"], c["asymptotic"], c["asymptotic_text"],
+                                c["asymptotic_latex"], c["verdict"], c["order"], c, symbols) for c in data["conditions"]]
+        n = len(d["velocities_text"])
+        reactions = [data["reactions"].get(f"{k + 1}-{k + 2}", "0") for k in range(n - 1)]
+        out.append(Derivation(data["case"], tuple(data["closed_contacts"]), [data["velocities_after"][f"U{i + 1}"] for i in range(n)],
+                              list(d["velocities_text"]), list(d["velocities_latex"]), reactions, list(d["reactions_text"]),
+                              list(d["reactions_latex"]), conditions, data["actual"], d["report"], d["report_latex"], data))
+    return out if all else out[0]
+
+
+# ---------------------------------------------------------------------------
+# Audit, verification, exploration
+
+
+def _selection(case: Any, alphas: Any, bodies: int, pairs: Any, coupling: Any, obstacle: str, scaling: Any, order: int,
+               closed: Any, all: bool, scene: Any, no_limit: bool) -> Dict[str, Any]:
+    if isinstance(scaling, Mapping):
+        scaling = ",".join(f"{k}={v}" for k, v in scaling.items())
+    if coupling is not None and not isinstance(coupling, str):
+        coupling = ",".join(c if isinstance(c, str) else "/".join(c) for c in coupling)
+    return {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": int(bodies), "pairs": _list_text(pairs),
+            "coupling": coupling, "obstacle": obstacle, "scaling": scaling, "order": int(order), "closed": _list_text(closed),
+            "all": bool(all), "scene": None if scene is None else str(scene), "no_limit": bool(no_limit)}
+
+
+@dataclass(frozen=True)
+class AuditResult:
+    """The paper's printed conditions (§4.1–§4.3) and claims against the derivation (``superball audit``).
+
+    ``conditions``: per printed condition a dict with ``agreement``
+    (``identical-exact``, ``identical-asymptotic`` or ``different``), the
+    forms and, for a different one, a ``witness`` point (exact values as
+    ``"p/q"``) where the printed condition disagrees with the exact solution;
+    ``claims``: per claim in words, ``supported`` and the ``verdict``.
+    ``data`` is ``superball audit --json``; ``str()`` the report.
+    """
+
+    conditions: List[Dict[str, Any]]
+    claims: List[Dict[str, Any]]
+    data: Dict[str, Any] = field(repr=False)
+    text: str = field(repr=False)
+
+    def __str__(self) -> str:
+        return self.text
+
+
+def audit(epsilon: Number = Fraction(1, 1000), samples: int = 20000, seed: int = 1) -> AuditResult:
+    """Audit every condition and claim the paper prints (§4.1–§4.3) against the derivation,
+    with counterexamples solved exactly; points sampled at m₁ = ε·O(1), K₁₄ = O(1)/ε."""
+    data, text = _superball.audit(_number_text(epsilon, "epsilon"), int(samples), int(seed))
+    d = _json.loads(data)
+    return AuditResult(d["conditions"], d["claims"], d, text)
+
+
+@dataclass(frozen=True)
+class VerifyResult:
+    """A case's derived conditions against exact solutions (``superball verify``).
+
+    ``epsilons``: float64 (k,); ``exact_agreement`` and
+    ``asymptotic_agreement``: float64 (k,), the share of the points at each ε
+    where the conjunction of the exact (asymptotic) conditions agrees with
+    the exact solution's "case actual and U₁⁺ > a" (drawn and boundary
+    points together); ``points``: int64 (k,).  ``exact_agrees``: the exact
+    conditions agree at every point (each one and their conjunction) — the
+    asymptotic ones are expected to agree only as ε → 0.  ``data``: the
+    command's ``--json``; ``str()``: its tables.
+    """
+
+    case: str
+    exact_agrees: bool
+    epsilons: np.ndarray
+    points: np.ndarray
+    exact_agreement: np.ndarray
+    asymptotic_agreement: np.ndarray
+    data: Dict[str, Any] = field(repr=False)
+    text: str = field(repr=False)
+
+    def __str__(self) -> str:
+        return self.text
+
+
+def _verify_result(data: Dict[str, Any], text: str, agrees: bool) -> VerifyResult:
+    eps, points, exact, asym = [], [], [], []
+    for e in data["epsilons"]:
+        eps.append(float(Fraction(e["epsilon"])))
+        total = agree_exact = agree_asym = 0
+        for stage in ("drawn", "boundary"):
+            t = e[stage]
+            for name, sink in (("exact", "e"), ("asymptotic", "a")):
+                c = t[name]
+                n = c["holds_true"] + c["holds_false"] + c["fails_true"] + c["fails_false"]
+                agree = c["holds_true"] + c["fails_false"]
+                if sink == "e":
+                    total += n
+                    agree_exact += agree
+                else:
+                    agree_asym += agree
+        points.append(total)
+        exact.append(agree_exact / total if total else np.nan)
+        asym.append(agree_asym / total if total else np.nan)
+    return VerifyResult(data["case"], bool(agrees), np.array(eps, dtype=np.float64), np.array(points, dtype=np.int64),
+                        np.array(exact, dtype=np.float64), np.array(asym, dtype=np.float64), data, text)
+
+
+def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
+           obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, all: bool = False,
+           scene: Any = None, no_limit: bool = False, epsilons: Optional[Sequence[Number]] = None, samples: int = 4000,
+           boundary_pairs: int = 20, seed: int = 1, threads: int = 0) -> Union[VerifyResult, List[VerifyResult]]:
+    """Check a case's derived conditions, exact and asymptotic, against exact solutions.
+
+    Points of the regime (m₁ ~ ε, K₁ₙ ~ 1/ε; M ⪰ 0) are drawn for each ε of
+    ``epsilons`` (default 10⁻², …, 10⁻⁶), ``samples`` per ε, then
+    ``boundary_pairs`` segments per condition are bisected to reach both
+    sides of every condition near its boundary; each point is solved exactly
+    (rationals) and compared with the conditions.  The case and pattern as
+    in :func:`derive`.  Deterministic given ``seed``, whatever ``threads``.
+    """
+    eps = [] if epsilons is None else [_number_text(e, "epsilons") for e in epsilons]
+    out = [_verify_result(_json.loads(j), text, agrees)
+           for j, text, agrees in _superball.verify(_selection(case, alphas, bodies, pairs, coupling, obstacle, scaling, order, closed, all,
+                                                               scene, no_limit), eps, int(samples), int(boundary_pairs), int(seed), int(threads))]
+    return out if all else out[0]
+
+
+@dataclass(frozen=True)
+class ExploreResult:
+    """Is the superball reachable for a pattern in a case (``superball explore``)?
+
+    ``reach``: ``yes`` (a witness: the case actual and U₁⁺ > a, confirmed by
+    an exact solve), ``no`` (proved: the conditions clash), ``case
+    impossible`` or ``not found``; ``witness``: the best point confirmed
+    exactly (name → Fraction, a included), ``ratio``: U₁⁺/a there, exact;
+    ``scene``: the witness as a :class:`Scene` (None without one).
+    """
+
+    case: str
+    reach: str
+    ratio: Optional[Fraction]
+    witness: Dict[str, Fraction]
+    scene: Optional[Scene]
+    data: Dict[str, Any] = field(repr=False)
+    text: str = field(repr=False)
+
+    def __str__(self) -> str:
+        return self.text
+
+
+@dataclass(frozen=True)
+class PatternTable:
+    """``explore(all_patterns=True)``: each α_k (and {α₁, α₆}) against every case.
+    ``reach``: a NumPy str array [pattern, case]; ``patterns``, ``cases`` its labels."""
+
+    patterns: List[str]
+    cases: List[str]
+    reach: np.ndarray
+    data: Dict[str, Any] = field(repr=False)
+    text: str = field(repr=False)
+
+    def __str__(self) -> str:
+        return self.text
+
+
+def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
+            closed: Any = None, all: bool = False, scene: Any = None, all_patterns: bool = False, seed: int = 1, starts: int = 24,
+            evaluations: int = 1000, box: Tuple[float, float] = (1e-3, 1e3)) -> Union[ExploreResult, List[ExploreResult], PatternTable]:
+    """Search a witness of the superball in a case (fixed obstacle, a = 1), or prove it impossible.
+
+    The derived exact conditions of the case and the minors of M bound the
+    search (a penalty method, Nelder–Mead from ``starts`` points, masses and
+    K's in ``box`` on a log scale, couplings t·√(K_p K_q), |t| ≤ 1) for the
+    largest U₁⁺/a; the best points are rounded to rationals and solved
+    exactly.  Without a witness, it looks for weights w with
+    −Σ wᵢNᵢ = Q + (terms ≥ 0), Q ≥ 0 wherever M ⪰ 0: a proof that the
+    conditions clash.  ``all_patterns=True`` gives the table of every α_k.
+    """
+    low, high = box
+    if all_patterns:
+        (j, text), = _superball.explore({}, True, int(seed), int(starts), int(evaluations), float(low), float(high))
+        d = _json.loads(j)
+        return PatternTable(list(d.get("patterns", [])), list(d.get("cases", [])), _reach_table(d), d, text)
+    options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene, False)
+    out = []
+    for j, text, toml in _superball.explore(options, False, int(seed), int(starts), int(evaluations), float(low), float(high)):
+        d = _json.loads(j)
+        witness = {k: Fraction(v) for k, v in (d.get("witness") or {}).items()}
+        ratio = Fraction(d["ratio"]) if d.get("ratio") is not None and witness else None
+        out.append(ExploreResult(d["case"], d["reach"], ratio, witness, Scene.from_toml(toml, "<witness>") if toml else None, d, text))
+    return out if all else out[0]
+
+
+def _reach_table(d: Dict[str, Any]) -> np.ndarray:
+    rows = d.get("cells", [])
+    return np.array([[c.get("reach", "") for c in row] for row in rows], dtype=str)

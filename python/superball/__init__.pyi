@@ -1,0 +1,261 @@
+"""Type stubs of superball (collisions of aligned balls in Frémond's theory)."""
+
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union, overload
+
+import numpy as np
+import numpy.typing as npt
+
+Number = Union[int, float, Fraction, str]
+Values = Union["ExactRange", npt.ArrayLike, range, Sequence[Number]]
+
+class Error(Exception):
+    """A failure of superball that is not bad input."""
+
+class InputError(Error, ValueError):
+    """Bad input: the command line's one-line message."""
+
+DEFAULT_RTOL: float
+STATUSES: Tuple[str, ...]
+
+class Scene:
+    def __init__(
+        self,
+        bodies: Optional[Sequence[Union[Number, Mapping[str, Number]]]] = ...,
+        *,
+        title: Optional[str] = ...,
+        fall_speed: Optional[Number] = ...,
+        drop_height: Optional[Number] = ...,
+        g: Optional[Number] = ...,
+        K: Optional[Mapping[str, Number]] = ...,
+        alpha: Optional[Mapping[Union[int, str], Number]] = ...,
+        coupling: Optional[Sequence[Any]] = ...,
+        flight: Union[bool, Mapping[str, Number], None] = ...,
+    ) -> None: ...
+    @classmethod
+    def load(cls, path: Any) -> Scene: ...
+    @classmethod
+    def from_toml(cls, text: str, origin: str = ...) -> Scene: ...
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any]) -> Scene: ...
+    def with_value(self, key: str, value: Number) -> Scene: ...
+    def to_toml(self, comment: str = ...) -> str: ...
+    @property
+    def title(self) -> str: ...
+    @property
+    def origin(self) -> str: ...
+    @property
+    def bodies(self) -> int: ...
+    @property
+    def masses(self) -> List[Union[Fraction, float]]: ...
+
+class Result:
+    origin: str
+    title: str
+    precision: str
+    precision_requested: str
+    error_bound: Optional[float]
+    escalation: List[str]
+    status: str
+    case: str
+    closed_contacts: Tuple[str, ...]
+    superball: bool
+    bodies: int
+    pivots: int
+    exact: bool
+    kinetic_energy_before: float
+    kinetic_energy_after: float
+    dissipation: float
+    momentum_before: float
+    momentum_after: float
+    residual_motion: float
+    residual_complementarity: float
+    contacts: Tuple[str, ...]
+    @property
+    def masses(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def velocities_before(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def velocities_after(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def velocities_after_text(self) -> List[str]: ...
+    @property
+    def velocities_after_exact(self) -> Optional[List[Optional[Fraction]]]: ...
+    @property
+    def reactions(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def reactions_exact(self) -> Optional[List[Optional[Fraction]]]: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+    def to_text(self) -> str: ...
+    def _repr_html_(self) -> str: ...
+
+def solve(scene: Scene, precision: str = ..., rtol: Optional[float] = ...) -> Result: ...
+
+class ExactRange:
+    start: Number
+    stop: Number
+    steps: int
+    def __init__(self, start: Number, stop: Number, steps: int) -> None: ...
+    def __len__(self) -> int: ...
+    def __array__(self, dtype: Any = ...) -> npt.NDArray[np.float64]: ...
+    def fractions(self) -> List[Fraction]: ...
+
+def linspace(start: Number, stop: Number, steps: int) -> ExactRange: ...
+
+@dataclass(frozen=True)
+class SweepResult:
+    key: str
+    precision: str
+    values: npt.NDArray[np.float64]
+    velocities: npt.NDArray[np.float64]
+    cases: npt.NDArray[np.str_]
+    closed: npt.NDArray[np.uint64]
+    status_codes: npt.NDArray[np.int8]
+    @property
+    def status(self) -> npt.NDArray[np.str_]: ...
+    @property
+    def ok(self) -> bool: ...
+    def __len__(self) -> int: ...
+
+def sweep(scene: Scene, key: str, values: Values, precision: str = ..., threads: int = ...) -> SweepResult: ...
+
+@dataclass(frozen=True)
+class SwitchPoint:
+    key: str
+    value: float
+    low: Fraction
+    high: Fraction
+    width: float
+    case_below: str
+    case_above: str
+    closed_below: Tuple[str, ...]
+    closed_above: Tuple[str, ...]
+    text: str
+
+def switch_points(scene: Scene, key: str, values: Values, bits: int = ..., threads: int = ...) -> List[SwitchPoint]: ...
+
+@dataclass(frozen=True)
+class Condition:
+    kind: str
+    about: str
+    text: str
+    latex: str
+    exact: str
+    asymptotic: str
+    asymptotic_text: str
+    asymptotic_latex: str
+    verdict: str
+    order: str
+    data: Dict[str, Any]
+    symbols: Tuple[Any, ...]
+    def _repr_latex_(self) -> str: ...
+    def to_sympy(self, asymptotic: bool = ...) -> Any: ...
+
+@dataclass(frozen=True)
+class Derivation:
+    case: str
+    closed_contacts: Tuple[str, ...]
+    velocities: List[str]
+    velocities_text: List[str]
+    velocities_latex: List[str]
+    reactions: List[str]
+    reactions_text: List[str]
+    reactions_latex: List[str]
+    conditions: List[Condition]
+    actual: str
+    report: str
+    report_latex: str
+    data: Dict[str, Any]
+    def condition(self, about: str) -> Condition: ...
+    def velocity_sympy(self, body: int) -> Any: ...
+    def _repr_latex_(self) -> str: ...
+
+def derive(
+    case: Optional[str] = ...,
+    alphas: Any = ...,
+    bodies: int = ...,
+    pairs: Any = ...,
+    coupling: Any = ...,
+    obstacle: str = ...,
+    scaling: Any = ...,
+    order: int = ...,
+    closed: Any = ...,
+    all: bool = ...,
+    scene: Any = ...,
+    no_limit: bool = ...,
+) -> Union[Derivation, List[Derivation]]: ...
+
+@dataclass(frozen=True)
+class AuditResult:
+    conditions: List[Dict[str, Any]]
+    claims: List[Dict[str, Any]]
+    data: Dict[str, Any]
+    text: str
+
+def audit(epsilon: Number = ..., samples: int = ..., seed: int = ...) -> AuditResult: ...
+
+@dataclass(frozen=True)
+class VerifyResult:
+    case: str
+    exact_agrees: bool
+    epsilons: npt.NDArray[np.float64]
+    points: npt.NDArray[np.int64]
+    exact_agreement: npt.NDArray[np.float64]
+    asymptotic_agreement: npt.NDArray[np.float64]
+    data: Dict[str, Any]
+    text: str
+
+def verify(
+    case: Optional[str] = ...,
+    alphas: Any = ...,
+    bodies: int = ...,
+    pairs: Any = ...,
+    coupling: Any = ...,
+    obstacle: str = ...,
+    scaling: Any = ...,
+    order: int = ...,
+    closed: Any = ...,
+    all: bool = ...,
+    scene: Any = ...,
+    no_limit: bool = ...,
+    epsilons: Optional[Sequence[Number]] = ...,
+    samples: int = ...,
+    boundary_pairs: int = ...,
+    seed: int = ...,
+    threads: int = ...,
+) -> Union[VerifyResult, List[VerifyResult]]: ...
+
+@dataclass(frozen=True)
+class ExploreResult:
+    case: str
+    reach: str
+    ratio: Optional[Fraction]
+    witness: Dict[str, Fraction]
+    scene: Optional[Scene]
+    data: Dict[str, Any]
+    text: str
+
+@dataclass(frozen=True)
+class PatternTable:
+    patterns: List[str]
+    cases: List[str]
+    reach: npt.NDArray[np.str_]
+    data: Dict[str, Any]
+    text: str
+
+def explore(
+    case: Optional[str] = ...,
+    alphas: Any = ...,
+    bodies: int = ...,
+    pairs: Any = ...,
+    coupling: Any = ...,
+    closed: Any = ...,
+    all: bool = ...,
+    scene: Any = ...,
+    all_patterns: bool = ...,
+    seed: int = ...,
+    starts: int = ...,
+    evaluations: int = ...,
+    box: Tuple[float, float] = ...,
+) -> Union[ExploreResult, List[ExploreResult], PatternTable]: ...

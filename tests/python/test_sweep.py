@@ -1,0 +1,131 @@
+"""sweep() and switch_points(): arrays, exact values, the command's numbers, threads, the GIL."""
+import threading
+import time
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+import superball
+from conftest import PAPER, run_cli
+
+
+def test_linspace_is_the_command_s_range():
+    r = superball.linspace(0, 20, 401)
+    assert len(r) == 401
+    assert r.fractions() == [Fraction(20 * k, 400) for k in range(401)]
+    a = np.asarray(r)
+    assert a.dtype == np.float64 and a.shape == (401,) and a[-1] == 20.0
+    down = superball.linspace("1/3", 0, 4)
+    assert down.fractions() == [Fraction(1, 3), Fraction(2, 9), Fraction(1, 9), 0]
+
+
+def test_arrays_dtypes_and_shapes(paper):
+    s = superball.sweep(paper, "K.3-4", superball.linspace(0, 20, 41))
+    assert s.values.dtype == np.float64 and s.values.shape == (41,)
+    assert s.velocities.dtype == np.float64 and s.velocities.shape == (41, 4)
+    assert s.cases.shape == (41,) and s.cases.dtype.kind == "U"
+    assert s.closed.dtype == np.uint64 and s.status_codes.dtype == np.int8
+    assert s.ok and list(s.status[:1]) == ["success"] and len(s) == 41
+
+
+def test_every_row_is_the_solve_of_that_value(paper):
+    values = [0.5, 3, Fraction(13, 2), "7.25", 19]
+    s = superball.sweep(paper, "K.3-4", values)
+    for k, v in enumerate(values):
+        r = superball.solve(paper.with_value("K.3-4", v), "double")
+        np.testing.assert_array_equal(s.velocities[k], r.velocities_after)
+        assert s.cases[k] == r.case
+
+
+def test_the_command_s_csv_row_for_row(paper):
+    _, out, _ = run_cli("sweep", PAPER, "--vary", "K.3-4=0:20:21", "--csv")
+    rows = [line.split(",") for line in out.strip().splitlines()[1:]]
+    s = superball.sweep(paper, "K.3-4", superball.linspace(0, 20, 21))
+    assert len(rows) == 21
+    for k, row in enumerate(rows):
+        assert float(row[0]) == s.values[k]
+        np.testing.assert_array_equal(np.array([float(x) for x in row[1:5]]), s.velocities[k])
+        assert row[5] == s.cases[k] and row[6] == s.status[k]
+
+
+def test_result_does_not_depend_on_threads(paper):
+    r = superball.linspace(0, 20, 2001)
+    one, two = superball.sweep(paper, "K.3-4", r, threads=1), superball.sweep(paper, "K.3-4", r, threads=2)
+    np.testing.assert_array_equal(one.velocities, two.velocities)
+    np.testing.assert_array_equal(one.cases, two.cases)
+
+
+def test_numpy_arrays_are_taken_exactly(paper):
+    x = np.array([0.1, 6.0, 12.0])
+    s = superball.sweep(paper, "K.3-4", x)
+    np.testing.assert_array_equal(s.values, x)
+    # 0.1 the double, not 1/10: the row is the solve of Fraction(0.1)
+    r = superball.solve(paper.with_value("K.3-4", str(Fraction(0.1))), "double")
+    np.testing.assert_array_equal(s.velocities[0], r.velocities_after)
+
+
+def test_momentum_along_the_sweep(paper):
+    s = superball.sweep(paper, "K.3-4", superball.linspace(0, 20, 101))
+    m = np.array([float(x) for x in paper.masses])
+    p_before = superball.solve(paper, "double").momentum_before
+    np.testing.assert_allclose(s.velocities @ m, p_before, rtol=1e-9)
+
+
+def test_switch_points_bracket_a_change_of_the_exact_case(paper):
+    points = superball.switch_points(paper, "K.3-4", superball.linspace(0, 20, 401))
+    assert [(p.case_below, p.case_above) for p in points] == [("2.2", "3.3"), ("3.3", "3.2")]
+    for p in points:
+        assert p.low < p.high and p.high - p.low < Fraction(1, 2**60)
+        assert superball.solve(paper.with_value("K.3-4", p.low), "exact").case == p.case_below
+        assert superball.solve(paper.with_value("K.3-4", p.high), "exact").case == p.case_above
+    assert points[0].closed_below == ("3-4",) and points[0].closed_above == ()
+    # chained, in increasing value
+    assert points[0].case_above == points[1].case_below and points[0].value < points[1].value
+
+
+def test_switch_points_equal_the_command_s(paper):
+    _, out, _ = run_cli("sweep", PAPER, "--vary", "K.3-4=20:0:41", "--switch-points", "--csv")
+    rows = [line.split(",") for line in out.strip().splitlines()[1:]]
+    points = superball.switch_points(paper, "K.3-4", superball.linspace(0, 20, 41))
+    assert [(p.text, p.case_below, p.case_above) for p in points] == [(r[0], r[2], r[3]) for r in rows]
+
+
+def test_switch_points_from_an_array_and_descending(paper):
+    up = superball.switch_points(paper, "K.3-4", np.linspace(0, 20, 41))
+    down = superball.switch_points(paper, "K.3-4", np.linspace(20, 0, 41))
+    assert [p.text for p in up] == [p.text for p in down]
+    with pytest.raises(ValueError, match="strictly increasing or strictly decreasing"):
+        superball.switch_points(paper, "K.3-4", [0, 10, 5])
+
+
+def _max_gap_while(run):
+    """Run ``run`` in a thread; the longest the main thread went without running a loop turn meanwhile."""
+    t = threading.Thread(target=run)
+    stamps = []
+    t.start()
+    while t.is_alive():
+        stamps.append(time.perf_counter())
+    t.join()
+    gaps = np.diff(stamps) if len(stamps) > 1 else np.array([np.inf])
+    return float(gaps.max()), len(stamps)
+
+
+def test_sweep_releases_the_gil(paper):
+    values = superball.linspace(0, 20, 100000)
+    start = time.perf_counter()
+    superball.sweep(paper, "K.3-4", values, threads=1)
+    alone = time.perf_counter() - start
+    assert alone > 0.05  # long enough to tell a held GIL from a released one
+    box = {}
+    gap, turns = _max_gap_while(lambda: box.setdefault("r", superball.sweep(paper, "K.3-4", values, threads=1)))
+    assert box["r"].velocities.shape == (100000, 4)
+    # with the GIL held the main thread would stop for the whole sweep
+    assert gap < alone / 3 and turns > 100
+
+
+def test_switch_points_release_the_gil(paper):
+    values = superball.linspace(0, 20, 4001)
+    box = {}
+    gap, turns = _max_gap_while(lambda: box.setdefault("r", superball.switch_points(paper, "K.3-4", values, threads=1)))
+    assert len(box["r"]) == 2 and turns > 100
