@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Install, build and run every test (what CI runs), in four stages:
-#   1. the test suite (Release build, ctest), then the install: `cmake --install` into a
-#      temporary prefix, examples/cpp built and run against it (CMake and pkg-config)
+#   1. the test suite (Release build with the Python module, ctest: its pytest tests and
+#      notebook too), then the install: `cmake --install` into a temporary prefix,
+#      examples/cpp built and run against it (CMake and pkg-config), the Python module
+#      imported from it and the notebook run against it
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer
 #   3. the libFuzzer target over scene parsing and solving, 60 s from tests/fuzz/corpus
 #   4. the red-team suite (tests/redteam), hostile scenes and command lines for 60 s
@@ -52,7 +54,13 @@ install_check() {
   cmp "$work/example-pc.out" <("$work/example/superball_example")
   "$prefix/bin/superball" solve "$prefix/share/superball/scenes/paper-4.4-alpha2.toml" --precision exact > /dev/null
   [ -s "$prefix/share/man/man1/superball.1" ]
-  echo "install: examples/cpp built and run against the installed tree (find_package and pkg-config), $(find "$prefix" -type f | wc -l) files" >> "$summary"
+  # The Python module from the prefix only (its libraries too), then the notebook against it.
+  local site="$prefix/lib/python3/dist-packages"
+  PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 "$ROOT/tests/python/check_installed.py" "$prefix" "$site" \
+    "$prefix/share/superball/scenes/paper-4.4-alpha2.toml"
+  PYTHONPATH="$site" SUPERBALL_SCENES="$prefix/share/superball/scenes" PYTHONDONTWRITEBYTECODE=1 \
+    /usr/bin/python3 -m pytest -q -p no:cacheprovider "$ROOT/tests/python/test_notebook.py"
+  echo "install: examples/cpp built and run against the installed tree (find_package and pkg-config), the Python module and notebook too, $(find "$prefix" -type f | wc -l) files" >> "$summary"
   rm -rf "$work"
 }
 
@@ -60,7 +68,7 @@ for stage in $STAGES; do
   case "$stage" in
     1)
       echo "== stage 1: test suite"
-      configure_and_build -DSUPERBALL_BUILD_TESTS=ON
+      configure_and_build -DSUPERBALL_BUILD_TESTS=ON -DSUPERBALL_BUILD_PYTHON=ON -DPython_EXECUTABLE=/usr/bin/python3
       run_ctest "$BUILD_DIR" "suite"
       echo "== stage 1: install into a temporary prefix, examples/cpp against it"
       install_check
