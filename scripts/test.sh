@@ -3,7 +3,8 @@
 #   1. the test suite (Release build with the Python module, ctest: its pytest tests and
 #      notebook too), then the install: `cmake --install` into a temporary prefix,
 #      examples/cpp built and run against it (CMake and pkg-config), the Python module
-#      imported from it and the notebook run against it
+#      imported from it and the notebook run against it, and the Debian package
+#      (cpack), installed with apt-get, used, purged
 #   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer
 #   3. the libFuzzer target over scene parsing and solving, 60 s from tests/fuzz/corpus
 #   4. the red-team suite (tests/redteam), hostile scenes and command lines for 60 s
@@ -64,6 +65,42 @@ install_check() {
   rm -rf "$work"
 }
 
+# package_check: the Debian package of BUILD_DIR (cpack -G DEB), installed with
+# apt-get as a user would, its command and CMake package used from /usr (and its
+# Python module, when the build has one), then removed again.
+package_check() {
+  local sudo="" work deb
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  if dpkg-query -W -f='${Status}' superball 2>/dev/null | grep -q "install ok installed"; then
+    echo "package: a superball package is installed already; not replacing it" >> "$summary"
+    return 0
+  fi
+  work="$(mktemp -d)"
+  (cd "$BUILD_DIR" && cpack -G DEB > "$work/cpack.log")
+  deb="$(ls "$BUILD_DIR"/superball_*.deb)"
+  dpkg-deb --field "$deb" Package Version Depends
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "$deb" > "$work/apt.log"
+  # shellcheck disable=SC2064
+  trap "DEBIAN_FRONTEND=noninteractive $sudo apt-get purge -y -q superball > /dev/null; rm -rf '$work' '$summary'" EXIT
+  [ "$(dpkg -S /usr/bin/superball)" = "superball: /usr/bin/superball" ]
+  /usr/bin/superball solve /usr/share/superball/scenes/paper-4.4-alpha2.toml --precision exact > "$work/solve.out"
+  grep -q "^superball: yes" "$work/solve.out"
+  man -w superball > /dev/null
+  # find_package(superball) from the system's own paths, no prefix given.
+  cmake -S "$ROOT/examples/cpp" -B "$work/example" -DCMAKE_BUILD_TYPE=Release > "$work/configure.log"
+  cmake --build "$work/example" -j "$(nproc)" > "$work/build.log"
+  "$work/example/superball_example" /usr/share/superball/scenes/paper-4.4-alpha2.toml > /dev/null
+  local python=""
+  if dpkg-deb --contents "$deb" | grep -q "dist-packages/superball/"; then
+    (cd "$work" && /usr/bin/python3 -c "import superball; print(superball.__file__)" | grep -q "^/usr/lib/python3/dist-packages/")
+    python=", Python module imported"
+  fi
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get purge -y -q superball > /dev/null
+  trap 'rm -f "$summary"' EXIT
+  echo "package: $(basename "$deb") installed with apt-get, superball solve and examples/cpp (find_package from /usr) run$python, removed" >> "$summary"
+  rm -rf "$work"
+}
+
 for stage in $STAGES; do
   case "$stage" in
     1)
@@ -72,6 +109,8 @@ for stage in $STAGES; do
       run_ctest "$BUILD_DIR" "suite"
       echo "== stage 1: install into a temporary prefix, examples/cpp against it"
       install_check
+      echo "== stage 1: the Debian package, installed and removed"
+      package_check
       ;;
     2)
       echo "== stage 2: test suite under AddressSanitizer + UndefinedBehaviorSanitizer"
