@@ -103,6 +103,7 @@ package_check() {
 }
 
 for stage in $STAGES; do
+  stage_start=$SECONDS
   case "$stage" in
     1)
       echo "== stage 1: test suite"
@@ -159,6 +160,7 @@ for stage in $STAGES; do
       ;;
     *) echo "unknown stage $stage" >&2; exit 2 ;;
   esac
+  echo "stage $stage: $((SECONDS - stage_start)) s" >> "$summary"
 done
 
 echo "== summary"
