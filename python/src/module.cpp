@@ -14,6 +14,8 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -43,9 +45,12 @@ namespace {
 
 /// Exact parameter values of a sweep, made once (from decimal or fraction
 /// text, from doubles, or as the command line's linspace) and handed to the
-/// library as they are.
+/// library as they are.  CLN objects are not thread-safe (their reference
+/// counts are not atomic) and the calls that read them run without the GIL,
+/// so two Python threads using the same values take turns on \p lock.
 struct Values {
   std::vector<cln::cl_RA> exact;
+  std::shared_ptr<std::mutex> lock = std::make_shared<std::mutex>();
 };
 
 /// The exact rational value of the finite double \p x.
@@ -57,6 +62,7 @@ cln::cl_RA exact_double(double x) {
 /// The exact value of a number spelled as in a scene file ("0.001", "1/3", "5e6").
 cln::cl_RA parse_exact(const std::string& text) { return numeric::parse_rational(Number::parse(text).fraction()); }
 
+/// Values read as a scene file reads numbers ("0.001", "1/3", "5e6").
 Values values_from_text(const std::vector<std::string>& texts) {
   Values v;
   v.exact.reserve(texts.size());
@@ -70,6 +76,7 @@ Values values_from_text(const std::vector<std::string>& texts) {
   return v;
 }
 
+/// Values that are the doubles of a one-dimensional array, each taken exactly.
 Values values_from_doubles(const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
   if (a.ndim() != 1) throw std::invalid_argument("values: expected a one-dimensional array, got " + std::to_string(a.ndim()) + " dimensions");
   Values v;
@@ -79,6 +86,7 @@ Values values_from_doubles(const py::array_t<double, py::array::c_style | py::ar
   return v;
 }
 
+/// The command line's KEY=FROM:TO:STEPS: numeric::linspace() of exact ends.
 Values values_linspace(const std::string& from, const std::string& to, int steps) {
   if (steps < 2) throw std::invalid_argument("linspace: steps must be at least 2 (got " + std::to_string(steps) + ")");
   const cln::cl_RA a = parse_exact(from), b = parse_exact(to);
@@ -86,16 +94,27 @@ Values values_linspace(const std::string& from, const std::string& to, int steps
   return Values{numeric::linspace(a, b, steps)};
 }
 
+/// The values rounded to double into \p y (size: the values'); call with v.lock held.
+void fill_doubles(const Values& v, double* y) {
+  for (std::size_t k = 0; k < v.exact.size(); ++k) y[k] = cln::double_approx(v.exact[k]);
+}
+
+/// The values rounded to double, as a NumPy array.
 py::array_t<double> values_as_doubles(const Values& v) {
   py::array_t<double> out(static_cast<py::ssize_t>(v.exact.size()));
   double* y = out.mutable_data();
-  for (std::size_t k = 0; k < v.exact.size(); ++k) y[k] = cln::double_approx(v.exact[k]);
+  py::gil_scoped_release release;
+  const std::lock_guard<std::mutex> hold(*v.lock);
+  fill_doubles(v, y);
   return out;
 }
 
+/// The values exactly, as "p/q" text.
 std::vector<std::string> values_as_text(const Values& v) {
   std::vector<std::string> out;
   out.reserve(v.exact.size());
+  py::gil_scoped_release release;
+  const std::lock_guard<std::mutex> hold(*v.lock);
   for (const auto& x : v.exact) out.push_back(numeric::to_string(x));
   return out;
 }
@@ -122,6 +141,7 @@ Scene with_value(const Scene& scene, const std::string& key, const std::string& 
   return copy;
 }
 
+/// solve(): the flattened solution of `superball solve`; the GIL is released while it solves.
 present::Presented solve(const Scene& scene, const std::string& precision, py::object rtol) {
   const bool automatic = precision == "auto";
   if (!automatic && !rtol.is_none())
@@ -140,15 +160,19 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
   if (values.exact.empty()) throw std::invalid_argument("sweep: no value to solve");
   const auto n = static_cast<py::ssize_t>(scene.size());
   const auto count = static_cast<py::ssize_t>(values.exact.size());
+  py::array_t<double> x(count);
   py::array_t<double> u({count, n});
   py::array_t<std::uint64_t> masks(count);
   py::array_t<std::int8_t> status(count);
   {
+    double* xd = x.mutable_data();
     double* ud = u.mutable_data();
     std::uint64_t* md = masks.mutable_data();
     std::int8_t* sd = status.mutable_data();
     py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> hold(*values.lock);
     const auto points = numeric::sweep(scene, parameter, values.exact, p, threads);
+    fill_doubles(values, xd);
     for (py::ssize_t k = 0; k < count; ++k) {
       const auto& pt = points[static_cast<std::size_t>(k)];
       for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
@@ -156,7 +180,7 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
       sd[k] = static_cast<std::int8_t>(pt.status);
     }
   }
-  return py::make_tuple(values_as_doubles(values), u, masks, status);
+  return py::make_tuple(x, u, masks, status);
 }
 
 /// switch_points(): one tuple per change of case, in increasing value:
@@ -168,6 +192,7 @@ std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key,
   std::vector<numeric::SwitchPoint> found;
   {
     py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> hold(*values.lock);
     found = numeric::switch_points(scene, parameter, values.exact, bits, threads);
   }
   std::vector<py::tuple> out;
@@ -180,8 +205,10 @@ std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key,
 /// The paper's name of the case \p mask for \p bodies bodies, else "{2-3,3-4}".
 std::string case_name(std::uint64_t mask, int bodies) { return Vocabulary::paper().case_name(ContactSet::from_mask(mask, bodies)); }
 
+/// The closed contacts of the case \p mask, {"2-3", "3-4"}.
 std::vector<std::string> closed_names(std::uint64_t mask, int bodies) { return ContactSet::from_mask(mask, bodies).closed_names(); }
 
+/// The command line's selection options from derive()'s keywords (None: the default).
 present::SelectionOptions selection(const py::dict& o) {
   present::SelectionOptions s;
   for (const auto& [k, v] : o) {
