@@ -119,13 +119,31 @@ std::vector<std::string> values_as_text(const Values& v) {
   return out;
 }
 
-/// The bit mask of a case (bit c: contact (c+1, c+2) closed).
-std::uint64_t mask_of(const ContactSet& s) {
-  std::uint64_t m = 0;
-  for (int c = 0; c < s.contacts() && c < 64; ++c)
-    if (s.closed(c)) m |= std::uint64_t{1} << c;
-  return m;
-}
+/// The distinct cases met along a sweep, numbered in the order they are met.
+struct CaseTable {
+  std::vector<ContactSet> cases;
+  /// The number of \p s, added when new; consecutive values mostly share a case, so the last one is tried first.
+  std::int32_t code(const ContactSet& s) {
+    if (!cases.empty() && cases[static_cast<std::size_t>(last)] == s) return last;
+    for (std::size_t k = 0; k < cases.size(); ++k)
+      if (cases[k] == s) return last = static_cast<std::int32_t>(k);
+    cases.push_back(s);
+    return last = static_cast<std::int32_t>(cases.size() - 1);
+  }
+  /// The paper's names (n = 4) or "{2-3,3-4}", and the closed contacts, by number.
+  py::tuple names() const {
+    std::vector<std::string> name;
+    std::vector<std::vector<std::string>> closed;
+    for (const ContactSet& s : cases) {
+      name.push_back(Vocabulary::paper().case_name(s));
+      closed.push_back(s.closed_names());
+    }
+    return py::make_tuple(name, closed);
+  }
+
+ private:
+  std::int32_t last = 0;
+};
 
 /// The scene's copy with \p key set to \p value through Parameter::set() (the loader's checks).
 Scene with_value(const Scene& scene, const std::string& key, const std::string& value) {
@@ -153,7 +171,8 @@ present::Presented solve(const Scene& scene, const std::string& precision, py::o
   return automatic ? present::solve_scene_auto(scene, r) : present::solve_scene(scene, p);
 }
 
-/// sweep(): values, U (one row per value), case masks, statuses; the GIL is released while it solves.
+/// sweep(): values, U (one row per value), case numbers into the table of
+/// distinct cases (names, closed contacts), status codes; the GIL is released while it solves.
 py::tuple sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads) {
   const Parameter parameter = Parameter::parse(key, scene);
   const auto p = numeric::Precision::parse(precision);
@@ -162,12 +181,13 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
   const auto count = static_cast<py::ssize_t>(values.exact.size());
   py::array_t<double> x(count);
   py::array_t<double> u({count, n});
-  py::array_t<std::uint64_t> masks(count);
+  py::array_t<std::int32_t> codes(count);
   py::array_t<std::int8_t> status(count);
+  CaseTable table;
   {
     double* xd = x.mutable_data();
     double* ud = u.mutable_data();
-    std::uint64_t* md = masks.mutable_data();
+    std::int32_t* cd = codes.mutable_data();
     std::int8_t* sd = status.mutable_data();
     py::gil_scoped_release release;
     const std::lock_guard<std::mutex> hold(*values.lock);
@@ -176,15 +196,15 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
     for (py::ssize_t k = 0; k < count; ++k) {
       const auto& pt = points[static_cast<std::size_t>(k)];
       for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
-      md[k] = mask_of(pt.closed);
+      cd[k] = table.code(pt.closed);
       sd[k] = static_cast<std::int8_t>(pt.status);
     }
   }
-  return py::make_tuple(x, u, masks, status);
+  return py::make_tuple(x, u, codes, table.names(), status);
 }
 
 /// switch_points(): one tuple per change of case, in increasing value:
-/// (low, high, middle as decimal text, bracket width as decimal text, below mask, above mask).
+/// (low, high, middle as decimal text, bracket width as decimal text, case below and its closed contacts, the same above).
 std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key, const Values& values, int bits, int threads) {
   const Parameter parameter = Parameter::parse(key, scene);
   if (values.exact.size() < 2) throw std::invalid_argument("switch_points: at least two values are needed");
@@ -198,15 +218,10 @@ std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key,
   std::vector<py::tuple> out;
   for (const auto& s : found)
     out.push_back(py::make_tuple(numeric::to_string(s.low), numeric::to_string(s.high), numeric::to_decimal((s.low + s.high) / 2, 17),
-                                 numeric::to_decimal(s.high - s.low, 3), mask_of(s.below), mask_of(s.above)));
+                                 numeric::to_decimal(s.high - s.low, 3), Vocabulary::paper().case_name(s.below), s.below.closed_names(),
+                                 Vocabulary::paper().case_name(s.above), s.above.closed_names()));
   return out;
 }
-
-/// The paper's name of the case \p mask for \p bodies bodies, else "{2-3,3-4}".
-std::string case_name(std::uint64_t mask, int bodies) { return Vocabulary::paper().case_name(ContactSet::from_mask(mask, bodies)); }
-
-/// The closed contacts of the case \p mask, {"2-3", "3-4"}.
-std::vector<std::string> closed_names(std::uint64_t mask, int bodies) { return ContactSet::from_mask(mask, bodies).closed_names(); }
 
 /// The command line's selection options from derive()'s keywords (None: the default).
 present::SelectionOptions selection(const py::dict& o) {
@@ -433,8 +448,6 @@ PYBIND11_MODULE(_superball, m) {
   m.def("solve", &solve, py::arg("scene"), py::arg("precision"), py::arg("rtol"));
   m.def("sweep", &sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"));
   m.def("switch_points", &switch_points, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("bits"), py::arg("threads"));
-  m.def("case_name", &case_name, py::arg("mask"), py::arg("bodies"));
-  m.def("closed_names", &closed_names, py::arg("mask"), py::arg("bodies"));
   m.def("derive", &derive, py::arg("options"));
   m.def("verify", &verify_cases, py::arg("options"), py::arg("epsilons"), py::arg("samples"), py::arg("boundary_pairs"), py::arg("seed"),
         py::arg("threads"));

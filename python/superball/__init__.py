@@ -450,9 +450,11 @@ class SweepResult:
 
     ``values``: float64 (N,); ``velocities``: float64 (N, n), row k the
     U⁺ at ``values[k]``; ``cases``: the evolution case per value (NumPy
-    str array); ``closed``: uint64 bit masks of the closed contacts (bit c:
-    contact (c+1, c+2)); ``status_codes``: int8 (0 success, see
-    :data:`STATUSES`); ``status``: the names.
+    str array: the paper's name for 4 bodies, else ``"{2-3,3-4}"``);
+    ``case_codes``: int32 (N,), the number of each value's case in
+    ``case_list`` (the distinct cases, in the order met) and
+    ``closed_list`` (their closed contacts); ``status_codes``: int8
+    (0 success, see :data:`STATUSES`); ``status``: the names.
     """
 
     key: str
@@ -460,7 +462,9 @@ class SweepResult:
     values: np.ndarray
     velocities: np.ndarray
     cases: np.ndarray
-    closed: np.ndarray
+    case_codes: np.ndarray
+    case_list: Tuple[str, ...]
+    closed_list: Tuple[Tuple[str, ...], ...]
     status_codes: np.ndarray
 
     @property
@@ -472,14 +476,12 @@ class SweepResult:
         """Whether every value solved with status success."""
         return bool(np.all(self.status_codes == 0))
 
+    def closed(self, k: int) -> Tuple[str, ...]:
+        """The contacts closed at ``values[k]``."""
+        return self.closed_list[int(self.case_codes[k])]
+
     def __len__(self) -> int:
         return len(self.values)
-
-
-def _names(masks: np.ndarray, bodies: int) -> np.ndarray:
-    unique, inverse = np.unique(masks, return_inverse=True)
-    names = np.array([_superball.case_name(int(m), bodies) for m in unique], dtype=str)
-    return names[inverse] if len(names) else np.array([], dtype=str)
 
 
 def sweep(scene: Scene, key: str, values: Any, precision: str = "double", threads: int = 0) -> SweepResult:
@@ -497,8 +499,9 @@ def sweep(scene: Scene, key: str, values: Any, precision: str = "double", thread
     v = _values(values)
     if int(threads) < 0:
         raise InputError(f"threads must be >= 0 (0: all cores), got {threads}")
-    x, u, masks, status = _superball.sweep(scene._scene, str(key), v, str(precision), int(threads))
-    return SweepResult(str(key), str(precision), x, u, _names(masks, scene.bodies), masks, status)
+    x, u, codes, (names, closed), status = _superball.sweep(scene._scene, str(key), v, str(precision), int(threads))
+    cases = np.array(names, dtype=str)[codes] if len(names) else np.array([], dtype=str)
+    return SweepResult(str(key), str(precision), x, u, cases, codes, tuple(names), tuple(tuple(c) for c in closed), status)
 
 
 @dataclass(frozen=True)
@@ -537,12 +540,11 @@ def switch_points(scene: Scene, key: str, values: Any, bits: int = 64, threads: 
         d = [b - a for a, b in zip(x, x[1:])]
         if not (all(s > 0 for s in d) or all(s < 0 for s in d)):
             raise InputError("switch_points: the values must be strictly increasing or strictly decreasing")
-    n = scene.bodies
     out = []
-    for low, high, middle, width, below, above in _superball.switch_points(scene._scene, str(key), v, int(bits), int(threads)):
-        out.append(SwitchPoint(str(key), float(middle), Fraction(low), Fraction(high), float(width), _superball.case_name(below, n),
-                               _superball.case_name(above, n), tuple(_superball.closed_names(below, n)),
-                               tuple(_superball.closed_names(above, n)), middle))
+    for low, high, middle, width, below, closed_below, above, closed_above in _superball.switch_points(scene._scene, str(key), v, int(bits),
+                                                                                                         int(threads)):
+        out.append(SwitchPoint(str(key), float(middle), Fraction(low), Fraction(high), float(width), below, above, tuple(closed_below),
+                               tuple(closed_above), middle))
     return out
 
 

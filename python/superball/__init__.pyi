@@ -110,12 +110,15 @@ class SweepResult:
     values: npt.NDArray[np.float64]
     velocities: npt.NDArray[np.float64]
     cases: npt.NDArray[np.str_]
-    closed: npt.NDArray[np.uint64]
+    case_codes: npt.NDArray[np.int32]
+    case_list: Tuple[str, ...]
+    closed_list: Tuple[Tuple[str, ...], ...]
     status_codes: npt.NDArray[np.int8]
     @property
     def status(self) -> npt.NDArray[np.str_]: ...
     @property
     def ok(self) -> bool: ...
+    def closed(self, k: int) -> Tuple[str, ...]: ...
     def __len__(self) -> int: ...
 
 def sweep(scene: Scene, key: str, values: Values, precision: str = ..., threads: int = ...) -> SweepResult: ...

@@ -25,8 +25,24 @@ def test_arrays_dtypes_and_shapes(paper):
     assert s.values.dtype == np.float64 and s.values.shape == (41,)
     assert s.velocities.dtype == np.float64 and s.velocities.shape == (41, 4)
     assert s.cases.shape == (41,) and s.cases.dtype.kind == "U"
-    assert s.closed.dtype == np.uint64 and s.status_codes.dtype == np.int8
+    assert s.case_codes.dtype == np.int32 and s.status_codes.dtype == np.int8
     assert s.ok and list(s.status[:1]) == ["success"] and len(s) == 41
+    assert s.case_list == ("2.2", "3.3", "3.2") and s.closed_list == (("3-4",), (), ("2-3",))
+    assert all(s.cases[k] == s.case_list[s.case_codes[k]] for k in range(41))
+    assert s.closed(0) == ("3-4",) and s.closed(40) == ("2-3",)
+
+
+def test_long_chains_and_their_cases():
+    """More than 64 contacts: the cases are sets of contacts, not bit masks."""
+    n = 80
+    chain = superball.Scene(bodies=[1] * (n - 1) + [{"mass": "inf", "velocity": 0}], fall_speed=1,
+                            K={f"{i}-{i + 1}": 1 + (i % 3) for i in range(1, n)})
+    s = superball.sweep(chain, "mass.1", [Fraction(1, 2), 1, 2, 50])
+    assert s.velocities.shape == (4, n)
+    for k, m in enumerate([Fraction(1, 2), 1, 2, 50]):
+        r = superball.solve(chain.with_value("mass.1", m), "double")
+        assert s.cases[k] == r.case and s.closed(k) == r.closed_contacts
+        np.testing.assert_array_equal(s.velocities[k], r.velocities_after)
 
 
 def test_every_row_is_the_solve_of_that_value(paper):
@@ -47,6 +63,14 @@ def test_the_command_s_csv_row_for_row(paper):
         assert float(row[0]) == s.values[k]
         np.testing.assert_array_equal(np.array([float(x) for x in row[1:5]]), s.velocities[k])
         assert row[5] == s.cases[k] and row[6] == s.status[k]
+
+
+def test_ranges_and_ints_are_exact(paper):
+    a = superball.sweep(paper, "K.3-4", range(0, 21, 5))
+    b = superball.sweep(paper, "K.3-4", np.arange(0, 21, 5))
+    c = superball.sweep(paper, "K.3-4", superball.linspace(0, 20, 5))
+    np.testing.assert_array_equal(a.velocities, b.velocities)
+    np.testing.assert_array_equal(a.velocities, c.velocities)
 
 
 def test_result_does_not_depend_on_threads(paper):
