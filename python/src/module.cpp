@@ -456,4 +456,5 @@ PYBIND11_MODULE(_superball, m) {
         py::arg("box_low"), py::arg("box_high"));
   m.def("thread_count", &numeric::thread_count, py::arg("requested"));
   m.attr("default_rtol") = numeric::default_rtol;
+  m.attr("__version__") = SUPERBALL_VERSION;
 }

@@ -59,6 +59,8 @@ InputError.__doc__ = ("Bad input: a scene, a parameter, an option.  A ValueError
                       "message is the command line's one line, e.g. 'x.toml:3:8: body[1].mass: must be > 0 (got -1)'.")
 InputError.__module__ = "superball"
 
+#: The version of the libraries the module is built from (``superball --version``).
+__version__: str = _superball.__version__
 #: The default ``rtol`` of ``precision="auto"``: six significant digits of every velocity, certified.
 DEFAULT_RTOL: float = _superball.default_rtol
 #: A solve's status, by the code the sweep arrays hold (``SweepResult.status_codes``).

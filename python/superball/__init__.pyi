@@ -16,6 +16,7 @@ class Error(Exception):
 class InputError(Error, ValueError):
     """Bad input: the command line's one-line message."""
 
+__version__: str
 DEFAULT_RTOL: float
 STATUSES: Tuple[str, ...]
 

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import superball
-from conftest import cli_json
+from conftest import cli_json, run_cli
 
 
 def test_verify_agrees_with_the_command():
@@ -101,3 +101,7 @@ def test_the_stubs_name_every_public_symbol():
         if isinstance(node, ast.FunctionDef) and node.name in superball.__all__:
             stub_params = [a.arg for a in node.args.args + node.args.kwonlyargs]
             assert stub_params == list(inspect.signature(getattr(superball, node.name)).parameters), node.name
+
+
+def test_version_is_the_command_s():
+    assert run_cli("--version")[1].strip() == f"superball {superball.__version__}"
