@@ -155,6 +155,20 @@ def _scene_toml(d: Mapping[str, Any]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _parse_built(text: str, origin: str) -> Any:
+    """The scene of TOML text made from keywords or a dict: the loader's checks and
+    messages, without the line and column of a text the user never wrote."""
+    try:
+        return _superball.Scene.parse(text, origin)
+    except InputError as e:
+        message = str(e)
+        rest = message[len(origin):] if message.startswith(origin + ":") else ""
+        place = rest.split(" ", 1)[0]  # ":LINE:COL:"
+        if rest and place.count(":") == 3 and place[1:-1].replace(":", "").isdigit():
+            raise InputError(origin + ": " + rest.split(" ", 1)[1]) from None
+        raise
+
+
 class Scene:
     """A scene: the bodies, the fall, the matrix M of dissipation (paper §1–§3).
 
@@ -187,7 +201,7 @@ class Scene:
         coupling = [c if isinstance(c, Mapping) or len(c) == 2 else ((c[0], c[1]), c[2]) for c in (coupling or [])]
         d = {"title": title, "fall_speed": fall_speed, "drop_height": drop_height, "g": g, "bodies": bodies, "K": K,
              "alpha": alpha, "coupling": coupling, "flight": flight}
-        self._scene = _superball.Scene.parse(_scene_toml(d), title or "<scene>")
+        self._scene = _parse_built(_scene_toml(d), title or "<scene>")
 
     @classmethod
     def load(cls, path: Any) -> "Scene":
@@ -206,7 +220,7 @@ class Scene:
         d = dict(d)
         if "coupling" in d and d["coupling"]:
             d["coupling"] = [c if isinstance(c, Mapping) or len(c) == 2 else ((c[0], c[1]), c[2]) for c in d["coupling"]]
-        return cls(_scene=_superball.Scene.parse(_scene_toml(d), str(d.get("title") or "<dict>")))
+        return cls(_scene=_parse_built(_scene_toml(d), str(d.get("title") or "<dict>")))
 
     def with_value(self, key: str, value: Number) -> "Scene":
         """A copy with the parameter ``key`` set to ``value``.

@@ -30,8 +30,14 @@ def test_missing_file_and_folder(tmp_path):
 
 
 def test_keywords_and_dicts():
-    with pytest.raises(ValueError, match="mass: must be > 0"):
-        superball.Scene(bodies=[1, -1], fall_speed=1)
+    # the loader's message, without the place in a TOML text the user never wrote
+    for build, message in ((lambda: superball.Scene(bodies=[1, -1], fall_speed=1), "<scene>: body[2].mass: must be > 0 (got -1)"),
+                           (lambda: superball.Scene.from_dict({"bodies": [1, 2], "fall_speed": "x"}), "<dict>: fall_speed: 'x' is not a number"),
+                           (lambda: superball.Scene(bodies=[1, 2], fall_speed=1, K={"1-3": 1}, title="Two: 1-3"),
+                            "Two: 1-3: dissipation.K.1-3: pair 1-3 is outside bodies 1..2")):
+        with pytest.raises(ValueError) as e:
+            build()
+        assert one_line(e) == message
     with pytest.raises(ValueError, match="unknown key 'bodys'"):
         superball.Scene.from_dict({"bodys": [1, 2]})
     with pytest.raises(ValueError, match="bodies: required"):
