@@ -862,7 +862,8 @@ class ExploreResult:
 @dataclass(frozen=True)
 class PatternTable:
     """``explore(all_patterns=True)``: each α_k (and {α₁, α₆}) against every case.
-    ``reach``: a NumPy str array [pattern, case]; ``patterns``, ``cases`` its labels."""
+    ``reach``: a NumPy str array [pattern, case] ("yes", "no (proved)", …);
+    ``patterns`` ("alpha1", …, "alpha1,alpha6") and ``cases`` its labels."""
 
     patterns: List[str]
     cases: List[str]
@@ -891,7 +892,9 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pai
     if all_patterns:
         (j, text), = _superball.explore({}, True, int(seed), int(starts), int(evaluations), float(low), float(high))
         d = _json.loads(j)
-        return PatternTable(list(d.get("patterns", [])), list(d.get("cases", [])), _reach_table(d), d, text)
+        patterns = [row["cells"][0]["pattern"] if row["cells"] else ",".join(f"alpha{k}" for k in row["alphas"]) for row in d["rows"]]
+        reach = np.array([[cell["reach"] for cell in row["cells"]] for row in d["rows"]], dtype=str)
+        return PatternTable(patterns, list(d["cases"]), reach, d, text)
     options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene, False)
     out = []
     for j, text, toml in _superball.explore(options, False, int(seed), int(starts), int(evaluations), float(low), float(high)):
@@ -901,7 +904,3 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pai
         out.append(ExploreResult(d["case"], d["reach"], ratio, witness, Scene.from_toml(toml, "<witness>") if toml else None, d, text))
     return out if all else out[0]
 
-
-def _reach_table(d: Dict[str, Any]) -> np.ndarray:
-    rows = d.get("cells", [])
-    return np.array([[c.get("reach", "") for c in row] for row in rows], dtype=str)

@@ -105,3 +105,12 @@ def test_the_stubs_name_every_public_symbol():
 
 def test_version_is_the_command_s():
     assert run_cli("--version")[1].strip() == f"superball {superball.__version__}"
+
+
+def test_explore_every_pattern():
+    t = superball.explore(all_patterns=True, starts=1, evaluations=10)
+    assert t.data == cli_json("explore", "--all-patterns", "--starts", 1, "--evaluations", 10, "--json")
+    assert t.reach.shape == (len(t.patterns), len(t.cases)) == (8, 8)
+    assert t.patterns[0] == "alpha1" and t.patterns[-1] == "alpha1,alpha6" and t.cases[0] == "1"
+    assert t.reach[t.patterns.index("alpha1,alpha6"), t.cases.index("1")] == "no (proved)"  # §4.1's remark, proved
+    assert "| " in str(t)
