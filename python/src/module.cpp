@@ -11,7 +11,9 @@
 #include <cln/rational.h>
 #include <cln/real.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -171,6 +173,9 @@ present::Presented solve(const Scene& scene, const std::string& precision, py::o
   return automatic ? present::solve_scene_auto(scene, r) : present::solve_scene(scene, p);
 }
 
+/// Values solved by one library call in sweep().
+constexpr std::size_t kSweepChunk = std::size_t{1} << 16;
+
 /// sweep(): values, U (one row per value), case numbers into the table of
 /// distinct cases (names, closed contacts), status codes; the GIL is released while it solves.
 py::tuple sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads) {
@@ -191,13 +196,24 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
     std::int8_t* sd = status.mutable_data();
     py::gil_scoped_release release;
     const std::lock_guard<std::mutex> hold(*values.lock);
-    const auto points = numeric::sweep(scene, parameter, values.exact, p, threads);
+    // Every value admissible before anything is solved, then the values a chunk at a time, so that
+    // the library's per-value results (a few hundred bytes each) never exceed a chunk's.
+    const auto [low, high] = std::minmax_element(values.exact.begin(), values.exact.end(),
+                                                 [](const cln::cl_RA& a, const cln::cl_RA& b) { return a < b; });
+    numeric::check_range(scene, parameter, *low, *high);
     fill_doubles(values, xd);
-    for (py::ssize_t k = 0; k < count; ++k) {
-      const auto& pt = points[static_cast<std::size_t>(k)];
-      for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
-      cd[k] = table.code(pt.closed);
-      sd[k] = static_cast<std::int8_t>(pt.status);
+    const auto total = values.exact.size();
+    for (std::size_t first = 0; first < total; first += kSweepChunk) {
+      const auto end = values.exact.begin() + static_cast<std::ptrdiff_t>(std::min(total, first + kSweepChunk));
+      const std::vector<cln::cl_RA> chunk(values.exact.begin() + static_cast<std::ptrdiff_t>(first), end);
+      const auto points = numeric::sweep(scene, parameter, chunk, p, threads);
+      for (std::size_t j = 0; j < points.size(); ++j) {
+        const auto& pt = points[j];
+        const auto k = static_cast<py::ssize_t>(first + j);
+        for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
+        cd[k] = table.code(pt.closed);
+        sd[k] = static_cast<std::int8_t>(pt.status);
+      }
     }
   }
   return py::make_tuple(x, u, codes, table.names(), status);

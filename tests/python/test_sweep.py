@@ -73,6 +73,18 @@ def test_ranges_and_ints_are_exact(paper):
     np.testing.assert_array_equal(a.velocities, c.velocities)
 
 
+def test_a_sweep_longer_than_a_chunk(paper):
+    """The module solves 2^16 values per library call: rows across the seam are the solves of their values."""
+    values = superball.linspace(0, 20, 140001)
+    s = superball.sweep(paper, "K.3-4", values)
+    exact = values.fractions()
+    for k in (0, 65535, 65536, 65537, 131072, 140000):
+        r = superball.solve(paper.with_value("K.3-4", exact[k]), "double")
+        np.testing.assert_array_equal(s.velocities[k], r.velocities_after)
+        assert s.cases[k] == r.case
+    assert s.case_list == ("2.2", "3.3", "3.2")
+
+
 def test_result_does_not_depend_on_threads(paper):
     r = superball.linspace(0, 20, 2001)
     one, two = superball.sweep(paper, "K.3-4", r, threads=1), superball.sweep(paper, "K.3-4", r, threads=2)
