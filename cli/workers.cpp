@@ -159,15 +159,40 @@ void Workers::run(const Deliver& deliver) {
     ~Restore() { ::sigaction(SIGPIPE, &previous, nullptr); }
   } restore{previous};
 
+  // A task that fails ends the run, but the failure reported is that of the
+  // first failing task in task order, whatever the timing: the tasks before it
+  // are finished and delivered first (as with jobs <= 1, where they ran
+  // before it), no task after it is handed out.
+  constexpr std::size_t none = ~std::size_t{0};
+  std::size_t failed = none;
+  Kind failed_kind = Kind::Result;
+  std::string failed_text;
+  auto fail = [&](std::size_t k, Kind kind, std::string text) {
+    if (k >= failed) return;
+    failed = k;
+    failed_kind = kind;
+    failed_text = std::move(text);
+  };
+  // The worker \p w has ended (it reported a failure, or died): reap it.
+  auto retire = [](Worker& w, int* status) {
+    ::close(w.tasks);
+    ::close(w.results);
+    w.tasks = w.results = -1;
+    while (::waitpid(w.pid, status, 0) < 0 && errno == EINTR) {
+    }
+    w.pid = -1;
+    w.running = kStop;
+  };
+
   std::size_t next = 0, delivered = 0;
   std::map<std::size_t, std::string> waiting;  // results that came before an earlier one
   auto hand_out = [&](Worker& w) {
-    const std::uint64_t k = next < count ? next++ : kStop;
+    const std::uint64_t k = next < count && next < failed ? next++ : kStop;
     if (!write_all(w.tasks, &k, sizeof k)) throw std::runtime_error("worker for task " + std::to_string(k + 1) + " died before it started");
     w.running = k;
   };
   for (Worker& w : workers) hand_out(w);
-  while (delivered < count) {
+  while (delivered < std::min(count, failed)) {
     std::vector<pollfd> fds;
     std::vector<Worker*> owners;
     for (Worker& w : workers)
@@ -192,30 +217,37 @@ void Workers::run(const Deliver& deliver) {
         ok = read_all(w.results, text.data(), text.size());
       }
       if (!ok || k != w.running) {
+        const std::uint64_t task = w.running;
         int status = 0;
-        ::waitpid(w.pid, &status, 0);
-        w.pid = -1;
+        retire(w, &status);
         const std::string how = WIFSIGNALED(status) ? std::string("signal ") + std::to_string(WTERMSIG(status)) + " (" + ::strsignal(WTERMSIG(status)) + ")"
                                                     : "exit status " + std::to_string(WEXITSTATUS(status));
-        throw std::runtime_error("worker for task " + std::to_string(w.running + 1) + " died: " + how);
+        fail(static_cast<std::size_t>(task), Kind::RuntimeError, "worker for task " + std::to_string(task + 1) + " died: " + how);
+        continue;
       }
-      switch (kind) {
-        case Kind::Result: break;
-        case Kind::InvalidArgument: throw std::invalid_argument(text);
-        case Kind::LogicError: throw std::logic_error(text);
-        case Kind::RuntimeError: throw std::runtime_error(text);
+      if (kind != Kind::Result) {  // the worker exits after sending it
+        retire(w, nullptr);
+        fail(static_cast<std::size_t>(k), kind, std::move(text));
+        continue;
       }
       hand_out(w);
       waiting.emplace(static_cast<std::size_t>(k), std::move(text));
-      for (auto it = waiting.find(delivered); it != waiting.end(); it = waiting.find(delivered)) {
+      for (auto it = waiting.find(delivered); delivered < failed && it != waiting.end(); it = waiting.find(delivered)) {
         deliver(delivered, std::move(it->second));
         waiting.erase(it);
         ++delivered;
       }
     }
   }
-  // Every worker has been told to stop (kStop) by now; reap them.
+  switch (failed_kind) {
+    case Kind::Result: break;
+    case Kind::InvalidArgument: throw std::invalid_argument(failed_text);
+    case Kind::LogicError: throw std::logic_error(failed_text);
+    case Kind::RuntimeError: throw std::runtime_error(failed_text);
+  }
+  // Every worker has been told to stop (kStop) or has ended by now; reap them.
   for (Worker& w : workers) {
+    if (w.pid <= 0) continue;
     ::close(w.tasks);
     ::close(w.results);
     w.tasks = w.results = -1;

@@ -18,10 +18,13 @@ namespace superball::cli {
 ///
 /// The workers are forked by the constructor, before anything else starts
 /// a thread (make the pool before a StepProgress).  A task that throws ends
-/// the run: the other workers are stopped and run() throws the exception
-/// again with its message (std::invalid_argument, std::logic_error or
-/// std::runtime_error, by what it was).  A worker that dies (a signal)
-/// makes run() throw std::runtime_error("worker for task K died: …").
+/// the run: no later task is handed out, the tasks before it are finished
+/// and delivered, the other workers are stopped, and run() throws the
+/// exception again with its message (std::invalid_argument,
+/// std::logic_error or std::runtime_error, by what it was).  A worker that
+/// dies (a signal) makes run() throw std::runtime_error("worker for task K
+/// died: …").  When several tasks fail, the first of them in task order is
+/// the one reported, as with \p jobs <= 1, whatever the timing.
 /// deliver() runs in this process only; it may throw (the workers are then
 /// stopped before the exception leaves).
 class Workers {

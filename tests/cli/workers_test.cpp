@@ -76,6 +76,34 @@ TEST(Workers, ATaskExceptionComesBackWithItsTypeAndMessage) {
   EXPECT_TRUE(no_children());
 }
 
+TEST(Workers, TheFirstFailureInTaskOrderIsReportedWhateverTheTiming) {
+  // Task 1 fails late, task 2 (and a dying worker on task 3) at once: what
+  // is reported is task 1's failure, after task 0 was delivered, as when the
+  // tasks run one after the other here.
+  const pid_t parent = ::getpid();
+  auto failing = [&](std::size_t k) -> std::string {
+    if (k == 1) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      throw std::invalid_argument("task 1 failed late");
+    }
+    if (k == 2) throw std::logic_error("task 2 failed at once");
+    if (k == 3 && ::getpid() != parent) ::raise(SIGKILL);
+    return std::to_string(k);
+  };
+  for (int jobs : {1, 2, 4}) {
+    std::vector<std::size_t> delivered;
+    Workers workers(8, jobs, failing);
+    try {
+      workers.run([&](std::size_t k, std::string&&) { delivered.push_back(k); });
+      ADD_FAILURE() << "no exception, jobs " << jobs;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "task 1 failed late") << jobs;
+    }
+    EXPECT_EQ(delivered, std::vector<std::size_t>{0}) << jobs;
+  }
+  EXPECT_TRUE(no_children());
+}
+
 TEST(Workers, AWorkerThatDiesIsReportedWithItsTask) {
   const pid_t parent = ::getpid();
   auto dying = [&](std::size_t k) -> std::string {
