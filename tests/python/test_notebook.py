@@ -25,3 +25,20 @@ def test_the_tour_runs():
     assert "exact conditions agree at every point: True" in text
     assert any("image/png" in o.get("data", {}) for o in outputs), "the sweep's figure was not drawn"
     assert any("text/latex" in o.get("data", {}) for o in outputs), "no condition was shown as LaTeX"
+
+
+def test_the_example_script_prints_what_the_readme_shows():
+    """examples/python/example.py (README, "Use from Python"): its output, checked
+    against what the libraries say, not against a stored copy."""
+    import subprocess
+    import sys
+
+    script = SOURCE_DIR / "examples" / "python" / "example.py"
+    p = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300, env=os.environ)
+    assert p.returncode == 0, p.stderr
+    lines = p.stdout.splitlines()
+    assert lines[1] == "1425207149882365049811/430982092965922100000"  # eq. (16)'s U1+ exactly (docs/RESULTS.md)
+    assert lines[2] == "(100001, 4) ['2.2', '3.2', '3.3']"
+    assert [l.split()[1:] for l in lines[3:5]] == [["2.2", "->", "3.3"], ["3.3", "->", "3.2"]]
+    assert lines[5].startswith("−α₂ > 2m₁ + K₁₂ + K₁₃ | −α₂ > K₁₂ + K₁₃ |")
+    assert lines[6].startswith("ValueError: ") and "g: must be > 0 (got -1)" in lines[6]
