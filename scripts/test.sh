@@ -98,7 +98,7 @@ package_check() {
   fi
   DEBIAN_FRONTEND=noninteractive $sudo apt-get purge -y -q superball > /dev/null
   trap 'rm -f "$summary"' EXIT
-  echo "package: $(basename "$deb") installed with apt-get, superball solve and examples/cpp (find_package from /usr) run$python, removed" >> "$summary"
+  echo "package: $(basename "$deb") installed with apt-get, superball solve and examples/cpp (find_package from /usr) run$python, purged" >> "$summary"
   rm -rf "$work"
 }
 
