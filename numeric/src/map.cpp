@@ -151,6 +151,9 @@ MapBoundary psd_edge(Scene& line, const Parameter& parameter, cln::cl_RA a, cln:
   e.high = a < b ? b : a;
   e.below_psd = a < b ? a_psd : !a_psd;
   e.above_psd = !e.below_psd;
+  // The region at the bracket's end inside the cone, from the exact solution there.
+  parameter.assign(line, Number::parse(to_string(a_psd ? a : b)));
+  (e.below_psd ? e.below : e.above) = Region::of(solve_exact_at(line, parameter, a_psd ? a : b));
   return e;
 }
 

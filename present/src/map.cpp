@@ -55,6 +55,8 @@ constexpr const char* kNotPsd = "#C8C8C8";
 constexpr double kPale = 0.6;
 /// The top of the legend, under the panels, as a fraction of the figure's height.
 constexpr double kLegendTop = 0.19;
+/// The data file's first curve: after the regions, U1+/a, the marks and the derived zeros.
+constexpr int kFirstCurve = 4;
 
 struct Rgb {
   int r, g, b;
@@ -242,7 +244,7 @@ std::string map_summary(const Map& m, const Scene& scene, const std::string& pre
   return os.str();
 }
 
-std::string map_figure_data(const Map& m, const std::vector<MapMark>& marks) {
+std::string map_figure_data(const Map& m, const std::vector<MapMark>& marks, const std::vector<std::pair<double, double>>& derived) {
   const std::vector<ContactSet> cases = cases_present(m);
   auto colour = [&](const MapPoint& p) {
     if (!p.admissible) return rgb(kNotPsd);
@@ -273,8 +275,11 @@ std::string map_figure_data(const Map& m, const std::vector<MapMark>& marks) {
   os << "\n# index 2: marks\n";
   for (const MapMark& k : marks) os << k.x << ' ' << k.y << ' ' << quoted(k.label) << '\n';
   if (marks.empty()) os << "NaN NaN \"\"\n";
+  os << "\n\n# index 3: zeros of the derived conditions\n";
+  for (const auto& [x, y] : derived) os << x << ' ' << y << '\n';
+  if (derived.empty()) os << "NaN NaN\n";
   for (std::size_t c = 0; c < m.curves.size(); ++c) {
-    os << "\n\n# index " << 3 + c << ": " << curve_text(m.curves[c]) << '\n';
+    os << "\n\n# index " << kFirstCurve + c << ": " << curve_text(m.curves[c]) << '\n';
     for (std::size_t k : m.curves[c].points) {
       const auto [x, y] = numeric::position(m, m.boundaries[k]);
       os << x << ' ' << y << '\n';
@@ -287,8 +292,8 @@ std::string map_figure_data(const Map& m, const std::vector<MapMark>& marks) {
   return os.str();
 }
 
-std::string map_figure_script(const Map& m, const std::vector<MapMark>& marks, const std::string& title, const std::string& data,
-                              const std::string& terminal, const std::string& output) {
+std::string map_figure_script(const Map& m, const std::vector<MapMark>& marks, bool derived, const std::string& title,
+                              const std::string& data, const std::string& terminal, const std::string& output) {
   const std::vector<ContactSet> cases = cases_present(m);
   const bool not_psd = std::any_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return !p.admissible; });
   const double x0 = cln::double_approx(m.x.from), x1 = cln::double_approx(m.x.to);
@@ -339,9 +344,10 @@ std::string map_figure_script(const Map& m, const std::vector<MapMark>& marks, c
     const auto k = static_cast<std::size_t>(kind);
     const char* style = kind == Kind::Superball ? "lw 3 lc rgb 'black'" : kind == Kind::Psd ? "lw 1.5 lc rgb '#606060' dt 2" : "lw 1.5 lc rgb '#303030'";
     const char* name = kind == Kind::Superball ? "superball edge (exact)" : kind == Kind::Psd ? "edge of M PSD (exact)" : "case change (exact)";
-    gp << ", " << d << " index " << 3 + c << " using 1:2 with lines " << style << ' ' << (legend[k] ? std::string("notitle") : "title " + quoted(name));
+    gp << ", " << d << " index " << kFirstCurve + c << " using 1:2 with lines " << style << ' ' << (legend[k] ? std::string("notitle") : "title " + quoted(name));
     legend[k] = true;
   }
+  if (derived) gp << ", " << d << " index 3 using 1:2 with points pt 6 ps 0.7 lw 1 lc rgb '#D01010' title 'derived conditions (symbolic)'";
   if (!marks.empty())
     gp << ", " << d << " index 2 using 1:2 with points pt 7 ps 1.2 lc rgb 'black' notitle, " << d
        << " index 2 using 1:2:3 with labels left offset 0.8,0.5 font ',10' notitle";
@@ -357,7 +363,7 @@ std::string map_figure_script(const Map& m, const std::vector<MapMark>& marks, c
      << "plot " << d << " index 1 using 1:2:3 with image notitle";
   if (contours) gp << ", $contours using 1:2 with lines lw 1 lc rgb '#FFFFFF' notitle";
   for (std::size_t c = 0; c < m.curves.size(); ++c)
-    if (m.curves[c].kind == numeric::MapCurve::Kind::Superball) gp << ", " << d << " index " << 3 + c << " using 1:2 with lines lw 3 lc rgb 'black' notitle";
+    if (m.curves[c].kind == numeric::MapCurve::Kind::Superball) gp << ", " << d << " index " << kFirstCurve + c << " using 1:2 with lines lw 3 lc rgb 'black' notitle";
   if (!marks.empty()) gp << ", " << d << " index 2 using 1:2 with points pt 7 ps 1.2 lc rgb 'white' notitle";
   gp << "\nunset multiplot\n";
   return gp.str();

@@ -143,4 +143,14 @@ TEST(MapCli, SummaryAndFigure) {
   for (const char* ext : {".png", ".svg", ".dat", ".gp"}) std::remove((prefix + ext).c_str());
 }
 
+TEST(MapCli, OverlayAgreesOnThePaperPlane) {
+  const RunResult r = run({"map", kPaper, "--x", "K.3-4=0:20:9", "--y", "alpha.2=-150:0:9", "--overlay"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_NE(r.out.find("overlay: the derived conditions of cases 2.2, 3.2, 3.3"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("): agree\n"), std::string::npos) << r.out;
+  // --out only with --overlay; an overlay needs keys the derivation's coordinates are affine in.
+  expect_bad_input(run({"map", kPaper, "--x", "K.3-4=0:20:3", "--y", "alpha.2=-100:0:3", "--out", "somewhere"}), {"--out", "--overlay"});
+  expect_bad_input(run({"map", kPaper, "--x", "K.3-4=0:20:3", "--y", "g=1:10:3", "--overlay"}), {"g: the derivation's coordinates"});
+}
+
 }  // namespace

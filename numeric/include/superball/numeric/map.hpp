@@ -67,7 +67,8 @@ struct MapPoint {
 /// Between a solved point and one where M is not positive semi-definite, the
 /// edge of the PSD cone is located the same way (M's positive
 /// semi-definiteness decided exactly at each midpoint); the side where M is
-/// not PSD has psd false and no region.
+/// not PSD has psd false and no region, the other the region of the exact
+/// solution at its end of the bracket.
 struct MapBoundary {
   bool along_x = true;
   int i = 0, j = 0;

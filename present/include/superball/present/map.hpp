@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "superball/numeric/map.hpp"
@@ -45,19 +46,22 @@ struct MapMark {
 };
 
 /// The figure's data, read by map_figure_script(): the case regions as RGB
-/// pixels, U₁⁺/a per point, each boundary curve, the marks.
-std::string map_figure_data(const numeric::Map& m, const std::vector<MapMark>& marks);
+/// pixels, U₁⁺/a per point, the marks, the points \p derived (zeros of the
+/// derived conditions, `--overlay`), each boundary curve.
+std::string map_figure_data(const numeric::Map& m, const std::vector<MapMark>& marks,
+                            const std::vector<std::pair<double, double>>& derived = {});
 
 /// The gnuplot script of the figure, two panels side by side: left the case
 /// regions in distinct colours (the superball part of each in its full
 /// colour, the rest pale; M not positive semi-definite in grey) with the
 /// exact boundary curves (superball edge thick black, case changes thin) and
 /// a legend naming the cases as the paper does; right U₁⁺/a in colour with
-/// its contour lines and the superball edge.  \p data is the data file's
+/// its contour lines and the superball edge; with \p derived, the zeros of
+/// the derived conditions as small red circles.  \p data is the data file's
 /// name, \p terminal gnuplot's terminal, \p output a quoted file name or ""
 /// for standard output.
-std::string map_figure_script(const numeric::Map& m, const std::vector<MapMark>& marks, const std::string& title, const std::string& data,
-                              const std::string& terminal, const std::string& output);
+std::string map_figure_script(const numeric::Map& m, const std::vector<MapMark>& marks, bool derived, const std::string& title,
+                              const std::string& data, const std::string& terminal, const std::string& output);
 
 /// The axis label of a parameter key for gnuplot's enhanced text: alpha.2 ->
 /// α_2, K.3-4 -> K_{34}, others as they are.
