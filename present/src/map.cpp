@@ -302,7 +302,6 @@ std::string map_figure_script(const Map& m, const std::vector<MapMark>& marks, b
   std::ostringstream gp;
   gp.precision(17);
   gp << "set terminal " << terminal << "\nset output " << output << '\n'
-     << "set datafile missing 'NaN'\n"
      << "set xrange [" << std::min(x0, x1) << ':' << std::max(x0, x1) << "] noextend\n"
      << "set yrange [" << std::min(y0, y1) << ':' << std::max(y0, y1) << "] noextend\n"
      << "set xlabel " << quoted(axis_label(m.x.parameter.key())) << "\nset ylabel " << quoted(axis_label(m.y.parameter.key())) << '\n'
