@@ -37,16 +37,11 @@ std::string where(const Axis& x, const cln::cl_RA& vx, const Axis& y, const cln:
   return x.parameter.key() + " = " + to_string(vx) + ", " + y.parameter.key() + " = " + to_string(vy);
 }
 
-/// The grid point (i, j) of a thread's own copy \p s of the scene, solved in
-/// the precision \p tag's type, or marked when M is not positive semi-definite.
+/// \p p filled from the solution \p sol of \p problem: its case, U₁⁺/|U₁⁻|
+/// and the superball verdict.
 template <class S>
-MapPoint solve_point(const Scene& s, const Precision& precision) {
+void solved(MapPoint& p, const Problem<S>& problem, const Solution<S>& sol) {
   using T = ScalarTraits<S>;
-  const ExactScene exact = ExactScene::from(s, ExactScene::MCheck::Caller);
-  MapPoint p;
-  if (!positive_semidefinite(exact)) return p;
-  const auto problem = Problem<S>::from(exact, precision.digits);
-  const auto sol = solve(problem);
   p.admissible = true;
   p.status = sol.status;
   p.region.closed = sol.closed;
@@ -55,6 +50,17 @@ MapPoint solve_point(const Scene& s, const Precision& precision) {
   p.region.superball = top_after > top_before;
   const double before = T::to_double(top_before);
   p.ratio = before == 0 ? std::numeric_limits<double>::quiet_NaN() : T::to_double(top_after) / before;
+}
+
+/// The grid point (i, j) of a thread's own copy \p s of the scene, solved in
+/// the precision \p tag's type, or marked when M is not positive semi-definite.
+template <class S>
+MapPoint solve_point(const Scene& s, const Precision& precision) {
+  const ExactScene exact = ExactScene::from(s, ExactScene::MCheck::Caller);
+  MapPoint p;
+  if (!positive_semidefinite(exact)) return p;
+  const auto problem = Problem<S>::from(exact, precision.digits);
+  solved(p, problem, solve(problem));
   return p;
 }
 
@@ -159,6 +165,103 @@ MapBoundary psd_edge(Scene& line, const Parameter& parameter, cln::cl_RA a, cln:
 
 }  // namespace
 
+namespace detail {
+
+std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b) {
+  const ExactScene p = ExactScene::from(a, ExactScene::MCheck::Caller), q = ExactScene::from(b, ExactScene::MCheck::Caller);
+  if (p.n != q.n || p.fixed_bottom != q.fixed_bottom || p.mass != q.mass || p.fall != q.fall || p.velocity != q.velocity ||
+      p.a_squared != q.a_squared || p.entries.size() != q.entries.size())
+    return std::nullopt;
+  std::optional<std::size_t> changed;
+  for (std::size_t k = 0; k < p.entries.size(); ++k) {
+    const auto &e = p.entries[k], &f = q.entries[k];
+    if (e.i != f.i || e.j != f.j || e.k != f.k || e.l != f.l) return std::nullopt;
+    if (e.value == f.value) continue;
+    if (changed) return std::nullopt;
+    changed = k;
+  }
+  return changed;
+}
+
+std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work, Eigen::LLT<Eigen::MatrixXd>& llt) {
+  const double tau = map_psd_margin * M.norm();
+  if (!std::isfinite(tau)) return std::nullopt;
+  work = M;
+  work.diagonal().array() -= tau;
+  if (llt.compute(work).info() == Eigen::Success) return true;
+  work = M;
+  work.diagonal().array() += tau;
+  if (llt.compute(work).info() != Eigen::Success) return false;
+  return std::nullopt;
+}
+
+template <class S>
+std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::size_t ky, const Axis& x, const Axis& y,
+                                   const MapSettings& settings) {
+  using T = ScalarTraits<S>;
+  const int digits = settings.precision.digits;
+  // The grid values as text (for the exact fallback) and in S, made on the calling thread.
+  const std::vector<std::string> tx = texts(x), ty = texts(y);
+  std::vector<S> sx, sy;
+  std::vector<char> zx, zy;  // the exact value is 0
+  for (const auto& v : x.values()) sx.push_back(T::from(v, digits)), zx.push_back(cln::zerop(v));
+  for (const auto& v : y.values()) sy.push_back(T::from(v, digits)), zy.push_back(cln::zerop(v));
+  // A value S holds as Problem::from() requires: finite, and not rounded to zero or a subnormal number.
+  auto held = [](const S& v, bool zero) { return std::isfinite(v) && (zero || std::fabs(v) >= std::numeric_limits<S>::min()); };
+  struct State {
+    ExactScene exact;    ///< the corner's, its two entries set at each exact fallback
+    Problem<S> problem;  ///< the corner's, its two entries set at each point
+    bool in_range = true;  ///< Problem::from()'s verdict on everything but the two entries
+    std::vector<std::pair<int, int>> at;  ///< entry k of M at (row, column) of the matrix on its pairs
+    Eigen::MatrixXd M, work;
+    Eigen::LLT<Eigen::MatrixXd> llt;
+  };
+  auto make_state = [&] {
+    State st{ExactScene::from(corner, ExactScene::MCheck::Caller), {}, true, {}, {}, {}, {}};
+    ExactScene ones = st.exact;
+    ones.entries[kx].value = ones.entries[ky].value = 1;
+    st.in_range = Problem<S>::from(ones, digits).in_range;
+    st.problem = Problem<S>::from(st.exact, digits);
+    std::vector<std::pair<int, int>> pairs;
+    for (const auto& e : st.exact.entries) pairs.push_back({e.i, e.j}), pairs.push_back({e.k, e.l});
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    auto index = [&](int i, int j) { return static_cast<int>(std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(i, j)) - pairs.begin()); };
+    for (const auto& e : st.exact.entries) st.at.push_back({index(e.i, e.j), index(e.k, e.l)});
+    const auto size = static_cast<Eigen::Index>(pairs.size());
+    st.M = Eigen::MatrixXd::Zero(size, size);
+    st.work.resize(size, size);
+    return st;
+  };
+  const std::size_t nx = tx.size();
+  return parallel_map(nx * ty.size(), settings.threads, make_state, [&](State& st, std::size_t k) {
+    const std::size_t i = k % nx, j = k / nx;
+    Problem<S>& p = st.problem;
+    p.entries[kx].value = sx[i];
+    p.entries[ky].value = sy[j];
+    p.in_range = st.in_range && held(sx[i], zx[i]) && held(sy[j], zy[j]);
+    for (std::size_t e = 0; e < p.entries.size(); ++e) {
+      const auto [r, c] = st.at[e];
+      st.M(r, c) = st.M(c, r) = static_cast<double>(p.entries[e].value);
+    }
+    std::optional<bool> psd = psd_by_floating_point(st.M, st.work, st.llt);
+    if (!psd) {  // too close to the edge of the cone for floating point: exactly
+      st.exact.entries[kx].value = parse_rational(tx[i]);
+      st.exact.entries[ky].value = parse_rational(ty[j]);
+      psd = positive_semidefinite(st.exact);
+    }
+    MapPoint point;
+    if (*psd) solved(point, p, solve(p));
+    return point;
+  });
+}
+
+template std::vector<MapPoint> entry_points<double>(const Scene&, std::size_t, std::size_t, const Axis&, const Axis&, const MapSettings&);
+template std::vector<MapPoint> entry_points<long double>(const Scene&, std::size_t, std::size_t, const Axis&, const Axis&,
+                                                         const MapSettings&);
+
+}  // namespace detail
+
 void check_map(const Scene& scene, const Axis& x, const Axis& y) {
   if (x.parameter.key() == y.parameter.key())
     throw std::invalid_argument("map(): " + x.parameter.key() + " is on both axes; a map needs two different parameters");
@@ -191,11 +294,20 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   Map m{x, y, {}, {}, {}};
   const std::vector<std::string> tx = texts(x), ty = texts(y);
   const std::size_t nx = tx.size(), count = nx * ty.size();
-  m.points = parallel_map(count, settings.threads, [&scene] { return scene; }, [&](Scene& s, std::size_t k) {
-    x.parameter.assign(s, Number::parse(tx[k % nx]));
-    y.parameter.assign(s, Number::parse(ty[k / nx]));
-    return with_scalar(settings.precision, [&](auto tag) { return solve_point<decltype(tag)>(s, settings.precision); });
-  });
+  // Two entries of M on the axes, in double or long double: only they change over the grid.
+  const Scene corner = with_value(with_value(scene, x.parameter, x.from), y.parameter, y.from);
+  const auto kx = detail::entry_changed(corner, with_value(corner, x.parameter, x.to));
+  const auto ky = detail::entry_changed(corner, with_value(corner, y.parameter, y.to));
+  if (kx && ky && settings.precision.kind == Precision::Kind::Double)
+    m.points = detail::entry_points<double>(corner, *kx, *ky, x, y, settings);
+  else if (kx && ky && settings.precision.kind == Precision::Kind::LongDouble)
+    m.points = detail::entry_points<long double>(corner, *kx, *ky, x, y, settings);
+  else
+    m.points = parallel_map(count, settings.threads, [&scene] { return scene; }, [&](Scene& s, std::size_t k) {
+      x.parameter.assign(s, Number::parse(tx[k % nx]));
+      y.parameter.assign(s, Number::parse(ty[k / nx]));
+      return with_scalar(settings.precision, [&](auto tag) { return solve_point<decltype(tag)>(s, settings.precision); });
+    });
   if (std::none_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return p.admissible; }))
     throw InputError(scene.origin + ": M is not positive semi-definite at any point of the map (" + x.parameter.key() + " from " +
                      to_string(x.from) + " to " + to_string(x.to) + ", " + y.parameter.key() + " from " + to_string(y.from) + " to " +

@@ -52,10 +52,10 @@ numeric::Map paper_map(const Scene& scene, int threads, int nx = 13, int ny = 11
   return numeric::map(scene, axis(scene, "K.3-4", 0, 20, nx), axis(scene, "alpha.2", -150, 0, ny), settings);
 }
 
-TEST(Map, EachPointIsTheSolveOfItsSceneOrHasMNotPsd) {
-  const Scene scene = load_scene(kPaper);
-  const numeric::Map m = paper_map(scene, 2);
-  ASSERT_EQ(m.points.size(), 13u * 11u);
+/// Each point of \p m is the solve of its scene from scratch (Parameter::set(),
+/// ExactScene::from(), Problem<double>::from(), solve()), bit for bit, or M is
+/// not positive semi-definite there; returns (solved, marked).
+std::pair<int, int> expect_points_are_solves(const Scene& scene, const numeric::Map& m) {
   int solved = 0, marked = 0;
   for (int j = 0; j < m.y.steps; ++j)
     for (int i = 0; i < m.x.steps; ++i) {
@@ -81,8 +81,52 @@ TEST(Map, EachPointIsTheSolveOfItsSceneOrHasMNotPsd) {
       EXPECT_EQ(p.ratio, sol.velocities_after[0] / before);  // bit for bit
       EXPECT_EQ(p.region.superball, sol.velocities_after[0] > before);
     }
+  return {solved, marked};
+}
+
+TEST(Map, EachPointIsTheSolveOfItsSceneOrHasMNotPsd) {
+  // Two entries of M on the axes: each thread sets only them (detail::entry_points()).
+  const Scene scene = load_scene(kPaper);
+  const numeric::Map m = paper_map(scene, 2);
+  ASSERT_EQ(m.points.size(), 13u * 11u);
+  const auto [solved, marked] = expect_points_are_solves(scene, m);
   EXPECT_GT(solved, 0);
   EXPECT_GT(marked, 0);  // the grid crosses the edge of the PSD cone (α₂ ≈ −102.5)
+}
+
+TEST(Map, PointsOnTheEdgeOfTheConeAreDecidedExactly) {
+  // K₁₂ K₁₄ = α₂² at (K₁₂, α₂) = (15, −150) with K₁₄ = 1500: M is singular there, PSD; floating
+  // point cannot tell, the exact fallback does.  Beside it, K₁₂ = 14 is outside the cone.
+  const Scene scene = load_scene(kPaper);
+  numeric::MapSettings settings;
+  settings.threads = 2;
+  const numeric::Map m = numeric::map(scene, axis(scene, "K.1-2", 0, 30, 31), axis(scene, "alpha.2", -150, 0, 4), settings);
+  EXPECT_TRUE(m.at(15, 0).admissible);
+  EXPECT_FALSE(m.at(14, 0).admissible);
+  expect_points_are_solves(scene, m);
+}
+
+TEST(Map, AxesOtherThanEntriesOfMSolveEachSceneFromScratch) {
+  // A mass on an axis: each point's scene is converted on its own.
+  const Scene scene = load_scene(kPaper);
+  numeric::MapSettings settings;
+  settings.threads = 2;
+  const numeric::Map m = numeric::map(scene, axis(scene, "mass.2", 5, 20, 7), axis(scene, "alpha.2", -110, 0, 6), settings);
+  const auto [solved, marked] = expect_points_are_solves(scene, m);
+  EXPECT_GT(solved, 0);
+  EXPECT_GT(marked, 0);
+}
+
+TEST(Map, TheFloatingPointFilterOfPsdDecidesOnlyClearCases) {
+  Eigen::MatrixXd work;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  Eigen::MatrixXd M(2, 2);
+  M << 7, -100, -100, 1500;  // det 500 > 0: inside the cone
+  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work, llt), std::optional<bool>(true));
+  M << 7, -110, -110, 1500;  // det −1600 < 0: outside
+  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work, llt), std::optional<bool>(false));
+  M << 15, -150, -150, 1500;  // det 0: on the edge, left to exact arithmetic
+  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work, llt), std::nullopt);
 }
 
 TEST(Map, EachBoundaryBracketHoldsTwoRegionsAtItsEnds) {

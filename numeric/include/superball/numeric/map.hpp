@@ -6,7 +6,11 @@
 
 #include <cln/rational.h>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -141,6 +145,41 @@ void check_map(const Scene& scene, const Axis& x, const Axis& y);
 /// from the scene on its own and the bisections are independent, so the map
 /// does not depend on settings.threads, bit for bit.
 Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings = {});
+
+/// The margin of the floating-point filter of M's positive
+/// semi-definiteness at a map point (detail::psd_by_floating_point()),
+/// relative to M's Frobenius norm: far above the rounding of the entries and
+/// of a Cholesky factorization (about n·u·‖M‖ for n pairs), so the filter
+/// decides only points at least that far inside or outside the cone.
+inline constexpr double map_psd_margin = 1e-9;
+
+namespace detail {
+
+/// The index of the one entry of M in which the scenes \p a and \p b differ
+/// (as ExactScene, M unchecked), nullopt when they differ in anything else
+/// or in more than one entry: the axis of a map that varies that entry only.
+std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b);
+
+/// M's positive semi-definiteness from floating point when it is clear:
+/// with τ = map_psd_margin·‖M‖_F, a Cholesky factorization of M − τI that
+/// succeeds proves λ_min(M) >= τ − (its backward error) > 0 (true); one of
+/// M + τI that fails proves λ_min(M) < −τ + (its backward error) < 0
+/// (false); otherwise nullopt, to be decided exactly.  \p work and \p llt
+/// are reused storage.
+std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work, Eigen::LLT<Eigen::MatrixXd>& llt);
+
+/// The grid points of a map whose axes vary the entries \p kx and \p ky of
+/// M of \p corner (the scene at (x_0, y_0)) in S (double or long double):
+/// each thread converts the corner once and then sets only the two entries
+/// at each point, in S for the solve and, when psd_by_floating_point() does
+/// not decide, exactly for positive_semidefinite().  The problem solved is
+/// Problem<S>::from() of the point's scene, bit for bit, so the points are
+/// those of solving each scene from scratch.
+template <class S>
+std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::size_t ky, const Axis& x, const Axis& y,
+                                   const MapSettings& settings);
+
+}  // namespace detail
 
 /// The point of a boundary in the plane, in double: the middle of its bracket
 /// on the varying axis, the grid value on the other.
