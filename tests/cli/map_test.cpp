@@ -7,6 +7,8 @@
 
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include <sstream>
 #include <string>
 #include <vector>
@@ -151,6 +153,25 @@ TEST(MapCli, OverlayAgreesOnThePaperPlane) {
   // --out only with --overlay; an overlay needs keys the derivation's coordinates are affine in.
   expect_bad_input(run({"map", kPaper, "--x", "K.3-4=0:20:3", "--y", "alpha.2=-100:0:3", "--out", "somewhere"}), {"--out", "--overlay"});
   expect_bad_input(run({"map", kPaper, "--x", "K.3-4=0:20:3", "--y", "g=1:10:3", "--overlay"}), {"g: the derivation's coordinates"});
+}
+
+TEST(MapCli, JsonHasTheGridTheBoundariesTheCurvesAndTheOverlay) {
+  const RunResult r = run({"map", kPaper, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-150:0:4", "--json", "--overlay"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["x"]["key"], "K.3-4");
+  EXPECT_EQ(j["y"]["steps"], 4);
+  ASSERT_EQ(j["points"].size(), 20u);
+  EXPECT_FALSE(j["points"][0]["psd"].get<bool>());  // α₂ = −150
+  EXPECT_TRUE(j["points"][5]["psd"].get<bool>());   // α₂ = −100
+  ASSERT_FALSE(j["boundaries"].empty());
+  for (const auto& b : j["boundaries"]) {
+    EXPECT_GT(b["bracket_width"].get<double>(), 0);
+    EXPECT_NE(b["below"], b["above"]);
+  }
+  ASSERT_FALSE(j["curves"].empty());
+  for (const auto& c : j["curves"]) EXPECT_EQ(c["points"].size(), c["boundaries"].size());
+  EXPECT_TRUE(j["overlay"]["agrees"].get<bool>());
 }
 
 }  // namespace
