@@ -56,6 +56,23 @@ TEST(Overlay, TheDerivedBoundariesOfTheAlpha2Alpha5PlaneAreTheExactOnes) {
   expect_agreement(scene, map_of(scene, "alpha.2", -200, 100, "alpha.5", -10, 10, 13));
 }
 
+TEST(Overlay, TheSceneOfABoundaryPointIsAtTheMiddleOfItsBracket) {
+  // What --out writes for a disagreement: the scene at the boundary point, the other parameter at its grid value.
+  const Scene scene = load_scene(kScenes + "paper-4.4-alpha2.toml");
+  const numeric::Map m = map_of(scene, "K.3-4", 0, 20, "alpha.2", -150, 0, 5);
+  const Overlay o = overlay(scene, m);
+  ASSERT_FALSE(o.matches.empty());
+  for (const OverlayMatch& match : o.matches) {
+    const numeric::MapBoundary& b = m.boundaries[match.boundary];
+    const Scene at = o.scene_at(scene, m, match);
+    const cln::cl_RA mid = (b.low + b.high) / 2;
+    const cln::cl_RA x = b.along_x ? mid : m.x.values()[static_cast<std::size_t>(b.i)];
+    const cln::cl_RA y = b.along_x ? m.y.values()[static_cast<std::size_t>(b.j)] : mid;
+    const Scene expected = numeric::with_value(numeric::with_value(scene, m.x.parameter, x), m.y.parameter, y);
+    EXPECT_EQ(write_scene(at), write_scene(expected));
+  }
+}
+
 TEST(Overlay, KeysTheDerivationCannotFollowAreRefused) {
   const Scene scene = load_scene(kScenes + "paper-4.4-alpha2.toml");
   const numeric::Map m = map_of(scene, "K.3-4", 0, 20, "g", 1, 10, 3);
