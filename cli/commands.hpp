@@ -23,6 +23,7 @@ using Action = std::function<int()>;
 
 void add_solve(CLI::App& app, Action& action);
 void add_sweep(CLI::App& app, Action& action);
+void add_map(CLI::App& app, Action& action);
 void add_reproduce(CLI::App& app, Action& action);
 void add_derive(CLI::App& app, Action& action);
 void add_audit(CLI::App& app, Action& action);

@@ -65,9 +65,10 @@ std::string read_all(int fd) {
   return text;
 }
 
-/// Run gnuplot on \p gp and write the figure it prints on its standard
-/// output into \p path through Output (gnuplot never opens the figure file).
-void run_gnuplot(const std::string& gp, const std::string& path) {
+}  // namespace
+
+// gnuplot never opens the figure file: it prints the figure, which is written through Output.
+void render(const std::string& gp, const std::string& path) {
   int in[2], out[2], err[2];
   if (::pipe2(in, O_CLOEXEC) != 0 || ::pipe2(out, O_CLOEXEC) != 0 || ::pipe2(err, O_CLOEXEC) != 0)
     throw OutputError(path + ": cannot run gnuplot: " + std::strerror(errno));
@@ -108,8 +109,6 @@ void run_gnuplot(const std::string& gp, const std::string& path) {
   write_output(path, figure);
 }
 
-}  // namespace
-
 void draw(const std::string& dir, const std::string& stem, const Plot& p) {
   std::ostringstream dat;
   dat.precision(17);
@@ -123,8 +122,8 @@ void draw(const std::string& dir, const std::string& stem, const Plot& p) {
   const std::string png = "pngcairo size 900,560 font 'DejaVu Sans,11'", svg = "svg size 900,560 dynamic font 'DejaVu Sans,11'";
   // The script beside the figures redraws both by hand (`cd DIR && gnuplot STEM.gp`).
   write_output(base + ".gp", script(stem + ".dat", p, png, quoted(stem + ".png")) + script(stem + ".dat", p, svg, quoted(stem + ".svg")));
-  run_gnuplot(script(base + ".dat", p, png, ""), base + ".png");
-  run_gnuplot(script(base + ".dat", p, svg, ""), base + ".svg");
+  render(script(base + ".dat", p, png, ""), base + ".png");
+  render(script(base + ".dat", p, svg, ""), base + ".svg");
 }
 
 }  // namespace superball::cli

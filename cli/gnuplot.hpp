@@ -39,4 +39,10 @@ struct Plot {
 /// is missing or fails, or a file cannot be written.
 void draw(const std::string& dir, const std::string& stem, const Plot& plot);
 
+/// Run gnuplot on the script \p gp, which draws one figure on its standard
+/// output (`set output` without a name), and write that figure to \p path
+/// through Output.  Throws OutputError("PATH: ...") when gnuplot is missing
+/// or fails.
+void render(const std::string& gp, const std::string& path);
+
 }  // namespace superball::cli

@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
       "  superball solve cases/scenes/paper-4.4-alpha2.toml            velocities after the collision\n"
       "  superball solve SCENE --precision exact --json                exact fractions, for programs\n"
       "  superball sweep SCENE --vary K.3-4=0:20:401 --switch-points   where the evolution case changes\n"
+      "  superball map SCENE --x K.3-4=0:20:81 --y alpha.2=-110:0:111 --plot m\n"
+      "                                                                cases and superball over a plane\n"
       "  superball derive --case 1 --alphas 2                          conditions of a case, symbolically\n"
       "  superball audit                                               the paper's printed conditions, checked\n"
       "  superball verify --case 1 --alphas 2                          a case's conditions against exact solutions\n"
@@ -40,6 +42,7 @@ int main(int argc, char** argv) {
   Action action;
   add_solve(app, action);
   add_sweep(app, action);
+  add_map(app, action);
   add_reproduce(app, action);
   add_derive(app, action);
   add_audit(app, action);

@@ -8,21 +8,25 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <sstream>
 
 #include "commands.hpp"
 #include "document.hpp"
 #include "gnuplot.hpp"
+#include "map.hpp"
 #include "present.hpp"
 #include "superball/cases/printed.hpp"
 #include "superball/cases/printed_conditions.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/map.hpp"
 #include "superball/numeric/sweep.hpp"
 #include "superball/symbolic/derivation.hpp"
 #include "superball/verify/audit.hpp"
 #include "superball/verify/explore.hpp"
+#include "superball/verify/overlay.hpp"
 #include "superball/verify/verification.hpp"
 
 #ifndef SUPERBALL_SCENES_DIR
@@ -239,6 +243,101 @@ void fig7(const Run& run, Document& doc) {
   doc.figure("fig7-alpha2", "U1+, U2+, U3+ against K34 with alpha_2 = -100 (the reading that reproduces eq. 16); solid lines: "
                             "computed switch points, dashed: the paper's values.");
   doc.figure("fig7-as-printed", "The same with alpha_4 = -100 as printed: balls 2 and 3 never stay together for K34 <= 20.");
+}
+
+/// One map of the report: computed, overlaid with the derived conditions,
+/// drawn into OUT/STEM with the points \p marks gives for it, and summed up
+/// in a table row per case and notes on the boundaries and the overlay.
+void report_map(const Run& run, const Scene& scene, const std::string& stem, const std::string& title, const numeric::Axis& x,
+                     const numeric::Axis& y, const std::function<std::vector<present::MapMark>(const numeric::Map&)>& marks, Document& doc) {
+  numeric::MapSettings settings;
+  settings.threads = run.threads;
+  struct {
+    numeric::Map map;
+    verify::Overlay overlay;
+  } r{numeric::map(scene, x, y, settings), {}};
+  r.overlay = verify::overlay(scene, r.map);
+  std::vector<std::pair<double, double>> derived;
+  for (const verify::DerivedZero& z : r.overlay.zeros)
+    if (z.at_case) derived.push_back(numeric::position(r.map, {z.along_x, z.i, z.j, z.low, z.high, {}, {}, true, true}));
+  draw_map(run.out + "/" + stem, r.map, title, marks(r.map), derived);
+  const Vocabulary& v = Vocabulary::paper();
+  std::size_t solved = 0;
+  for (const auto& p : r.map.points) solved += p.admissible;
+  std::vector<std::vector<Cell>> rows;
+  std::vector<ContactSet> cases;
+  for (const auto& p : r.map.points)
+    if (p.admissible && std::find(cases.begin(), cases.end(), p.region.closed) == cases.end()) cases.push_back(p.region.closed);
+  std::sort(cases.begin(), cases.end(), [&](const ContactSet& a, const ContactSet& b) { return v.case_name(a) < v.case_name(b); });
+  for (const ContactSet& c : cases) {
+    std::size_t in = 0, sb = 0;
+    for (const auto& p : r.map.points)
+      if (p.admissible && p.region.closed == c) ++in, sb += p.region.superball;
+    rows.push_back({"case " + v.case_name(c), fixed(100.0 * static_cast<double>(in) / static_cast<double>(solved), 1) + " %",
+                    fixed(100.0 * static_cast<double>(sb) / static_cast<double>(solved), 1) + " %"});
+  }
+  doc.table({"case", "share of the solved points", "of which superball"}, rows);
+  double widest = 0;
+  for (const auto& b : r.map.boundaries) widest = std::max(widest, cln::double_approx(b.high - b.low));
+  doc.bullets({std::to_string(r.map.points.size()) + " grid points (" + std::to_string(x.steps) + " x " + std::to_string(y.steps) +
+                   ", double), " + std::to_string(r.map.points.size() - solved) + " of them with M not positive semi-definite (not solved).",
+               std::to_string(r.map.boundaries.size()) + " boundary points located by bisection on the exact solution (widest bracket " +
+                   decimal(widest, 3) + "), on " + std::to_string(r.map.curves.size()) + " curves.",
+               "Overlay: " + std::to_string(r.overlay.conditions) + " derived conditions of the cases present, " +
+                   std::to_string(r.overlay.zeros.size()) + " zeros on the grid lines; every exact boundary point within the brackets' widths of a "
+                   "derived zero: " + (r.overlay.agrees() ? "yes" : "**no**") + " (largest distance " + decimal(r.overlay.largest_distance, 3) +
+                   " of the grid step, allowed " + decimal(r.overlay.largest_allowed, 3) + ")."});
+}
+
+/// The superball edge's points on the grid line \p fixed = \p value (Fig. 5's and Fig. 7's cuts), as marks.
+std::vector<present::MapMark> edge_on_line(const numeric::Map& m, bool along_x, int index, const std::string& label) {
+  std::vector<present::MapMark> marks;
+  for (const auto& b : m.boundaries)
+    if (b.along_x == along_x && (along_x ? b.j : b.i) == index && b.below_psd && b.above_psd && b.below.superball != b.above.superball) {
+      const auto [x, y] = numeric::position(m, b);
+      marks.push_back({x, y, label});
+    }
+  return marks;
+}
+
+/// Two maps over two parameters (issue 15): (alpha_2, alpha_5) at the §4.3
+/// parameters, whose axes are Fig. 5's two cuts, and (K34, alpha_2) at the
+/// §4.4 parameters, whose line alpha_2 = -100 is Fig. 7's cut.
+void maps(const Run& run, Document& doc) {
+  const PrintedNumbers& printed = PrintedNumbers::paper();
+  doc.heading("Maps: the cases and the superball in a plane of two parameters");
+  doc.paragraph("`superball map SCENE --x KEY=FROM:TO:N --y KEY=FROM:TO:N --overlay --plot STEM`: each grid point solved in "
+                "double (case, U1+/a, superball), M positive semi-definite decided exactly (grey where it is not), every boundary "
+                "between neighbours of different case or verdict located by bisection on the exact solution and drawn as a curve, "
+                "and the zeros of the conditions derived symbolically for the cases present drawn as red circles.");
+  {
+    const Scene scene = run.scene("paper-fig5-alpha2.toml");
+    const numeric::Axis x{Parameter::parse("alpha.2", scene), -110, 110, 111}, y{Parameter::parse("alpha.5", scene), -150, 150, 101};
+    doc.paragraph("(alpha_2, alpha_5) at the parameters of §4.3 (`paper-fig5-alpha2.toml`, alpha_5 added): the two cuts of "
+                  "Fig. 5 are the axes alpha_5 = 0 and alpha_2 = 0; the black dots mark where they cross the superball edge "
+                  "(the thresholds of Fig. 5).");
+    // Row 50 of y is alpha_5 = 0; column 55 of x is alpha_2 = 0.
+    report_map(run, scene, "map-alpha2-alpha5", "alpha_2 and alpha_5 at the parameters of Sec. 4.3 (Fig. 5)", x, y,
+               [](const numeric::Map& m) {
+                 std::vector<present::MapMark> marks = edge_on_line(m, true, 50, "Fig. 5");
+                 for (auto& mark : edge_on_line(m, false, 55, "Fig. 5")) marks.push_back(mark);
+                 return marks;
+               },
+               doc);
+    doc.figure("map-alpha2-alpha5", "Cases and U1+/a over (alpha_2, alpha_5), Sec. 4.3 parameters; black curve: the superball "
+                                    "edge U1+ = a (exact); red circles: zeros of the derived conditions; dots: Fig. 5's thresholds.");
+  }
+  {
+    const Scene scene = run.scene("paper-4.4-alpha2.toml");
+    const numeric::Axis x{Parameter::parse("K.3-4", scene), 0, 20, 81}, y{Parameter::parse("alpha.2", scene), -110, 0, 111};
+    std::vector<present::MapMark> marks{{10, -100, "eq. (16)"}};
+    for (const auto& p : printed.switches) marks.push_back({p.value.approx(), -100, "paper: " + p.value.text});
+    doc.paragraph("(K34, alpha_2) at the parameters of §4.4 read with alpha_2 (`paper-4.4-alpha2.toml`): Fig. 7's cut is the "
+                  "line alpha_2 = -100; marked are eq. (16)'s point and the switch values the paper reads off Fig. 7.");
+    report_map(run, scene, "map-k34-alpha2", "K_{34} and alpha_2 at the parameters of Sec. 4.4 (Fig. 7)", x, y,
+               [&](const numeric::Map&) { return marks; }, doc);
+    doc.figure("map-k34-alpha2", "Cases and U1+/a over (K34, alpha_2), Sec. 4.4 parameters; Fig. 7 is the line alpha_2 = -100.");
+  }
 }
 
 /// §4.1: the epsilon family, exact, obstacle of infinite mass.
@@ -583,6 +682,7 @@ void add_reproduce(CLI::App& app, Action& action) {
       eq16(*o, doc);
       fig5(*o, doc);
       fig7(*o, doc);
+      maps(*o, doc);
       epsilon_family(*o, doc);
       verify::AuditOptions audit;
       audit.samples = o->samples;

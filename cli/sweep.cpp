@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "range.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/parallel.hpp"
@@ -10,50 +11,6 @@
 
 namespace superball::cli {
 namespace {
-
-struct Range {
-  Parameter parameter;
-  cln::cl_RA from, to;
-  int steps;
-};
-
-/// KEY=FROM:TO:STEPS, e.g. K.3-4=0:20:401.
-Range parse_vary(const std::string& text, const Scene& scene) {
-  const auto eq = text.find('=');
-  auto bad = [&](const std::string& why) -> std::invalid_argument {
-    return std::invalid_argument("--vary " + text + ": " + why + " (expected KEY=FROM:TO:STEPS, e.g. K.3-4=0:20:401)");
-  };
-  if (eq == std::string::npos) throw bad("no '='");
-  const std::string key = text.substr(0, eq), rest = text.substr(eq + 1);
-  const auto c1 = rest.find(':'), c2 = rest.find(':', c1 == std::string::npos ? c1 : c1 + 1);
-  if (c1 == std::string::npos || c2 == std::string::npos) throw bad("the range needs FROM:TO:STEPS");
-  Range r{[&] {
-            try {
-              return Parameter::parse(key, scene);
-            } catch (const std::invalid_argument& e) {
-              throw bad(without_function_prefix(e.what()));
-            }
-          }(),
-          0, 0, 0};
-  try {
-    r.from = numeric::parse_rational(Number::parse(rest.substr(0, c1)).fraction());
-    r.to = numeric::parse_rational(Number::parse(rest.substr(c1 + 1, c2 - c1 - 1)).fraction());
-  } catch (const std::invalid_argument& e) {
-    throw bad(without_function_prefix(e.what()));
-  }
-  const std::string steps = rest.substr(c2 + 1);
-  std::size_t used = 0;
-  long s = 0;
-  try {
-    s = std::stol(steps, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != steps.size() || s < 2 || s > 10000000) throw bad("STEPS must be a whole number from 2 to 10000000");
-  if (r.from == r.to) throw bad("FROM and TO are equal");
-  r.steps = static_cast<int>(s);
-  return r;
-}
 
 std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_decimal(x, digits); }
 
@@ -159,7 +116,7 @@ void add_sweep(CLI::App& app, Action& action) {
   cmd->callback([o, cmd, &action] {
     action = [o, cmd] {
       const Scene scene = load_scene(o->scene);
-      const Range r = parse_vary(o->vary, scene);
+      const Range r = parse_range("--vary", o->vary, scene, 10000000);
       if (o->switches && cmd->count("--precision") > 0)
         throw std::invalid_argument("sweep: --switch-points bisects on the exact solution; --precision does not apply to it");
       const auto precision = numeric::Precision::parse(o->precision);

@@ -115,7 +115,36 @@ std::optional<NegativeMinor> find_negative_minor(SymmetricRows M) {
   return std::nullopt;
 }
 
-ExactScene ExactScene::from(const Scene& scene) {
+namespace {
+
+/// The pairs that the entries of M involve, sorted, and M on them.
+struct PairMatrix {
+  std::vector<Pair> pairs;
+  SymmetricRows M;
+};
+PairMatrix pair_matrix(const std::vector<Entry<cln::cl_RA>>& entries) {
+  PairMatrix pm;
+  for (const Entry<cln::cl_RA>& e : entries)
+    for (const Pair& p : {Pair{e.i + 1, e.j + 1}, Pair{e.k + 1, e.l + 1}}) pm.pairs.push_back(p);
+  std::sort(pm.pairs.begin(), pm.pairs.end());
+  pm.pairs.erase(std::unique(pm.pairs.begin(), pm.pairs.end()), pm.pairs.end());
+  auto index = [&](const Pair& p) { return static_cast<int>(std::lower_bound(pm.pairs.begin(), pm.pairs.end(), p) - pm.pairs.begin()); };
+  pm.M.resize(pm.pairs.size());
+  for (const Entry<cln::cl_RA>& e : entries) {
+    const int a = index({e.i + 1, e.j + 1}), b = index({e.k + 1, e.l + 1});
+    pm.M[static_cast<std::size_t>(a)][b] = e.value;
+    pm.M[static_cast<std::size_t>(b)][a] = e.value;
+  }
+  return pm;
+}
+
+}  // namespace
+
+bool positive_semidefinite(const ExactScene& scene) { return !find_negative_minor(pair_matrix(scene.entries).M); }
+
+ExactScene ExactScene::from(const Scene& scene) { return from(scene, MCheck::PositiveSemidefinite); }
+
+ExactScene ExactScene::from(const Scene& scene, MCheck m) {
   ExactScene s;
   s.origin = scene.origin;
   s.n = scene.size();
@@ -145,29 +174,20 @@ ExactScene ExactScene::from(const Scene& scene) {
     }
   }
   // Declared entries of M and the pairs they involve.
-  std::vector<Pair> pairs;
   for (const MatrixEntry& e : scene.entries) {
-    for (const Pair& p : {e.first, e.second}) {
+    for (const Pair& p : {e.first, e.second})
       if (p.i < 1 || p.j > s.n || p.i >= p.j)
         throw InputError(scene.origin + ": dissipation: pair " + p.name() + " is outside bodies 1.." + std::to_string(s.n));
-      pairs.push_back(p);
-    }
     s.entries.push_back({e.first.i - 1, e.first.j - 1, e.second.i - 1, e.second.j - 1, exact(e.value)});
   }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  auto index = [&](const Pair& p) { return static_cast<int>(std::lower_bound(pairs.begin(), pairs.end(), p) - pairs.begin()); };
-  SymmetricRows M(pairs.size());
-  for (const Entry<cln::cl_RA>& e : s.entries) {
-    const int a = index({e.i + 1, e.j + 1}), b = index({e.k + 1, e.l + 1});
-    M[static_cast<std::size_t>(a)][b] = e.value;
-    M[static_cast<std::size_t>(b)][a] = e.value;
-  }
-  if (const auto minor = find_negative_minor(M)) {
-    std::string names;
-    for (int k : minor->indices) names += (names.empty() ? "" : ", ") + pairs[static_cast<std::size_t>(k)].name();
-    throw InputError(scene.origin + ": dissipation: M is not positive semi-definite: its principal minor on pairs (" + names +
-                     ") is " + text(minor->determinant) + " < 0");
+  if (m == MCheck::PositiveSemidefinite) {
+    const PairMatrix pm = pair_matrix(s.entries);
+    if (const auto minor = find_negative_minor(pm.M)) {
+      std::string names;
+      for (int k : minor->indices) names += (names.empty() ? "" : ", ") + pm.pairs[static_cast<std::size_t>(k)].name();
+      throw InputError(scene.origin + ": dissipation: M is not positive semi-definite: its principal minor on pairs (" + names +
+                       ") is " + text(minor->determinant) + " < 0");
+    }
   }
   check_contacts_close(s, scene.origin);
   // The dense solver's size limit, up front (solves_as_chain(): a banded

@@ -3,9 +3,13 @@
 #include <cln/rational_io.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "superball/cases/error.hpp"
+#include "superball/numeric/map.hpp"
 #include "superball/numeric/parallel.hpp"
 
 namespace superball::numeric {
@@ -129,9 +133,61 @@ void check_range(const Scene& scene, const Parameter& parameter, const cln::cl_R
   }
 }
 
+namespace {
+
+/// sweep() of a parameter that is the entry \p entry of M of \p first (the
+/// scene at the first value), in S (double or long double): each thread
+/// converts \p first once and sets only that entry at each value.  The
+/// problem solved is Problem<S>::from() of the value's scene, so the points
+/// are those of converting each scene, bit for bit; M stays positive
+/// semi-definite between the checked ends (check_range()).
+template <class S>
+std::vector<SweepPoint> entry_sweep(const Scene& first, std::size_t entry, const std::vector<cln::cl_RA>& values,
+                                    const Precision& precision, int threads) {
+  using T = ScalarTraits<S>;
+  std::vector<S> converted;
+  std::vector<char> zero;
+  for (const auto& v : values) converted.push_back(T::from(v, precision.digits)), zero.push_back(cln::zerop(v));
+  // As Problem::from(): finite, and a nonzero value not rounded to zero or a subnormal number.
+  auto held = [](const S& v, bool is_zero) { return std::isfinite(v) && (is_zero || std::fabs(v) >= std::numeric_limits<S>::min()); };
+  struct State {
+    Problem<S> problem;
+    bool in_range = true;  ///< Problem::from()'s verdict on everything but the entry
+    double unit = 1;
+  };
+  auto make_state = [&] {
+    const ExactScene exact = ExactScene::from(first);
+    ExactScene one = exact;
+    one.entries[entry].value = 1;
+    State st{Problem<S>::from(exact, precision.digits), Problem<S>::from(one, precision.digits).in_range, 1};
+    st.unit = st.problem.unit_exact ? T::to_double(st.problem.unit) : std::sqrt(cln::double_approx(exact.unit_squared()));
+    return st;
+  };
+  auto points = parallel_map(values.size(), threads, make_state, [&](State& st, std::size_t k) {
+    st.problem.entries[entry].value = converted[k];
+    st.problem.in_range = st.in_range && held(converted[k], zero[k]);
+    const auto sol = solve(st.problem);
+    SweepPoint p{0, {}, sol.closed, sol.status};
+    for (const auto& w : sol.velocities_after) p.velocities_after.push_back(T::to_double(w) * st.unit);
+    return p;
+  });
+  // The values, copied on the calling thread (the workers never touch the caller's CLN objects).
+  for (std::size_t k = 0; k < points.size(); ++k) points[k].value = values[k];
+  return points;
+}
+
+}  // namespace
+
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads) {
   check_values(scene, parameter, values);
+  if (values.size() > 1 && (precision.kind == Precision::Kind::Double || precision.kind == Precision::Kind::LongDouble)) {
+    const Scene first = with_value(scene, parameter, values.front());
+    const auto other = std::find_if(values.begin(), values.end(), [&](const cln::cl_RA& v) { return v != values.front(); });
+    const auto entry = other == values.end() ? std::nullopt : detail::entry_changed(first, with_value(scene, parameter, *other));
+    if (entry && precision.kind == Precision::Kind::Double) return entry_sweep<double>(first, *entry, values, precision, threads);
+    if (entry) return entry_sweep<long double>(first, *entry, values, precision, threads);
+  }
   const std::vector<std::string> texts = as_text(values);
   return parallel_map(values.size(), threads, [&scene] { return scene; }, [&](Scene& s, std::size_t k) {
     const auto exact = ExactScene::from(set_value(s, parameter, texts[k]));

@@ -77,7 +77,8 @@ TEST(Reproduce, QuickReportIsCompleteAndCompiles) {
   EXPECT_NE(r.out.find(md), std::string::npos) << "stdout shows the report";
   for (const char* heading :
        {"\n## Eq. (16): velocities after the collision", "\n## Fig. 5: U1+ against alpha_2 and against alpha_5",
-        "\n## Fig. 7: where the evolution case changes along K34", "\n## The epsilon family of §4.1",
+        "\n## Fig. 7: where the evolution case changes along K34", "\n## Maps: the cases and the superball in a plane of two parameters",
+        "\n## The epsilon family of §4.1",
         "\n## The printed conditions of §4.1–§4.3 against the derivation", "\n### §4.1, case 1, coupling α₂",
         "\n### §4.2, case 2.1, coupling α₁, α₆", "\n### §4.3, case 3.2, coupling α₅", "\n### The claims in words",
         "\n## The derived conditions against exact solutions, and the alpha-patterns", "\n### Case 1, coupling alpha_2",
@@ -103,7 +104,12 @@ TEST(Reproduce, QuickReportIsCompleteAndCompiles) {
     EXPECT_TRUE(fs::is_regular_file(out + "/" + (*it)[1].str())) << (*it)[1];
   for (std::sregex_iterator it(md.begin(), md.end(), svg), end; it != end; ++it)
     EXPECT_TRUE(fs::is_regular_file(out + "/" + (*it)[1].str())) << (*it)[1];
-  EXPECT_EQ(figures, 4);
+  EXPECT_EQ(figures, 6);
+
+  // The two maps: every exact boundary point lies on a zero of a derived condition.
+  std::size_t overlaid = 0;
+  for (std::size_t at = md.find("derived zero: yes"); at != std::string::npos; at = md.find("derived zero: yes", at + 1)) ++overlaid;
+  EXPECT_EQ(overlaid, 2u);
 
   // The section on the printed conditions is the audit at the same settings:
   // every derived condition, verdict and disagreeing point of `superball audit`.

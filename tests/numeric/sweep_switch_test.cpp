@@ -172,5 +172,38 @@ TEST(SweepRange, ChunksOfTheGridAreTheGrid) {
   EXPECT_THROW(numeric::linspace(0, 1, 11, -1, 2), std::invalid_argument);
 }
 
+/// Each point of a sweep is the solve of its value's scene converted on its
+/// own (Parameter::set(), ExactScene::from(), Problem<S>::from()), bit for bit.
+template <class S>
+void expect_sweep_is_solves(const Scene& scene, const std::string& key, const cl_RA& from, const cl_RA& to, const char* precision) {
+  SCOPED_TRACE(key + " in " + precision);
+  const Parameter p = Parameter::parse(key, scene);
+  const auto values = numeric::linspace(from, to, 9);
+  const auto points = numeric::sweep(scene, p, values, numeric::Precision::parse(precision), 2);
+  ASSERT_EQ(points.size(), values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const ExactScene exact = ExactScene::from(numeric::with_value(scene, p, values[k]));
+    const auto problem = Problem<S>::from(exact);
+    const auto sol = numeric::solve(problem);
+    const double unit = ScalarTraits<S>::to_double(problem.unit);
+    EXPECT_EQ(points[k].value, values[k]);
+    EXPECT_EQ(points[k].closed, sol.closed);
+    EXPECT_EQ(points[k].status, sol.status);
+    ASSERT_EQ(points[k].velocities_after.size(), sol.velocities_after.size());
+    for (std::size_t i = 0; i < sol.velocities_after.size(); ++i)
+      EXPECT_EQ(points[k].velocities_after[i], ScalarTraits<S>::to_double(sol.velocities_after[i]) * unit) << "value " << k << ", U" << i + 1;
+  }
+}
+
+TEST(SweepPoints, AreTheSolvesOfTheirScenesBitForBit) {
+  // Entries of M (each thread sets only the entry), an entry the scene leaves out, and a mass (each scene converted).
+  const Scene scene = load_scene(kPaper);
+  expect_sweep_is_solves<double>(scene, "K.3-4", 0, 20, "double");
+  expect_sweep_is_solves<long double>(scene, "K.3-4", 20, 0, "long-double");
+  expect_sweep_is_solves<double>(scene, "alpha.2", -100, 0, "double");
+  expect_sweep_is_solves<double>(scene, "alpha.5", -1, 1, "double");
+  expect_sweep_is_solves<double>(scene, "mass.2", 5, 20, "double");
+}
+
 }  // namespace
 }  // namespace superball::testing

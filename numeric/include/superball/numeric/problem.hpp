@@ -54,6 +54,14 @@ struct ExactScene {
   /// the reaction's dissipation P^reac·D_c(U⁻)/2 (paper §3) is then not
   /// guaranteed >= 0 and the solve could create kinetic energy.
   static ExactScene from(const Scene& scene);
+  /// What from() decides about M.
+  enum class MCheck {
+    PositiveSemidefinite,  ///< refuse a scene whose M is not positive semi-definite (InputError)
+    Caller                 ///< leave it to the caller (positive_semidefinite()), e.g. a map that marks such points
+  };
+  /// from(), with the positive semi-definiteness of M checked or not (\p m);
+  /// every other check is made.
+  static ExactScene from(const Scene& scene, MCheck m);
 
   /// Whether U⁻ = a·u with u = fall (every explicit velocity is 0).
   bool homogeneous() const;
@@ -163,6 +171,10 @@ struct NegativeMinor {
 using SymmetricRows = std::vector<std::map<int, cln::cl_RA>>;
 /// Sparse elimination in index order, O(m b²) for a matrix of bandwidth b.
 std::optional<NegativeMinor> find_negative_minor(SymmetricRows M);
+/// Whether the matrix M of \p scene (its declared entries, on the pairs they
+/// involve) is positive semi-definite, decided exactly: find_negative_minor()
+/// finds no negative principal minor.
+bool positive_semidefinite(const ExactScene& scene);
 
 extern template Scaling scaling_of(const Problem<double>&);
 extern template Scaling scaling_of(const Problem<long double>&);

@@ -53,7 +53,10 @@ struct SweepPoint {
 /// Solve \p scene at each of \p values of \p parameter in \p precision,
 /// on \p threads threads (0: all cores; parallel.hpp).  Each point is solved
 /// on its own from the scene, so the result does not depend on \p threads,
-/// bit for bit.  The smallest and largest of \p values pass check_range()
+/// bit for bit.  When \p parameter is an entry of M and the precision double
+/// or long double, each thread converts the scene once and sets only that
+/// entry per value: the same problem as converting the value's scene, bit
+/// for bit, at a fraction of the cost.  The smallest and largest of \p values pass check_range()
 /// first (throws InputError), so every value solved is admissible.
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads = 1);

@@ -1,0 +1,52 @@
+// The cost of a map point (issue 15), side by side with a solve and a sweep
+// point: the paper scene (§4.4, alpha_2 reading) over K34 in [0, 20] and
+// alpha_2 in [-100, 0] (M positive semi-definite throughout), double, one
+// thread, the grid points only (no boundaries).  items_per_second = points
+// (or solves) per second.
+#include <benchmark/benchmark.h>
+
+#include "superball/cases/scene_file.hpp"
+#include "superball/numeric/map.hpp"
+#include "superball/numeric/problem.hpp"
+#include "superball/numeric/sweep.hpp"
+
+namespace {
+
+using namespace superball;
+
+const Scene& paper_scene() {
+  static const Scene s = load_scene(SUPERBALL_SCENES_DIR "/paper-4.4-alpha2.toml");
+  return s;
+}
+
+/// The solve alone: the paper scene's Problem<double>, made once.
+void BM_Solve(benchmark::State& state) {
+  const auto problem = numeric::Problem<double>::from(numeric::ExactScene::from(paper_scene()));
+  for (auto _ : state) benchmark::DoNotOptimize(numeric::solve(problem));
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_Solve)->Name("solve/paper/double");
+
+/// A sweep of 16384 values of K34 on one thread (`superball sweep`'s points).
+void BM_SweepPoints(benchmark::State& state) {
+  const Parameter k34 = Parameter::parse("K.3-4", paper_scene());
+  const auto values = numeric::linspace(0, 20, 16384);
+  for (auto _ : state) benchmark::DoNotOptimize(numeric::sweep(paper_scene(), k34, values, numeric::Precision{}, 1));
+  state.SetItemsProcessed(state.iterations() * 16384);
+}
+BENCHMARK(BM_SweepPoints)->Name("sweep/paper/double/16384")->UseRealTime()->Unit(benchmark::kMillisecond);
+
+/// A 128 × 128 map of (K34, alpha_2) on one thread, grid points only.
+void BM_MapPoints(benchmark::State& state) {
+  const Scene& s = paper_scene();
+  const numeric::Axis x{Parameter::parse("K.3-4", s), 0, 20, 128}, y{Parameter::parse("alpha.2", s), -100, 0, 128};
+  numeric::MapSettings settings;
+  settings.boundaries = false;
+  for (auto _ : state) benchmark::DoNotOptimize(numeric::map(s, x, y, settings));
+  state.SetItemsProcessed(state.iterations() * 128 * 128);
+}
+BENCHMARK(BM_MapPoints)->Name("map/paper/double/128x128")->UseRealTime()->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

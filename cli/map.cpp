@@ -1,0 +1,168 @@
+#include "map.hpp"
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "commands.hpp"
+#include "gnuplot.hpp"
+#include "range.hpp"
+#include "superball/cases/scene_file.hpp"
+#include "superball/numeric/parallel.hpp"
+#include "superball/verify/overlay.hpp"
+
+namespace superball::cli {
+
+void draw_map(const std::string& prefix, const numeric::Map& m, const std::string& title, const std::vector<present::MapMark>& marks,
+              const std::vector<std::pair<double, double>>& derived) {
+  const std::string stem = prefix.substr(prefix.find_last_of('/') + 1);
+  const bool with_derived = !derived.empty();
+  write_output(prefix + ".dat", present::map_figure_data(m, marks, derived));
+  const std::string png = "pngcairo size 1500,760 font 'DejaVu Sans,11'", svg = "svg size 1500,760 dynamic font 'DejaVu Sans,11'";
+  // The script beside the figures redraws both by hand (`cd DIR && gnuplot STEM.gp`).
+  write_output(prefix + ".gp", present::map_figure_script(m, marks, with_derived, title, stem + ".dat", png, "'" + stem + ".png'") +
+                                   present::map_figure_script(m, marks, with_derived, title, stem + ".dat", svg, "'" + stem + ".svg'"));
+  render(present::map_figure_script(m, marks, with_derived, title, prefix + ".dat", png, ""), prefix + ".png");
+  render(present::map_figure_script(m, marks, with_derived, title, prefix + ".dat", svg, ""), prefix + ".svg");
+}
+
+namespace {
+
+/// The zeros of the derived conditions next to a point of their case (those
+/// that can bound its region), as points of the plane.
+std::vector<std::pair<double, double>> derived_points(const verify::Overlay& o, const numeric::Map& m) {
+  std::vector<std::pair<double, double>> points;
+  for (const verify::DerivedZero& z : o.zeros) {
+    if (!z.at_case) continue;
+    numeric::MapBoundary b;
+    b.along_x = z.along_x;
+    b.i = z.i;
+    b.j = z.j;
+    b.low = z.low;
+    b.high = z.high;
+    points.push_back(numeric::position(m, b));
+  }
+  return points;
+}
+
+}  // namespace
+
+void add_map(CLI::App& app, Action& action) {
+  struct Options {
+    std::string scene, x, y, precision = "double", plot, out;
+    bool csv = false, json = false, boundary_points = false, overlay = false;
+    int threads = numeric::thread_count(0);
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* cmd = app.add_subcommand("map", "Evolution cases and the superball over a grid of two parameters, with exact boundaries");
+  cmd->footer(
+      "--x and --y take KEY=FROM:TO:N as sweep --vary does (KEY: K.i-j, alpha.k (n = 4), coupling.i-j/k-l, mass.i,\n"
+      "velocity.i, drop_height, fall_speed, g; FROM, TO exact numbers or fractions; N from 2 to 10000 values per\n"
+      "axis, ends included).  Each grid point is solved in --precision: its evolution case, U1+/a (the top ball's\n"
+      "speed after over its speed before) and the superball verdict U1+ > a.  Where M is not positive\n"
+      "semi-definite (decided exactly) the collision law does not apply: the point is marked, not solved.\n"
+      "Between two neighbouring solved points (along x or along y) of different case or verdict, the boundary is\n"
+      "located by bisection on the exact solution (CLN rationals) to 2^-64 of the grid step, as sweep\n"
+      "--switch-points does, and so is the edge of M positive semi-definite; the boundary points are chained into\n"
+      "curves (one per pair of cases, the superball edge, the PSD edge).\n"
+      "Output: a summary (cases present with their share of the grid, the superball's share, the curves);\n"
+      "--csv: one row per grid point (KEYX, KEYY, psd, case, closed, U1_over_a, superball, status);\n"
+      "--boundary-points: the boundary points instead (with --csv as CSV: along, KEYX, KEYY, bracket_width, then\n"
+      "psd, case and verdict at each end of the bracket); --json: everything.  --plot PREFIX also draws\n"
+      "PREFIX.png and PREFIX.svg with gnuplot (PREFIX.dat and PREFIX.gp beside them redraw it): the case regions\n"
+      "in colour (the superball part full, the rest pale), the exact boundary curves, U1+/a with its contours.\n"
+      "--overlay derives the conditions of every case present (superball, each contact's opening, each\n"
+      "reaction's sign; symbolic, as derive --scene does), locates their zeros exactly on the grid lines and\n"
+      "checks that every boundary point lies within the two brackets' widths of a zero of a condition of a case\n"
+      "on its sides; it prints the largest distance, draws the zeros on the figure, and writes each\n"
+      "disagreement as a scene file into --out DIR (exit 1 when there is one).  It needs the keys among K,\n"
+      "alpha, coupling, mass, fall_speed and a rational fall speed.\n"
+      "A corner of the grid that a scene file could not hold (g <= 0, a mass <= 0, a contact opening before the\n"
+      "collision), the same KEY on both axes, or a grid where M is nowhere positive semi-definite is refused\n"
+      "before anything is written.  The output does not depend on --threads.\n\n"
+      "Examples:\n"
+      "  superball map cases/scenes/paper-fig5-alpha2.toml --x alpha.2=-200:100:121 --y alpha.5=-10:10:81\n"
+      "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:101 --y alpha.2=-150:0:101 --plot k34-alpha2\n"
+      "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:41 --y alpha.2=-150:0:41 --overlay\n"
+      "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:41 --y alpha.2=-150:0:41 --boundary-points --csv");
+  cmd->add_option("scene", o->scene, "Scene file (TOML)")->required();
+  cmd->add_option("--x", o->x, "KEY=FROM:TO:N, the horizontal axis")->required();
+  cmd->add_option("--y", o->y, "KEY=FROM:TO:N, the vertical axis")->required();
+  cmd->add_option("--precision,-p", o->precision, "Arithmetic of the grid points (see solve; boundaries are always exact)")
+      ->capture_default_str();
+  cmd->add_flag("--csv", o->csv, "Print CSV: one row per grid point (or per boundary point with --boundary-points)");
+  cmd->add_flag("--json", o->json, "Print JSON for programs: axes, points, boundary points, curves (and the overlay)");
+  cmd->add_flag("--boundary-points", o->boundary_points, "Print the boundary points instead of the grid (CSV with --csv)");
+  cmd->add_option("--plot", o->plot, "Also draw the map into PREFIX.png and PREFIX.svg (with PREFIX.dat, PREFIX.gp)")
+      ->check(non_empty());
+  cmd->add_flag("--overlay", o->overlay, "Derive each case's conditions and compare their zeros with the exact boundaries");
+  cmd->add_option("--out", o->out, "With --overlay: write each disagreeing boundary point as a scene file in this folder")
+      ->check(non_empty());
+  cmd->add_option("--threads,-j", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024))->capture_default_str();
+  cmd->callback([o, &action] {
+    action = [o] {
+      if (o->csv && o->json) throw std::invalid_argument("map: --csv and --json: choose one");
+      if (!o->out.empty() && !o->overlay) throw std::invalid_argument("map: --out writes the disagreements of --overlay; add --overlay");
+      if (!o->out.empty() && std::filesystem::exists(o->out) && !std::filesystem::is_directory(o->out))
+        throw OutputError("--out " + o->out + ": exists and is not a folder");
+      const Scene scene = load_scene(o->scene);
+      const Range rx = parse_range("--x", o->x, scene, numeric::map_max_steps);
+      const Range ry = parse_range("--y", o->y, scene, numeric::map_max_steps);
+      numeric::MapSettings settings;
+      settings.precision = numeric::Precision::parse(o->precision);
+      settings.threads = o->threads;
+      const numeric::Map m = numeric::map(scene, {rx.parameter, rx.from, rx.to, rx.steps}, {ry.parameter, ry.from, ry.to, ry.steps}, settings);
+      std::optional<verify::Overlay> overlay;
+      if (o->overlay) overlay = verify::overlay(scene, m, settings.bits);
+      const std::string precision = settings.precision.name();
+      std::string text;
+      if (o->json) {
+        auto j = present::map_json(m, scene, precision);
+        if (overlay) j["overlay"] = verify::to_json(*overlay, m);
+        text = j.dump(1) + "\n";
+      } else if (o->csv) {
+        text = o->boundary_points ? present::boundaries_csv(m) : present::map_csv(m);
+      } else {
+        text = present::map_summary(m, scene, precision);
+        if (overlay) text += verify::to_text(*overlay, m);
+        if (o->boundary_points) {
+          text += "boundary points (the middle of the bracket on the axis named, the grid value on the other):\n";
+          for (const auto& b : m.boundaries) {
+            const auto [x, y] = numeric::position(m, b);
+            auto side = [](bool psd, const numeric::Region& r) {
+              return psd ? "case " + present::case_name(r) + (r.superball ? " superball" : "") : std::string("M not PSD");
+            };
+            text += "  along " + (b.along_x ? rx.parameter.key() : ry.parameter.key()) + ": (" + numeric::to_string(x, 12) + ", " +
+                    numeric::to_string(y, 12) + ")  width " + numeric::to_string(cln::double_approx(b.high - b.low), 3) + "  " +
+                    side(b.below_psd, b.below) + " -> " + side(b.above_psd, b.above) + "\n";
+          }
+        }
+      }
+      int written = 0;
+      if (overlay && !o->out.empty())
+        for (const verify::OverlayMatch& match : overlay->matches) {
+          if (match.agrees()) continue;
+          if (written == 0) {
+            std::error_code error;
+            std::filesystem::create_directories(o->out, error);
+            if (error) throw OutputError("--out " + o->out + ": cannot create the folder: " + error.message());
+          }
+          const std::string n = std::to_string(++written);
+          const std::string path = (std::filesystem::path(o->out) / ("map-disagreement-" + std::string(n.size() < 4 ? 4 - n.size() : 0, '0') + n + ".toml")).string();
+          write_output(path, write_scene(overlay->scene_at(scene, m, match),
+                                         "superball map --overlay: a boundary point of the exact solutions with no derived zero within the\n"
+                                         "brackets' widths (see the summary); rerun: superball solve " + path + " --precision exact"));
+        }
+      if (!o->plot.empty())
+        draw_map(o->plot, m, scene.title.empty() ? scene.origin : scene.title, {}, overlay ? derived_points(*overlay, m) : std::vector<std::pair<double, double>>{});
+      if (written && !o->json && !o->csv) text += std::to_string(written) + " scene files written to " + o->out + "\n";
+      write_output("", text);
+      if (!overlay || overlay->agrees()) return ok;
+      std::cerr << "superball: the derived conditions disagree with the exact boundaries at some points (see the overlay"
+                << (o->out.empty() ? "; --out DIR writes them as scene files)\n" : ")\n");
+      return numerical_failure;
+    };
+  });
+}
+
+}  // namespace superball::cli

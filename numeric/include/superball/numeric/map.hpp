@@ -1,0 +1,188 @@
+#pragma once
+/// \file map.hpp
+/// Solutions over a grid of two parameters of a scene, and the boundaries
+/// between the regions of each evolution case and of the superball, located
+/// on the exact solution (the two-parameter form of sweep.hpp).
+
+#include <cln/rational.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "superball/cases/parameter.hpp"
+#include "superball/numeric/precision.hpp"
+#include "superball/numeric/sweep.hpp"
+
+namespace superball::numeric {
+
+/// The most values a map takes along one axis (10⁴: a 10⁴ × 10⁴ map is
+/// already 10⁸ solves).
+inline constexpr int map_max_steps = 10000;
+
+/// One axis of a map: \p steps equally spaced exact values of \p parameter
+/// from \p from to \p to, ends included (linspace()).
+struct Axis {
+  Parameter parameter;
+  cln::cl_RA from, to;
+  int steps = 2;
+  /// x_k = from + (to − from)·k/(steps − 1), k = 0 … steps − 1.
+  std::vector<cln::cl_RA> values() const { return linspace(from, to, steps); }
+};
+
+/// What decides a region of a map: the evolution case (the contacts that
+/// stay closed) and the superball verdict U₁⁺ > |U₁⁻|.
+struct Region {
+  ContactSet closed;
+  bool superball = false;
+  friend bool operator==(const Region& a, const Region& b) { return a.closed == b.closed && a.superball == b.superball; }
+  friend bool operator!=(const Region& a, const Region& b) { return !(a == b); }
+  friend bool operator<(const Region& a, const Region& b) { return a.label() < b.label(); }
+  /// "{2-3,3-4}" or "{2-3,3-4} superball": the Label of a bisection.
+  std::string label() const;
+  /// The region of a label() for \p bodies bodies; throws std::invalid_argument.
+  static Region parse(const std::string& label, int bodies);
+  /// The region of an exact solution: its case, and U₁⁺ > |U₁⁻| (both in the
+  /// solve's velocity unit, which is positive).
+  static Region of(const ExactPoint& point);
+};
+
+/// One grid point of a map.
+struct MapPoint {
+  /// M is positive semi-definite here: the point is solved.  Where it is not
+  /// the collision law does not apply; the point is marked, not solved, and
+  /// the other fields keep their defaults.
+  bool admissible = false;
+  Status status = Status::Success;
+  Region region;
+  /// U₁⁺/|U₁⁻| in the map's precision (NaN when U₁⁻ = 0): the superball is U₁⁺/|U₁⁻| > 1.
+  double ratio = 0;
+};
+
+/// A change of region between two neighbouring grid points, on the line
+/// through them: (x_i, y_j) and (x_{i+1}, y_j) when \p along_x, else (x_i, y_j)
+/// and (x_i, y_{j+1}).  The varying parameter's change lies in [low, high]
+/// (low < high, whatever the direction of the axis), the region is `below`
+/// at low and `above` at high, found by bisection on the exact solution.
+/// Between a solved point and one where M is not positive semi-definite, the
+/// edge of the PSD cone is located the same way (M's positive
+/// semi-definiteness decided exactly at each midpoint); the side where M is
+/// not PSD has psd false and no region, the other the region of the exact
+/// solution at its end of the bracket.
+struct MapBoundary {
+  bool along_x = true;
+  int i = 0, j = 0;
+  cln::cl_RA low, high;
+  Region below, above;
+  bool below_psd = true, above_psd = true;
+};
+
+/// A boundary curve: the boundary points where the case changes between two
+/// given cases, or those where the superball verdict changes (the edge of
+/// the superball region, whatever the cases on its sides), or those where M
+/// stops being positive semi-definite, in the order in
+/// which they chain through the grid's cells: in each cell, two such points
+/// on its edges are joined (marching squares).  A point where both the case
+/// and the verdict change is on a curve of each kind.
+struct MapCurve {
+  enum class Kind {
+    Case,       ///< the case changes from first to second
+    Superball,  ///< the superball verdict changes
+    Psd         ///< M stops being positive semi-definite
+  } kind = Kind::Case;
+  ContactSet first, second;     ///< Kind::Case: the two cases, first.to_string() < second.to_string()
+  std::vector<std::size_t> points;  ///< indices into Map::boundaries
+  bool closed = false;              ///< the last point joins the first
+};
+
+/// What map() computes and how.
+struct MapSettings {
+  Precision precision;  ///< arithmetic of the grid points (default: double)
+  int bits = 64;     ///< bisection to 2^-bits of the grid step (as switch_points())
+  int threads = 1;   ///< 0: all cores; the result does not depend on it
+  bool boundaries = true;
+};
+
+/// A map: every grid point, the boundaries between neighbours of different
+/// region, and the curves they chain into.
+struct Map {
+  Axis x, y;
+  std::vector<MapPoint> points;  ///< row by row: points[j·x.steps + i] is at (x_i, y_j)
+  std::vector<MapBoundary> boundaries;
+  std::vector<MapCurve> curves;
+  const MapPoint& at(int i, int j) const { return points[static_cast<std::size_t>(j) * static_cast<std::size_t>(x.steps) + static_cast<std::size_t>(i)]; }
+};
+
+/// Refuse, before anything is solved, a map whose axes or rectangle cannot be
+/// solved: the same parameter on both axes, fewer than 2 or more than
+/// map_max_steps values on an axis, equal ends (std::invalid_argument
+/// "map(): …"), or a corner of the rectangle that a scene file could not
+/// hold or where a contact opens before the collision (InputError
+/// "ORIGIN: KEYX = X, KEYY = Y: what is wrong").
+///
+/// The corners suffice: the loader's checks are signs of one value each, and
+/// each D_c(U⁻) is affine in a velocity and monotone in a = sqrt(2 g h), so
+/// along each axis it is monotone and its extremes over the rectangle lie at
+/// corners.  M's positive semi-definiteness is decided at each point instead
+/// (map()): the grid may cross the boundary of the PSD cone.
+void check_map(const Scene& scene, const Axis& x, const Axis& y);
+
+/// Solve \p scene at every point (x_i, y_j) of the grid in \p settings.precision,
+/// after check_map().  A point where M is not positive semi-definite (decided
+/// exactly) is marked and not solved; if no point is left, throws
+/// InputError("ORIGIN: M is not positive semi-definite at any point of the
+/// map …").  Then, when settings.boundaries, every pair of neighbours (along
+/// x and along y) that are both solved and of different region is bisected on
+/// the exact solution by label_changes() with Region::label() (the segment
+/// between them is inside the PSD cone, which is convex), each pair of a
+/// solved point and an unsolved one is bisected on M's positive
+/// semi-definiteness (one change: the cone is convex), and the boundary
+/// points are chained into curves (MapCurve).  Each point is solved
+/// from the scene on its own and the bisections are independent, so the map
+/// does not depend on settings.threads, bit for bit.
+Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings = {});
+
+/// The margin of the floating-point filter of M's positive
+/// semi-definiteness at a map point (detail::psd_by_floating_point()),
+/// relative to M's Frobenius norm: far above the rounding of the entries and
+/// of a Cholesky factorization (about n·u·‖M‖ for n pairs), so the filter
+/// decides only points at least that far inside or outside the cone.
+inline constexpr double map_psd_margin = 1e-9;
+
+namespace detail {
+
+/// The index of the one entry of M in which the scenes \p a and \p b differ
+/// (as ExactScene, M unchecked), nullopt when they differ in anything else
+/// or in more than one entry: the axis of a map that varies that entry only.
+std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b);
+
+/// M's positive semi-definiteness from floating point when it is clear:
+/// with τ = map_psd_margin·‖M‖_F, a Cholesky factorization of M − τI that
+/// succeeds proves λ_min(M) >= τ − (its backward error) > 0 (true); one of
+/// M + τI that fails proves λ_min(M) < −τ + (its backward error) < 0
+/// (false); otherwise nullopt, to be decided exactly.  \p work and \p llt
+/// are reused storage.
+std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work, Eigen::LLT<Eigen::MatrixXd>& llt);
+
+/// The grid points of a map whose axes vary the entries \p kx and \p ky of
+/// M of \p corner (the scene at (x_0, y_0)) in S (double or long double):
+/// each thread converts the corner once and then sets only the two entries
+/// at each point, in S for the solve and, when psd_by_floating_point() does
+/// not decide, exactly for positive_semidefinite().  The problem solved is
+/// Problem<S>::from() of the point's scene, bit for bit, so the points are
+/// those of solving each scene from scratch.
+template <class S>
+std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::size_t ky, const Axis& x, const Axis& y,
+                                   const MapSettings& settings);
+
+}  // namespace detail
+
+/// The point of a boundary in the plane, in double: the middle of its bracket
+/// on the varying axis, the grid value on the other.
+std::pair<double, double> position(const Map& map, const MapBoundary& b);
+
+}  // namespace superball::numeric

@@ -1,0 +1,368 @@
+#include "superball/numeric/map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <tuple>
+#include <utility>
+
+#include "superball/cases/error.hpp"
+#include "superball/numeric/parallel.hpp"
+#include "superball/numeric/problem.hpp"
+
+namespace superball::numeric {
+
+std::string Region::label() const { return closed.to_string() + (superball ? " superball" : ""); }
+
+Region Region::parse(const std::string& label, int bodies) {
+  const std::string suffix = " superball";
+  const bool sb = label.size() > suffix.size() && label.compare(label.size() - suffix.size(), suffix.size(), suffix) == 0;
+  const std::string set = sb ? label.substr(0, label.size() - suffix.size()) : label;
+  if (set.size() < 2 || set.front() != '{' || set.back() != '}') throw std::invalid_argument("Region::parse(): not a region: " + label);
+  return {ContactSet::parse(set.substr(1, set.size() - 2), bodies), sb};
+}
+
+Region Region::of(const ExactPoint& point) {
+  const cln::cl_RA& top_after = point.solution.velocities_after[0];
+  const cln::cl_RA& top_before = point.problem.u[0];
+  return {point.solution.closed, top_after > cln::abs(top_before)};
+}
+
+namespace {
+
+/// "KEYX = X, KEYY = Y", for messages.
+std::string where(const Axis& x, const cln::cl_RA& vx, const Axis& y, const cln::cl_RA& vy) {
+  return x.parameter.key() + " = " + to_string(vx) + ", " + y.parameter.key() + " = " + to_string(vy);
+}
+
+/// \p p filled from the solution \p sol of \p problem: its case, U₁⁺/|U₁⁻|
+/// and the superball verdict.
+template <class S>
+void solved(MapPoint& p, const Problem<S>& problem, const Solution<S>& sol) {
+  using T = ScalarTraits<S>;
+  p.admissible = true;
+  p.status = sol.status;
+  p.region.closed = sol.closed;
+  // U₁⁺ and U₁⁻ in the same (positive) unit: their ratio needs no unit.
+  const S top_after = sol.velocities_after[0], top_before = problem.u[0] < S(0) ? S(-problem.u[0]) : problem.u[0];
+  p.region.superball = top_after > top_before;
+  const double before = T::to_double(top_before);
+  p.ratio = before == 0 ? std::numeric_limits<double>::quiet_NaN() : T::to_double(top_after) / before;
+}
+
+/// The grid point (i, j) of a thread's own copy \p s of the scene, solved in
+/// the precision \p tag's type, or marked when M is not positive semi-definite.
+template <class S>
+MapPoint solve_point(const Scene& s, const Precision& precision) {
+  const ExactScene exact = ExactScene::from(s, ExactScene::MCheck::Caller);
+  MapPoint p;
+  if (!positive_semidefinite(exact)) return p;
+  const auto problem = Problem<S>::from(exact, precision.digits);
+  solved(p, problem, solve(problem));
+  return p;
+}
+
+/// The grid's exact values as text, made on the calling thread (tasks on
+/// other threads parse their own copies; sweep.cpp).
+std::vector<std::string> texts(const Axis& a) {
+  std::vector<std::string> t;
+  for (const auto& v : a.values()) t.push_back(to_string(v));
+  return t;
+}
+
+/// The curve of each kind (MapCurve) through \p m's boundaries: in each grid
+/// cell, the points of one kind on its four edges are joined two by two (in
+/// the order bottom, right, top, left), and the joined points chain into
+/// polylines: open ones from an end first, then loops.
+std::vector<MapCurve> chain(const Map& m) {
+  // The kind of curve a boundary point is on: the two cases, or the superball edge.
+  std::map<std::string, std::vector<std::size_t>> kinds;
+  for (std::size_t k = 0; k < m.boundaries.size(); ++k) {
+    const MapBoundary& b = m.boundaries[k];
+    if (b.below_psd && b.above_psd && b.below.closed != b.above.closed) {
+      const std::string p = b.below.closed.to_string(), q = b.above.closed.to_string();
+      kinds["case " + std::min(p, q) + " " + std::max(p, q)].push_back(k);
+    }
+    if (b.below_psd != b.above_psd)
+      kinds["psd"].push_back(k);
+    else if (b.below.superball != b.above.superball)
+      kinds["superball"].push_back(k);
+  }
+  std::vector<MapCurve> curves;
+  for (const auto& [kind, members] : kinds) {
+    std::map<std::tuple<bool, int, int>, std::vector<std::size_t>> on_edge;  // (along x, i, j) -> points
+    for (std::size_t k : members) on_edge[{m.boundaries[k].along_x, m.boundaries[k].i, m.boundaries[k].j}].push_back(k);
+    std::map<std::size_t, std::vector<std::size_t>> joined;
+    for (std::size_t k : members) joined[k];
+    for (int j = 0; j + 1 < m.y.steps; ++j)
+      for (int i = 0; i + 1 < m.x.steps; ++i) {
+        std::vector<std::size_t> in_cell;
+        for (const auto& edge : {std::tuple<bool, int, int>{true, i, j}, {false, i + 1, j}, {true, i, j + 1}, {false, i, j}}) {
+          const auto found = on_edge.find(edge);
+          if (found != on_edge.end()) in_cell.insert(in_cell.end(), found->second.begin(), found->second.end());
+        }
+        for (std::size_t a = 0; a + 1 < in_cell.size(); a += 2) {
+          joined[in_cell[a]].push_back(in_cell[a + 1]);
+          joined[in_cell[a + 1]].push_back(in_cell[a]);
+        }
+      }
+    std::map<std::size_t, bool> used;
+    auto walk = [&](std::size_t start) {
+      MapCurve c;
+      c.kind = kind == "superball" ? MapCurve::Kind::Superball : kind == "psd" ? MapCurve::Kind::Psd : MapCurve::Kind::Case;
+      if (c.kind == MapCurve::Kind::Case) {
+        const MapBoundary& b = m.boundaries[start];
+        const bool in_order = b.below.closed.to_string() < b.above.closed.to_string();
+        c.first = in_order ? b.below.closed : b.above.closed;
+        c.second = in_order ? b.above.closed : b.below.closed;
+      }
+      std::size_t at = start;
+      used[at] = true;
+      c.points.push_back(at);
+      for (;;) {
+        const auto& next = joined[at];
+        const auto free = std::find_if(next.begin(), next.end(), [&](std::size_t k) { return !used[k]; });
+        if (free == next.end()) {
+          c.closed = c.points.size() > 2 && std::find(next.begin(), next.end(), start) != next.end();
+          break;
+        }
+        at = *free;
+        used[at] = true;
+        c.points.push_back(at);
+      }
+      curves.push_back(std::move(c));
+    };
+    for (std::size_t k : members)  // open curves from one end
+      if (!used[k] && joined[k].size() < 2) walk(k);
+    for (std::size_t k : members)  // what is left are loops
+      if (!used[k]) walk(k);
+  }
+  return curves;
+}
+
+/// The edge of the PSD cone between \p a (where M is positive
+/// semi-definite when \p a_psd) and \p b (where it is when !a_psd) along
+/// \p parameter of \p line (a copy, changed), to \p bits halvings: along a
+/// line the PSD set is an interval, so there is one change.
+MapBoundary psd_edge(Scene& line, const Parameter& parameter, cln::cl_RA a, cln::cl_RA b, bool a_psd, int bits) {
+  for (; bits > 0; --bits) {
+    const cln::cl_RA mid = (a + b) / 2;
+    parameter.assign(line, Number::parse(to_string(mid)));
+    (positive_semidefinite(ExactScene::from(line, ExactScene::MCheck::Caller)) == a_psd ? a : b) = mid;
+  }
+  MapBoundary e;
+  e.low = a < b ? a : b;
+  e.high = a < b ? b : a;
+  e.below_psd = a < b ? a_psd : !a_psd;
+  e.above_psd = !e.below_psd;
+  // The region at the bracket's end inside the cone, from the exact solution there.
+  parameter.assign(line, Number::parse(to_string(a_psd ? a : b)));
+  (e.below_psd ? e.below : e.above) = Region::of(solve_exact_at(line, parameter, a_psd ? a : b));
+  return e;
+}
+
+}  // namespace
+
+namespace detail {
+
+std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b) {
+  const ExactScene p = ExactScene::from(a, ExactScene::MCheck::Caller), q = ExactScene::from(b, ExactScene::MCheck::Caller);
+  if (p.n != q.n || p.fixed_bottom != q.fixed_bottom || p.mass != q.mass || p.fall != q.fall || p.velocity != q.velocity ||
+      p.a_squared != q.a_squared || p.entries.size() != q.entries.size())
+    return std::nullopt;
+  std::optional<std::size_t> changed;
+  for (std::size_t k = 0; k < p.entries.size(); ++k) {
+    const auto &e = p.entries[k], &f = q.entries[k];
+    if (e.i != f.i || e.j != f.j || e.k != f.k || e.l != f.l) return std::nullopt;
+    if (e.value == f.value) continue;
+    if (changed) return std::nullopt;
+    changed = k;
+  }
+  return changed;
+}
+
+std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work, Eigen::LLT<Eigen::MatrixXd>& llt) {
+  const double tau = map_psd_margin * M.norm();
+  if (!std::isfinite(tau)) return std::nullopt;
+  work = M;
+  work.diagonal().array() -= tau;
+  if (llt.compute(work).info() == Eigen::Success) return true;
+  work = M;
+  work.diagonal().array() += tau;
+  if (llt.compute(work).info() != Eigen::Success) return false;
+  return std::nullopt;
+}
+
+template <class S>
+std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::size_t ky, const Axis& x, const Axis& y,
+                                   const MapSettings& settings) {
+  using T = ScalarTraits<S>;
+  const int digits = settings.precision.digits;
+  // The grid values as text (for the exact fallback) and in S, made on the calling thread.
+  const std::vector<std::string> tx = texts(x), ty = texts(y);
+  std::vector<S> sx, sy;
+  std::vector<char> zx, zy;  // the exact value is 0
+  for (const auto& v : x.values()) sx.push_back(T::from(v, digits)), zx.push_back(cln::zerop(v));
+  for (const auto& v : y.values()) sy.push_back(T::from(v, digits)), zy.push_back(cln::zerop(v));
+  // A value S holds as Problem::from() requires: finite, and not rounded to zero or a subnormal number.
+  auto held = [](const S& v, bool zero) { return std::isfinite(v) && (zero || std::fabs(v) >= std::numeric_limits<S>::min()); };
+  struct State {
+    ExactScene exact;    ///< the corner's, its two entries set at each exact fallback
+    Problem<S> problem;  ///< the corner's, its two entries set at each point
+    bool in_range = true;  ///< Problem::from()'s verdict on everything but the two entries
+    std::vector<std::pair<int, int>> at;  ///< entry k of M at (row, column) of the matrix on its pairs
+    Eigen::MatrixXd M, work;
+    Eigen::LLT<Eigen::MatrixXd> llt;
+  };
+  auto make_state = [&] {
+    State st{ExactScene::from(corner, ExactScene::MCheck::Caller), {}, true, {}, {}, {}, {}};
+    ExactScene ones = st.exact;
+    ones.entries[kx].value = ones.entries[ky].value = 1;
+    st.in_range = Problem<S>::from(ones, digits).in_range;
+    st.problem = Problem<S>::from(st.exact, digits);
+    std::vector<std::pair<int, int>> pairs;
+    for (const auto& e : st.exact.entries) pairs.push_back({e.i, e.j}), pairs.push_back({e.k, e.l});
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    auto index = [&](int i, int j) { return static_cast<int>(std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(i, j)) - pairs.begin()); };
+    for (const auto& e : st.exact.entries) st.at.push_back({index(e.i, e.j), index(e.k, e.l)});
+    const auto size = static_cast<Eigen::Index>(pairs.size());
+    st.M = Eigen::MatrixXd::Zero(size, size);
+    st.work.resize(size, size);
+    return st;
+  };
+  const std::size_t nx = tx.size();
+  return parallel_map(nx * ty.size(), settings.threads, make_state, [&](State& st, std::size_t k) {
+    const std::size_t i = k % nx, j = k / nx;
+    Problem<S>& p = st.problem;
+    p.entries[kx].value = sx[i];
+    p.entries[ky].value = sy[j];
+    p.in_range = st.in_range && held(sx[i], zx[i]) && held(sy[j], zy[j]);
+    for (std::size_t e = 0; e < p.entries.size(); ++e) {
+      const auto [r, c] = st.at[e];
+      st.M(r, c) = st.M(c, r) = static_cast<double>(p.entries[e].value);
+    }
+    std::optional<bool> psd = psd_by_floating_point(st.M, st.work, st.llt);
+    if (!psd) {  // too close to the edge of the cone for floating point: exactly
+      st.exact.entries[kx].value = parse_rational(tx[i]);
+      st.exact.entries[ky].value = parse_rational(ty[j]);
+      psd = positive_semidefinite(st.exact);
+    }
+    MapPoint point;
+    if (*psd) solved(point, p, solve(p));
+    return point;
+  });
+}
+
+template std::vector<MapPoint> entry_points<double>(const Scene&, std::size_t, std::size_t, const Axis&, const Axis&, const MapSettings&);
+template std::vector<MapPoint> entry_points<long double>(const Scene&, std::size_t, std::size_t, const Axis&, const Axis&,
+                                                         const MapSettings&);
+
+}  // namespace detail
+
+void check_map(const Scene& scene, const Axis& x, const Axis& y) {
+  if (x.parameter.key() == y.parameter.key())
+    throw std::invalid_argument("map(): " + x.parameter.key() + " is on both axes; a map needs two different parameters");
+  for (const Axis* a : {&x, &y}) {
+    if (a->steps < 2 || a->steps > map_max_steps)
+      throw std::invalid_argument("map(): " + a->parameter.key() + ": " + std::to_string(a->steps) + " values; an axis takes 2 to " +
+                                  std::to_string(map_max_steps));
+    if (a->from == a->to) throw std::invalid_argument("map(): " + a->parameter.key() + ": FROM and TO are equal");
+  }
+  for (const cln::cl_RA& vx : {x.from, x.to})
+    for (const cln::cl_RA& vy : {y.from, y.to}) {
+      try {
+        (void)ExactScene::from(with_value(with_value(scene, x.parameter, vx), y.parameter, vy), ExactScene::MCheck::Caller);
+      } catch (const InputError& e) {
+        // "ORIGIN: field: why" (or "ORIGIN: KEY = VALUE: field: why" from with_value) -> "ORIGIN: KEYX = X, KEYY = Y: ..."
+        std::string what = e.what();
+        const std::string prefix = scene.origin + ": ";
+        if (what.rfind(prefix, 0) == 0) what = what.substr(prefix.size());
+        for (const Axis* a : {&x, &y}) {
+          const std::string set = a->parameter.key() + " = " + to_string(a == &x ? vx : vy) + ": ";
+          if (what.rfind(set, 0) == 0) what = what.substr(set.size());
+        }
+        throw InputError(prefix + where(x, vx, y, vy) + ": " + what);
+      }
+    }
+}
+
+Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings) {
+  check_map(scene, x, y);
+  Map m{x, y, {}, {}, {}};
+  const std::vector<std::string> tx = texts(x), ty = texts(y);
+  const std::size_t nx = tx.size(), count = nx * ty.size();
+  // Two entries of M on the axes, in double or long double: only they change over the grid.
+  const Scene corner = with_value(with_value(scene, x.parameter, x.from), y.parameter, y.from);
+  const auto kx = detail::entry_changed(corner, with_value(corner, x.parameter, x.to));
+  const auto ky = detail::entry_changed(corner, with_value(corner, y.parameter, y.to));
+  if (kx && ky && settings.precision.kind == Precision::Kind::Double)
+    m.points = detail::entry_points<double>(corner, *kx, *ky, x, y, settings);
+  else if (kx && ky && settings.precision.kind == Precision::Kind::LongDouble)
+    m.points = detail::entry_points<long double>(corner, *kx, *ky, x, y, settings);
+  else
+    m.points = parallel_map(count, settings.threads, [&scene] { return scene; }, [&](Scene& s, std::size_t k) {
+      x.parameter.assign(s, Number::parse(tx[k % nx]));
+      y.parameter.assign(s, Number::parse(ty[k / nx]));
+      return with_scalar(settings.precision, [&](auto tag) { return solve_point<decltype(tag)>(s, settings.precision); });
+    });
+  if (std::none_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return p.admissible; }))
+    throw InputError(scene.origin + ": M is not positive semi-definite at any point of the map (" + x.parameter.key() + " from " +
+                     to_string(x.from) + " to " + to_string(x.to) + ", " + y.parameter.key() + " from " + to_string(y.from) + " to " +
+                     to_string(y.to) + "): nothing to solve");
+  if (!settings.boundaries) return m;
+  // The neighbours to bisect: along x row by row, then along y column by column.
+  struct Pending {
+    bool along_x;
+    int i, j;
+  };
+  std::vector<Pending> pending;
+  const int ix = x.steps, iy = y.steps;
+  // Two neighbours differ when one is solved and the other not, or both are, in different regions.
+  auto differ = [](const MapPoint& a, const MapPoint& b) { return a.admissible != b.admissible || (a.admissible && a.region != b.region); };
+  for (int j = 0; j < iy; ++j)
+    for (int i = 0; i + 1 < ix; ++i)
+      if (differ(m.at(i, j), m.at(i + 1, j))) pending.push_back({true, i, j});
+  for (int i = 0; i < ix; ++i)
+    for (int j = 0; j + 1 < iy; ++j)
+      if (differ(m.at(i, j), m.at(i, j + 1))) pending.push_back({false, i, j});
+  const Label by_region = [](const ExactPoint& e) { return Region::of(e).label(); };
+  const int bodies = scene.size();
+  const auto found = parallel_map(pending.size(), settings.threads, [] { return 0; }, [&](int&, std::size_t k) {
+    const Pending& p = pending[k];
+    // The line through the two neighbours: the other parameter fixed at its grid value.
+    const Axis& along = p.along_x ? x : y;
+    const Axis& fixed = p.along_x ? y : x;
+    const std::string& fixed_text = p.along_x ? ty[static_cast<std::size_t>(p.j)] : tx[static_cast<std::size_t>(p.i)];
+    const std::string& a = p.along_x ? tx[static_cast<std::size_t>(p.i)] : ty[static_cast<std::size_t>(p.j)];
+    const std::string& b = p.along_x ? tx[static_cast<std::size_t>(p.i) + 1] : ty[static_cast<std::size_t>(p.j) + 1];
+    Scene line = with_value(scene, fixed.parameter, parse_rational(fixed_text));
+    std::vector<MapBoundary> out;
+    const MapPoint& first = m.at(p.i, p.j);
+    const MapPoint& second = p.along_x ? m.at(p.i + 1, p.j) : m.at(p.i, p.j + 1);
+    if (first.admissible != second.admissible) {
+      out.push_back(psd_edge(line, along.parameter, parse_rational(a), parse_rational(b), first.admissible, settings.bits));
+      out.back().along_x = p.along_x;
+      out.back().i = p.i;
+      out.back().j = p.j;
+      return out;
+    }
+    for (const LabelChange& c : label_changes(line, along.parameter, {parse_rational(a), parse_rational(b)}, by_region, settings.bits, 1))
+      out.push_back({p.along_x, p.i, p.j, c.low, c.high, Region::parse(c.below, bodies), Region::parse(c.above, bodies)});
+    return out;
+  });
+  for (const auto& f : found) m.boundaries.insert(m.boundaries.end(), f.begin(), f.end());
+  m.curves = chain(m);
+  return m;
+}
+
+std::pair<double, double> position(const Map& map, const MapBoundary& b) {
+  const double along = cln::double_approx((b.low + b.high) / 2);
+  const double fixed = cln::double_approx(b.along_x ? map.y.from + (map.y.to - map.y.from) * b.j / (map.y.steps - 1)
+                                                    : map.x.from + (map.x.to - map.x.from) * b.i / (map.x.steps - 1));
+  return b.along_x ? std::pair<double, double>{along, fixed} : std::pair<double, double>{fixed, along};
+}
+
+}  // namespace superball::numeric

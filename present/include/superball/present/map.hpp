@@ -1,0 +1,70 @@
+#pragma once
+/// \file map.hpp
+/// A map over two parameters (numeric/map.hpp) as people and programs read
+/// it: the grid and the boundary points as CSV, everything as JSON, a
+/// summary as text, and the gnuplot data and script of its figure.  Shared by
+/// the `superball` command and the Python module; not installed.
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "superball/numeric/map.hpp"
+
+namespace superball::present {
+
+/// The paper's name of a region's case (Vocabulary::paper().case_name()).
+std::string case_name(const numeric::Region& r);
+
+/// The grid as CSV, one row per point (x varies fastest): KEYX, KEYY,
+/// psd (M positive semi-definite: 1, else 0 and the point is not solved),
+/// case, closed, U1_over_a (U₁⁺/|U₁⁻|), superball (1/0), status.
+std::string map_csv(const numeric::Map& m);
+
+/// The boundary points as CSV, one row per point: along (the axis whose
+/// parameter varies in the bracket), KEYX, KEYY (the bracket's middle on
+/// that axis, the grid value on the other), bracket_width, then the case and
+/// superball verdict at the bracket's low end and at its high end.
+std::string boundaries_csv(const numeric::Map& m);
+
+/// Everything, for programs: the scene, the axes (exact ends), every point,
+/// every boundary point (exact bracket ends) and every curve.
+nlohmann::ordered_json map_json(const numeric::Map& m, const Scene& scene, const std::string& precision);
+
+/// For people: the grid, each case present with its share of the solved
+/// points and how many of them are superball, the superball's share, the
+/// range of U₁⁺/a, the points where M is not positive semi-definite, and the
+/// boundary curves (regions on each side, number of points, largest bracket).
+std::string map_summary(const numeric::Map& m, const Scene& scene, const std::string& precision);
+
+/// A point to mark on the figure (e.g. the paper's values).
+struct MapMark {
+  double x = 0, y = 0;
+  std::string label;
+};
+
+/// The figure's data, read by map_figure_script(): the case regions as RGB
+/// pixels, U₁⁺/a per point, the marks, the points \p derived (zeros of the
+/// derived conditions, `--overlay`), each boundary curve.
+std::string map_figure_data(const numeric::Map& m, const std::vector<MapMark>& marks,
+                            const std::vector<std::pair<double, double>>& derived = {});
+
+/// The gnuplot script of the figure, two panels side by side: left the case
+/// regions in distinct colours (the superball part of each in its full
+/// colour, the rest pale; M not positive semi-definite in grey) with the
+/// exact boundary curves (superball edge thick black, case changes thin) and
+/// a legend naming the cases as the paper does; right U₁⁺/a in colour with
+/// its contour lines and the superball edge; with \p derived, the zeros of
+/// the derived conditions as small red circles.  \p data is the data file's
+/// name, \p terminal gnuplot's terminal, \p output a quoted file name or ""
+/// for standard output.
+std::string map_figure_script(const numeric::Map& m, const std::vector<MapMark>& marks, bool derived, const std::string& title,
+                              const std::string& data, const std::string& terminal, const std::string& output);
+
+/// The axis label of a parameter key for gnuplot's enhanced text: alpha.2 ->
+/// α_2, K.3-4 -> K_{34}, others as they are.
+std::string axis_label(const std::string& key);
+
+}  // namespace superball::present

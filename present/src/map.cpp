@@ -1,0 +1,371 @@
+#include "superball/present/map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/scalar.hpp"
+
+namespace superball::present {
+namespace {
+
+using numeric::Map;
+using numeric::MapBoundary;
+using numeric::MapPoint;
+using numeric::Region;
+
+/// The grid value k of axis \p a, exactly.
+cln::cl_RA value(const numeric::Axis& a, int k) { return a.from + (a.to - a.from) * k / (a.steps - 1); }
+
+std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_decimal(x, digits); }
+
+/// A CSV field, quoted (RFC 4180) when it holds a comma or a quote.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"") == std::string::npos) return text;
+  std::string q = "\"";
+  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string number(double x, int digits = 17) { return std::isnan(x) ? std::string("nan") : numeric::to_string(x, digits); }
+
+/// The cases present among the solved points, in the paper's order of names.
+std::vector<ContactSet> cases_present(const Map& m) {
+  std::vector<ContactSet> cases;
+  for (const MapPoint& p : m.points)
+    if (p.admissible && std::find(cases.begin(), cases.end(), p.region.closed) == cases.end()) cases.push_back(p.region.closed);
+  const Vocabulary& v = Vocabulary::paper();
+  std::sort(cases.begin(), cases.end(), [&](const ContactSet& a, const ContactSet& b) {
+    const std::string na = v.case_name(a), nb = v.case_name(b);
+    return na != nb ? na < nb : a.to_string() < b.to_string();
+  });
+  return cases;
+}
+
+
+/// Distinct colours for the cases (Tableau 10), then grey for M not PSD.
+constexpr const char* kColours[] = {"#4E79A7", "#F28E2B", "#59A14F", "#E15759", "#B07AA1",
+                                    "#76B7B2", "#EDC948", "#9C755F", "#FF9DA7", "#3B3B98"};
+constexpr int kColourCount = sizeof kColours / sizeof kColours[0];
+constexpr const char* kNotPsd = "#C8C8C8";
+/// How far toward white the part of a case without the superball is drawn.
+constexpr double kPale = 0.6;
+/// The top of the legend, under the panels, as a fraction of the figure's height.
+constexpr double kLegendTop = 0.19;
+/// The data file's first curve: after the regions, U1+/a, the marks and the derived zeros.
+constexpr int kFirstCurve = 4;
+
+struct Rgb {
+  int r, g, b;
+};
+Rgb rgb(const char* hex) {
+  unsigned r = 0, g = 0, b = 0;
+  std::sscanf(hex + 1, "%2x%2x%2x", &r, &g, &b);
+  return {static_cast<int>(r), static_cast<int>(g), static_cast<int>(b)};
+}
+Rgb pale(Rgb c) {
+  auto mix = [](int v) { return static_cast<int>(std::lround(v + (255 - v) * kPale)); };
+  return {mix(c.r), mix(c.g), mix(c.b)};
+}
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) out += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+  return out + "\"";
+}
+
+/// What curve \p c separates, for people.
+std::string curve_text(const numeric::MapCurve& c) {
+  const Vocabulary& v = Vocabulary::paper();
+  switch (c.kind) {
+    case numeric::MapCurve::Kind::Superball: return "superball edge (U1+ = a)";
+    case numeric::MapCurve::Kind::Psd: return "edge of M positive semi-definite";
+    case numeric::MapCurve::Kind::Case: break;
+  }
+  return "case " + v.case_name(c.first) + " | case " + v.case_name(c.second);
+}
+
+}  // namespace
+
+std::string case_name(const Region& r) { return Vocabulary::paper().case_name(r.closed); }
+
+std::string axis_label(const std::string& key) {
+  if (key.rfind("alpha.", 0) == 0) return "α_{" + key.substr(6) + "}";
+  if (key.rfind("K.", 0) == 0) {
+    std::string pair = key.substr(2);
+    pair.erase(std::remove(pair.begin(), pair.end(), '-'), pair.end());
+    return "K_{" + pair + "}";
+  }
+  std::string out;
+  for (char c : key) out += c == '_' ? std::string("\\\\_") : std::string(1, c);
+  return out;
+}
+
+std::string map_csv(const Map& m) {
+  std::ostringstream os;
+  os << m.x.parameter.key() << ',' << m.y.parameter.key() << ",psd,case,closed,U1_over_a,superball,status\n";
+  for (int j = 0; j < m.y.steps; ++j) {
+    const std::string y = decimal(value(m.y, j), 10);
+    for (int i = 0; i < m.x.steps; ++i) {
+      const MapPoint& p = m.at(i, j);
+      os << decimal(value(m.x, i), 10) << ',' << y << ',';
+      if (p.admissible)
+        os << "1," << csv_field(case_name(p.region)) << ',' << csv_field(p.region.closed.to_string()) << ',' << number(p.ratio) << ','
+           << p.region.superball << ',' << numeric::to_string(p.status) << '\n';
+      else
+        os << "0,,,,,\n";
+    }
+  }
+  return os.str();
+}
+
+std::string boundaries_csv(const Map& m) {
+  std::ostringstream os;
+  os << "along," << m.x.parameter.key() << ',' << m.y.parameter.key()
+     << ",bracket_width,psd_low,case_low,superball_low,psd_high,case_high,superball_high\n";
+  for (const MapBoundary& b : m.boundaries) {
+    const cln::cl_RA mid = (b.low + b.high) / 2;
+    os << (b.along_x ? m.x.parameter.key() : m.y.parameter.key()) << ',' << decimal(b.along_x ? mid : value(m.x, b.i)) << ','
+       << decimal(b.along_x ? value(m.y, b.j) : mid) << ',' << decimal(b.high - b.low, 3);
+    for (const auto& [psd, r] : {std::pair<bool, const Region&>{b.below_psd, b.below}, {b.above_psd, b.above}})
+      os << ',' << psd << ',' << (psd ? csv_field(case_name(r)) + ',' + std::to_string(r.superball) : std::string(","));
+    os << '\n';
+  }
+  return os.str();
+}
+
+nlohmann::ordered_json map_json(const Map& m, const Scene& scene, const std::string& precision) {
+  nlohmann::ordered_json j;
+  j["scene"] = scene.origin;
+  j["title"] = scene.title;
+  j["precision"] = precision;
+  for (const numeric::Axis* a : {&m.x, &m.y})
+    j[a == &m.x ? "x" : "y"] = {{"key", a->parameter.key()},
+                                {"from", numeric::to_string(a->from)},
+                                {"to", numeric::to_string(a->to)},
+                                {"steps", a->steps}};
+  auto region = [](const Region& r) {
+    return nlohmann::ordered_json{{"case", case_name(r)}, {"closed", r.closed.closed_names()}, {"superball", r.superball}};
+  };
+  auto& points = j["points"] = nlohmann::ordered_json::array();
+  for (int jy = 0; jy < m.y.steps; ++jy)
+    for (int i = 0; i < m.x.steps; ++i) {
+      const MapPoint& p = m.at(i, jy);
+      nlohmann::ordered_json q{{"i", i}, {"j", jy}, {"x", cln::double_approx(value(m.x, i))}, {"y", cln::double_approx(value(m.y, jy))},
+                               {"psd", p.admissible}};
+      if (p.admissible) {
+        q.update(region(p.region));
+        q["U1_over_a"] = std::isnan(p.ratio) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(p.ratio);
+        q["status"] = numeric::to_string(p.status);
+      }
+      points.push_back(std::move(q));
+    }
+  auto& bounds = j["boundaries"] = nlohmann::ordered_json::array();
+  for (const MapBoundary& b : m.boundaries) {
+    const auto [x, y] = numeric::position(m, b);
+    bounds.push_back({{"along", b.along_x ? m.x.parameter.key() : m.y.parameter.key()},
+                      {"i", b.i},
+                      {"j", b.j},
+                      {"x", x},
+                      {"y", y},
+                      {"low", numeric::to_string(b.low)},
+                      {"high", numeric::to_string(b.high)},
+                      {"bracket_width", cln::double_approx(b.high - b.low)},
+                      {"below", b.below_psd ? region(b.below) : nlohmann::ordered_json{{"psd", false}}},
+                      {"above", b.above_psd ? region(b.above) : nlohmann::ordered_json{{"psd", false}}}});
+  }
+  auto& curves = j["curves"] = nlohmann::ordered_json::array();
+  for (const numeric::MapCurve& c : m.curves) {
+    nlohmann::ordered_json xy = nlohmann::ordered_json::array();
+    for (std::size_t k : c.points) {
+      const auto [x, y] = numeric::position(m, m.boundaries[k]);
+      xy.push_back({x, y});
+    }
+    using Kind = numeric::MapCurve::Kind;
+    nlohmann::ordered_json curve{{"kind", c.kind == Kind::Superball ? "superball edge" : c.kind == Kind::Psd ? "psd edge" : "case change"}};
+    if (c.kind == Kind::Case) curve["cases"] = {Vocabulary::paper().case_name(c.first), Vocabulary::paper().case_name(c.second)};
+    curve["closed"] = c.closed;
+    curve["boundaries"] = c.points;
+    curve["points"] = std::move(xy);
+    curves.push_back(std::move(curve));
+  }
+  return j;
+}
+
+std::string map_summary(const Map& m, const Scene& scene, const std::string& precision) {
+  std::ostringstream os;
+  auto axis = [](const numeric::Axis& a) {
+    return a.parameter.key() + " from " + numeric::to_string(a.from) + " to " + numeric::to_string(a.to) + " (" + std::to_string(a.steps) +
+           " values)";
+  };
+  os << "map of " << scene.origin << ": " << axis(m.x) << " by " << axis(m.y) << ", in " << precision << '\n';
+  std::size_t solved = 0, superball = 0, failed = 0;
+  double low = INFINITY, high = -INFINITY;
+  for (const MapPoint& p : m.points) {
+    if (!p.admissible) continue;
+    ++solved;
+    superball += p.region.superball;
+    failed += p.status != numeric::Status::Success;
+    if (!std::isnan(p.ratio)) low = std::min(low, p.ratio), high = std::max(high, p.ratio);
+  }
+  auto share = [](std::size_t k, std::size_t of) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f %%", of ? 100.0 * static_cast<double>(k) / static_cast<double>(of) : 0.0);
+    return std::string(buf);
+  };
+  os << "points: " << m.points.size() << ", solved " << solved;
+  if (solved < m.points.size()) os << " (M is not positive semi-definite at the other " << m.points.size() - solved << ": not solved)";
+  os << '\n';
+  for (const ContactSet& c : cases_present(m)) {
+    std::size_t in = 0, sb = 0;
+    for (const MapPoint& p : m.points)
+      if (p.admissible && p.region.closed == c) ++in, sb += p.region.superball;
+    os << "  case " << Vocabulary::paper().case_name(c) << ' ' << c.to_string() << ": " << in << " points (" << share(in, solved)
+       << "), superball at " << sb << '\n';
+  }
+  os << "superball (U1+ > a): " << superball << " points (" << share(superball, solved) << " of the solved)";
+  if (low <= high) os << "; U1+/a from " << numeric::to_string(low, 6) << " to " << numeric::to_string(high, 6);
+  os << '\n';
+  if (failed) os << "status not success: " << failed << " points\n";
+  double widest = 0;
+  for (const MapBoundary& b : m.boundaries) widest = std::max(widest, cln::double_approx(b.high - b.low));
+  os << "boundaries: " << m.boundaries.size() << " points located exactly (widest bracket " << numeric::to_string(widest, 3) << ") on "
+     << m.curves.size() << " curves\n";
+  for (const numeric::MapCurve& c : m.curves) {
+    const auto [x0, y0] = numeric::position(m, m.boundaries[c.points.front()]);
+    const auto [x1, y1] = numeric::position(m, m.boundaries[c.points.back()]);
+    os << "  " << curve_text(c) << ": " << c.points.size() << " points, "
+       << (c.closed ? "closed, through (" : "from (") << numeric::to_string(x0, 6) << ", " << numeric::to_string(y0, 6) << ")";
+    if (!c.closed) os << " to (" << numeric::to_string(x1, 6) << ", " << numeric::to_string(y1, 6) << ")";
+    os << '\n';
+  }
+  return os.str();
+}
+
+std::string map_figure_data(const Map& m, const std::vector<MapMark>& marks, const std::vector<std::pair<double, double>>& derived) {
+  const std::vector<ContactSet> cases = cases_present(m);
+  auto colour = [&](const MapPoint& p) {
+    if (!p.admissible) return rgb(kNotPsd);
+    const auto k = std::find(cases.begin(), cases.end(), p.region.closed) - cases.begin();
+    const Rgb c = rgb(kColours[k % kColourCount]);
+    return p.region.superball ? c : pale(c);
+  };
+  std::ostringstream os;
+  os.precision(17);
+  os << "# index 0: x y r g b, the regions\n";
+  for (int j = 0; j < m.y.steps; ++j) {
+    const double y = cln::double_approx(value(m.y, j));
+    for (int i = 0; i < m.x.steps; ++i) {
+      const Rgb c = colour(m.at(i, j));
+      os << cln::double_approx(value(m.x, i)) << ' ' << y << ' ' << c.r << ' ' << c.g << ' ' << c.b << '\n';
+    }
+    os << '\n';
+  }
+  os << "\n# index 1: x y U1+/a (NaN where M is not positive semi-definite)\n";
+  for (int j = 0; j < m.y.steps; ++j) {
+    const double y = cln::double_approx(value(m.y, j));
+    for (int i = 0; i < m.x.steps; ++i) {
+      const MapPoint& p = m.at(i, j);
+      os << cln::double_approx(value(m.x, i)) << ' ' << y << ' ' << (p.admissible ? number(p.ratio) : std::string("NaN")) << '\n';
+    }
+    os << '\n';
+  }
+  os << "\n# index 2: marks\n";
+  for (const MapMark& k : marks) os << k.x << ' ' << k.y << ' ' << quoted(k.label) << '\n';
+  if (marks.empty()) os << "NaN NaN \"\"\n";
+  os << "\n\n# index 3: zeros of the derived conditions\n";
+  for (const auto& [x, y] : derived) os << x << ' ' << y << '\n';
+  if (derived.empty()) os << "NaN NaN\n";
+  for (std::size_t c = 0; c < m.curves.size(); ++c) {
+    os << "\n\n# index " << kFirstCurve + c << ": " << curve_text(m.curves[c]) << '\n';
+    for (std::size_t k : m.curves[c].points) {
+      const auto [x, y] = numeric::position(m, m.boundaries[k]);
+      os << x << ' ' << y << '\n';
+    }
+    if (m.curves[c].closed) {
+      const auto [x, y] = numeric::position(m, m.boundaries[m.curves[c].points.front()]);
+      os << x << ' ' << y << '\n';
+    }
+  }
+  return os.str();
+}
+
+std::string map_figure_script(const Map& m, const std::vector<MapMark>& marks, bool derived, const std::string& title,
+                              const std::string& data, const std::string& terminal, const std::string& output) {
+  const std::vector<ContactSet> cases = cases_present(m);
+  const bool not_psd = std::any_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return !p.admissible; });
+  const double x0 = cln::double_approx(m.x.from), x1 = cln::double_approx(m.x.to);
+  const double y0 = cln::double_approx(m.y.from), y1 = cln::double_approx(m.y.to);
+  const std::string d = quoted(data);
+  std::ostringstream gp;
+  gp.precision(17);
+  gp << "set terminal " << terminal << "\nset output " << output << '\n'
+     << "set xrange [" << std::min(x0, x1) << ':' << std::max(x0, x1) << "] noextend\n"
+     << "set yrange [" << std::min(y0, y1) << ':' << std::max(y0, y1) << "] noextend\n"
+     << "set xlabel " << quoted(axis_label(m.x.parameter.key())) << "\nset ylabel " << quoted(axis_label(m.y.parameter.key())) << '\n'
+     << "set tics out nomirror\nset border lw 1\nset style fill solid 1.0 noborder\n";
+  // The contour lines of U1+/a, into a datablock, before the panels.
+  double low = INFINITY, high = -INFINITY;
+  for (const MapPoint& p : m.points)
+    if (p.admissible && !std::isnan(p.ratio)) low = std::min(low, p.ratio), high = std::max(high, p.ratio);
+  const bool contours = low < high && std::isfinite(low) && std::isfinite(high);
+  double step = 0;  // about 8 contour levels, at round values
+  if (contours) {
+    const double raw = (high - low) / 8, magnitude = std::pow(10.0, std::floor(std::log10(raw)));
+    step = raw / magnitude < 2 ? 2 * magnitude : raw / magnitude < 5 ? 5 * magnitude : 10 * magnitude;
+    gp << "set contour base\nunset surface\nset view map\nset cntrparam linear\nset cntrparam levels incremental "
+       << std::ceil(low / step) * step << ',' << step << ',' << high << "\nset table $contours\nsplot " << d
+       << " index 1 using 1:2:3 with lines notitle\nunset table\nunset contour\nset surface\n";
+  }
+  // Two panels of the same size side by side, the legend under both.
+  gp << "set multiplot title " << quoted(title) << " font ',13'\n"
+     << "set tmargin at screen 0.89\nset bmargin at screen " << kLegendTop + 0.1 << '\n'
+     << "set lmargin at screen 0.06\nset rmargin at screen 0.45\n";
+  // Left: the cases.
+  gp << "set title 'Evolution cases (full colour: superball U_1^+ > a; pale: not)'\n"
+     << "set key at screen 0.06, screen " << kLegendTop << " left top vertical reverse Left maxrows 4 samplen 2 spacing 1.15 width 3 font ',10'\n"
+     << "plot " << d << " index 0 using 1:2:3:4:5 with rgbimage notitle";
+  const Vocabulary& v = Vocabulary::paper();
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string name = v.case_name(cases[k]);
+    const auto named = std::find_if(v.cases().begin(), v.cases().end(), [&](const NamedCase& c) { return c.closed == cases[k]; });
+    gp << ", NaN with boxes lc rgb '" << kColours[k % kColourCount] << "' title "
+       << quoted("case " + name + (named != v.cases().end() && cases[k].bodies() == v.bodies() ? ": " + named->description : ""));
+  }
+  if (not_psd) gp << ", NaN with boxes lc rgb '" << kNotPsd << "' title 'M not PSD'";
+  // Each kind of curve, with its legend entry on its first curve.
+  using Kind = numeric::MapCurve::Kind;
+  std::vector<bool> legend(3, false);
+  for (std::size_t c = 0; c < m.curves.size(); ++c) {
+    const Kind kind = m.curves[c].kind;
+    const auto k = static_cast<std::size_t>(kind);
+    const char* style = kind == Kind::Superball ? "lw 3 lc rgb 'black'" : kind == Kind::Psd ? "lw 1.5 lc rgb '#606060' dt 2" : "lw 1.5 lc rgb '#303030'";
+    const char* name = kind == Kind::Superball ? "superball edge (exact)" : kind == Kind::Psd ? "edge of M PSD (exact)" : "case change (exact)";
+    gp << ", " << d << " index " << kFirstCurve + c << " using 1:2 with lines " << style << ' ' << (legend[k] ? std::string("notitle") : "title " + quoted(name));
+    legend[k] = true;
+  }
+  if (derived) gp << ", " << d << " index 3 using 1:2 with points pt 6 ps 0.7 lw 1 lc rgb '#D01010' title 'derived conditions (symbolic)'";
+  if (!marks.empty())
+    gp << ", " << d << " index 2 using 1:2 with points pt 7 ps 1.2 lc rgb 'black' notitle, " << d
+       << " index 2 using 1:2:3 with labels left offset 0.8,0.5 font ',10' notitle";
+  gp << '\n';
+  // Right: U1+/a.
+  gp << "set lmargin at screen 0.55\nset rmargin at screen 0.91\nunset key\n"
+     << "set object 1 rectangle from graph 0, graph 0 to graph 1, graph 1 behind fc rgb '" << kNotPsd << "' fs solid noborder\n"
+     << "set title " << quoted(std::string("U_1^+ / a") + (contours ? " (white: contours every " + number(step, 3) + "; " : " (") +
+                               "black: U_1^+ = a, exact)") << '\n'
+
+     << "set palette defined (0 '#0D0887', 1 '#6A00A8', 2 '#B12A90', 3 '#E16462', 4 '#FCA636', 5 '#F0F921')\n"
+     << "set cbtics out nomirror\n"
+     << "plot " << d << " index 1 using 1:2:3 with image notitle";
+  if (contours) gp << ", $contours using 1:2 with lines lw 1 lc rgb '#FFFFFF' notitle";
+  for (std::size_t c = 0; c < m.curves.size(); ++c)
+    if (m.curves[c].kind == numeric::MapCurve::Kind::Superball) gp << ", " << d << " index " << kFirstCurve + c << " using 1:2 with lines lw 3 lc rgb 'black' notitle";
+  if (!marks.empty()) gp << ", " << d << " index 2 using 1:2 with points pt 7 ps 1.2 lc rgb 'white' notitle";
+  gp << "\nunset multiplot\n";
+  return gp.str();
+}
+
+}  // namespace superball::present

@@ -1,0 +1,239 @@
+// Maps over two parameters (issue 15): each solved point is the solve of the
+// same scene, each point left out has M not positive semi-definite, each
+// boundary bracket holds two different regions at its ends (exact solves),
+// the curves chain through neighbouring cells, the map does not depend on
+// the number of threads, and bad axes are refused before anything is solved.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "superball/cases/error.hpp"
+#include "superball/cases/parameter.hpp"
+#include "superball/cases/scene_file.hpp"
+#include "superball/numeric/map.hpp"
+#include "support.hpp"
+
+namespace superball::testing {
+namespace {
+
+const std::string kPaper = std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml";
+const std::string kFig5 = std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-fig5-alpha2.toml";
+
+numeric::Axis axis(const Scene& scene, const std::string& key, const cl_RA& from, const cl_RA& to, int steps) {
+  return {Parameter::parse(key, scene), from, to, steps};
+}
+
+/// The scene at grid point (i, j) of \p m, through Parameter::set() (the loader's checks).
+Scene scene_at(const Scene& scene, const numeric::Map& m, int i, int j) {
+  return numeric::with_value(numeric::with_value(scene, m.x.parameter, m.x.values()[static_cast<std::size_t>(i)]), m.y.parameter,
+                             m.y.values()[static_cast<std::size_t>(j)]);
+}
+
+/// The scene on the grid line of boundary \p b with its varying parameter at \p value.
+Scene scene_on_line(const Scene& scene, const numeric::Map& m, const numeric::MapBoundary& b, const cl_RA& value) {
+  const Scene line = b.along_x ? numeric::with_value(scene, m.y.parameter, m.y.values()[static_cast<std::size_t>(b.j)])
+                               : numeric::with_value(scene, m.x.parameter, m.x.values()[static_cast<std::size_t>(b.i)]);
+  return numeric::with_value(line, b.along_x ? m.x.parameter : m.y.parameter, value);
+}
+
+numeric::Region exact_region(const Scene& s) {
+  auto problem = Problem<cl_RA>::from(ExactScene::from(s));
+  auto solution = numeric::solve(problem);
+  return numeric::Region::of({std::move(problem), std::move(solution)});
+}
+
+/// (K₃₄, α₂) at the §4.4 parameters, down to α₂ = −150 where M is no longer PSD.
+numeric::Map paper_map(const Scene& scene, int threads, int nx = 13, int ny = 11) {
+  numeric::MapSettings settings;
+  settings.threads = threads;
+  return numeric::map(scene, axis(scene, "K.3-4", 0, 20, nx), axis(scene, "alpha.2", -150, 0, ny), settings);
+}
+
+/// Each point of \p m is the solve of its scene from scratch (Parameter::set(),
+/// ExactScene::from(), Problem<double>::from(), solve()), bit for bit, or M is
+/// not positive semi-definite there; returns (solved, marked).
+std::pair<int, int> expect_points_are_solves(const Scene& scene, const numeric::Map& m) {
+  int solved = 0, marked = 0;
+  for (int j = 0; j < m.y.steps; ++j)
+    for (int i = 0; i < m.x.steps; ++i) {
+      SCOPED_TRACE("point (" + std::to_string(i) + ", " + std::to_string(j) + ")");
+      const Scene s = scene_at(scene, m, i, j);
+      const numeric::MapPoint& p = m.at(i, j);
+      if (!p.admissible) {
+        ++marked;
+        try {
+          (void)ExactScene::from(s);
+          ADD_FAILURE() << "marked, but the scene is admissible";
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("not positive semi-definite"), std::string::npos) << e.what();
+        }
+        continue;
+      }
+      ++solved;
+      const auto problem = Problem<double>::from(ExactScene::from(s));
+      const auto sol = numeric::solve(problem);
+      EXPECT_EQ(p.status, sol.status);
+      EXPECT_EQ(p.region.closed, sol.closed);
+      const double before = std::fabs(problem.u[0]);
+      EXPECT_EQ(p.ratio, sol.velocities_after[0] / before);  // bit for bit
+      EXPECT_EQ(p.region.superball, sol.velocities_after[0] > before);
+    }
+  return {solved, marked};
+}
+
+TEST(Map, EachPointIsTheSolveOfItsSceneOrHasMNotPsd) {
+  // Two entries of M on the axes: each thread sets only them (detail::entry_points()).
+  const Scene scene = load_scene(kPaper);
+  const numeric::Map m = paper_map(scene, 2);
+  ASSERT_EQ(m.points.size(), 13u * 11u);
+  const auto [solved, marked] = expect_points_are_solves(scene, m);
+  EXPECT_GT(solved, 0);
+  EXPECT_GT(marked, 0);  // the grid crosses the edge of the PSD cone (α₂ ≈ −102.5)
+}
+
+TEST(Map, PointsOnTheEdgeOfTheConeAreDecidedExactly) {
+  // K₁₂ K₁₄ = α₂² at (K₁₂, α₂) = (15, −150) with K₁₄ = 1500: M is singular there, PSD; floating
+  // point cannot tell, the exact fallback does.  Beside it, K₁₂ = 14 is outside the cone.
+  const Scene scene = load_scene(kPaper);
+  numeric::MapSettings settings;
+  settings.threads = 2;
+  const numeric::Map m = numeric::map(scene, axis(scene, "K.1-2", 0, 30, 31), axis(scene, "alpha.2", -150, 0, 4), settings);
+  EXPECT_TRUE(m.at(15, 0).admissible);
+  EXPECT_FALSE(m.at(14, 0).admissible);
+  expect_points_are_solves(scene, m);
+}
+
+TEST(Map, AxesOtherThanEntriesOfMSolveEachSceneFromScratch) {
+  // A mass on an axis: each point's scene is converted on its own.
+  const Scene scene = load_scene(kPaper);
+  numeric::MapSettings settings;
+  settings.threads = 2;
+  const numeric::Map m = numeric::map(scene, axis(scene, "mass.2", 5, 20, 7), axis(scene, "alpha.2", -110, 0, 6), settings);
+  const auto [solved, marked] = expect_points_are_solves(scene, m);
+  EXPECT_GT(solved, 0);
+  EXPECT_GT(marked, 0);
+}
+
+TEST(Map, TheFloatingPointFilterOfPsdDecidesOnlyClearCases) {
+  Eigen::MatrixXd work;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  Eigen::MatrixXd M(2, 2);
+  M << 7, -100, -100, 1500;  // det 500 > 0: inside the cone
+  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work, llt), std::optional<bool>(true));
+  M << 7, -110, -110, 1500;  // det −1600 < 0: outside
+  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work, llt), std::optional<bool>(false));
+  M << 15, -150, -150, 1500;  // det 0: on the edge, left to exact arithmetic
+  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work, llt), std::nullopt);
+}
+
+TEST(Map, EachBoundaryBracketHoldsTwoRegionsAtItsEnds) {
+  const Scene scene = load_scene(kPaper);
+  const numeric::Map m = paper_map(scene, 2);
+  ASSERT_FALSE(m.boundaries.empty());
+  bool case_change = false, superball_change = false, psd_edge = false;
+  for (const numeric::MapBoundary& b : m.boundaries) {
+    const auto [x, y] = numeric::position(m, b);
+    SCOPED_TRACE("boundary at (" + std::to_string(x) + ", " + std::to_string(y) + ")");
+    const numeric::Axis& along = b.along_x ? m.x : m.y;
+    const cl_RA step = abs_q(along.to - along.from) / (along.steps - 1);
+    EXPECT_TRUE(b.low < b.high);
+    EXPECT_LE(b.high - b.low, step / cln::expt(cl_RA(2), 64)) << "bracket width " << approx(b.high - b.low);
+    // Inside the segment between the two grid neighbours.
+    const cl_RA a = along.values()[static_cast<std::size_t>(b.along_x ? b.i : b.j)];
+    const cl_RA c = along.values()[static_cast<std::size_t>(b.along_x ? b.i + 1 : b.j + 1)];
+    EXPECT_TRUE(max_q(a, c) >= b.high && b.low >= (a < c ? a : c));
+    const Scene low = scene_on_line(scene, m, b, b.low), high = scene_on_line(scene, m, b, b.high);
+    EXPECT_EQ(numeric::positive_semidefinite(ExactScene::from(low, ExactScene::MCheck::Caller)), b.below_psd);
+    EXPECT_EQ(numeric::positive_semidefinite(ExactScene::from(high, ExactScene::MCheck::Caller)), b.above_psd);
+    if (b.below_psd != b.above_psd) {
+      psd_edge = true;
+      continue;
+    }
+    ASSERT_TRUE(b.below_psd);
+    EXPECT_NE(b.below, b.above);
+    EXPECT_EQ(exact_region(low), b.below);
+    EXPECT_EQ(exact_region(high), b.above);
+    case_change = case_change || b.below.closed != b.above.closed;
+    superball_change = superball_change || b.below.superball != b.above.superball;
+  }
+  EXPECT_TRUE(case_change && superball_change && psd_edge);
+}
+
+TEST(Map, CurvesChainThroughNeighbouringCells) {
+  const Scene scene = load_scene(kPaper);
+  const numeric::Map m = paper_map(scene, 2, 21, 21);
+  ASSERT_FALSE(m.curves.empty());
+  std::vector<int> on_curves(m.boundaries.size(), 0);
+  for (const numeric::MapCurve& c : m.curves) {
+    ASSERT_FALSE(c.points.empty());
+    for (std::size_t k = 0; k < c.points.size(); ++k) {
+      const numeric::MapBoundary& b = m.boundaries[c.points[k]];
+      ++on_curves[c.points[k]];
+      switch (c.kind) {
+        case numeric::MapCurve::Kind::Psd: EXPECT_NE(b.below_psd, b.above_psd); break;
+        case numeric::MapCurve::Kind::Superball: EXPECT_NE(b.below.superball, b.above.superball); break;
+        case numeric::MapCurve::Kind::Case:
+          EXPECT_TRUE((b.below.closed == c.first && b.above.closed == c.second) || (b.below.closed == c.second && b.above.closed == c.first));
+      }
+      if (k == 0) continue;
+      const numeric::MapBoundary& a = m.boundaries[c.points[k - 1]];
+      // Two points on edges of one cell: grid indices at most one apart.
+      EXPECT_LE(std::abs(a.i - b.i), 1);
+      EXPECT_LE(std::abs(a.j - b.j), 1);
+    }
+  }
+  for (std::size_t k = 0; k < m.boundaries.size(); ++k) EXPECT_GE(on_curves[k], 1) << "boundary " << k << " is on no curve";
+  // The superball edge crosses the map from K₃₄ = 0 to 20 as one curve.
+  int edges = 0;
+  for (const numeric::MapCurve& c : m.curves) edges += c.kind == numeric::MapCurve::Kind::Superball;
+  EXPECT_EQ(edges, 1);
+}
+
+TEST(Map, TheMapDoesNotDependOnTheThreads) {
+  const Scene scene = load_scene(kFig5);
+  numeric::MapSettings one, two;
+  two.threads = 2;
+  const auto x = axis(scene, "alpha.2", -200, 100, 17), y = axis(scene, "alpha.5", -10, 10, 9);
+  const numeric::Map a = numeric::map(scene, x, y, one), b = numeric::map(scene, x, y, two);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t k = 0; k < a.points.size(); ++k) {
+    EXPECT_EQ(a.points[k].admissible, b.points[k].admissible);
+    EXPECT_EQ(a.points[k].region, b.points[k].region);
+    EXPECT_EQ(std::memcmp(&a.points[k].ratio, &b.points[k].ratio, sizeof(double)), 0);
+  }
+  ASSERT_EQ(a.boundaries.size(), b.boundaries.size());
+  EXPECT_FALSE(a.boundaries.empty());
+  for (std::size_t k = 0; k < a.boundaries.size(); ++k) {
+    EXPECT_TRUE(a.boundaries[k].low == b.boundaries[k].low && a.boundaries[k].high == b.boundaries[k].high);
+    EXPECT_EQ(a.boundaries[k].below, b.boundaries[k].below);
+    EXPECT_EQ(a.boundaries[k].above, b.boundaries[k].above);
+  }
+  ASSERT_EQ(a.curves.size(), b.curves.size());
+  for (std::size_t k = 0; k < a.curves.size(); ++k) EXPECT_EQ(a.curves[k].points, b.curves[k].points);
+}
+
+TEST(Map, BadAxesAreRefusedBeforeAnythingIsSolved) {
+  const Scene scene = load_scene(kPaper);
+  auto refused = [&](const numeric::Axis& x, const numeric::Axis& y, const std::string& expected) {
+    try {
+      (void)numeric::map(scene, x, y);
+      ADD_FAILURE() << "not refused: " << expected;
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  const auto k34 = axis(scene, "K.3-4", 0, 20, 5);
+  refused(k34, axis(scene, "K.3-4", 1, 2, 5), "K.3-4 is on both axes");
+  refused(k34, axis(scene, "alpha.2", -1, 0, 1), "an axis takes 2 to 10000");
+  refused(axis(scene, "alpha.2", -1, 0, 10001), k34, "an axis takes 2 to 10000");
+  refused(k34, axis(scene, "g", -1, 10, 5), "g = -1");
+  refused(k34, axis(scene, "velocity.3", 0, -5, 5), "opens before the collision");
+  // M is PSD nowhere on the grid: α₂ <= −200 is far beyond the edge at −102.5.
+  refused(k34, axis(scene, "alpha.2", -400, -200, 5), "not positive semi-definite at any point of the map");
+}
+
+}  // namespace
+}  // namespace superball::testing

@@ -1,0 +1,87 @@
+#pragma once
+/// \file overlay.hpp
+/// The derived conditions of the cases of a map (numeric/map.hpp) located on
+/// the map's grid lines, and compared with the boundaries the exact solutions
+/// gave (`superball map --overlay`): a verification run in two dimensions.
+///
+/// For each case present in the map, its conditions derived symbolically
+/// (symbolic::Deriver on the pattern of the scene's M: superball, each open
+/// contact's opening, each closed contact's reaction sign; with a finite
+/// obstacle the finite-m_n forms, which are exact) are evaluated exactly at
+/// every grid point; between two neighbours where a condition changes side,
+/// its zero is located by bisection on the condition's exact value to the
+/// map's bracket width.  Each boundary point of the map then has to lie, on
+/// its grid segment, within the two brackets' widths of a zero of a
+/// condition of one of the two cases on its sides: at a change of case or of
+/// superball verdict, one of the conditions that decide them changes sign.
+
+#include <cln/rational.h>
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+#include "superball/cases/model.hpp"
+#include "superball/numeric/map.hpp"
+#include "superball/symbolic/derivation.hpp"
+
+namespace superball::verify {
+
+/// A zero of one derived condition on a grid segment of the map (as
+/// numeric::MapBoundary: along x from (x_i, y_j), else along y), bracketed by
+/// [low, high] in the varying parameter; the condition holds at `holds_low`'s end.
+struct DerivedZero {
+  bool along_x = true;
+  int i = 0, j = 0;
+  cln::cl_RA low, high;
+  ContactSet closed;       ///< the case whose condition it is
+  symbolic::ConditionKind kind = symbolic::ConditionKind::Superball;
+  std::string about;       ///< as in symbolic::Condition ("1-2", …)
+  bool holds_low = false;
+  /// Whether one end of its segment is a grid point of this case (the zero
+  /// can bound the case's region there; the others lie where the case is not
+  /// actual and its conditions say nothing).
+  bool at_case = false;
+};
+
+/// How one boundary point of the map compares with the derived zeros.
+struct OverlayMatch {
+  std::size_t boundary = 0;  ///< index into numeric::Map::boundaries
+  bool found = false;        ///< a zero of a condition of either side's case is on the same segment
+  std::size_t zero = 0;      ///< the nearest such zero (index into Overlay::zeros)
+  cln::cl_RA distance;       ///< |middle of the boundary's bracket − middle of the zero's|
+  cln::cl_RA allowed;        ///< the sum of the two brackets' widths
+  bool agrees() const { return found && distance <= allowed; }
+};
+
+/// The overlay of a map.
+struct Overlay {
+  std::vector<ContactSet> cases;  ///< the cases present in the map, whose conditions were derived
+  int conditions = 0;             ///< how many conditions they have (PSD conditions left out)
+  std::vector<DerivedZero> zeros;
+  std::vector<OverlayMatch> matches;  ///< one per boundary point between solved points (PSD edges left out)
+  /// The largest distance of a match that was found, in units of the grid
+  /// step of its axis, and the largest allowed (both 0 when there is none).
+  double largest_distance = 0, largest_allowed = 0;
+  bool agrees() const;
+  /// The scene at the middle of a disagreeing boundary point's bracket.
+  Scene scene_at(const Scene& scene, const numeric::Map& map, const OverlayMatch& match) const;
+};
+
+/// The overlay of \p map, a map of \p scene.  The scene must be of the form
+/// the derivation takes: bodies 1..n−1 falling at −a with a rational fall
+/// speed a, the bottom body at rest, and the map's keys among K, alpha,
+/// coupling, mass and fall_speed (each coordinate of the derivation affine in
+/// the map's parameters); throws std::invalid_argument("overlay(): …")
+/// otherwise.  Exact throughout; \p bits as for the map's bisections.
+Overlay overlay(const Scene& scene, const numeric::Map& map, int bits = 64);
+
+/// The overlay's summary for people: the conditions derived, the zeros
+/// found, the largest distance against the allowed one, each disagreement.
+std::string to_text(const Overlay& o, const numeric::Map& map);
+
+/// Every zero and match, for programs.
+nlohmann::ordered_json to_json(const Overlay& o, const numeric::Map& map);
+
+}  // namespace superball::verify
