@@ -20,27 +20,12 @@ namespace {
 using superball::test::describe;
 using superball::test::expect_bad_input;
 using superball::test::run;
+using superball::test::csv_fields;
+using superball::test::lines_of;
 using superball::test::RunResult;
 using superball::test::slurp;
 
 const std::string kPaper = std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml";
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-std::vector<std::string> fields(const std::string& line) {
-  std::vector<std::string> f(1);
-  for (char c : line)
-    if (c == ',')
-      f.emplace_back();
-    else
-      f.back() += c;
-  return f;
-}
 
 bool exists(const std::string& path) { return ::access(path.c_str(), F_OK) == 0; }
 
@@ -79,7 +64,7 @@ TEST(MapCli, CsvRowsAreTheSweepsSolves) {
   const double a = 3.13209;  // the scene's fall speed
   int not_psd = 0, compared = 0;
   for (std::size_t k = 1; k < lines.size(); ++k) {
-    const auto f = fields(lines[k]);
+    const auto f = csv_fields(lines[k]);
     ASSERT_EQ(f.size(), 8u) << lines[k];
     if (f[1] == "-150") {  // beyond the edge of the PSD cone at α₂ ≈ −102.5
       EXPECT_EQ(f[2], "0") << lines[k];
@@ -90,7 +75,7 @@ TEST(MapCli, CsvRowsAreTheSweepsSolves) {
     EXPECT_EQ(f[2], "1") << lines[k];
     EXPECT_EQ(f[7], "success") << lines[k];
     if (f[1] != "-100") continue;
-    const auto s = fields(rows[static_cast<std::size_t>(compared + 1)]);
+    const auto s = csv_fields(rows[static_cast<std::size_t>(compared + 1)]);
     ++compared;
     EXPECT_EQ(std::stod(s[0]), std::stod(f[0]));
     EXPECT_EQ(f[3], s[5]) << lines[k] << " / " << rows[static_cast<std::size_t>(compared)];
@@ -124,7 +109,7 @@ TEST(MapCli, BoundaryPointsAsCsv) {
   ASSERT_GT(lines.size(), 1u);
   EXPECT_EQ(lines[0], "along,K.3-4,alpha.2,bracket_width,psd_low,case_low,superball_low,psd_high,case_high,superball_high");
   for (std::size_t k = 1; k < lines.size(); ++k) {
-    const auto f = fields(lines[k]);
+    const auto f = csv_fields(lines[k]);
     ASSERT_EQ(f.size(), 10u) << lines[k];
     EXPECT_GT(std::stod(f[3]), 0) << lines[k];
     EXPECT_LE(std::stod(f[3]), 25 * 0x1p-64 * 1.005) << lines[k];  // 2^-64 of the larger step, 25 (α₂), printed to 3 digits

@@ -15,36 +15,12 @@ namespace {
 using superball::test::describe;
 using superball::test::expect_bad_input;
 using superball::test::run;
+using superball::test::csv_fields;
+using superball::test::lines_of;
 using superball::test::RunResult;
 
 const std::string kPaper = std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml";
 const std::string kThreeBalls = std::string(SUPERBALL_TEST_DATA_DIR) + "/hard/mass-ratio-light-on-heavy.toml";
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
-
-/// The fields of a CSV line (RFC 4180: a quoted field may hold commas).
-std::vector<std::string> csv_fields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t k = 0; k < line.size(); ++k) {
-    const char c = line[k];
-    if (c == '"' && quoted && k + 1 < line.size() && line[k + 1] == '"') {
-      fields.back() += '"', ++k;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
-}
 
 TEST(SweepCli, InadmissibleValuesAreRefusedBeforeAnyOutput) {
   const struct {
