@@ -92,7 +92,11 @@ package_check() {
   cmake --build "$work/example" -j "$(nproc)" > "$work/build.log"
   "$work/example/superball_example" /usr/share/superball/scenes/paper-4.4-alpha2.toml > /dev/null
   local python=""
-  if dpkg-deb --contents "$deb" | grep -q "dist-packages/superball/"; then
+  # The listing is read whole first: grep -q would close the pipe early and, under pipefail,
+  # dpkg-deb's broken pipe would make the test false (the module then never checked).
+  local contents
+  contents="$(dpkg-deb --contents "$deb")"
+  if grep -q "dist-packages/superball/" <<< "$contents"; then
     (cd "$work" && /usr/bin/python3 -c "import superball; print(superball.__file__)" | grep -q "^/usr/lib/python3/dist-packages/")
     python=", Python module imported"
   fi
