@@ -206,8 +206,6 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
   std::vector<char> zx, zy;  // the exact value is 0
   for (const auto& v : x.values()) sx.push_back(T::from(v, digits)), zx.push_back(cln::zerop(v));
   for (const auto& v : y.values()) sy.push_back(T::from(v, digits)), zy.push_back(cln::zerop(v));
-  // A value S holds as Problem::from() requires: finite, and not rounded to zero or a subnormal number.
-  auto held = [](const S& v, bool zero) { return std::isfinite(v) && (zero || std::fabs(v) >= std::numeric_limits<S>::min()); };
   struct State {
     ExactScene exact;    ///< the corner's, its two entries set at each exact fallback
     Problem<S> problem;  ///< the corner's, its two entries set at each point
@@ -329,6 +327,10 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
     for (int j = 0; j + 1 < iy; ++j)
       if (differ(m.at(i, j), m.at(i, j + 1))) pending.push_back({false, i, j});
   const Label by_region = [](const ExactPoint& e) { return Region::of(e).label(); };
+  const ProvenLabel proven_region = [](const ProvenPoint& p) -> std::optional<std::string> {
+    if (!p.superball) return std::nullopt;
+    return Region{p.closed, *p.superball}.label();
+  };
   const int bodies = scene.size();
   const auto found = parallel_map(pending.size(), settings.threads, [] { return 0; }, [&](int&, std::size_t k) {
     const Pending& p = pending[k];
@@ -349,7 +351,8 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
       out.back().j = p.j;
       return out;
     }
-    for (const LabelChange& c : label_changes(line, along.parameter, {parse_rational(a), parse_rational(b)}, by_region, settings.bits, 1))
+    for (const LabelChange& c : label_changes(line, along.parameter, {parse_rational(a), parse_rational(b)}, by_region, settings.bits, 1,
+                                              proven_region))
       out.push_back({p.along_x, p.i, p.j, c.low, c.high, Region::parse(c.below, bodies), Region::parse(c.above, bodies)});
     return out;
   });

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <optional>
+#include <utility>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -98,6 +100,79 @@ TEST(SweepSwitchPoints, RandomScenesChainWhenAMassIsVaried) {
   }
   std::cout << "[ info ] " << several << " of " << kRandomScenes << " random scenes change case more than once between the two ends\n";
   EXPECT_GT(several, 0) << "the test does not exercise a third case inside a bracket";
+}
+
+/// The declared K's of a random scene, as (key, value): the entries of M on
+/// its diagonal, which a sweep can raise without leaving the PSD cone.
+std::vector<std::pair<std::string, cl_RA>> declared_k(const RandomScene& r) {
+  std::vector<std::pair<std::string, cl_RA>> out;
+  const auto line = r.toml.find("K = {");
+  if (line == std::string::npos) return out;
+  const std::string k = r.toml.substr(line, r.toml.find('}', line) - line);
+  for (std::size_t at = k.find('"'); at != std::string::npos;) {
+    const std::size_t name_end = k.find('"', at + 1), value_at = k.find('"', name_end + 1), value_end = k.find('"', value_at + 1);
+    out.push_back({"K." + k.substr(at + 1, name_end - at - 1), numeric::parse_rational(k.substr(value_at + 1, value_end - value_at - 1))});
+    at = k.find('"', value_end + 1);
+  }
+  return out;
+}
+
+TEST(SweepSwitchPoints, CheckShortcutGivesTheExactBisectionBitForBit) {
+  // label_changes() with a ProvenLabel skips the exact solve wherever a
+  // certified floating-point solve, or the exact check of a case met last,
+  // decides the label; the brackets must be those of the exact bisection,
+  // bit for bit, for the case and for the map's region (case and superball).
+  const numeric::Label by_case = [](const numeric::ExactPoint& e) { return e.solution.closed.to_string(); };
+  const numeric::ProvenLabel proven_case = [](const numeric::ProvenPoint& p) -> std::optional<std::string> { return p.closed.to_string(); };
+  const numeric::Label by_region = [](const numeric::ExactPoint& e) {
+    return e.solution.closed.to_string() + (e.solution.velocities_after[0] > cln::abs(e.problem.u[0]) ? " superball" : "");
+  };
+  const numeric::ProvenLabel proven_region = [](const numeric::ProvenPoint& p) -> std::optional<std::string> {
+    if (!p.superball) return std::nullopt;
+    return p.closed.to_string() + (*p.superball ? " superball" : "");
+  };
+  numeric::LabelCounts total;
+  std::size_t changes = 0;
+  auto compare = [&](const Scene& scene, const Parameter& parameter, const std::vector<cl_RA>& values, const numeric::Label& label,
+                     const numeric::ProvenLabel& proven, int threads, const std::string& context) {
+    SCOPED_TRACE(context + ", " + parameter.key());
+    numeric::LabelCounts counts;
+    const auto exact = numeric::label_changes(scene, parameter, values, label, 64, 1);
+    const auto fast = numeric::label_changes(scene, parameter, values, label, 64, threads, proven, &counts);
+    ASSERT_EQ(fast.size(), exact.size());
+    for (std::size_t k = 0; k < exact.size(); ++k) {
+      EXPECT_EQ(fast[k].low, exact[k].low);
+      EXPECT_EQ(fast[k].high, exact[k].high);
+      EXPECT_EQ(fast[k].below, exact[k].below);
+      EXPECT_EQ(fast[k].above, exact[k].above);
+    }
+    changes += exact.size();
+    total.in_double += counts.in_double, total.in_long_double += counts.in_long_double;
+    total.by_case += counts.by_case, total.solved += counts.solved;
+  };
+  const Scene paper = load_scene(kPaper);
+  for (const char* key : {"K.3-4", "alpha.2"}) {
+    const Parameter p = Parameter::parse(key, paper);
+    const auto values = std::string(key) == "K.3-4" ? numeric::linspace(0, 20, 9) : numeric::linspace(-100, 0, 9);
+    compare(paper, p, values, by_case, proven_case, 1, "paper");
+    compare(paper, p, values, by_region, proven_region, 2, "paper");
+  }
+  for (std::uint64_t seed = 1; seed <= kRandomScenes; ++seed) {
+    const RandomScene r = random_scene(seed, {3, 6});
+    const Scene scene = r.scene();
+    for (const auto& [key, value] : declared_k(r)) {
+      const Parameter p = Parameter::parse(key, scene);
+      const auto values = numeric::linspace(value, value * 100 + 1, 5);  // raised only: M stays PSD
+      compare(scene, p, values, by_case, proven_case, 1 + static_cast<int>(seed % 2), r.describe());
+      compare(scene, p, values, by_region, proven_region, 1, r.describe());
+    }
+  }
+  std::cout << "[ info ] " << changes << " changes; labels found in double " << total.in_double << ", in long double "
+            << total.in_long_double << ", by a case checked exactly " << total.by_case << ", by an exact solve " << total.solved << "\n";
+  EXPECT_GT(changes, 20u) << "too few changes to exercise the shortcut";
+  EXPECT_GT(total.in_double, 0u);
+  EXPECT_GT(total.in_long_double, 0u);
+  EXPECT_GT(total.by_case, 0u);
 }
 
 TEST(SweepRange, InadmissibleValuesAreRefusedAtEitherEnd) {

@@ -9,7 +9,9 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -159,6 +161,14 @@ namespace detail {
 /// (as ExactScene, M unchecked), nullopt when they differ in anything else
 /// or in more than one entry: the axis of a map that varies that entry only.
 std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b);
+
+/// \p v, a value converted into S, is held as Problem::from() requires: finite,
+/// and not rounded to zero or to a subnormal number unless it is zero
+/// (\p is_zero, the exact value's verdict).
+template <class S>
+bool held(const S& v, bool is_zero) {
+  return std::isfinite(v) && (is_zero || std::fabs(v) >= std::numeric_limits<S>::min());
+}
 
 /// M's positive semi-definiteness from floating point when it is clear:
 /// with τ = map_psd_margin·‖M‖_F, a Cholesky factorization of M − τI that

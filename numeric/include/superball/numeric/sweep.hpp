@@ -6,6 +6,7 @@
 #include <cln/rational.h>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,33 @@ ExactPoint solve_exact_at(const Scene& scene, const Parameter& parameter, const 
 /// U1+ > a", …), as a label.
 using Label = std::function<std::string(const ExactPoint&)>;
 
+/// What a floating-point solve proves about the exact solution at one value
+/// of a parameter (certify(), as `--precision auto` trusts it): the exact
+/// evolution case, and the superball verdict U₁⁺ > |U₁⁻| when the certified
+/// bound on U₁⁺ decides it.
+struct ProvenPoint {
+  ContactSet closed;
+  std::optional<bool> superball;  ///< nothing when |U₁⁺ − |U₁⁻|| is within the bound
+};
+
+/// The rounding allowed when a floating-point solve decides the superball
+/// verdict (ProvenPoint), in units of the arithmetic's unit roundoff times
+/// |U₁⁺| + |U₁⁻| + max_i |U_i⁺|, on top of the certified bound on U₁⁺: the
+/// rounding of U₁⁻ into the arithmetic and of the comparison, with room.
+inline constexpr double proven_verdict_rounding = 8;
+
+/// A shortcut for a Label: the label of the exact solution, read off what a
+/// floating-point solve proved, or nothing when that does not decide it.
+/// Wherever it answers it must answer as the Label would on the exact solution.
+using ProvenLabel = std::function<std::optional<std::string>(const ProvenPoint&)>;
+
+/// How the labels of label_changes() were found: proven by a floating-point
+/// solve in double or in long double, by the exact check of a case met last,
+/// or by an exact solve.
+struct LabelCounts {
+  std::size_t in_double = 0, in_long_double = 0, by_case = 0, solved = 0;
+};
+
 /// A change of label between two parameter values, bracketed by [low, high].
 struct LabelChange {
   cln::cl_RA low, high;
@@ -93,8 +121,22 @@ struct LabelChange {
 /// (0: all cores); with more than one, \p label is called on several threads
 /// at once and must not share a CLN object between calls (no captured
 /// cl_RA); the result does not depend on \p threads.
+///
+/// With \p proven, and when \p parameter is an entry of M (a K or a
+/// coupling), each midpoint of a bisection is solved first in double, then
+/// in long double (each thread converts the scene once and sets only that
+/// entry, as sweep() does), and certified (certify()); where \p proven reads
+/// a label off what was proved, the exact solve is skipped.  Where floating
+/// point cannot decide (near each change), the two cases met last are
+/// checked exactly by their cluster systems alone, and one that holds with
+/// strict complementarity (every closed contact's reaction < 0, every open
+/// one's gap > 0) is the exact solution's case.  Only where neither decides
+/// is the scene solved exactly.  The midpoints are the same exact rationals
+/// and each label is the exact one, so the result is the same, bit for bit.
+/// \p counts, when given, receives how the labels were found.
 std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
-                                       const Label& label, int bits = 64, int threads = 1);
+                                       const Label& label, int bits = 64, int threads = 1, const ProvenLabel& proven = {},
+                                       LabelCounts* counts = nullptr);
 
 /// A change of evolution case between two parameter values: the case is
 /// `below` for values in [low, …) up to the switch and `above` after it;
