@@ -5,6 +5,10 @@
 // (or solves) per second.
 #include <benchmark/benchmark.h>
 
+#include <optional>
+#include <string>
+#include <vector>
+
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/map.hpp"
 #include "superball/numeric/problem.hpp"
@@ -46,6 +50,32 @@ void BM_MapPoints(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * 128 * 128);
 }
 BENCHMARK(BM_MapPoints)->Name("map/paper/double/128x128")->UseRealTime()->Unit(benchmark::kMillisecond);
+
+/// The exact boundary points of a map: the bisections of label_changes()
+/// on the K34 segments between neighbours of different region along the
+/// line alpha_2 = -100 ... -60 (9 lines of 64 grid steps), by case and
+/// superball verdict, to 2^-64 of the step, one thread; state.range(0) = 1
+/// with the shortcut (the map's), 0 every label from an exact solve (the
+/// same brackets, bit for bit).  items_per_second = boundary points per second.
+void BM_Boundaries(benchmark::State& state) {
+  const Scene& s = paper_scene();
+  const Parameter k34 = Parameter::parse("K.3-4", s), alpha2 = Parameter::parse("alpha.2", s);
+  const numeric::Label by_region = [](const numeric::ExactPoint& e) { return numeric::Region::of(e).label(); };
+  const numeric::ProvenLabel proven = [](const numeric::ProvenPoint& p) -> std::optional<std::string> {
+    if (!p.superball) return std::nullopt;
+    return numeric::Region{p.closed, *p.superball}.label();
+  };
+  std::vector<Scene> lines;
+  for (int j = 0; j <= 8; ++j) lines.push_back(numeric::with_value(s, alpha2, cln::cl_RA(-100 + 5 * j)));
+  const auto values = numeric::linspace(0, 20, 64);
+  std::size_t points = 0;
+  for (auto _ : state) {
+    for (const Scene& line : lines)
+      points += numeric::label_changes(line, k34, values, by_region, 64, 1, state.range(0) ? proven : numeric::ProvenLabel{}).size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(points));
+}
+BENCHMARK(BM_Boundaries)->Name("map/paper/boundaries/shortcut")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -104,6 +104,13 @@ bool ClusterSystem<S>::factor(int k) {
 }
 
 template <class S>
+S ClusterSystem<S>::determinant() const {
+  S d = S(1);
+  for (int i = 0; i < k_; ++i) d *= R_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1)];
+  return d;
+}
+
+template <class S>
 bool ClusterSystem<S>::definite() {
   if (definite_ < 0) definite_ = definite_by_bound() || definite_by_factor() ? 1 : 0;
   return definite_ == 1;
@@ -193,6 +200,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   // Banded LDLᵀ in place, then the three triangular/diagonal solves.  With
   // every contact open the reduced system is A itself: its factorization
   // decides definite() too.
+  k_ = k;
   const bool factored = factor(k);
   if (k == nf_) definite_ = factored ? 1 : 0;
   if (!factored) return false;

@@ -1,5 +1,6 @@
 #include "superball/numeric/sweep.hpp"
 
+#include <cln/integer.h>
 #include <cln/rational_io.h>
 
 #include <algorithm>
@@ -77,9 +78,9 @@ ExactPoint solve_exact_at(const Scene& scene, const Parameter& parameter, const 
 
 namespace {
 
-/// A thread's copy of a line's problem in S (double or long double), for
-/// the shortcut of label_changes(): converted once, only the entry of M set
-/// at each value, as entry_sweep() does.
+/// A thread's copy of a line's problem in S (double), for the shortcut of
+/// label_changes(): converted once, only the entry of M set at each value,
+/// as entry_sweep() does.
 template <class S>
 struct EntryProblem {
   Problem<S> problem;
@@ -116,25 +117,61 @@ struct EntryProblem {
   }
 };
 
+/// The signs that decide whether a case holds along a line, and the
+/// superball verdict there, as polynomials in the value t of the entry of M
+/// that varies: for each contact c, Δ·λ_c where it is closed and
+/// Δ·(W_c − W_{c+1}) where it is open, and Δ·(W_1 − |u_1|), with
+/// Δ = det(Zᵀ A Z) > 0 the determinant of the case's reduced system.  A(t)
+/// is affine in t with a slope of rank at most 2 (one entry of M adds
+/// t[(e_i − e_j)(e_k − e_l)ᵀ + transpose]) and b̃(t) is affine, so Δ has
+/// degree at most 2, Δ·W at most 3 (cofactors of degree 2 times b̃), and
+/// Δ·λ, a running sum of rows of A(t)·ΔW − Δ·b̃, at most 4
+/// (case_signs_degree).  Each polynomial is interpolated exactly through
+/// case_signs_degree + 1 values of t in the checked range and checked at one
+/// more; its coefficients are then integers (a positive factor cleared), and
+/// its sign at t = p/q (q > 0) is that of Σ a_k p^k q^(d−k): products of
+/// integers, no gcd.
+struct CaseSigns {
+  static constexpr int degree = 4;
+  ContactSet closed;
+  bool valid = false;                          ///< interpolated and checked at the extra point
+  std::vector<std::vector<cln::cl_I>> polys;  ///< per contact, then the superball's: a_0 … a_degree
+
+  /// Sign of polynomial \p k at p/q (q > 0), given p^j and q^j for j = 0 … degree.
+  int sign_at(std::size_t k, const std::vector<cln::cl_I>& pp, const std::vector<cln::cl_I>& qq) const {
+    cln::cl_I sum = 0;
+    for (int j = 0; j <= degree; ++j) {
+      const cln::cl_I& a = polys[k][static_cast<std::size_t>(j)];
+      if (!cln::zerop(a)) sum = sum + a * pp[static_cast<std::size_t>(j)] * qq[static_cast<std::size_t>(degree - j)];
+    }
+    return cln::minusp(sum) ? -1 : cln::zerop(sum) ? 0 : 1;
+  }
+};
+
 /// The exact problem of a line, only the entry of M set at each value, for
 /// the shortcut of label_changes() where floating point cannot decide: the
-/// cases met last are tried in turn, each by its cluster system alone
-/// (detail::ClusterSystem: one banded solve, no pivoting, no tableau).  A
-/// case whose every closed contact has a reaction < 0 and every open one a
-/// gap > 0, exactly, is the exact solution's case: the velocities after the
-/// collision are unique and strict complementarity fixes the closed set, so
-/// a solve finds the same case and the same velocities.
+/// two cases met last are checked at the value.  A case whose every closed
+/// contact has a reaction < 0 and every open one a gap > 0, exactly, is the
+/// exact solution's case: the velocities after the collision are unique and
+/// strict complementarity fixes the closed set, so a solve finds the same
+/// case and the same velocities.  Each case is checked by its CaseSigns,
+/// made once per line from its cluster system (detail::ClusterSystem: one
+/// banded solve, no pivoting) at CaseSigns::degree + 2 values, or, where
+/// those do not check out, by its cluster system at the value itself.
 struct ExactCases {
   Problem<cln::cl_RA> problem;
   std::size_t entry;
   int bandwidth;
+  cln::cl_RA low, high;  ///< the checked range: M positive semi-definite on it
   detail::ClusterSystem<cln::cl_RA> system;
   std::vector<cln::cl_RA> W, lambda;
   std::vector<char> flags;
   std::vector<ContactSet> recent;  ///< the cases met last, the latest first
+  std::vector<CaseSigns> signs;    ///< per case met on this line
+  std::vector<cln::cl_I> pp, qq;   ///< powers of the value's numerator and denominator
 
-  ExactCases(const ExactScene& exact, std::size_t k)
-      : problem(Problem<cln::cl_RA>::from(exact, 0)), entry(k), bandwidth(problem.bandwidth()) {}
+  ExactCases(const ExactScene& exact, std::size_t k, const cln::cl_RA& from, const cln::cl_RA& to)
+      : problem(Problem<cln::cl_RA>::from(exact, 0)), entry(k), bandwidth(problem.bandwidth()), low(from), high(to) {}
 
   /// Remember \p closed as the latest case met (two are kept: a bisection's
   /// bracket has a case at each end).
@@ -145,21 +182,89 @@ struct ExactCases {
     if (recent.size() > 2) recent.pop_back();
   }
 
+  /// Solve case \p closed at \p value by its cluster system: the quantities
+  /// whose signs decide it (CaseSigns), times Δ when \p times_determinant.
+  bool quantities(const ContactSet& closed, const cln::cl_RA& value, bool times_determinant, std::vector<cln::cl_RA>& q) {
+    problem.entries[entry].value = value;
+    system.assemble(problem, bandwidth);
+    flags.assign(static_cast<std::size_t>(closed.contacts()), 0);
+    for (int c = 0; c < closed.contacts(); ++c) flags[static_cast<std::size_t>(c)] = closed.closed(c);
+    if (!system.solve(problem, flags, W, lambda)) return false;
+    const cln::cl_RA delta = times_determinant ? system.determinant() : cln::cl_RA(1);
+    q.clear();
+    for (int c = 0; c < closed.contacts(); ++c) {
+      const auto k = static_cast<std::size_t>(c);
+      q.push_back(delta * (closed.closed(c) ? lambda[k] : W[k] - W[k + 1]));
+    }
+    q.push_back(delta * (W[0] - cln::abs(problem.u[0])));
+    return true;
+  }
+
+  /// The CaseSigns of \p closed on this line, made on first use.
+  const CaseSigns& signs_of(const ContactSet& closed) {
+    for (const CaseSigns& s : signs)
+      if (s.closed == closed) return s;
+    CaseSigns s;
+    s.closed = closed;
+    constexpr int d = CaseSigns::degree;
+    std::vector<cln::cl_RA> t;
+    std::vector<std::vector<cln::cl_RA>> y;  // y[j][k]: quantity k at t_j
+    bool solved = true;
+    for (int j = 0; j <= d + 1 && solved; ++j) {
+      t.push_back(low + (high - low) * j / (d + 1));
+      y.emplace_back();
+      solved = quantities(closed, t.back(), true, y.back());
+    }
+    if (solved) {
+      s.valid = true;
+      for (std::size_t k = 0; k < y[0].size() && s.valid; ++k) {
+        // Newton's divided differences through t_0 … t_d, then the monomial coefficients.
+        std::vector<cln::cl_RA> dd(static_cast<std::size_t>(d + 1));
+        for (int j = 0; j <= d; ++j) dd[static_cast<std::size_t>(j)] = y[static_cast<std::size_t>(j)][k];
+        for (int level = 1; level <= d; ++level)
+          for (int j = d; j >= level; --j)
+            dd[static_cast<std::size_t>(j)] = (dd[static_cast<std::size_t>(j)] - dd[static_cast<std::size_t>(j - 1)]) /
+                                              (t[static_cast<std::size_t>(j)] - t[static_cast<std::size_t>(j - level)]);
+        std::vector<cln::cl_RA> c(static_cast<std::size_t>(d + 1), 0);
+        c[0] = dd[static_cast<std::size_t>(d)];
+        for (int j = d - 1; j >= 0; --j) {  // c(t) <- c(t)·(t − t_j) + dd_j
+          for (int m = d; m >= 1; --m) c[static_cast<std::size_t>(m)] = c[static_cast<std::size_t>(m - 1)] - t[static_cast<std::size_t>(j)] * c[static_cast<std::size_t>(m)];
+          c[0] = dd[static_cast<std::size_t>(j)] - t[static_cast<std::size_t>(j)] * c[0];
+        }
+        // The check at the extra value t_{d+1}.
+        cln::cl_RA at = 0;
+        for (int m = d; m >= 0; --m) at = at * t[static_cast<std::size_t>(d + 1)] + c[static_cast<std::size_t>(m)];
+        if (at != y[static_cast<std::size_t>(d + 1)][k]) s.valid = false;
+        cln::cl_I common = 1;
+        for (const auto& x : c) common = cln::lcm(common, cln::denominator(x));
+        std::vector<cln::cl_I> a;
+        for (const auto& x : c) a.push_back(cln::exquo(cln::numerator(x) * common, cln::denominator(x)));
+        s.polys.push_back(std::move(a));
+      }
+    }
+    signs.push_back(std::move(s));
+    return signs.back();
+  }
+
   /// The exact case and superball verdict at \p value when one of the
   /// cases met last holds there strictly, else nothing.
   std::optional<ProvenPoint> prove(const cln::cl_RA& value) {
-    problem.entries[entry].value = value;
-    system.assemble(problem, bandwidth);
+    const cln::cl_I p = cln::numerator(value), q = cln::denominator(value);
+    pp.assign(1, 1), qq.assign(1, 1);
+    for (int j = 1; j <= CaseSigns::degree; ++j) pp.push_back(pp.back() * p), qq.push_back(qq.back() * q);
+    std::vector<cln::cl_RA> at;
     for (const ContactSet& closed : recent) {
-      flags.assign(static_cast<std::size_t>(closed.contacts()), 0);
-      for (int c = 0; c < closed.contacts(); ++c) flags[static_cast<std::size_t>(c)] = closed.closed(c);
-      if (!system.solve(problem, flags, W, lambda)) continue;
+      const CaseSigns& s = signs_of(closed);
+      const std::size_t contacts = static_cast<std::size_t>(closed.contacts());
       bool strict = true;
-      for (int c = 0; c < closed.contacts() && strict; ++c) {
-        const auto k = static_cast<std::size_t>(c);
-        strict = closed.closed(c) ? cln::plusp(lambda[k]) : cln::plusp(W[k] - W[k + 1]);
+      if (s.valid) {
+        for (std::size_t k = 0; k < contacts && strict; ++k) strict = s.sign_at(k, pp, qq) > 0;
+        if (strict) return ProvenPoint{closed, s.sign_at(contacts, pp, qq) > 0};
+        continue;
       }
-      if (strict) return ProvenPoint{closed, W[0] > cln::abs(problem.u[0])};
+      if (!quantities(closed, value, false, at)) continue;
+      for (std::size_t k = 0; k < contacts && strict; ++k) strict = cln::plusp(at[k]);
+      if (strict) return ProvenPoint{closed, cln::plusp(at[contacts])};
     }
     return std::nullopt;
   }
@@ -167,7 +272,7 @@ struct ExactCases {
 
 /// A thread's means of labelling the exact solution at a value: its own copy
 /// of the scene for the exact solve, and, with a ProvenLabel along an entry
-/// of M, the shortcuts tried first: floating-point solves, then the cases
+/// of M, the shortcuts tried first: a certified double solve, then the cases
 /// met last checked exactly.
 struct Labeller {
   Scene scene;
@@ -175,30 +280,28 @@ struct Labeller {
   const Label& label;
   const ProvenLabel& proven;
   std::optional<EntryProblem<double>> in_double;
-  std::optional<EntryProblem<long double>> in_long_double;
   std::optional<ExactCases> exactly;
-  std::array<std::atomic<std::size_t>, 4>& found_by;  ///< in double, in long double, by a case, solved
+  std::array<std::atomic<std::size_t>, 3>& found_by;  ///< in double, by a case, solved
 
   Labeller(const Scene& s, const Parameter& p, const Label& l, const ProvenLabel& pl, std::optional<std::size_t> entry,
-           std::array<std::atomic<std::size_t>, 4>& counts)
+           const std::string& low, const std::string& high, std::array<std::atomic<std::size_t>, 3>& counts)
       : scene(s), parameter(p), label(l), proven(pl), found_by(counts) {
     if (!entry || !proven) return;
     const ExactScene exact = ExactScene::from(scene);
     in_double.emplace(exact, *entry);
-    in_long_double.emplace(exact, *entry);
-    exactly.emplace(exact, *entry);
+    exactly.emplace(exact, *entry, parse_rational(low), parse_rational(high));
   }
 
   /// The label of the exact solution at \p value (\p text: the same value
-  /// as text): proven in double, else in long double, else by the cases met
-  /// last, else from the exact solve.
+  /// as text): proven in double, else by the cases met last, else from the
+  /// exact solve.
   std::string operator()(const cln::cl_RA& value, const std::string& text) {
     if (exactly) {
       std::optional<std::string> l;
       std::optional<ProvenPoint> p;
       std::size_t by = 0;
-      for (; by < 3 && !l; ++by) {
-        p = by == 0 ? in_double->prove(value) : by == 1 ? in_long_double->prove(value) : exactly->prove(value);
+      for (; by < 2 && !l; ++by) {
+        p = by == 0 ? in_double->prove(value) : exactly->prove(value);
         if (p) l = proven(*p);
       }
       if (l) {
@@ -207,7 +310,7 @@ struct Labeller {
         return std::move(*l);
       }
     }
-    ++found_by[3];
+    ++found_by[2];
     const ExactPoint e = solve_exact(set_value(scene, parameter, text));
     if (exactly) exactly->met(e.solution.closed);
     return label(e);
@@ -248,13 +351,17 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
   std::optional<std::size_t> entry;
   if (proven && ends && texts.front() != texts.back()) entry = detail::entry_changed(ends->first, ends->second);
   const Scene& first = ends ? ends->first : scene;
-  std::array<std::atomic<std::size_t>, 4> found_by{};
+  std::array<std::atomic<std::size_t>, 3> found_by{};
   // One labeller per thread, made on it; on one thread, one for both passes
   // (the cases met at the values are the first the bisections try).
   const bool one_thread = thread_count(threads) == 1 || values.size() < 2;
   std::shared_ptr<Labeller> only;
-  if (one_thread) only = std::make_shared<Labeller>(first, parameter, label, proven, entry, found_by);
-  auto make_labeller = [&] { return one_thread ? only : std::make_shared<Labeller>(first, parameter, label, proven, entry, found_by); };
+  const std::string& low = texts.front();
+  const std::string& high = texts.back();
+  if (one_thread) only = std::make_shared<Labeller>(first, parameter, label, proven, entry, low, high, found_by);
+  auto make_labeller = [&] {
+    return one_thread ? only : std::make_shared<Labeller>(first, parameter, label, proven, entry, low, high, found_by);
+  };
   using Own = std::shared_ptr<Labeller>;
   const std::vector<std::string> labels = parallel_map(texts.size(), threads, make_labeller, [&](Own& label_at, std::size_t k) {
     return (*label_at)(parse_rational(texts[k]), texts[k]);
@@ -270,7 +377,7 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
   });
   std::vector<LabelChange> all;
   for (const auto& f : found) all.insert(all.end(), f.begin(), f.end());
-  if (counts) *counts = {found_by[0], found_by[1], found_by[2], found_by[3]};
+  if (counts) *counts = {found_by[0], found_by[1], found_by[2]};
   return all;
 }
 

@@ -27,6 +27,10 @@ class ClusterSystem {
   /// n) and λ = −R on the contacts (\p lambda, 0 where open).  False when a
   /// pivot of the reduced system is not positive (rounding broke definiteness).
   bool solve(const Problem<S>& p, const std::vector<char>& closed, std::vector<S>& W, std::vector<S>& lambda);
+  /// det(Zᵀ A Z) of the case of the last solve() that returned true, the
+  /// fixed cluster's columns moved to the right side: the product of the
+  /// pivots of its LDLᵀ (> 0), O(clusters).
+  S determinant() const;
   /// Whether A = diag(m) + DᵀMD on the free bodies, as assembled in S, is
   /// positive definite (A is positive definite in exact arithmetic when M is
   /// positive semi-definite, as ExactScene::from checks; rounding of the data
@@ -60,6 +64,7 @@ class ClusterSystem {
   S& R(int i, int d) { return R_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(d)]; }
 
   int n_ = 0, nf_ = 0, nc_ = 0, b_ = 0, digits_ = 0, entries_ = 0;
+  int k_ = 0;             ///< the unknowns (free clusters) of the last solve()
   int definite_ = -1;     ///< definite(): 1 yes, 0 no, −1 not yet known for this problem
   std::vector<S> A_;      ///< lower band of diag(m) + DᵀMD over all n bodies: A(i, d) = A_{i, i−d}
   std::vector<S> rhs_;    ///< b̃ on free bodies

@@ -94,11 +94,10 @@ inline constexpr double proven_verdict_rounding = 8;
 /// Wherever it answers it must answer as the Label would on the exact solution.
 using ProvenLabel = std::function<std::optional<std::string>(const ProvenPoint&)>;
 
-/// How the labels of label_changes() were found: proven by a floating-point
-/// solve in double or in long double, by the exact check of a case met last,
-/// or by an exact solve.
+/// How the labels of label_changes() were found: proven by a certified
+/// double solve, by the exact check of a case met last, or by an exact solve.
 struct LabelCounts {
-  std::size_t in_double = 0, in_long_double = 0, by_case = 0, solved = 0;
+  std::size_t in_double = 0, by_case = 0, solved = 0;
 };
 
 /// A change of label between two parameter values, bracketed by [low, high].
@@ -123,17 +122,21 @@ struct LabelChange {
 /// cl_RA); the result does not depend on \p threads.
 ///
 /// With \p proven, and when \p parameter is an entry of M (a K or a
-/// coupling), each midpoint of a bisection is solved first in double, then
-/// in long double (each thread converts the scene once and sets only that
-/// entry, as sweep() does), and certified (certify()); where \p proven reads
-/// a label off what was proved, the exact solve is skipped.  Where floating
-/// point cannot decide (near each change), the two cases met last are
-/// checked exactly by their cluster systems alone, and one that holds with
-/// strict complementarity (every closed contact's reaction < 0, every open
-/// one's gap > 0) is the exact solution's case.  Only where neither decides
-/// is the scene solved exactly.  The midpoints are the same exact rationals
-/// and each label is the exact one, so the result is the same, bit for bit.
-/// \p counts, when given, receives how the labels were found.
+/// coupling), each label is found without the exact solve where it can be:
+/// first from a double solve (each thread converts the scene once and sets
+/// only that entry, as sweep() does) whose case certify() proves and from
+/// which \p proven reads the label; then, where double cannot decide (near
+/// each change), by the two cases met last, checked exactly: a case that
+/// holds with strict complementarity (every closed contact's reaction < 0,
+/// every open one's gap > 0) is the exact solution's case.  Along the line
+/// those signs are polynomials in the entry's value (degree at most 4 once
+/// multiplied by the positive determinant of the case's reduced system), so
+/// each case's are interpolated exactly once per call and checked at one
+/// more value, and a check costs a few integer products.  Only where
+/// neither decides is the scene solved exactly.  The midpoints are the same
+/// exact rationals and each label is the exact one, so the result is the
+/// same, bit for bit.  \p counts, when given, receives how the labels were
+/// found.
 std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                                        const Label& label, int bits = 64, int threads = 1, const ProvenLabel& proven = {},
                                        LabelCounts* counts = nullptr);
