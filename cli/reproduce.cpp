@@ -10,6 +10,7 @@
 #include <cstring>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
@@ -180,7 +181,12 @@ void fig5(const Run& run, Document& doc) {
     const numeric::Label superball = [](const numeric::ExactPoint& e) {
       return e.solution.velocities_after[0] > -e.problem.u[0] ? std::string("U1+ > a") : std::string("U1+ <= a");
     };
-    for (const auto& change : numeric::label_changes(scene, p, values, superball)) {
+    // The paper's stack falls (U1- = -a < 0), so U1+ > -U1- is U1+ > |U1-|, the verdict a certified solve proves.
+    const numeric::ProvenLabel proven = [](const numeric::ProvenPoint& q) -> std::optional<std::string> {
+      if (!q.superball) return std::nullopt;
+      return *q.superball ? std::string("U1+ > a") : std::string("U1+ <= a");
+    };
+    for (const auto& change : numeric::label_changes(scene, p, values, superball, 64, 1, proven)) {
       const cln::cl_RA mid = (change.low + change.high) / 2;
       rows.push_back({"`" + std::string(file) + "`", key, decimal(mid, 6), change.below + " -> " + change.above});
       plot.markers.push_back({cln::double_approx(mid), p.key() + " = " + decimal(mid, 4), true, true, 0.97, false});
