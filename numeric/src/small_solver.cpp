@@ -30,7 +30,7 @@ S magnitude(const S& x) {
 template <class S, int N, bool Full>
 class Small {
  public:
-  Small(const Problem<S>& p, int bandwidth) : p_(p), b_(Full ? N - 1 : bandwidth), nf_(p.fixed_bottom ? N - 1 : N) {}
+  Small(const Problem<S>& p, int bandwidth) : p_(p), bandwidth_(bandwidth), nf_(p.fixed_bottom ? N - 1 : N) {}
 
   /// CollisionSolver::compute(): false to hand over to the general path.
   bool compute(const Settings<S>& settings, Solution<S>& out);
@@ -38,10 +38,13 @@ class Small {
  private:
   static constexpr int n_ = N, nc_ = N - 1;
 
+  /// The bandwidth of DᵀMD, a constant when Full.
+  int band() const { return Full ? N - 1 : bandwidth_; }
   S& A(int i, int d) { return A_[i][d]; }
   S& R(int i, int d) { return R_[i][d]; }
   void assemble();
   bool factor(int k);
+  bool factor_and_solve(int k);  // factor(k), then y_ := R⁻¹ y_ on the first k rows
   bool solve_case(const char* closed);  // ClusterSystem::solve() into W_, lambda_
   S row_residual(int c);
   bool factorize();
@@ -53,8 +56,8 @@ class Small {
   void complete(const Settings<S>& settings, Solution<S>& out);
 
   const Problem<S>& p_;
-  const int b_, nf_;
-  S A_[N][N] = {};     // lower band: A(i, d) = A_{i, i−d}, d <= b_
+  const int bandwidth_, nf_;
+  S A_[N][N] = {};     // lower band: A(i, d) = A_{i, i−d}, d <= band()
   S rhs_[N];      // b̃ on the free bodies
   S scale_[N] = {};    // per row: Σ |terms| of the assembly
   int cluster_[N];
@@ -102,9 +105,9 @@ void Small<S, N, Full>::assemble() {
   }
   for (int j = 0; j < nf_; ++j) {
     S acc = S(0);
-    for (int d = 0; d <= b_ && d <= j; ++d) acc -= A(j, d) * p_.u[j - d];
-    for (int d = 1; d <= b_ && j + d < n; ++d) acc -= A(j + d, d) * p_.u[j + d];
-    if (p_.fixed_bottom && n - 1 - j <= b_) acc -= A(n - 1, n - 1 - j) * p_.u[n - 1];
+    for (int d = 0; d <= band() && d <= j; ++d) acc -= A(j, d) * p_.u[j - d];
+    for (int d = 1; d <= band() && j + d < n; ++d) acc -= A(j + d, d) * p_.u[j + d];
+    if (p_.fixed_bottom && n - 1 - j <= band()) acc -= A(n - 1, n - 1 - j) * p_.u[n - 1];
     rhs_[j] = acc;
   }
   for (int i = 0; i < nf_; ++i) {
@@ -115,11 +118,22 @@ void Small<S, N, Full>::assemble() {
 }
 
 template <class S, int N, bool Full>
-bool Small<S, N, Full>::factor(int k) {
+inline __attribute__((always_inline)) bool Small<S, N, Full>::factor_and_solve(int k) {
+  if (!factor(k)) return false;
+  for (int i = 0; i < k; ++i)
+    for (int j = std::max(0, i - band()); j < i; ++j) y_[i] -= R(i, i - j) * y_[j];
+  for (int i = 0; i < k; ++i) y_[i] /= R(i, 0);
+  for (int i = k - 1; i >= 0; --i)
+    for (int j = i + 1; j <= std::min(k - 1, i + band()); ++j) y_[i] -= R(j, j - i) * y_[j];
+  return true;
+}
+
+template <class S, int N, bool Full>
+inline __attribute__((always_inline)) bool Small<S, N, Full>::factor(int k) {
   for (int j = 0; j < k; ++j) {
     const S dj = R(j, 0);
     if (!(dj > S(0))) return false;
-    const int last = std::min(k - 1, j + b_);
+    const int last = std::min(k - 1, j + band());
     for (int r = j + 1; r <= last; ++r) l_[r - j] = R(r, r - j) / dj;
     for (int r = j + 1; r <= last; ++r)
       for (int i = r; i <= last; ++i) R(i, i - r) -= R(i, i - j) * l_[r - j];
@@ -131,8 +145,8 @@ bool Small<S, N, Full>::factor(int k) {
 template <class S, int N, bool Full>
 S Small<S, N, Full>::row_residual(int c) {
   S r = -rhs_[c];
-  for (int d = 0; d <= b_ && d <= c; ++d) r += A(c, d) * W_[c - d];
-  for (int d = 1; d <= b_ && c + d < nf_; ++d) r += A(c + d, d) * W_[c + d];
+  for (int d = 0; d <= band() && d <= c; ++d) r += A(c, d) * W_[c - d];
+  for (int d = 1; d <= band() && c + d < nf_; ++d) r += A(c + d, d) * W_[c + d];
   return r;
 }
 
@@ -145,7 +159,7 @@ bool Small<S, N, Full>::solve_case(const char* closed) {
   const int k = p_.fixed_bottom ? fixed : cluster_[n - 1] + 1;
   const S u_fixed = p_.fixed_bottom ? p_.u[n - 1] : S(0);
   for (int i = 0; i < k; ++i) {
-    for (int d = 0; d <= b_; ++d) R(i, d) = S(0);
+    for (int d = 0; d <= band(); ++d) R(i, d) = S(0);
     y_[i] = S(0);
   }
   int current = -1;
@@ -160,7 +174,7 @@ bool Small<S, N, Full>::solve_case(const char* closed) {
     if (ci == fixed) {
       flush();
       current = -1;
-      for (int d = 1; d <= b_ && d <= i; ++d)
+      for (int d = 1; d <= band() && d <= i; ++d)
         if (cluster_[i - d] != fixed) y_[cluster_[i - d]] -= A(i, d) * u_fixed;
       continue;
     }
@@ -170,7 +184,7 @@ bool Small<S, N, Full>::solve_case(const char* closed) {
     }
     y_sum += rhs_[i];
     S inner = A(i, 0);
-    for (int d = 1; d <= b_ && d <= i; ++d) {
+    for (int d = 1; d <= band() && d <= i; ++d) {
       const int cj = cluster_[i - d];
       if (cj == ci)
         inner += S(2) * A(i, d);
@@ -180,12 +194,10 @@ bool Small<S, N, Full>::solve_case(const char* closed) {
     diagonal_sum += inner;
   }
   flush();
-  if (!factor(k)) return false;
-  for (int i = 0; i < k; ++i)
-    for (int j = std::max(0, i - b_); j < i; ++j) y_[i] -= R(i, i - j) * y_[j];
-  for (int i = 0; i < k; ++i) y_[i] /= R(i, 0);
-  for (int i = k - 1; i >= 0; --i)
-    for (int j = i + 1; j <= std::min(k - 1, i + b_); ++j) y_[i] -= R(j, j - i) * y_[j];
+  // With k a constant (every contact open: k = N, or N − 1 on a fixed
+  // obstacle) the compiler unrolls the factorization and the solves.
+  const bool solved = k == N ? factor_and_solve(N) : k == N - 1 ? factor_and_solve(N - 1) : factor_and_solve(k);
+  if (!solved) return false;
   for (int i = 0; i < n; ++i) W_[i] = cluster_[i] == fixed ? u_fixed : y_[cluster_[i]];
   for (int top = 0; top < n;) {
     int bottom = top;
@@ -211,7 +223,7 @@ bool Small<S, N, Full>::solve_case(const char* closed) {
 template <class S, int N, bool Full>
 bool Small<S, N, Full>::factorize() {
   for (int i = 0; i < nf_; ++i)
-    for (int j = 0; j <= i; ++j) Ad_[i][j] = i - j <= b_ ? A(i, i - j) : S(0);
+    for (int j = 0; j <= i; ++j) Ad_[i][j] = i - j <= band() ? A(i, i - j) : S(0);
   for (int k = 0; k < nf_; ++k) {
     const S d = Ad_[k][k];
     if (!(d > S(0))) return false;
