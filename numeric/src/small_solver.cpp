@@ -119,6 +119,7 @@ void Small<S, N, Full>::assemble() {
 
 template <class S, int N, bool Full>
 inline __attribute__((always_inline)) bool Small<S, N, Full>::factor_and_solve(int k) {
+  if (k < 0 || k > N || band() < 0) __builtin_unreachable();  // tells the compiler the indices stay inside the arrays
   if (!factor(k)) return false;
   for (int i = 0; i < k; ++i)
     for (int j = std::max(0, i - band()); j < i; ++j) y_[i] -= R(i, i - j) * y_[j];
