@@ -2,6 +2,10 @@
 // each arithmetic.  The solver is constructed once and reused, as in a sweep.
 #include <benchmark/benchmark.h>
 
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/certify.hpp"
 #include "superball/numeric/collision.hpp"
@@ -31,6 +35,104 @@ void BM_Solve(benchmark::State& state) {
 
 BENCHMARK_TEMPLATE(BM_Solve, double)->Arg(0)->Name("solve/paper/double");
 BENCHMARK_TEMPLATE(BM_Solve, long double)->Arg(0)->Name("solve/paper/long-double");
+
+/// The same solves on the general path (Settings::small_sizes = false): the
+/// runtime-sized solver that every n > 8 takes, side by side with the
+/// fixed-size path of the rows above (same results bit for bit).
+template <class S>
+void BM_SolveGeneral(benchmark::State& state) {
+  const auto problem = numeric::Problem<S>::from(paper_scene());
+  numeric::Settings<S> settings = numeric::Settings<S>::defaults();
+  settings.small_sizes = false;
+  numeric::CollisionSolver<S> solver(settings);
+  numeric::Solution<S> out;
+  solver.compute(problem, out);
+  for (auto _ : state) {
+    solver.compute(problem, out);
+    benchmark::DoNotOptimize(out.velocities_after.data());
+  }
+  if (out.status != numeric::Status::Success) state.SkipWithError("the solve did not succeed");
+}
+BENCHMARK_TEMPLATE(BM_SolveGeneral, double)->Name("solve/paper/double/general-path");
+BENCHMARK_TEMPLATE(BM_SolveGeneral, long double)->Name("solve/paper/long-double/general-path");
+
+/// The naive prototype of issue 16, as a baseline: fixed-size Eigen
+/// matrices, A = diag(m) + DᵀMD and b̃ from the entries, the full inverse
+/// A⁻¹, G = A⁻¹Cᵀ, N = CG and q = CA⁻¹b̃, then the 2^(n−1) cases in the order
+/// of their bit masks, each by the fixed-size inverse of N on the closed
+/// contacts (the open rows and columns replaced by the identity), until one
+/// is complementary; U⁺ = A⁻¹b̃ + Gλ.  It stops at the first complementary
+/// case (on the paper scene the first, every contact open) and makes no
+/// residual check: a lower bound on what the prototype costs.  NF free
+/// bodies, NC = n − 1 contacts; a fixed bottom body when NF < NC + 1.
+template <int NF, int NC>
+struct NaivePrototype {
+  using Square = Eigen::Matrix<double, NF, NF>;
+  using Contacts = Eigen::Matrix<double, NC, NC>;
+  Eigen::Matrix<double, NF, 1> velocities;
+
+  bool solve(const numeric::Problem<double>& p) {
+    constexpr int n = NC + 1;
+    Eigen::Matrix<double, n, n> K = Eigen::Matrix<double, n, n>::Zero();  // DᵀMD over every body
+    for (const auto& e : p.entries) {
+      Eigen::Matrix<double, n, 1> a = Eigen::Matrix<double, n, 1>::Zero(), b = a;
+      a(e.i) = 1, a(e.j) = -1, b(e.k) = 1, b(e.l) = -1;
+      K += e.value * (e.diagonal() ? Eigen::Matrix<double, n, n>(a * a.transpose()) : Eigen::Matrix<double, n, n>(a * b.transpose() + b * a.transpose()));
+    }
+    Eigen::Matrix<double, n, 1> u;
+    for (int i = 0; i < n; ++i) u(i) = p.u[static_cast<std::size_t>(i)];
+    Square A = K.template topLeftCorner<NF, NF>();
+    Eigen::Matrix<double, NF, 1> b = -(K * u).template head<NF>();
+    for (int i = 0; i < NF; ++i) A(i, i) += p.mass[static_cast<std::size_t>(i)], b(i) += p.mass[static_cast<std::size_t>(i)] * u(i);
+    Eigen::Matrix<double, NC, NF> C = Eigen::Matrix<double, NC, NF>::Zero();
+    for (int c = 0; c < NC; ++c) {
+      C(c, c) = 1;
+      if (c + 1 < NF) C(c, c + 1) = -1;
+    }
+    const Square Ainv = A.inverse();
+    const Eigen::Matrix<double, NF, NC> G = Ainv * C.transpose();
+    const Contacts N = C * G;
+    const Eigen::Matrix<double, NF, 1> W0 = Ainv * b;
+    Eigen::Matrix<double, NC, 1> q = C * W0;
+    if (NF == NC) q(NC - 1) -= u(n - 1);  // the fixed body's velocity
+    const double tol = 64 * std::numeric_limits<double>::epsilon() * q.cwiseAbs().maxCoeff();
+    for (int mask = 0; mask < (1 << NC); ++mask) {
+      Contacts Ns = Contacts::Identity();
+      Eigen::Matrix<double, NC, 1> r = Eigen::Matrix<double, NC, 1>::Zero();
+      for (int i = 0; i < NC; ++i) {
+        if (!(mask >> i & 1)) continue;
+        r(i) = -q(i);
+        for (int j = 0; j < NC; ++j)
+          if (mask >> j & 1) Ns(i, j) = N(i, j);
+      }
+      const Eigen::Matrix<double, NC, 1> lambda = Ns.inverse() * r;
+      const Eigen::Matrix<double, NC, 1> w = q + N * lambda;
+      bool ok = true;
+      for (int i = 0; i < NC; ++i) ok = ok && ((mask >> i & 1) ? lambda(i) >= -tol : w(i) >= -tol);
+      if (!ok) continue;
+      velocities = W0 + G * lambda;
+      return true;
+    }
+    return false;
+  }
+};
+
+void BM_NaivePrototype(benchmark::State& state) {
+  const auto problem = numeric::Problem<double>::from(paper_scene());
+  NaivePrototype<4, 3> prototype;  // the paper scene: 4 free bodies (the obstacle's mass is 5e6 kg)
+  bool ok = !problem.fixed_bottom && problem.n == 4;
+  for (auto _ : state) {
+    ok = prototype.solve(problem) && ok;
+    benchmark::DoNotOptimize(prototype.velocities.data());
+  }
+  // The prototype's answer against the solver's, to rounding.
+  const auto reference = numeric::solve(problem);
+  for (int i = 0; i < 4; ++i)
+    ok = ok && std::abs(prototype.velocities(i) - reference.velocities_after[static_cast<std::size_t>(i)]) <=
+                   1e-12 * std::abs(reference.velocities_after[0]);
+  if (!ok) state.SkipWithError("the prototype's answer differs from the solver's");
+}
+BENCHMARK(BM_NaivePrototype)->Name("solve/paper/double/naive-prototype");
 BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(20)->Name("solve/paper/digits:20");
 BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(50)->Name("solve/paper/digits:50");
 BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(100)->Name("solve/paper/digits:100");

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace superball::numeric {
 
@@ -22,7 +24,17 @@ Certificate certify_in_range(const Problem<S>& p, const Solution<S>& s) {
   const S gamma = S(4 * (b + 4)) * std::numeric_limits<S>::epsilon() / S(2);
   // Row residuals rr_i = m_i (W_i − u_i) + (DᵀMD (W + u))_i, their sizes
   // (Σ|terms|) and the row sums Σ_j |A_ij|.
-  std::vector<S> rr(static_cast<std::size_t>(n), S(0)), size(static_cast<std::size_t>(n), S(0)), row(static_cast<std::size_t>(n), S(0));
+  // On the stack up to kStackBodies bodies (a certificate of a small stack
+  // costs no allocation), else on the heap.
+  constexpr int kStackBodies = 8;
+  S stack[3 * kStackBodies];
+  std::vector<S> heap;
+  S* base = stack;
+  if (n > kStackBodies) heap.resize(3 * static_cast<std::size_t>(n)), base = heap.data();
+  std::fill(base, base + 3 * n, S(0));
+  S* rr = base;
+  S* size = base + n;
+  S* row = base + 2 * n;
   auto y = [&](int i) { return W[i] + p.u[i]; };
   auto ay = [&](int i) { return fabs(W[i]) + fabs(p.u[i]); };
   auto add = [&](int i, int j, const S& v, int k, int l) {
@@ -128,7 +140,10 @@ bool try_precision(const ExactScene& scene, double rtol, AutoChoice& choice) {
     choice.tried.push_back(name + ": bound " + to_string(c.relative_error, 3) + " > rtol");
     return false;
   }
-  choice.tried.push_back(name + ": certified, bound " + to_string(c.relative_error, 3));
+  std::string line;  // one allocation: this runs on every `--precision auto` solve
+  line.reserve(64);
+  line.append(name).append(": certified, bound ").append(to_string(c.relative_error, 3));
+  choice.tried.push_back(std::move(line));
   choice.relative_error = c.relative_error;
   return true;
 }

@@ -1,10 +1,12 @@
 #include "superball/numeric/collision.hpp"
 
 #include "detail/complete.hpp"
+#include "detail/small_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 namespace superball::numeric {
 
@@ -184,7 +186,14 @@ int CollisionSolver<S>::check(const Problem<S>& p) const {
 
 template <class S>
 void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
-  start(p, check(p), out);
+  const int bandwidth = check(p);
+  if constexpr (std::is_floating_point<S>::value) {  // n <= 8: sizes known at compile time (small_solver.cpp)
+    if (settings_.small_sizes) {
+      if (p.n != small_n_) small_n_ = p.n, small_ = detail::small_solver_for<S>(p.n);
+      if (small_ && small_(p, bandwidth, settings_, out)) return;
+    }
+  }
+  start(p, bandwidth, out);
   const int pivots = singular_ ? -2 : pivot();
   out.status = pivots == -1 ? Status::NoConvergence : pivots == -2 ? Status::NumericalIssue : Status::Success;
   out.pivots = std::max(pivots, 0);

@@ -2,6 +2,12 @@
 // against the exact solution), and must refuse where double is wrong.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <vector>
+
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/certify.hpp"
 
@@ -49,6 +55,28 @@ TEST(Certify, AutoPicksDoubleOnThePaperSceneAndExactOnTheHardOne) {
   EXPECT_EQ(hard.precision.kind, numeric::Precision::Kind::Exact);
   ASSERT_FALSE(hard.tried.empty());
   EXPECT_NE(hard.tried.front().find("double"), std::string::npos);
+}
+
+TEST(Certify, BoundsAreWrittenAsPrintfWritesThem) {
+  // to_string(double, digits) writes the bounds of AutoChoice::tried with
+  // std::to_chars; its text must be printf's "%.*g" for every kind of double.
+  std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0.5, 9.995, 9.9949999, 1e-5, 1e-4, 123456.0, 1e300, -2.5e-310,
+                                std::numeric_limits<double>::min(), std::numeric_limits<double>::max(),
+                                std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()};
+  std::uint64_t state = 88172645463325252ull;
+  for (int k = 0; k < 2000; ++k) {  // xorshift64: bit patterns over the whole range of double
+    state ^= state << 13, state ^= state >> 7, state ^= state << 17;
+    double x;
+    std::memcpy(&x, &state, sizeof x);
+    values.push_back(x);
+  }
+  for (double x : values)
+    for (int digits = 1; digits <= 17; ++digits) {
+      char expected[64];
+      std::snprintf(expected, sizeof expected, "%.*g", digits, x);
+      EXPECT_EQ(numeric::to_string(x, digits), expected) << digits << " digits";
+    }
 }
 
 }  // namespace

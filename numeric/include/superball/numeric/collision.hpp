@@ -84,6 +84,12 @@ struct Settings {
   S residual = S(0);
   /// Pivot cap, per contact (Murty's rule terminates; the cap guards rounding cycles).
   int max_pivots_per_contact = 16;
+  /// In double and long double, CollisionSolver::compute() solves problems of
+  /// at most 8 bodies on a path whose sizes are known at compile time (no
+  /// heap allocation, loops of fixed length), with the operations of the
+  /// general path in the same order: the same results bit for bit.  False
+  /// takes the general path at every size (for comparing the two).
+  bool small_sizes = true;
 
   /// Defaults for S at \p digits: feasibility = 64u, residual = 1e6·u (u the unit roundoff).
   static Settings defaults(int digits = 0);
@@ -106,6 +112,14 @@ struct Solution {
   double residual_complementarity = 0;  ///< max relative violation of w ≥ 0, λ ≥ 0, wλ = 0
   int pivots = 0;
 };
+
+namespace detail {
+/// A solve of CollisionSolver's fixed-size path for one number of bodies
+/// (problem, bandwidth of DᵀMD, settings, output); false hands the problem
+/// over to the general path.
+template <class S>
+using SmallSolve = bool (*)(const Problem<S>&, int, const Settings<S>&, Solution<S>&);
+}  // namespace detail
 
 /// Reusable solver: construct once per problem size, then compute() any
 /// problem of that size; compute() does not allocate for double and long
@@ -177,6 +191,8 @@ class CollisionSolver {
   std::vector<S> lambda_;           ///< λ on every contact, 0 where open
   detail::CheckWorkspace<S> check_;  ///< scratch of the residual check
   detail::ClusterSystem<S> system_;  ///< A and b̃ (band), and the answer by clusters of a case
+  int small_n_ = 0;                   ///< the n small_ was chosen for (0: none yet)
+  detail::SmallSolve<S> small_ = nullptr;  ///< the fixed-size path for small_n_ bodies, if any
 };
 
 /// The solution of \p problem with default settings, by the formulation that
