@@ -344,7 +344,7 @@ void add_merge(CLI::App& app) {
   static std::vector<std::string> parts;
   static std::string output;
   cmd->add_option("parts", parts, "The part files (any order)")->required();
-  cmd->add_option("--output,-o", output, "Write to this file instead of standard output (for commands with --output)");
+  cmd->add_option("--output,-o", output, "Write to this file instead of standard output (derive; the others: redirect standard output)");
 }
 
 std::vector<std::string> merge_arguments(const std::vector<std::string>& args) {
@@ -412,7 +412,12 @@ std::vector<std::string> merge_arguments(const std::vector<std::string>& args) {
     throw std::invalid_argument("merge: the parts hold " + std::to_string(merged.results.size()) + " of the run's " + std::to_string(merged.tasks) + " tasks");
   merged_run = &merged;
   std::vector<std::string> run = first.arguments;
-  if (!output.empty()) run.push_back("--output=" + output);
+  if (!output.empty()) {
+    if (run.empty() || run[0] != "derive")
+      throw std::invalid_argument("merge: -o: " + (run.empty() ? std::string("this command") : run[0]) +
+                                  " writes to standard output; redirect it (superball merge PART... > FILE)");
+    run.push_back("--output=" + output);
+  }
   return run;
 }
 

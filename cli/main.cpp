@@ -103,6 +103,15 @@ int run(int argc, char** argv) {
     err << "superball: " << printable(e.what()) << " (see superball --help)\n";
     return bad_input;
   }
+  // Under MPI only the commands whose work is a task list (cli/distribute.hpp) spread over the ranks;
+  // any other would run whole on every rank, each writing its output.
+  if (mpi_size() > 1) {
+    const std::string name = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
+    if (name != "derive" && name != "sweep" && name != "verify") {
+      err << "superball: " << name << " does not spread over MPI ranks (derive, sweep and verify do); run it in one process, with its --threads\n";
+      return bad_input;
+    }
+  }
   try {
     return action();
   } catch (const superball::InputError& e) {

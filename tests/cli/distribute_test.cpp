@@ -9,6 +9,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -40,14 +41,16 @@ std::vector<std::string> with(std::vector<std::string> args, const std::vector<s
 }
 
 /// The runs compared: derive of every case of a 5-body pattern (16 cases,
-/// text and JSON) and sweeps of 5 blocks of values (rows) and 2 (switch
-/// points, each block bisected exactly), each spread over 3 ranks or shards.
+/// text and JSON), sweeps of 5 blocks of values (rows) and 2 (switch
+/// points, each block bisected exactly) and verify of the 8 cases of a
+/// pattern, each spread over 3 ranks or shards.
 const std::vector<std::vector<std::string>>& runs() {
   static const std::vector<std::vector<std::string>> r = {
       {"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--all", "--format", "json"},
       {"derive", "--bodies", "5", "--pairs", "near2", "--all"},
       {"sweep", kPaper, "--vary", "K.3-4=0:20:20001", "--csv"},
       {"sweep", kPaper, "--vary", "K.3-4=20:0:8193", "--switch-points"},
+      {"verify", "--all", "--alphas", "5", "--samples", "20", "--epsilons", "1e-2", "--boundary-pairs", "2", "--json"},
   };
   return r;
 }
@@ -83,6 +86,22 @@ TEST(Distribute, ThreeShardsMergedAreTheSingleRunByteForByte) {
   const RunResult merged = run({"merge", parts[0], parts[1], parts[2], "-o", dir + "/merged.json"});
   ASSERT_EQ(merged.exit_code, 0) << describe(merged);
   EXPECT_EQ(slurp(dir + "/merged.json"), slurp(dir + "/whole.json"));
+  // verify --out: the scene files of the disagreements, written by the merge, are those of the single run.
+  const std::vector<std::string> verify = {"verify", "--all", "--alphas", "5", "--samples", "20", "--epsilons", "1e-2", "--boundary-pairs", "2",
+                                           "--out", dir + "/scenes"};
+  const RunResult single = run(verify);
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(dir + "/scenes")) files[e.path().string()] = slurp(e.path().string());
+  ASSERT_FALSE(files.empty()) << "the asymptotic forms disagree at some points near the boundaries";
+  fs::remove_all(dir + "/scenes");
+  const auto vparts = shards(verify, dir, 3);
+  EXPECT_FALSE(fs::exists(dir + "/scenes")) << "a shard writes its part file only";
+  const RunResult vmerged = run({"merge", vparts[0], vparts[1], vparts[2]});
+  EXPECT_EQ(vmerged.out, single.out);
+  EXPECT_EQ(vmerged.exit_code, single.exit_code);
+  std::map<std::string, std::string> merged_files;
+  for (const auto& e : fs::directory_iterator(dir + "/scenes")) merged_files[e.path().string()] = slurp(e.path().string());
+  EXPECT_EQ(merged_files, files);
   // More shards than tasks: the empty parts merge too (5 blocks, 7 shards).
   const auto many = shards(runs()[2], dir, 7);
   std::vector<std::string> args = {"merge"};
@@ -114,6 +133,8 @@ TEST(Distribute, MergesThatAreNotOneRunAreRefusedWithOneLine) {
   expect_refused({"merge", a[0], kPaper, a[2]}, {"merge: " + kPaper, "not a part file of superball"});
   expect_refused({"merge", a[0], dir + "/none", a[2]}, {"merge: " + dir + "/none", "cannot be read"});
   expect_refused({"merge"}, {"merge: no part file"});
+  expect_refused({"merge", a[0], a[1], a[2], "-o", dir + "/x"}, {"merge: -o: sweep writes to standard output; redirect it"});
+  EXPECT_FALSE(fs::exists(dir + "/x"));
   // The scene changed since the shards ran: the command now makes another run.
   const std::string scene = dir + "/scene.toml";
   fs::copy_file(kPaper, scene);
@@ -151,10 +172,10 @@ TEST(Distribute, ACheckpointResumesWithTheSameBytesAndRefusesAnotherRun) {
 }
 
 TEST(Distribute, KilledAndResumedGivesTheUninterruptedOutput) {
-  // derive of a 6-body pattern: 32 cases, one worker process; killed (SIGKILL)
+  // derive of a 5-body pattern: 16 cases, one worker process; killed (SIGKILL)
   // once a few cases are in the checkpoint, then run again.
   const std::string dir = folder("kill");
-  const std::vector<std::string> args = {"derive", "--bodies", "6", "--pairs", "near2", "--coupling", "near2", "--all", "--format", "json", "--jobs", "1"};
+  const std::vector<std::string> args = {"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--all", "--format", "json", "--jobs", "1"};
   const RunResult whole = run(args);
   ASSERT_EQ(whole.exit_code, 0) << describe(whole);
   const std::string out = dir + "/out.json", ck = dir + "/ck";
@@ -189,7 +210,7 @@ TEST(Distribute, KilledAndResumedGivesTheUninterruptedOutput) {
   const RunResult resumed = run(with(args, {"--checkpoint", ck, "-o", out}));
   ASSERT_EQ(resumed.exit_code, 0) << describe(resumed);
   EXPECT_EQ(slurp(out), whole.out);
-  EXPECT_NE(resumed.err.find(std::to_string(kept) + " of 32 tasks done already, " + std::to_string(32 - kept) + " to compute"), std::string::npos)
+  EXPECT_NE(resumed.err.find(std::to_string(kept) + " of 16 tasks done already, " + std::to_string(16 - kept) + " to compute"), std::string::npos)
       << resumed.err;
 }
 
@@ -206,7 +227,7 @@ TEST(DistributeMpi, TwoAndThreeRanksGiveTheSingleProcessOutputByteForByte) {
     const RunResult whole = run(args);
     ASSERT_EQ(whole.exit_code, 0) << describe(whole);
     for (int p : {2, 3}) {
-      const RunResult r = mpirun(p, with(args, {args[0] == "sweep" ? "--threads" : "--jobs", "1"}));
+      const RunResult r = mpirun(p, with(args, {args[0] == "derive" ? "--jobs" : "--threads", "1"}));
       ASSERT_EQ(r.exit_code, 0) << p << " ranks: " << describe(r);
       EXPECT_EQ(r.out, whole.out) << p << " ranks: " << args[0] << " " << args.back();
       EXPECT_EQ(r.err, "");
@@ -238,6 +259,10 @@ TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
   const RunResult shard = mpirun(2, with(runs()[2], {"--shard", "1/2"}));
   EXPECT_NE(shard.exit_code, 0);
   EXPECT_NE(shard.err.find("--shard runs one part in one process"), std::string::npos) << shard.err;
+  // A command that is not a task list would run whole on every rank: refused.
+  const RunResult explore = mpirun(2, {"explore", "--alphas", "3", "--case", "1"});
+  EXPECT_EQ(explore.out, "");
+  EXPECT_NE(explore.err.find("superball: explore does not spread over MPI ranks"), std::string::npos) << explore.err;
 }
 #endif
 
