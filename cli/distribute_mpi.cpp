@@ -7,6 +7,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <condition_variable>
 #include <csignal>
 #include <cstdint>
@@ -44,6 +46,29 @@ extern "C" void report_death(int signal) {
   }
   std::signal(signal, SIG_DFL);
   std::raise(signal);
+}
+
+/// Waits for the request \p r without spinning: MPI libraries poll a core
+/// while they wait, which on a shared node takes it from the ranks that
+/// compute (rank 0's own tasks, other jobs); a task lasts far longer than
+/// the millisecond this adds.
+void wait_gently(MPI_Request& r) {
+  int done = 0;
+  for (int pause = 50;; pause = std::min(pause * 2, 2000)) {
+    MPI_Test(&r, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(pause));
+  }
+}
+
+/// MPI_Probe without spinning (see wait_gently()).
+void probe_gently(int tag, MPI_Status& status) {
+  int found = 0;
+  for (int pause = 50;; pause = std::min(pause * 2, 2000)) {
+    MPI_Iprobe(MPI_ANY_SOURCE, tag, MPI_COMM_WORLD, &found, &status);
+    if (found) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(pause));
+  }
 }
 
 }  // namespace
@@ -85,8 +110,11 @@ void serve(std::size_t count, const Distribution::Task& task) {
     std::string message(sizeof k, '\0');
     std::memcpy(message.data(), &k, sizeof k);
     message += reply;
-    MPI_Send(message.data(), static_cast<int>(message.size()), MPI_BYTE, 0, kTagResult, MPI_COMM_WORLD);
-    MPI_Recv(&k, 1, MPI_UINT64_T, 0, kTagTask, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    MPI_Request sent, received;
+    MPI_Isend(message.data(), static_cast<int>(message.size()), MPI_BYTE, 0, kTagResult, MPI_COMM_WORLD, &sent);
+    wait_gently(sent);
+    MPI_Irecv(&k, 1, MPI_UINT64_T, 0, kTagTask, MPI_COMM_WORLD, &received);
+    wait_gently(received);
     if (k == kStop) break;
     death_length = static_cast<std::size_t>(std::snprintf(death_line, sizeof death_line, "superball: rank %d died in %s (a signal)\n", rank_,
                                                           name_task(static_cast<std::size_t>(k), count).c_str()));
@@ -141,7 +169,7 @@ void run_on_ranks(std::size_t count, const std::vector<std::size_t>& todo, std::
     try {
       while (serving > 0) {
         MPI_Status status;
-        MPI_Probe(MPI_ANY_SOURCE, kTagResult, MPI_COMM_WORLD, &status);
+        probe_gently(kTagResult, status);
         int size = 0;
         MPI_Get_count(&status, MPI_BYTE, &size);
         std::string message(static_cast<std::size_t>(size), '\0');
