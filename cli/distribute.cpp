@@ -251,7 +251,7 @@ Distribution::Distribution(const CLI::App& cmd, const DistributeOptions& options
       }
       unsigned long long k = 0;
       char extra = 0;
-      if (std::sscanf(leaf.c_str(), "task-%llu%c", &k, &extra) == 1 && k < count) d.done.emplace(static_cast<std::size_t>(k), slurp(entry.path().string()));
+      if (entry.is_regular_file() && std::sscanf(leaf.c_str(), "task-%llu%c", &k, &extra) == 1 && k < count) d.done.emplace(static_cast<std::size_t>(k), slurp(entry.path().string()));
     }
   }
   for (std::size_t k = d.shard; k < count; k += d.shards)
@@ -426,7 +426,7 @@ std::vector<std::string> merge_arguments(const std::vector<std::string>& args) {
 #ifndef SUPERBALL_WITH_MPI
 namespace superball::cli {
 void start_mpi(int*, char***) {}
-void stop_mpi() {}
+void stop_mpi(int) {}
 int mpi_rank() { return 0; }
 int mpi_size() { return 1; }
 namespace detail {

@@ -127,8 +127,11 @@ std::vector<std::string> merge_arguments(const std::vector<std::string>& args);
 /// MPI (built with SUPERBALL_WITH_MPI): starts MPI when this process was
 /// launched by an MPI launcher (mpirun, mpiexec, srun), from main().
 void start_mpi(int* argc, char*** argv);
-/// Ends MPI, if started; from main() before it returns.
-void stop_mpi();
+/// Ends MPI, if started; from main() before it returns \p code.  When rank
+/// 0 had to leave ranks waiting for tasks (its serving thread failed, e.g.
+/// the checkpoint could not be written), aborts the job with \p code
+/// instead: they could not be told to stop.
+void stop_mpi(int code);
 /// This process's rank (0 without MPI).
 int mpi_rank();
 /// The number of ranks (1 without MPI).

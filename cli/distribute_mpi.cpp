@@ -27,6 +27,9 @@ namespace {
 
 bool started = false;
 int rank_ = 0, size_ = 1;
+/// Rank 0 left a run while other ranks still waited for it (its serving
+/// thread failed): they cannot be told to stop, so stop_mpi() aborts the job.
+bool abandoned = false;
 
 constexpr int kTagTask = 1, kTagResult = 2;
 constexpr std::uint64_t kStop = ~std::uint64_t{0};
@@ -87,7 +90,8 @@ void start_mpi(int* argc, char*** argv) {
   }
 }
 
-void stop_mpi() {
+void stop_mpi(int code) {
+  if (started && abandoned) MPI_Abort(MPI_COMM_WORLD, code ? code : 1);
   if (started) MPI_Finalize();
   started = false;
 }
@@ -200,6 +204,7 @@ void run_on_ranks(std::size_t count, const std::vector<std::size_t>& todo, std::
     } catch (...) {
       const std::lock_guard<std::mutex> guard(lock);
       server_error = std::current_exception();
+      abandoned = serving > 0;
       serving = 0;
     }
     changed.notify_all();

@@ -134,6 +134,6 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   superball::cli::start_mpi(&argc, &argv);
   const int code = run(argc, argv);
-  superball::cli::stop_mpi();
+  superball::cli::stop_mpi(code);
   return code;
 }

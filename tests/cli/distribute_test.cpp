@@ -171,6 +171,21 @@ TEST(Distribute, ACheckpointResumesWithTheSameBytesAndRefusesAnotherRun) {
   EXPECT_NE(other.err.find("--vary=K.3-4=0:20:20001"), std::string::npos) << other.err;
 }
 
+/// A checkpoint whose task 2 cannot be written (a folder holds its name).
+std::string unwritable_checkpoint(const std::string& name) {
+  const std::string dir = folder(name);
+  fs::create_directories(dir + "/ck/task-00000001/x");
+  return dir;
+}
+
+TEST(Distribute, ACheckpointThatCannotBeWrittenEndsTheRunWithExitThreeAndNoOutput) {
+  const std::string dir = unwritable_checkpoint("unwritable");
+  const RunResult r = run(with(runs()[0], {"--checkpoint", dir + "/ck", "-o", dir + "/out.json"}));
+  EXPECT_EQ(r.exit_code, 3) << describe(r);
+  EXPECT_EQ(r.err, "superball: " + dir + "/ck/task-00000001: Is a directory\n");
+  EXPECT_FALSE(fs::exists(dir + "/out.json"));
+}
+
 TEST(Distribute, KilledAndResumedGivesTheUninterruptedOutput) {
   // derive of a 5-body pattern: 16 cases, one worker process; killed (SIGKILL)
   // once a few cases are in the checkpoint, then run again.
@@ -249,6 +264,17 @@ TEST(DistributeMpi, RanksWithACheckpointResume) {
   ASSERT_EQ(again.exit_code, 0) << describe(again);
   EXPECT_EQ(again.out, whole.out);
   EXPECT_EQ(again.err, "superball: --checkpoint " + dir + ": 13 of 16 tasks done already, 3 to compute\n");
+}
+
+TEST(DistributeMpi, ACheckpointThatCannotBeWrittenEndsTheJob) {
+  // Rank 0 writes the checkpoint, from its main thread (a task it computed) or
+  // from the thread that serves the ranks (then the job is aborted: the ranks
+  // waiting for it cannot be told to stop); exit 3 either way, no output.
+  const std::string dir = unwritable_checkpoint("mpi-unwritable");
+  const RunResult r = mpirun(3, with(runs()[0], {"--checkpoint", dir + "/ck", "-o", dir + "/out.json"}));
+  EXPECT_EQ(r.exit_code, 3) << describe(r);
+  EXPECT_NE(r.err.find("superball: " + dir + "/ck/task-00000001: Is a directory\n"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/out.json"));
 }
 
 TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
