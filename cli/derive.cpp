@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "distribute.hpp"
 #include "progress.hpp"
 #include "selection.hpp"
 #include "superball/cases/scene_file.hpp"
@@ -27,6 +28,7 @@ void add_derive(CLI::App& app, Action& action) {
   struct Options {
     SelectionOptions selection;
     ProgressOptions progress;
+    DistributeOptions distribute;
     std::string format = "text", output;
     int jobs = 0;
   };
@@ -65,6 +67,12 @@ void add_derive(CLI::App& app, Action& action) {
       "not thread-safe, so processes, each a copy of this one) and written in case order as they come: the output\n"
       "does not depend on --jobs; the memory is that of the cases being derived at once (one per worker).  LaTeX\n"
       "derives every case here, in order.\n\n"
+      "Clusters (text and JSON; docs/CLUSTER.md).  Under MPI (built with -DSUPERBALL_WITH_MPI=ON), `mpirun -n P\n"
+      "superball derive ...` or `srun superball derive ...` hands the cases out to the ranks one at a time, rank 0\n"
+      "computing too, each rank one case at a time; rank 0 writes, the same bytes as one process.  --shard I/N\n"
+      "derives the cases k with k mod N = I-1 into a part file, `superball merge` joins the N parts (a Slurm job\n"
+      "array).  --checkpoint DIR keeps each derived case in DIR: the same command run again after a kill derives\n"
+      "only those missing.\n\n"
       "Names (JSON and --scaling): m1..mn, K12 (K1_10 past 9 bodies), alpha1..alpha7 (n = 4), c_12_14 for a\n"
       "coupling of the pairs 1-2 and 1-4, a for the fall speed, U1.. for the velocities after.");
   add_selection_options(cmd, o->selection);
@@ -73,11 +81,12 @@ void add_derive(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output")->check(non_empty());
   add_progress_options(cmd, o->progress, "case");
+  add_distribute_options(cmd, o->distribute, "case");
   cmd->add_option("--jobs,-j", o->jobs, "Worker processes (default: all cores); the output does not depend on it")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
-  cmd->callback([o, &action] {
-    action = [o] {
+  cmd->callback([o, cmd, &action] {
+    action = [o, cmd] {
       const Selection selection = resolve(o->selection);
       const Deriver& deriver = *selection.deriver;
       // Each case is written as soon as it is derived and then dropped (a
@@ -103,6 +112,9 @@ void add_derive(CLI::App& app, Action& action) {
         const std::string paper = Vocabulary::paper().case_name(c);
         return paper == c.to_string() ? paper : paper + " " + c.to_string();
       };
+      if (latex && (!o->distribute.shard.empty() || !o->distribute.checkpoint.empty() || mpi_size() > 1))
+        throw std::invalid_argument("derive: --format latex writes one document of every case, derived in one process: "
+                                    "--shard, --checkpoint and MPI apply to text and json");
       if (latex) {  // latex_document() needs every case: derived here, in order
         StepProgress progress("derive", "case", static_cast<int>(count), o->progress.mode());
         std::vector<Derivation> kept;
@@ -129,16 +141,24 @@ void add_derive(CLI::App& app, Action& action) {
           }
           return indented;
         };
-        Workers workers(count, numeric::thread_count(o->jobs), task);  // forked before the progress starts its thread
-        StepProgress progress("derive", "case", static_cast<int>(count), o->progress.mode());
-        if (json && shared) emit("[\n");
-        if (!json && shared) emit(report_psd(deriver, Style::Text) + "\n");
-        if (count) progress.step(1, name(0));
-        workers.run([&](std::size_t k, std::string&& piece) {
-          // The case shown is the one the output waits for next, as when the cases run one after the other.
-          if (k + 1 < count) progress.step(static_cast<int>(k + 2), name(k + 1));
-          emit(json && shared ? piece + (k + 1 < count ? ",\n" : "\n") : piece);
-        });
+        Distribution run(*cmd, o->distribute, count);
+        std::optional<Workers> workers;  // forked before the progress starts its thread
+        if (run.local()) workers.emplace(run.todo().size(), numeric::thread_count(o->jobs), [&, kept = run.keeping(task)](std::size_t j) { return kept(run.todo()[j]); });
+        const bool writes = run.writes_output();
+        std::optional<StepProgress> progress;
+        if (writes) progress.emplace("derive", "case", static_cast<int>(count), o->progress.mode());
+        if (writes && json && shared) emit("[\n");
+        if (writes && !json && shared) emit(report_psd(deriver, Style::Text) + "\n");
+        if (count && progress) progress->step(1, name(0));
+        run.run(
+            task,
+            [&](std::size_t k, std::string&& piece) {
+              // The case shown is the one the output waits for next, as when the cases run one after the other.
+              if (k + 1 < count && progress) progress->step(static_cast<int>(k + 2), name(k + 1));
+              emit(json && shared ? piece + (k + 1 < count ? ",\n" : "\n") : piece);
+            },
+            [&](const std::vector<std::size_t>&, const Distribution::Task&, const Distribution::Deliver& deliver) { workers->run(deliver); });
+        if (!writes) return ok;  // a part file, or a rank other than 0
         if (json && shared) emit("]\n");
       }  // either way the progress line is erased before anything is written to standard output
       if (file)

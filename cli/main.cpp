@@ -4,11 +4,18 @@
 #include <cstring>
 #include <iostream>
 
+#include <string>
+#include <vector>
+
 #include "commands.hpp"
+#include "distribute.hpp"
 #include "superball/cases/error.hpp"
 #include "superball/cases/scene_file.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+/// The command itself; main() starts and ends MPI around it.
+int run(int argc, char** argv) {
   using namespace superball::cli;
   using superball::printable;
   CLI::App app{
@@ -48,6 +55,22 @@ int main(int argc, char** argv) {
   add_audit(app, action);
   add_verify(app, action);
   add_explore(app, action);
+  add_merge(app);
+  // `superball merge PART…`: the run the parts belong to, its results taken from them.
+  std::vector<std::string> words(argv + 1, argv + argc), merged;
+  try {
+    merged = merge_arguments(words);
+  } catch (const std::exception& e) {
+    std::cerr << "superball: " << printable(e.what()) << '\n';
+    return bad_input;
+  }
+  std::vector<char*> merged_argv = {argv[0]};
+  if (merged != words) {
+    for (std::string& w : merged) merged_argv.push_back(w.data());
+    merged_argv.push_back(nullptr);
+    argc = static_cast<int>(merged_argv.size()) - 1;
+    argv = merged_argv.data();
+  }
   if (argc > 1 && argv[1][0] != '-') {
     std::string names;
     bool known = false;
@@ -60,6 +83,11 @@ int main(int argc, char** argv) {
       return bad_input;
     }
   }
+  // Under MPI every rank runs the command; the same error on every rank is said once, by rank 0.
+  std::ostream& err = mpi_rank() == 0 ? std::cerr : *[] {
+    static std::ostream none(nullptr);
+    return &none;
+  }();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -72,22 +100,40 @@ int main(int argc, char** argv) {
       }
       return ok;
     }
-    std::cerr << "superball: " << printable(e.what()) << " (see superball --help)\n";
+    err << "superball: " << printable(e.what()) << " (see superball --help)\n";
     return bad_input;
+  }
+  // Under MPI only the commands whose work is a task list (cli/distribute.hpp) spread over the ranks;
+  // any other would run whole on every rank, each writing its output.
+  if (mpi_size() > 1) {
+    const std::string name = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
+    if (name != "derive" && name != "sweep" && name != "verify") {
+      err << "superball: " << name << " does not spread over MPI ranks (derive, sweep and verify do); run it in one process, with its --threads\n";
+      return bad_input;
+    }
   }
   try {
     return action();
   } catch (const superball::InputError& e) {
-    std::cerr << "superball: " << printable(e.what()) << '\n';
+    err << "superball: " << printable(e.what()) << '\n';
     return bad_input;
   } catch (const OutputError& e) {
-    std::cerr << "superball: " << printable(e.what()) << '\n';
+    err << "superball: " << printable(e.what()) << '\n';
     return output_error;
   } catch (const std::invalid_argument& e) {
-    std::cerr << "superball: " << printable(superball::without_function_prefix(e.what())) << '\n';
+    err << "superball: " << printable(superball::without_function_prefix(e.what())) << '\n';
     return bad_input;
   } catch (const std::exception& e) {
-    std::cerr << "superball: internal error: " << printable(e.what()) << '\n';
+    err << "superball: internal error: " << printable(e.what()) << '\n';
     return internal_error;
   }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  superball::cli::start_mpi(&argc, &argv);
+  const int code = run(argc, argv);
+  superball::cli::stop_mpi(code);
+  return code;
 }

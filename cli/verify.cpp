@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "commands.hpp"
+#include "distribute.hpp"
 #include "selection.hpp"
 #include "superball/cases/number.hpp"
 #include "superball/cases/scene_file.hpp"
@@ -94,6 +95,7 @@ void add_verify(CLI::App& app, Action& action) {
     int samples = verify::VerifyOptions{}.samples, boundary_pairs = verify::VerifyOptions{}.boundary_pairs, threads = 0;
     std::uint64_t seed = 1;
     bool json = false, quiet = false;
+    DistributeOptions distribute;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("verify", "Check a case's derived conditions against exact solutions at sampled points, over epsilon");
@@ -124,7 +126,12 @@ void add_verify(CLI::App& app, Action& action) {
       "  superball verify --all --alphas 2 --threads 2\n"
       "  superball verify --case 3.2 --alphas 5 --out disagreements  then: superball solve disagreements/FILE --precision exact\n"
       "  superball verify --case 1 --alphas 2 --obstacle finite --epsilons 1/100,1/10000 --samples 2000 --seed 7\n"
-      "  superball verify --closed 2-3 --bodies 5 --pairs near2 --coupling near2 --json");
+      "  superball verify --closed 2-3 --bodies 5 --pairs near2 --coupling near2 --json\n\n"
+      "Clusters (docs/CLUSTER.md): the cases are the tasks.  Under MPI (built with -DSUPERBALL_WITH_MPI=ON)\n"
+      "`mpirun -n P superball verify --all ...` hands the cases out to the ranks, each verifying its case on its\n"
+      "--threads, rank 0 writing the report and the scene files; --shard I/N verifies the cases k with\n"
+      "k mod N = I-1 into a part file for `superball merge`; --checkpoint DIR keeps each verified case.  The\n"
+      "same bytes every way.  One case is one task: it does not spread over ranks (use its --threads).");
   add_selection_options(cmd, o->selection);
   cmd->add_option("--epsilons", o->epsilons, "Values of eps in (0, 1), comma-separated (decimals, 1e-3 or fractions 1/1000)")->capture_default_str();
   cmd->add_option("--samples", o->samples, "Points drawn per eps")->check(CLI::Range(1, 100000000))->capture_default_str();
@@ -135,8 +142,9 @@ void add_verify(CLI::App& app, Action& action) {
   cmd->add_option("--out", o->out, "Write each disagreeing point as a scene file in this folder (created)")->check(non_empty());
   cmd->add_flag("--json", o->json, "Print JSON for programs");
   cmd->add_flag("--quiet,-q", o->quiet, "No progress bar on standard error");
-  cmd->callback([o, &action] {
-    action = [o] {
+  add_distribute_options(cmd, o->distribute, "case");
+  cmd->callback([o, cmd, &action] {
+    action = [o, cmd] {
       verify::VerifyOptions options;
       options.epsilons = parse_epsilons(o->epsilons);
       options.samples = o->samples;
@@ -146,45 +154,70 @@ void add_verify(CLI::App& app, Action& action) {
       if (!o->out.empty() && std::filesystem::exists(o->out) && !std::filesystem::is_directory(o->out))
         throw OutputError("--out " + o->out + ": exists and is not a folder");
       const Selection selection = resolve(o->selection);
-      std::vector<verify::Verification> results;
-      {
-        Progress progress(static_cast<int>(selection.cases.size()), !o->quiet);
-        for (std::size_t k = 0; k < selection.cases.size(); ++k) {
-          const std::string label = "case " + Vocabulary::paper().case_name(selection.cases[k]) +
-                                    (selection.cases.size() > 1 ? " (" + std::to_string(k + 1) + "/" + std::to_string(selection.cases.size()) + ")" : "");
-          options.progress = progress.for_task(static_cast<int>(k), label);
-          results.push_back(verify::verify_case(*selection.deriver, selection.cases[k], options));
-        }
-      }
-      bool exact_agrees = true;
-      int written = 0;
-      for (const verify::Verification& v : results) {
-        exact_agrees = exact_agrees && v.exact_agrees();
-        if (o->out.empty()) continue;
-        for (std::size_t k = 0; k < v.disagreements.size(); ++k) {
-          const verify::Disagreement& d = v.disagreements[k];
-          if (written == 0) {
-            std::error_code error;
-            std::filesystem::create_directories(o->out, error);
-            if (error) throw OutputError("--out " + o->out + ": cannot create the folder: " + error.message());
-          }
+      const std::size_t count = selection.cases.size();
+      // One task per case: its verification as plain text, "A" or "D" (the
+      // exact conditions agree or not), then each disagreement's scene file
+      // ("LENGTH PATH" and the text), then the case's report (text, or JSON
+      // as the array's dump(2) would write it), written in case order.
+      auto task = [&](std::size_t k, const std::function<void(long long, long long)>& progress) {
+        verify::VerifyOptions mine = options;
+        mine.progress = progress;
+        const verify::Verification v = verify::verify_case(*selection.deriver, selection.cases[k], mine);
+        std::string text = v.exact_agrees() ? "A\n" : "D\n";
+        for (std::size_t i = 0; !o->out.empty() && i < v.disagreements.size(); ++i) {
+          const verify::Disagreement& d = v.disagreements[i];
           const std::string path = (std::filesystem::path(o->out) /
                                     ("case-" + file_part(v.case_name) + "-eps-" + file_part(verify::epsilon_name(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon)) +
-                                     "-" + numbered(k + 1) + ".toml"))
+                                     "-" + numbered(i + 1) + ".toml"))
                                        .string();
-          write_output(path, write_scene(d.scene, verify::describe(v, d) + "\nrerun: superball solve " + path + " --precision exact"));
-          ++written;
+          const std::string scene = write_scene(d.scene, verify::describe(v, d) + "\nrerun: superball solve " + path + " --precision exact");
+          text += std::to_string(scene.size()) + " " + path + "\n" + scene;
         }
+        text += "report\n";
+        if (!o->json) return text + verify::to_text(v) + "\n";
+        const std::string element = verify::to_json(v).dump(2);
+        if (count == 1) return text + element + "\n";
+        text += "  ";
+        for (char ch : element) {
+          text += ch;
+          if (ch == '\n') text += "  ";
+        }
+        return text;
+      };
+      Distribution run(*cmd, o->distribute, count);
+      const bool writes = run.writes_output();
+      bool exact_agrees = true;
+      int written = 0;
+      std::string text = o->json && count != 1 ? (count ? "[\n" : "[]\n") : "";
+      {
+        Progress progress(static_cast<int>(count), !o->quiet && writes);
+        auto label = [&](std::size_t k) {
+          return "case " + Vocabulary::paper().case_name(selection.cases[k]) + (count > 1 ? " (" + std::to_string(k + 1) + "/" + std::to_string(count) + ")" : "");
+        };
+        run.run([&](std::size_t k) { return task(k, run.local() ? progress.for_task(static_cast<int>(k), label(k)) : nullptr); },
+                [&](std::size_t k, std::string&& piece) {
+                  exact_agrees = exact_agrees && piece[0] == 'A';
+                  std::size_t at = 2;
+                  while (piece.compare(at, 7, "report\n") != 0) {  // the scene files
+                    const std::size_t space = piece.find(' ', at), eol = piece.find('\n', at);
+                    const std::size_t size = std::stoull(piece.substr(at, space - at));
+                    const std::string path = piece.substr(space + 1, eol - space - 1);
+                    if (written == 0) {
+                      std::error_code error;
+                      std::filesystem::create_directories(o->out, error);
+                      if (error) throw OutputError("--out " + o->out + ": cannot create the folder: " + error.message());
+                    }
+                    write_output(path, std::string_view(piece).substr(eol + 1, size));
+                    ++written;
+                    at = eol + 1 + size;
+                  }
+                  text += piece.substr(at + 7);
+                  if (o->json && count > 1) text += k + 1 < count ? ",\n" : "\n";
+                });
       }
-      std::string text;
-      if (o->json) {
-        nlohmann::ordered_json j = nlohmann::ordered_json::array();
-        for (const verify::Verification& v : results) j.push_back(verify::to_json(v));
-        text = (results.size() == 1 ? j[0] : j).dump(2) + "\n";
-      } else {
-        for (const verify::Verification& v : results) text += verify::to_text(v) + "\n";
-        if (!o->out.empty()) text += std::to_string(written) + " scene files written to " + o->out + "\n";
-      }
+      if (!writes) return ok;  // a part file, or a rank other than 0
+      if (o->json && count > 1) text += "]\n";
+      if (!o->json && !o->out.empty()) text += std::to_string(written) + " scene files written to " + o->out + "\n";
       write_output("", text);
       if (exact_agrees) return ok;
       // A mathematical outcome, not a failure of the tool: the derived exact conditions disagree with exact solutions.

@@ -1,5 +1,7 @@
 #include "workers.hpp"
 
+#include "commands.hpp"
+
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -19,7 +21,7 @@ namespace {
 constexpr std::uint64_t kStop = ~std::uint64_t{0};  ///< the task index that tells a worker to exit
 
 /// What a worker sends back for one task.
-enum class Kind : std::uint8_t { Result = 0, InvalidArgument = 1, LogicError = 2, RuntimeError = 3 };
+enum class Kind : std::uint8_t { Result = 0, InvalidArgument = 1, LogicError = 2, RuntimeError = 3, OutputError = 4 };
 
 bool write_all(int fd, const void* data, std::size_t size) {
   const char* p = static_cast<const char*>(data);
@@ -59,6 +61,9 @@ bool read_all(int fd, void* data, std::size_t size) {
       text = e.what();
     } catch (const std::logic_error& e) {
       kind = Kind::LogicError;
+      text = e.what();
+    } catch (const OutputError& e) {  // e.g. a checkpoint file the task could not write
+      kind = Kind::OutputError;
       text = e.what();
     } catch (const std::exception& e) {
       kind = Kind::RuntimeError;
@@ -244,6 +249,7 @@ void Workers::run(const Deliver& deliver) {
     case Kind::InvalidArgument: throw std::invalid_argument(failed_text);
     case Kind::LogicError: throw std::logic_error(failed_text);
     case Kind::RuntimeError: throw std::runtime_error(failed_text);
+    case Kind::OutputError: throw OutputError(failed_text);
   }
   // Every worker has been told to stop (kStop) or has ended by now; reap them.
   for (Worker& w : workers) {

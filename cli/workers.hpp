@@ -21,7 +21,7 @@ namespace superball::cli {
 /// the run: no later task is handed out, the tasks before it are finished
 /// and delivered, the other workers are stopped, and run() throws the
 /// exception again with its message (std::invalid_argument,
-/// std::logic_error or std::runtime_error, by what it was).  A worker that
+/// std::logic_error, OutputError or std::runtime_error, by what it was).  A worker that
 /// dies (a signal) makes run() throw std::runtime_error("worker for task K
 /// died: …").  When several tasks fail, the first of them in task order is
 /// the one reported, as with \p jobs <= 1, whatever the timing.

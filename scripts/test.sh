@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Install, build and run every test (what CI runs), in four stages:
-#   1. the test suite (Release build with the Python module, ctest: its pytest tests and
+#   1. the test suite (Release build with the Python module and the MPI runner, ctest: its pytest tests and
 #      notebook too), then the install: `cmake --install` into a temporary prefix,
 #      examples/cpp built and run against it (CMake and pkg-config), the Python module
 #      imported from it and the notebook run against it, and the Debian package
@@ -111,7 +111,8 @@ for stage in $STAGES; do
   case "$stage" in
     1)
       echo "== stage 1: test suite"
-      configure_and_build -DSUPERBALL_BUILD_TESTS=ON -DSUPERBALL_BUILD_PYTHON=ON -DPython_EXECUTABLE=/usr/bin/python3
+      # With the MPI runner: its tests run mpirun -n 2 and -n 3; stage 2 builds without MPI.
+      configure_and_build -DSUPERBALL_BUILD_TESTS=ON -DSUPERBALL_BUILD_PYTHON=ON -DPython_EXECUTABLE=/usr/bin/python3 -DSUPERBALL_WITH_MPI=ON
       run_ctest "$BUILD_DIR" "suite"
       echo "== stage 1: install into a temporary prefix, examples/cpp against it"
       install_check

@@ -85,9 +85,14 @@ struct StandardOutput {
 /// Run `superball ARGS...`, standard error (and standard output, unless
 /// \p stdout_to says otherwise) captured through temporary files, removed
 /// afterwards.
-inline RunResult run(const std::vector<std::string>& args, const StandardOutput& stdout_to = {}) {
+inline RunResult run_program(const std::string& exe, const std::vector<std::string>& args, const StandardOutput& stdout_to = {});
+
+inline RunResult run(const std::vector<std::string>& args, const StandardOutput& stdout_to = {}) { return run_program(SUPERBALL_EXE, args, stdout_to); }
+
+/// Run the program \p exe (a path) with \p args, as run() runs superball
+/// (e.g. mpirun with superball among its arguments).
+inline RunResult run_program(const std::string& exe, const std::vector<std::string>& args, const StandardOutput& stdout_to) {
   static int counter = 0;
-  const std::string exe = SUPERBALL_EXE;
   const std::string base = ::testing::TempDir() + "superball-run-" + std::to_string(::getpid()) + "-" + std::to_string(++counter);
   const std::string out = base + ".out", err = base + ".err";
   posix_spawn_file_actions_t actions;

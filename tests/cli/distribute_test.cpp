@@ -1,0 +1,297 @@
+// The task lists of the long commands (issue 17, cli/distribute.hpp): the
+// output of a run split into shards and merged, resumed from a checkpoint
+// after a kill, or run over MPI ranks, is byte for byte that of the run in
+// one process; merges of parts that do not make one run are refused with one
+// line.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "support/run.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using superball::test::describe;
+using superball::test::run;
+using superball::test::run_program;
+using superball::test::RunResult;
+using superball::test::slurp;
+
+const std::string kPaper = std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml";
+
+/// A fresh folder for one test.
+std::string folder(const std::string& name) {
+  const std::string dir = ::testing::TempDir() + "superball-distribute-" + std::to_string(::getpid()) + "-" + name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+/// The runs compared: derive of every case of a 5-body pattern (16 cases,
+/// text and JSON), sweeps of 5 blocks of values (rows) and 2 (switch
+/// points, each block bisected exactly) and verify of the 8 cases of a
+/// pattern, each spread over 3 ranks or shards.
+const std::vector<std::vector<std::string>>& runs() {
+  static const std::vector<std::vector<std::string>> r = {
+      {"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--all", "--format", "json"},
+      {"derive", "--bodies", "5", "--pairs", "near2", "--all"},
+      {"sweep", kPaper, "--vary", "K.3-4=0:20:20001", "--csv"},
+      {"sweep", kPaper, "--vary", "K.3-4=20:0:8193", "--switch-points"},
+      {"verify", "--all", "--alphas", "5", "--samples", "20", "--epsilons", "1e-2", "--boundary-pairs", "2", "--json"},
+  };
+  return r;
+}
+
+/// The shard runs of \p args into \p dir (part I written as pI); their paths.
+std::vector<std::string> shards(const std::vector<std::string>& args, const std::string& dir, int n) {
+  std::vector<std::string> parts;
+  for (int i = 1; i <= n; ++i) {
+    parts.push_back(dir + "/p" + std::to_string(i));
+    const RunResult r = run(with(args, {"--shard", std::to_string(i) + "/" + std::to_string(n), "--part", parts.back()}));
+    EXPECT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_EQ(r.out, "") << "a shard writes its part file only";
+  }
+  return parts;
+}
+
+TEST(Distribute, ThreeShardsMergedAreTheSingleRunByteForByte) {
+  const std::string dir = folder("shards");
+  for (const auto& args : runs()) {
+    const RunResult whole = run(args);
+    ASSERT_EQ(whole.exit_code, 0) << describe(whole);
+    std::vector<std::string> parts = shards(args, dir, 3);
+    // Any order of the parts.
+    const RunResult merged = run({"merge", parts[2], parts[0], parts[1]});
+    ASSERT_EQ(merged.exit_code, 0) << describe(merged);
+    EXPECT_EQ(merged.out, whole.out) << args[0] << " " << args.back();
+    EXPECT_EQ(merged.err, "");
+  }
+  // derive -o through merge -o: the same file.
+  const std::vector<std::string> derive = runs()[0];
+  ASSERT_EQ(run(with(derive, {"-o", dir + "/whole.json"})).exit_code, 0);
+  const auto parts = shards(derive, dir, 3);
+  const RunResult merged = run({"merge", parts[0], parts[1], parts[2], "-o", dir + "/merged.json"});
+  ASSERT_EQ(merged.exit_code, 0) << describe(merged);
+  EXPECT_EQ(slurp(dir + "/merged.json"), slurp(dir + "/whole.json"));
+  // verify --out: the scene files of the disagreements, written by the merge, are those of the single run.
+  const std::vector<std::string> verify = {"verify", "--all", "--alphas", "5", "--samples", "20", "--epsilons", "1e-2", "--boundary-pairs", "2",
+                                           "--out", dir + "/scenes"};
+  const RunResult single = run(verify);
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::directory_iterator(dir + "/scenes")) files[e.path().string()] = slurp(e.path().string());
+  ASSERT_FALSE(files.empty()) << "the asymptotic forms disagree at some points near the boundaries";
+  fs::remove_all(dir + "/scenes");
+  const auto vparts = shards(verify, dir, 3);
+  EXPECT_FALSE(fs::exists(dir + "/scenes")) << "a shard writes its part file only";
+  const RunResult vmerged = run({"merge", vparts[0], vparts[1], vparts[2]});
+  EXPECT_EQ(vmerged.out, single.out);
+  EXPECT_EQ(vmerged.exit_code, single.exit_code);
+  std::map<std::string, std::string> merged_files;
+  for (const auto& e : fs::directory_iterator(dir + "/scenes")) merged_files[e.path().string()] = slurp(e.path().string());
+  EXPECT_EQ(merged_files, files);
+  // More shards than tasks: the empty parts merge too (5 blocks, 7 shards).
+  const auto many = shards(runs()[2], dir, 7);
+  std::vector<std::string> args = {"merge"};
+  args.insert(args.end(), many.begin(), many.end());
+  EXPECT_EQ(run(args).out, run(runs()[2]).out);
+}
+
+TEST(Distribute, MergesThatAreNotOneRunAreRefusedWithOneLine) {
+  const std::string dir = folder("bad-merges");
+  const auto a = shards(runs()[2], dir + "/", 3);
+  fs::create_directories(dir + "/b");
+  const auto b = shards(with(runs()[2], {"--precision", "long-double"}), dir + "/b", 3);
+  auto expect_refused = [](const std::vector<std::string>& args, const std::vector<std::string>& says) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << describe(r);
+    EXPECT_EQ(r.out, "");
+    ASSERT_EQ(r.err_lines().size(), 1u) << r.err;
+    for (const std::string& s : says) EXPECT_NE(r.err.find(s), std::string::npos) << "'" << s << "' not in: " << r.err;
+  };
+  expect_refused({"merge", a[0], a[2]}, {"merge: part 2 of 3 of run", "is missing"});
+  expect_refused({"merge", a[0], b[1], a[2]}, {"merge: " + b[1], "a part of another run", "--precision=long-double"});
+  expect_refused({"merge", a[0], a[1], a[1], a[2]}, {"merge: " + a[1], "part 2 of 3 again"});
+  const auto four = shards(runs()[2], dir + "/b", 4);
+  expect_refused({"merge", a[0], a[1], four[2]}, {"merge: " + four[2], "part 3 of 4, but"});
+  // A part cut short (a copy that did not finish), a file that is not a part, no part at all.
+  const std::string text = slurp(a[1]);
+  std::ofstream(dir + "/short", std::ios::binary) << text.substr(0, text.size() / 2);
+  expect_refused({"merge", a[0], dir + "/short", a[2]}, {"merge: " + dir + "/short", "cut short"});
+  expect_refused({"merge", a[0], kPaper, a[2]}, {"merge: " + kPaper, "not a part file of superball"});
+  expect_refused({"merge", a[0], dir + "/none", a[2]}, {"merge: " + dir + "/none", "cannot be read"});
+  expect_refused({"merge"}, {"merge: no part file"});
+  expect_refused({"merge", a[0], a[1], a[2], "-o", dir + "/x"}, {"merge: -o: sweep writes to standard output; redirect it"});
+  EXPECT_FALSE(fs::exists(dir + "/x"));
+  // The scene changed since the shards ran: the command now makes another run.
+  const std::string scene = dir + "/scene.toml";
+  fs::copy_file(kPaper, scene);
+  const auto c = shards({"sweep", scene, "--vary", "K.3-4=0:20:101"}, dir + "/b", 2);
+  std::ofstream(scene, std::ios::app) << "# edited\n";
+  expect_refused({"merge", c[0], c[1]}, {"merge: the parts are of run", "a file it reads or the superball version changed"});
+  // Bad --shard values.
+  for (const std::string s : {"0/3", "4/3", "3", "1/0", "a/b", "1/3x"}) {
+    const RunResult r = run(with(runs()[2], {"--shard", s}));
+    EXPECT_EQ(r.exit_code, 2) << s << describe(r);
+    EXPECT_NE(r.err.find("--shard: '" + s + "' is not I/N"), std::string::npos) << r.err;
+  }
+}
+
+TEST(Distribute, ACheckpointResumesWithTheSameBytesAndRefusesAnotherRun) {
+  const std::string dir = folder("checkpoint");
+  const auto& args = runs()[2];
+  const RunResult whole = run(args);
+  const RunResult first = run(with(args, {"--checkpoint", dir + "/ck"}));
+  ASSERT_EQ(first.exit_code, 0) << describe(first);
+  EXPECT_EQ(first.out, whole.out);
+  // Two blocks lost: the run again computes those two only, and says so.
+  fs::remove(dir + "/ck/task-00000001");
+  fs::remove(dir + "/ck/task-00000004");
+  const RunResult again = run(with(args, {"--checkpoint", dir + "/ck", "--threads", "1"}));
+  ASSERT_EQ(again.exit_code, 0) << describe(again);
+  EXPECT_EQ(again.out, whole.out);
+  EXPECT_EQ(again.err, "superball: --checkpoint " + dir + "/ck: 3 of 5 tasks done already, 2 to compute\n");
+  // The folder of another run.
+  const RunResult other = run({"sweep", kPaper, "--vary", "K.3-4=0:20:20002", "--checkpoint", dir + "/ck"});
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_EQ(other.out, "");
+  EXPECT_NE(other.err.find("--checkpoint " + dir + "/ck: holds run"), std::string::npos) << other.err;
+  EXPECT_NE(other.err.find("--vary=K.3-4=0:20:20001"), std::string::npos) << other.err;
+}
+
+/// A checkpoint whose task 2 cannot be written (a folder holds its name).
+std::string unwritable_checkpoint(const std::string& name) {
+  const std::string dir = folder(name);
+  fs::create_directories(dir + "/ck/task-00000001/x");
+  return dir;
+}
+
+TEST(Distribute, ACheckpointThatCannotBeWrittenEndsTheRunWithExitThreeAndNoOutput) {
+  const std::string dir = unwritable_checkpoint("unwritable");
+  const RunResult r = run(with(runs()[0], {"--checkpoint", dir + "/ck", "-o", dir + "/out.json"}));
+  EXPECT_EQ(r.exit_code, 3) << describe(r);
+  EXPECT_EQ(r.err, "superball: " + dir + "/ck/task-00000001: Is a directory\n");
+  EXPECT_FALSE(fs::exists(dir + "/out.json"));
+}
+
+TEST(Distribute, KilledAndResumedGivesTheUninterruptedOutput) {
+  // derive of a 5-body pattern: 16 cases, one worker process; killed (SIGKILL)
+  // once a few cases are in the checkpoint, then run again.
+  const std::string dir = folder("kill");
+  const std::vector<std::string> args = {"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--all", "--format", "json", "--jobs", "1"};
+  const RunResult whole = run(args);
+  ASSERT_EQ(whole.exit_code, 0) << describe(whole);
+  const std::string out = dir + "/out.json", ck = dir + "/ck";
+  std::vector<std::string> argv_s = {SUPERBALL_EXE};
+  for (const auto& a : with(args, {"--checkpoint", ck, "-o", out})) argv_s.push_back(a);
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, SUPERBALL_EXE, nullptr, nullptr, argv.data(), environ), 0);
+  auto done = [&] {
+    std::size_t n = 0;
+    std::error_code error;
+    for (const auto& e : fs::directory_iterator(ck, error)) {
+      const std::string name = e.path().filename().string();
+      n += name.rfind("task-", 0) == 0 && name.find(".tmp") == std::string::npos;  // not one being written
+    }
+    return n;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (done() < 3 && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  ::kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  const std::size_t kept = done();
+  ASSERT_GE(kept, 3u);
+  // Killed before the end (else the machine was too fast: then a resume of every case):
+  // the output is not there, not even in part (a SIGKILL leaves only Output's hidden temporary).
+  if (WIFSIGNALED(status)) {
+    EXPECT_FALSE(fs::exists(out)) << "the killed run wrote its output";
+  }
+  const RunResult resumed = run(with(args, {"--checkpoint", ck, "-o", out}));
+  ASSERT_EQ(resumed.exit_code, 0) << describe(resumed);
+  EXPECT_EQ(slurp(out), whole.out);
+  EXPECT_NE(resumed.err.find(std::to_string(kept) + " of 16 tasks done already, " + std::to_string(16 - kept) + " to compute"), std::string::npos)
+      << resumed.err;
+}
+
+#ifdef SUPERBALL_MPIEXEC
+/// `mpirun -n P superball ARGS...` (as root in a container too, more ranks than cores).
+RunResult mpirun(int ranks, const std::vector<std::string>& args) {
+  // No single-copy transfers (CMA): containers often forbid the ptrace they need.
+  std::vector<std::string> all = {"--oversubscribe", "--allow-run-as-root", "--mca", "btl_vader_single_copy_mechanism", "none",
+                                  "-n", std::to_string(ranks), SUPERBALL_EXE};
+  all.insert(all.end(), args.begin(), args.end());
+  return run_program(SUPERBALL_MPIEXEC, all);
+}
+
+TEST(DistributeMpi, TwoAndThreeRanksGiveTheSingleProcessOutputByteForByte) {
+  for (const auto& args : runs()) {
+    const RunResult whole = run(args);
+    ASSERT_EQ(whole.exit_code, 0) << describe(whole);
+    for (int p : {2, 3}) {
+      const RunResult r = mpirun(p, with(args, {args[0] == "derive" ? "--jobs" : "--threads", "1"}));
+      ASSERT_EQ(r.exit_code, 0) << p << " ranks: " << describe(r);
+      EXPECT_EQ(r.out, whole.out) << p << " ranks: " << args[0] << " " << args.back();
+      EXPECT_EQ(r.err, "");
+    }
+  }
+}
+
+TEST(DistributeMpi, RanksWithACheckpointResume) {
+  const std::string dir = folder("mpi-checkpoint");
+  const auto& args = runs()[0];
+  const RunResult whole = run(args);
+  const RunResult first = mpirun(3, with(args, {"--checkpoint", dir}));
+  ASSERT_EQ(first.exit_code, 0) << describe(first);
+  EXPECT_EQ(first.out, whole.out);
+  for (const std::string k : {"00000000", "00000007", "00000015"}) fs::remove(dir + "/task-" + k);
+  const RunResult again = mpirun(2, with(args, {"--checkpoint", dir}));
+  ASSERT_EQ(again.exit_code, 0) << describe(again);
+  EXPECT_EQ(again.out, whole.out);
+  EXPECT_EQ(again.err, "superball: --checkpoint " + dir + ": 13 of 16 tasks done already, 3 to compute\n");
+}
+
+TEST(DistributeMpi, ACheckpointThatCannotBeWrittenEndsTheJob) {
+  // Rank 0 writes the checkpoint, from its main thread (a task it computed) or
+  // from the thread that serves the ranks (then the job is aborted: the ranks
+  // waiting for it cannot be told to stop); exit 3 either way, no output.
+  const std::string dir = unwritable_checkpoint("mpi-unwritable");
+  const RunResult r = mpirun(3, with(runs()[0], {"--checkpoint", dir + "/ck", "-o", dir + "/out.json"}));
+  EXPECT_EQ(r.exit_code, 3) << describe(r);
+  EXPECT_NE(r.err.find("superball: " + dir + "/ck/task-00000001: Is a directory\n"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/out.json"));
+}
+
+TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
+  const RunResult r = mpirun(3, {"sweep", kPaper, "--vary", "K.3-4=0:20:1"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.out, "");
+  std::size_t said = 0;
+  for (const std::string& line : r.err_lines()) said += line.rfind("superball: --vary K.3-4=0:20:1: STEPS must be", 0) == 0;
+  EXPECT_EQ(said, 1u) << r.err;
+  const RunResult shard = mpirun(2, with(runs()[2], {"--shard", "1/2"}));
+  EXPECT_NE(shard.exit_code, 0);
+  EXPECT_NE(shard.err.find("--shard runs one part in one process"), std::string::npos) << shard.err;
+  // A command that is not a task list would run whole on every rank: refused.
+  const RunResult explore = mpirun(2, {"explore", "--alphas", "3", "--case", "1"});
+  EXPECT_EQ(explore.out, "");
+  EXPECT_NE(explore.err.find("superball: explore does not spread over MPI ranks"), std::string::npos) << explore.err;
+}
+#endif
+
+}  // namespace
