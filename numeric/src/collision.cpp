@@ -1,6 +1,7 @@
 #include "superball/numeric/collision.hpp"
 
 #include "detail/complete.hpp"
+#include "detail/exact_kernel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -184,7 +185,12 @@ int CollisionSolver<S>::check(const Problem<S>& p) const {
 
 template <class S>
 void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
-  start(p, check(p), out);
+  const int b = check(p);
+  if constexpr (ScalarTraits<S>::exact)  // the integer kernel, the same pivoting (exact_kernel.hpp)
+    if (settings_.integer_kernel &&
+        detail::exact_integer_solve(p, detail::ExactPivoting::Murty, settings_.max_pivots_per_contact * std::max(p.n - 1, 1), settings_, out))
+      return;
+  start(p, b, out);
   const int pivots = singular_ ? -2 : pivot();
   out.status = pivots == -1 ? Status::NoConvergence : pivots == -2 ? Status::NumericalIssue : Status::Success;
   out.pivots = std::max(pivots, 0);

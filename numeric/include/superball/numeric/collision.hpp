@@ -84,6 +84,12 @@ struct Settings {
   S residual = S(0);
   /// Pivot cap, per contact (Murty's rule terminates; the cap guards rounding cycles).
   int max_pivots_per_contact = 16;
+  /// Exact rationals only: solve by fraction-free elimination on integers
+  /// (the data over common denominators, 128-bit arithmetic where bounds
+  /// prove it exact, CLN integers elsewhere), the same pivoting and the same
+  /// fractions as in rationals, about 10× faster; false solves in CLN
+  /// rationals throughout (the reference the tests compare with).
+  bool integer_kernel = true;
 
   /// Defaults for S at \p digits: feasibility = 64u, residual = 1e6·u (u the unit roundoff).
   static Settings defaults(int digits = 0);
