@@ -9,6 +9,7 @@
 #include <limits>
 #include <numeric>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 namespace superball::numeric::detail {
@@ -66,6 +67,64 @@ cln::cl_I to_integer(Wide x) {
   return s < 0 ? cln::cl_I(-r) : r;
 }
 const cln::cl_I& to_integer(const cln::cl_I& x) { return x; }
+
+/// A signed integer modulo 2^256 (two's complement, four 64-bit limbs, least
+/// significant first): sums of products of three integers of the 128-bit path
+/// (energies, dissipation), exact while their bound is below 2^254.
+struct Wide256 {
+  std::uint64_t limb[4] = {0, 0, 0, 0};
+  Wide256& operator+=(const Wide256& b) {
+    u128 carry = 0;
+    for (int i = 0; i < 4; ++i) {
+      const u128 t = static_cast<u128>(limb[i]) + b.limb[i] + carry;
+      limb[i] = static_cast<std::uint64_t>(t), carry = t >> 64;
+    }
+    return *this;
+  }
+  void negate() {
+    u128 carry = 1;
+    for (auto& l : limb) {
+      const u128 t = static_cast<u128>(~l) + carry;
+      l = static_cast<std::uint64_t>(t), carry = t >> 64;
+    }
+  }
+  /// This times the unsigned \p m, modulo 2^256.
+  void times(std::uint64_t m) {
+    u128 carry = 0;
+    for (auto& l : limb) {
+      const u128 t = static_cast<u128>(l) * m + carry;
+      l = static_cast<std::uint64_t>(t), carry = t >> 64;
+    }
+  }
+};
+
+/// a · b · s exactly (|a|, |b| < 2^127, |s| < 2^63), modulo 2^256.
+Wide256 product(Wide a, Wide b, long long s) {
+  bool negative = s < 0;
+  u128 x = a.v, y = b.v;
+  if (static_cast<i128>(x) < 0) x = -x, negative = !negative;
+  if (static_cast<i128>(y) < 0) y = -y, negative = !negative;
+  const auto x0 = static_cast<std::uint64_t>(x), x1 = static_cast<std::uint64_t>(x >> 64);
+  const auto y0 = static_cast<std::uint64_t>(y), y1 = static_cast<std::uint64_t>(y >> 64);
+  const u128 p00 = static_cast<u128>(x0) * y0, p01 = static_cast<u128>(x0) * y1, p10 = static_cast<u128>(x1) * y0,
+             p11 = static_cast<u128>(x1) * y1;
+  const u128 mid = (p00 >> 64) + static_cast<std::uint64_t>(p01) + static_cast<std::uint64_t>(p10);
+  const u128 high = (mid >> 64) + (p01 >> 64) + (p10 >> 64) + static_cast<std::uint64_t>(p11);
+  Wide256 r;
+  r.limb[0] = static_cast<std::uint64_t>(p00), r.limb[1] = static_cast<std::uint64_t>(mid);
+  r.limb[2] = static_cast<std::uint64_t>(high), r.limb[3] = static_cast<std::uint64_t>((high >> 64) + (p11 >> 64));
+  r.times(static_cast<std::uint64_t>(s < 0 ? -static_cast<i128>(s) : s));
+  if (negative) r.negate();
+  return r;
+}
+
+cln::cl_I to_integer(Wide256 x) {
+  const bool negative = x.limb[3] >> 63;
+  if (negative) x.negate();
+  cln::cl_I r = cln::cl_I(static_cast<unsigned long long>(x.limb[3]));
+  for (int i = 2; i >= 0; --i) r = cln::logior(cln::ash(r, 64), cln::cl_I(static_cast<unsigned long long>(x.limb[i])));
+  return negative ? cln::cl_I(-r) : r;
+}
 
 int trailing_zeros(u128 x) {
   const auto lo = static_cast<std::uint64_t>(x);
@@ -217,6 +276,19 @@ class Kernel {
     assemble();
   }
 
+  /// The kernel of \p wide in CLN integers, its assembly converted (not redone).
+  template <class Other, class = std::enable_if_t<!std::is_same_v<Other, Ring>>>
+  explicit Kernel(const Kernel<Other>& wide)
+      : p_(wide.p_), n_(wide.n_), nf_(wide.nf_), nc_(wide.nc_), b_(wide.b_), absm_(wide.absm_), absu_(wide.absu_),
+        absv_(wide.absv_), umax_(wide.umax_), row_(wide.row_) {
+    auto convert = [](const std::vector<Wide>& from, std::vector<Z>& to) {
+      to.resize(from.size());
+      for (std::size_t i = 0; i < from.size(); ++i) to[i] = to_integer(from[i]);
+    };
+    convert(wide.m_, m_), convert(wide.u_, u_), convert(wide.v_, v_), convert(wide.A_, A_), convert(wide.rhs_, rhs_);
+    Lm_ = to_integer(wide.Lm_), Lu_ = to_integer(wide.Lu_);
+  }
+
   /// Whether the assembly is within the ring's reach (always, for CLN integers).
   bool assembled() const { return assembled_; }
 
@@ -229,12 +301,18 @@ class Kernel {
   /// The exact residual check of the last case; then the answer into \p out.
   bool check(const std::vector<char>& closed);
   void write(const std::vector<char>& closed, Solution<cln::cl_RA>& out) const;
+  /// The numerators of the energies and of the dissipation (see write()) in
+  /// 256 bits; false where their bound does not prove that exact (or the
+  /// ring is CLN's).
+  bool sums_in_256_bits(cln::cl_I& before, cln::cl_I& after, cln::cl_I& dissipation) const;
 
  private:
   Z& A(int i, int d) { return A_[static_cast<std::size_t>(i * (b_ + 1) + d)]; }
   const Z& A(int i, int d) const { return A_[static_cast<std::size_t>(i * (b_ + 1) + d)]; }
   void assemble();
 
+  template <class>
+  friend class Kernel;
   const Problem<cln::cl_RA>& p_;
   Ring ring_;
   int n_ = 0, nf_ = 0, nc_ = 0, b_ = 0;
@@ -297,11 +375,12 @@ void Kernel<Ring>::assemble() {
   }
   for (int i = 0; i < nf_; ++i) A(i, 0) += m_[i], row_[i] += absm_[i];
   if constexpr (Ring::bounded) {
-    // |Â_ij| <= row_i summed over j; |b̂_j| <= 2 row_j · max|û| (the fixed
-    // column counted twice): everything below 2^wide_bits.
-    double worst = 0;
-    for (int i = 0; i < n_; ++i) worst = std::max(worst, row_[i]);
-    assembled_ = 2 * worst * std::max(umax_, 1.0) * bound_margin < std::ldexp(1.0, wide_bits - 8);
+    // Σ_j |Â_ij| <= row_i; |b̂_j| <= 3 row_j max|û| (the fixed column counted
+    // twice).
+    // A case's reduced system sums rows of Â and b̂: at most Σ_i row_i (1 + 3 max|û|).
+    double total = 0;
+    for (int i = 0; i < n_; ++i) total += row_[i];
+    assembled_ = total * (1 + 3 * umax_) * bound_margin < std::ldexp(1.0, wide_bits - 6);
   }
 }
 
@@ -319,7 +398,6 @@ bool Kernel<Ring>::solve_case(const std::vector<char>& closed) {
   y_.assign(Ks, Z(0));
   auto F = [&](int r, int c) -> Z& { return F_[static_cast<std::size_t>(r * w + (c - r + b_))]; };
   const Z& u_fixed = u_[n - 1];
-  std::vector<double> size(Ks, 0.0);  // per reduced row: Σ |entries| + |right side| (bounded ring)
   for (int i = 0; i < nf_; ++i) {
     const int ci = cluster_[i];
     if (ci == fixed) {
@@ -328,7 +406,6 @@ bool Kernel<Ring>::solve_case(const std::vector<char>& closed) {
       continue;
     }
     y_[ci] += rhs_[i];
-    size[ci] += row_[i] * (1 + 3 * umax_);
     Z inner = A(i, 0);
     for (int d = 1; d <= b_ && d <= i; ++d) {
       const int cj = cluster_[i - d];
@@ -343,10 +420,14 @@ bool Kernel<Ring>::solve_case(const std::vector<char>& closed) {
   }
   if constexpr (Ring::bounded) {
     // Hadamard: every minor of [R | y] is at most the product of its rows'
-    // norms, each at most the row's Σ |entries|: Σ row_i over the cluster's
-    // bodies, and |ŷ_r| <= 3 max|û| Σ row_i (b̂ and the fixed cluster's columns).
+    // 2-norms (R and y are exact here: their entries sum at most
+    // Σ_i row_i (1 + 3 max|û|) < 2^120 in magnitude, assemble()).
     double h = 1;
-    for (int r = 0; r < K; ++r) h *= std::max(1.0, size[r]);
+    for (int r = 0; r < K; ++r) {
+      double norm2 = magnitude(y_[r]) * magnitude(y_[r]);
+      for (int c = std::max(0, r - b_); c <= std::min(K - 1, r + b_); ++c) norm2 += magnitude(F(r, c)) * magnitude(F(r, c));
+      h *= std::max(1.0, std::sqrt(norm2));
+    }
     h *= bound_margin;
     if (!(h < std::ldexp(1.0, wide_bits - 1))) return false;
     int bits = 0;
@@ -460,12 +541,10 @@ void Kernel<Ring>::write(const std::vector<char>& closed, Solution<cln::cl_RA>& 
   const cln::cl_I d = to_integer(d_), Lm = to_integer(Lm_), Lu = to_integer(Lu_);
   const cln::cl_I den = d * Lu, lden = Lm * den;
   const auto n = static_cast<std::size_t>(n_), nc = static_cast<std::size_t>(nc_);
-  std::vector<cln::cl_I> W(n), y(n);
-  for (std::size_t i = 0; i < n; ++i) W[i] = to_integer(W_[i]), y[i] = to_integer(Z(W_[i] + d_ * u_[i]));
   out.velocities_after.resize(n);
   out.gaps.resize(nc);
   out.reactions.resize(nc);
-  for (std::size_t i = 0; i < n; ++i) out.velocities_after[i] = W[i] / den;
+  for (std::size_t i = 0; i < n; ++i) out.velocities_after[i] = to_integer(W_[i]) / den;
   if (out.closed.bodies() != n_) out.closed = ContactSet(n_);
   for (std::size_t c = 0; c < nc; ++c) {
     const Z g = W_[c] - W_[c + 1];
@@ -476,29 +555,70 @@ void Kernel<Ring>::write(const std::vector<char>& closed, Solution<cln::cl_RA>& 
   // Momenta and energies of the free bodies; dissipation P·X = 2XᵀMX + R·X
   // with X = y/2, as complete_solution (scaled: y = ŷ / den, R = −Λ / lden).
   Z pb = Z(0), pa = Z(0);
-  cln::cl_I eb = 0, ea = 0;
-  for (int i = 0; i < nf_; ++i) {
-    pb += m_[i] * u_[i], pa += m_[i] * W_[i];
-    const cln::cl_I mi = to_integer(m_[i]), ui = to_integer(u_[i]);
-    eb = eb + mi * ui * ui, ea = ea + mi * W[i] * W[i];
-  }
+  for (int i = 0; i < nf_; ++i) pb += m_[i] * u_[i], pa += m_[i] * W_[i];
   out.momentum_before = to_integer(pb) / (Lm * Lu);
   out.momentum_after = to_integer(pa) / lden;
+  // 2 Lm Lu² · energy before = Σ m̂ û², 2 Lm den² · energy after = Σ m̂ Ŵ²,
+  // 2 Lm den² · dissipation = Σ_diag v̂ ŷij ŷkl + 2 Σ_off v̂ ŷij ŷkl − Σ_c Λ_c (ŷ_c − ŷ_{c+1}).
+  cln::cl_I eb, ea, diss;
+  if (!sums_in_256_bits(eb, ea, diss)) {
+    eb = 0, ea = 0, diss = 0;
+    std::vector<cln::cl_I> y(n);
+    for (std::size_t i = 0; i < n; ++i) y[i] = to_integer(Z(W_[i] + d_ * u_[i]));
+    for (int i = 0; i < nf_; ++i) {
+      const cln::cl_I mi = to_integer(m_[i]), ui = to_integer(u_[i]), wi = to_integer(W_[i]);
+      eb = eb + mi * ui * ui, ea = ea + mi * wi * wi;
+    }
+    for (std::size_t k = 0; k < p_.entries.size(); ++k) {
+      const auto& e = p_.entries[k];
+      const cln::cl_I t = to_integer(v_[k]) * (y[e.i] - y[e.j]) * (y[e.k] - y[e.l]);
+      diss = diss + (e.diagonal() ? t : cln::cl_I(2 * t));
+    }
+    for (std::size_t c = 0; c < nc; ++c)
+      if (sign_of(Lam_[c]) != 0) diss = diss - to_integer(Lam_[c]) * (y[c] - y[c + 1]);
+  }
   out.kinetic_energy_before = eb / (2 * Lm * Lu * Lu);
   out.kinetic_energy_after = ea / (2 * Lm * den * den);
-  // 2 Lm den² · dissipation = Σ_diag v̂ ŷij ŷkl + 2 Σ_off v̂ ŷij ŷkl − Σ_c Λ_c (ŷ_c − ŷ_{c+1})
-  cln::cl_I diss = 0;
-  for (std::size_t k = 0; k < p_.entries.size(); ++k) {
-    const auto& e = p_.entries[k];
-    const cln::cl_I t = to_integer(v_[k]) * (y[e.i] - y[e.j]) * (y[e.k] - y[e.l]);
-    diss = diss + (e.diagonal() ? t : cln::cl_I(2 * t));
-  }
-  for (std::size_t c = 0; c < nc; ++c)
-    if (sign_of(Lam_[c]) != 0) diss = diss - to_integer(Lam_[c]) * (y[c] - y[c + 1]);
   out.dissipation = diss / (2 * Lm * den * den);
   out.residual_motion = 0;
   out.residual_complementarity = 0;
   out.status = Status::Success;
+}
+
+template <class Ring>
+bool Kernel<Ring>::sums_in_256_bits(cln::cl_I& before, cln::cl_I& after, cln::cl_I& dissipation) const {
+  if constexpr (!Ring::bounded) {
+    (void)before, (void)after, (void)dissipation;
+    return false;
+  } else {
+    const auto n = static_cast<std::size_t>(n_);
+    auto small = [](Wide x) { return static_cast<long long>(static_cast<i128>(x.v)); };  // data: below 2^62
+    std::vector<Wide> y(n);
+    for (std::size_t i = 0; i < n; ++i) y[i] = W_[i] + d_ * u_[i];
+    double eb = 0, ea = 0, ed = 0;  // the bounds: Σ |terms|
+    Wide256 b, a, dis;
+    for (int i = 0; i < nf_; ++i) {
+      eb += absm_[i] * absu_[i] * absu_[i], ea += absm_[i] * magnitude(W_[i]) * magnitude(W_[i]);
+      b += product(u_[i], u_[i], small(m_[i]));
+      a += product(W_[i], W_[i], small(m_[i]));
+    }
+    for (std::size_t k = 0; k < p_.entries.size(); ++k) {
+      const auto& e = p_.entries[k];
+      const Wide yij = y[e.i] - y[e.j], ykl = y[e.k] - y[e.l];
+      const long long v = small(v_[k]) * (e.diagonal() ? 1 : 2);
+      ed += std::fabs(static_cast<double>(v)) * magnitude(yij) * magnitude(ykl);
+      dis += product(yij, ykl, v);
+    }
+    for (int c = 0; c < nc_; ++c)
+      if (sign_of(Lam_[c]) != 0) {
+        const Wide dy = y[c] - y[c + 1];
+        ed += magnitude(Lam_[c]) * magnitude(dy);
+        dis += product(Lam_[c], dy, -1);
+      }
+    if (!(std::max({eb, ea, ed}) * bound_margin < std::ldexp(1.0, 254))) return false;
+    before = to_integer(b), after = to_integer(a), dissipation = to_integer(dis);
+    return true;
+  }
 }
 
 /// The solver's pivoting rule on the cases solved by \p solve(closed) (false:
@@ -556,7 +676,12 @@ bool run(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth, E
   auto solve = [&](const std::vector<char>& closed) {
     last_wide = wide && wide->solve_case(closed);
     if (last_wide) return true;
-    if (!big) big.emplace(p, data, bandwidth);
+    if (!big) {
+      if (wide)
+        big.emplace(*wide);
+      else
+        big.emplace(p, data, bandwidth);
+    }
     return big->solve_case(closed);
   };
   auto gap = [&](int c) { return last_wide ? wide->gap_sign(c) : big->gap_sign(c); };
