@@ -87,8 +87,9 @@ struct Settings {
   /// Exact rationals only: solve by fraction-free elimination on integers
   /// (the data over common denominators, 128-bit arithmetic where bounds
   /// prove it exact, CLN integers elsewhere), the same pivoting and the same
-  /// fractions as in rationals, about 10× faster; false solves in CLN
-  /// rationals throughout (the reference the tests compare with).
+  /// fractions and pivot counts as in rationals, 7× (paper scene) to 18×
+  /// (chain-32) faster (docs/PERFORMANCE.md); false solves in CLN rationals
+  /// throughout (the reference the tests compare with).
   bool integer_kernel = true;
 
   /// Defaults for S at \p digits: feasibility = 64u, residual = 1e6·u (u the unit roundoff).
