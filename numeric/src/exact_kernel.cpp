@@ -269,7 +269,6 @@ class Kernel {
     }
     if constexpr (Ring::bounded) {
       Lm_ = Z(data.Lm), Lu_ = Z(data.Lu);
-      absLu_ = static_cast<double>(data.Lu);
     } else {
       Lm_ = data.small ? cln::cl_I(data.Lm) : data.LM, Lu_ = data.small ? cln::cl_I(data.Lu) : data.LU;
     }
@@ -320,7 +319,7 @@ class Kernel {
   std::vector<Z> m_, u_, v_;
   Z Lm_, Lu_;
   std::vector<double> absm_, absu_, absv_;  ///< magnitudes (bounded ring)
-  double absLu_ = 1, umax_ = 0;
+  double umax_ = 0;  ///< max |û| (bounded ring)
   std::vector<Z> A_, rhs_;   ///< Â (lower band over all bodies) and b̂ (free bodies)
   std::vector<double> row_;  ///< per body: Σ |terms| of its row of Â (masses and M), a bound on Σ_j |Â_ij|
   // The last case.
