@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "detail/complete.hpp"
+#include "detail/exact_kernel.hpp"
 
 namespace superball::numeric {
 namespace {
@@ -15,8 +16,13 @@ constexpr int block_pivot_patience = 10;
 
 template <class S>
 void ChainSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
-  system_.assemble(p, p.check("ChainSolver::compute()"));
+  const int b = p.check("ChainSolver::compute()");
   const int nc = p.n - 1, nf = p.fixed_bottom ? p.n - 1 : p.n;
+  if constexpr (ScalarTraits<S>::exact)  // the integer kernel, the same pivoting (exact_kernel.hpp)
+    if (settings_.integer_kernel &&
+        detail::exact_integer_solve(p, detail::ExactPivoting::Block, settings_.max_pivots_per_contact * std::max(nc, 1), settings_, out))
+      return;
+  system_.assemble(p, b);
   lambda_.resize(static_cast<std::size_t>(nc));
   // Start from every contact closed: the pivoting then opens the ones that
   // separate, all at once.  (From all-open, or from the contacts approaching

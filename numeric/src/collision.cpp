@@ -2,6 +2,7 @@
 
 #include "detail/complete.hpp"
 #include "detail/small_solver.hpp"
+#include "detail/exact_kernel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -193,6 +194,10 @@ void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
       if (small_ && small_(p, bandwidth, settings_, out)) return;
     }
   }
+  if constexpr (ScalarTraits<S>::exact)  // the integer kernel, the same pivoting (exact_kernel.hpp)
+    if (settings_.integer_kernel &&
+        detail::exact_integer_solve(p, detail::ExactPivoting::Murty, settings_.max_pivots_per_contact * std::max(p.n - 1, 1), settings_, out))
+      return;
   start(p, bandwidth, out);
   const int pivots = singular_ ? -2 : pivot();
   out.status = pivots == -1 ? Status::NoConvergence : pivots == -2 ? Status::NumericalIssue : Status::Success;

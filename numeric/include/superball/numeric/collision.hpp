@@ -90,6 +90,13 @@ struct Settings {
   /// general path in the same order: the same results bit for bit.  False
   /// takes the general path at every size (for comparing the two).
   bool small_sizes = true;
+  /// Exact rationals only: solve by fraction-free elimination on integers
+  /// (the data over common denominators, 128-bit arithmetic where bounds
+  /// prove it exact, CLN integers elsewhere), the same pivoting and the same
+  /// fractions and pivot counts as in rationals, 7× (paper scene) to 18×
+  /// (chain-32) faster (docs/PERFORMANCE.md); false solves in CLN rationals
+  /// throughout (the reference the tests compare with).
+  bool integer_kernel = true;
 
   /// Defaults for S at \p digits: feasibility = 64u, residual = 1e6·u (u the unit roundoff).
   static Settings defaults(int digits = 0);
