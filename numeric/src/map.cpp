@@ -91,7 +91,10 @@ std::vector<MapCurve> chain(const Map& m) {
       kinds["superball"].push_back(k);
   }
   std::vector<MapCurve> curves;
-  for (const auto& [kind, members] : kinds) {
+  for (const auto& of_kind : kinds) {
+    // Named, not a structured binding: the lambda below uses kind (C++17 lambdas cannot capture bindings).
+    const std::string& kind = of_kind.first;
+    const std::vector<std::size_t>& members = of_kind.second;
     std::map<std::tuple<bool, int, int>, std::vector<std::size_t>> on_edge;  // (along x, i, j) -> points
     for (std::size_t k : members) on_edge[{m.boundaries[k].along_x, m.boundaries[k].i, m.boundaries[k].j}].push_back(k);
     std::map<std::size_t, std::vector<std::size_t>> joined;
