@@ -343,16 +343,20 @@ void bm_ours_no_pivots(benchmark::State& state, const Instance* in) {
   }
 }
 
+/// Skip a row that needs the LCP of an instance that has no LCP in double; true when skipped.
+bool skipped_without_lcp(benchmark::State& state, const Instance* in) {
+  if (in->lcp.missing.empty()) return false;
+  state.SkipWithError(("not run: no LCP in double (" + in->lcp.missing + ")").c_str());
+  for (auto _ : state) {
+  }
+  return true;
+}
+
 /// Building the LCP our solver solves, what Siconos gets for free: the
 /// assembly, q, the LDLᵀ of A, G = A⁻¹C_Fᵀ and N (CollisionSolver::lcp,
 /// including the copies of N, q, G and W0 it returns).
 void bm_ours_lcp_build(benchmark::State& state, const Instance* in) {
-  if (!in->lcp.missing.empty()) {
-    state.SkipWithError(("not run: " + in->lcp.missing).c_str());
-    for (auto _ : state) {
-    }
-    return;
-  }
+  if (skipped_without_lcp(state, in)) return;
   numeric::CollisionSolver<double> solver(numeric::Settings<double>::defaults());
   for (auto _ : state) {
     auto lcp = solver.lcp(in->pd);
@@ -385,16 +389,14 @@ double enum_bases_before_solution(const Instance& in) {
   return index + 1;
 }
 
-/// Skip a Siconos row of an instance that has no LCP in double; true when skipped.
-bool skipped_without_lcp(benchmark::State& state, const Instance* in) {
-  if (in->lcp.missing.empty()) return false;
-  state.SkipWithError(("not run: no LCP in double (" + in->lcp.missing + ")").c_str());
-  for (auto _ : state) {
-  }
-  return true;
-}
-
-void bm_siconos(benchmark::State& state, const Instance* in, SiconosSolver s) {
+/// One Siconos solver on an instance.  LCP only (\p end_to_end false): N and
+/// q built once, outside the timed loop, only the solve from z = 0 timed.
+/// End to end: what a Siconos user must do to get U⁺ from a scene (issue
+/// 16): build (N, q) the cheapest way we know (CollisionSolver::lcp: the
+/// assembly, the LDLᵀ of A, G = A⁻¹C_Fᵀ, N = CG, q), hand them to the solver
+/// (N copied into its dense matrix, q), solve from z = 0 and map λ back to
+/// the velocities W = W0 + Gλ, all of it inside the timed loop.
+void bm_siconos(benchmark::State& state, const Instance* in, SiconosSolver s, bool end_to_end) {
   if (skipped_without_lcp(state, in)) return;
   const int nc = in->lcp.nc;
   if (s.id == SICONOS_LCP_ENUM && enum_bases_before_solution(*in) > kMaxEnumBases) {
@@ -419,61 +421,27 @@ void bm_siconos(benchmark::State& state, const Instance* in, SiconosSolver s) {
   if (s.id == SICONOS_LCP_ENUM) lcp_enum_init(&problem, options, 1);
   std::vector<double> z(static_cast<std::size_t>(nc), 0.0), w(static_cast<std::size_t>(nc), 0.0);
   int info = 0;
-  s.fn(&problem, z.data(), w.data(), &info, options);
-  for (auto _ : state) {
-    std::fill(z.begin(), z.end(), 0.0);
-    s.fn(&problem, z.data(), w.data(), &info, options);
-    benchmark::DoNotOptimize(z.data());
-    benchmark::ClobberMemory();
-  }
-  const std::vector<double> W = in->lcp.velocities(z);
-  // lcp_enum reports no iteration count: report the bases it tried.
-  const int iters = s.id == SICONOS_LCP_ENUM ? options->iparam[SICONOS_LCP_IPARAM_ENUM_CURRENT_ENUM] + 1
-                                             : options->iparam[SICONOS_IPARAM_ITER_DONE];
-  set_accuracy(state, relative_error(*in, W), case_ok(*in, z, W), info == 0, iters);
-  if (s.id == SICONOS_LCP_ENUM) lcp_enum_reset(&problem, options, 1);
-  solver_options_delete(options);
-  NM_free(M);
-}
-
-/// What a Siconos user must do to get U⁺ from a scene (issue 16): build
-/// (N, q) the cheapest way we know (CollisionSolver::lcp: the assembly, the
-/// LDLᵀ of A, G = A⁻¹C_Fᵀ, N = CG, q), hand them to the solver (N copied into
-/// its dense matrix, q), solve from z = 0 and map λ back to the velocities
-/// W = W0 + Gλ: all of it inside the timed loop, against our full solve.
-void bm_siconos_end_to_end(benchmark::State& state, const Instance* in, SiconosSolver s) {
-  if (skipped_without_lcp(state, in)) return;
-  const int nc = in->lcp.nc;
-  if (s.id == SICONOS_LCP_ENUM && enum_bases_before_solution(*in) > kMaxEnumBases) {
-    state.SkipWithError("not run: as the LCP-only row (too many bases before the exact case)");
-    for (auto _ : state) {
-    }
-    return;
-  }
   numeric::CollisionSolver<double> ours(numeric::Settings<double>::defaults());
-  NumericsMatrix* M = NM_create(NM_DENSE, nc, nc);
-  std::vector<double> q(static_cast<std::size_t>(nc)), z(q.size()), w(q.size());
-  LinearComplementarityProblem problem{};
-  problem.size = nc;
-  problem.M = M;
-  problem.q = q.data();
-  SolverOptions* options = solver_options_create(s.id);
-  if (s.tol >= 0) options->dparam[SICONOS_DPARAM_TOL] = s.tol;
-  if (s.itermax >= 0) options->iparam[SICONOS_IPARAM_MAX_ITER] = s.itermax;
-  if (s.id == SICONOS_LCP_ENUM) lcp_enum_init(&problem, options, 1);
-  int info = 0;
   Eigen::VectorXd W;
+  if (!end_to_end) s.fn(&problem, z.data(), w.data(), &info, options);
   for (auto _ : state) {
-    const auto lcp = ours.lcp(in->pd);
-    std::copy(lcp.N.data(), lcp.N.data() + lcp.N.size(), M->matrix0);  // column-major, as NM_DENSE
-    std::copy(lcp.q.data(), lcp.q.data() + lcp.q.size(), q.begin());
-    std::fill(z.begin(), z.end(), 0.0);
-    s.fn(&problem, z.data(), w.data(), &info, options);
-    W = lcp.W0 + lcp.G * Eigen::Map<const Eigen::VectorXd>(z.data(), nc);
-    benchmark::DoNotOptimize(W.data());
+    if (end_to_end) {
+      const auto lcp = ours.lcp(in->pd);
+      std::copy(lcp.N.data(), lcp.N.data() + lcp.N.size(), M->matrix0);  // column-major, as NM_DENSE
+      std::copy(lcp.q.data(), lcp.q.data() + lcp.q.size(), q.begin());
+      std::fill(z.begin(), z.end(), 0.0);
+      s.fn(&problem, z.data(), w.data(), &info, options);
+      W = lcp.W0 + lcp.G * Eigen::Map<const Eigen::VectorXd>(z.data(), nc);
+      benchmark::DoNotOptimize(W.data());
+    } else {
+      std::fill(z.begin(), z.end(), 0.0);
+      s.fn(&problem, z.data(), w.data(), &info, options);
+      benchmark::DoNotOptimize(z.data());
+    }
     benchmark::ClobberMemory();
   }
   const std::vector<double> velocities = in->lcp.velocities(z);
+  // lcp_enum reports no iteration count: report the bases it tried.
   const int iters = s.id == SICONOS_LCP_ENUM ? options->iparam[SICONOS_LCP_IPARAM_ENUM_CURRENT_ENUM] + 1
                                              : options->iparam[SICONOS_IPARAM_ITER_DONE];
   set_accuracy(state, relative_error(*in, velocities), case_ok(*in, z, velocities), info == 0, iters);
@@ -754,9 +722,9 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark((prefix + "ours/double-no-pivots").c_str(), bm_ours_no_pivots, &in)->Unit(benchmark::kNanosecond);
     benchmark::RegisterBenchmark((prefix + "ours/lcp-build").c_str(), bm_ours_lcp_build, &in)->Unit(benchmark::kNanosecond);
     for (const SiconosSolver& s : solvers)
-      benchmark::RegisterBenchmark((prefix + "siconos/" + s.name).c_str(), bm_siconos, &in, s)->Unit(benchmark::kNanosecond);
+      benchmark::RegisterBenchmark((prefix + "siconos/" + s.name).c_str(), bm_siconos, &in, s, false)->Unit(benchmark::kNanosecond);
     for (const SiconosSolver& s : solvers)
-      benchmark::RegisterBenchmark((prefix + "siconos-end-to-end/" + s.name).c_str(), bm_siconos_end_to_end, &in, s)
+      benchmark::RegisterBenchmark((prefix + "siconos-end-to-end/" + s.name).c_str(), bm_siconos, &in, s, true)
           ->Unit(benchmark::kNanosecond);
   }
 
