@@ -78,19 +78,28 @@ ExactPoint solve_exact_at(const Scene& scene, const Parameter& parameter, const 
 
 namespace {
 
-/// A thread's copy of a line's problem in S (double), for the shortcut of
-/// label_changes(): converted once, only the entry of M set at each value,
-/// as entry_sweep() does.
+/// A thread's copy of a line's problem in S (double or long double),
+/// converted once, only the entry of M set at each value: the problem of
+/// converting that value's scene, bit for bit (entry_sweep(), and the
+/// shortcut of label_changes()).
 template <class S>
 struct EntryProblem {
   Problem<S> problem;
   std::size_t entry;
   bool in_range;  ///< Problem::from()'s verdict on everything but the entry
 
-  EntryProblem(const ExactScene& exact, std::size_t k) : problem(Problem<S>::from(exact, 0)), entry(k), in_range(true) {
+  EntryProblem(const ExactScene& exact, std::size_t k, int digits = 0)
+      : problem(Problem<S>::from(exact, digits)), entry(k), in_range(true) {
     ExactScene one = exact;
     one.entries[k].value = 1;
-    in_range = Problem<S>::from(one, 0).in_range;
+    in_range = Problem<S>::from(one, digits).in_range;
+  }
+
+  /// The entry set to \p v, the value in S of an exact value that is zero
+  /// when \p is_zero; Problem::in_range as Problem::from() would say.
+  void set(const S& v, bool is_zero) {
+    problem.entries[entry].value = v;
+    problem.in_range = in_range && detail::held(v, is_zero);
   }
 
   /// What the solve at \p value proves about the exact solution there, or
@@ -101,8 +110,7 @@ struct EntryProblem {
     using T = ScalarTraits<S>;
     const S v = T::from(value, 0);
     if (!detail::held(v, cln::zerop(value))) return std::nullopt;
-    problem.entries[entry].value = v;
-    problem.in_range = in_range;
+    set(v, cln::zerop(value));
     const Solution<S> sol = solve(problem);
     const Certificate c = certify(problem, sol);
     if (!c.case_certain || !std::isfinite(c.relative_error)) return std::nullopt;
@@ -419,22 +427,19 @@ std::vector<SweepPoint> entry_sweep(const Scene& first, std::size_t entry, const
   std::vector<char> zero;
   for (const auto& v : values) converted.push_back(T::from(v, precision.digits)), zero.push_back(cln::zerop(v));
   struct State {
-    Problem<S> problem;
-    bool in_range = true;  ///< Problem::from()'s verdict on everything but the entry
+    EntryProblem<S> line;
     double unit = 1;
   };
   auto make_state = [&] {
     const ExactScene exact = ExactScene::from(first);
-    ExactScene one = exact;
-    one.entries[entry].value = 1;
-    State st{Problem<S>::from(exact, precision.digits), Problem<S>::from(one, precision.digits).in_range, 1};
-    st.unit = st.problem.unit_exact ? T::to_double(st.problem.unit) : std::sqrt(cln::double_approx(exact.unit_squared()));
+    State st{EntryProblem<S>(exact, entry, precision.digits), 1};
+    const Problem<S>& p = st.line.problem;
+    st.unit = p.unit_exact ? T::to_double(p.unit) : std::sqrt(cln::double_approx(exact.unit_squared()));
     return st;
   };
   auto points = parallel_map(values.size(), threads, make_state, [&](State& st, std::size_t k) {
-    st.problem.entries[entry].value = converted[k];
-    st.problem.in_range = st.in_range && detail::held(converted[k], zero[k]);
-    const auto sol = solve(st.problem);
+    st.line.set(converted[k], zero[k]);
+    const auto sol = solve(st.line.problem);
     SweepPoint p{0, {}, sol.closed, sol.status};
     for (const auto& w : sol.velocities_after) p.velocities_after.push_back(T::to_double(w) * st.unit);
     return p;
