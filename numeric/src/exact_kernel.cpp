@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -131,6 +132,92 @@ int trailing_zeros(u128 x) {
   return lo ? __builtin_ctzll(lo) : 64 + __builtin_ctzll(static_cast<std::uint64_t>(x >> 64));
 }
 
+// ---------------------------------------------------------------------------
+// Fractions written from native integers.
+
+/// gcd(a, b) of 64-bit integers (binary, Stein).
+std::uint64_t gcd64(std::uint64_t a, std::uint64_t b) {
+  if (a == 0) return b;
+  if (b == 0) return a;
+  const int shift = __builtin_ctzll(a | b);
+  a >>= __builtin_ctzll(a);
+  do {
+    b >>= __builtin_ctzll(b);
+    if (a > b) std::swap(a, b);
+    b -= a;
+  } while (b != 0);
+  return a << shift;
+}
+
+/// gcd(a, b) of 128-bit integers: one Euclidean step when the sizes differ
+/// by a word, then binary steps, in 64 bits once both fit.
+u128 gcd128(u128 a, u128 b) {
+  if (a < b) std::swap(a, b);
+  if (b == 0) return a;
+  if ((a >> 64) != 0 && (b >> 64) == 0) {
+    a %= b;
+    if (a == 0) return b;
+  }
+  if (((a | b) >> 64) == 0) return gcd64(static_cast<std::uint64_t>(a), static_cast<std::uint64_t>(b));
+  const int shift = trailing_zeros(a | b);
+  a >>= trailing_zeros(a);
+  b >>= trailing_zeros(b);
+  for (;;) {  // a, b odd
+    if (((a | b) >> 64) == 0) return static_cast<u128>(gcd64(static_cast<std::uint64_t>(a), static_cast<std::uint64_t>(b))) << shift;
+    if (a > b) std::swap(a, b);
+    b -= a;
+    if (b == 0) return a << shift;
+    b >>= trailing_zeros(b);
+  }
+}
+
+/// The integer ±m.
+cln::cl_I to_integer(u128 m, bool negative) {
+  if ((m >> 63) == 0) return cln::cl_I(negative ? -static_cast<long long>(m) : static_cast<long long>(m));
+  cln::cl_I r = (m >> 64) == 0 ? cln::cl_I(static_cast<unsigned long long>(m))
+                               : cln::logior(cln::ash(cln::cl_I(static_cast<unsigned long long>(m >> 64)), 64),
+                                             cln::cl_I(static_cast<unsigned long long>(m)));
+  return negative ? cln::cl_I(-r) : r;
+}
+
+/// Whether x (modulo 2^256) is a signed 128-bit integer; then its value.
+bool narrow(const Wide256& x, i128& out) {
+  const std::uint64_t ext = (x.limb[1] >> 63) ? ~std::uint64_t(0) : 0;
+  if (x.limb[2] != ext || x.limb[3] != ext) return false;
+  out = static_cast<i128>((static_cast<u128>(x.limb[1]) << 64) | x.limb[0]);
+  return true;
+}
+
+/// num / den (den > 0, |num| < 2^127) reduced natively: the quotient of
+/// CLN's division (a gcd of already coprime parts, cheap on small ones).
+cln::cl_RA fraction(i128 num, u128 den) {
+  if (num == 0) return cln::cl_RA(0);
+  const bool negative = num < 0;
+  u128 a = negative ? -static_cast<u128>(num) : static_cast<u128>(num);
+  const u128 g = gcd128(a, den);
+  if (g != 1) a /= g, den /= g;
+  if (den == 1) return to_integer(a, negative);
+  return to_integer(a, negative) / to_integer(den, false);
+}
+
+/// The product of \p factors (positive), false where it reaches 2^127.
+bool product_fits(std::initializer_list<u128> factors, u128& out) {
+  out = 1;
+  for (u128 f : factors)
+    if (__builtin_mul_overflow(out, f, &out) || (out >> 127) != 0) return false;
+  return true;
+}
+
+/// num / (Π factors): natively where both fit in 128 bits, else CLN's division.
+cln::cl_RA fraction(const Wide256& num, std::initializer_list<u128> factors) {
+  i128 n = 0;
+  u128 den = 1;
+  if (narrow(num, n) && product_fits(factors, den) && n != std::numeric_limits<i128>::min()) return fraction(n, den);
+  cln::cl_I d = 1;
+  for (u128 f : factors) d = d * to_integer(f, false);
+  return to_integer(num) / d;
+}
+
 /// Exact division in the 128-bit ring: x = q·e with |q| < 2^(127 − t), t the
 /// trailing zeros of e, gives q from x and e modulo 2^128 (the odd part of e
 /// is invertible there; Newton's iteration doubles the correct bits).
@@ -178,6 +265,7 @@ struct IntegerData {
   long long Lm = 1, Lu = 1;
   std::vector<cln::cl_I> M, V, U;
   cln::cl_I LM = 1, LU = 1;
+  std::vector<long long> den;  ///< scratch of integers_small()
 };
 
 bool fits(const cln::cl_I& x, long long& out) {
@@ -190,8 +278,8 @@ bool fits(const cln::cl_I& x, long long& out) {
 bool integers_small(const Problem<cln::cl_RA>& p, int nf, IntegerData& d) {
   const std::size_t n = static_cast<std::size_t>(p.n), ne = p.entries.size();
   std::vector<long long>& num = d.m;  // numerators first, scaled in place below
-  std::vector<long long> den;
-  den.reserve(n + n + ne);
+  std::vector<long long>& den = d.den;
+  den.clear();
   num.assign(n, 0), d.v.assign(ne, 0), d.u.assign(n, 0);
   auto split = [&den](const cln::cl_RA& x, long long& to) {
     long long q = 1;
@@ -250,7 +338,13 @@ class Kernel {
  public:
   using Z = typename Ring::Z;
 
-  Kernel(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth) : p_(p) {
+  Kernel() = default;
+  Kernel(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth) { reset(p, data, bandwidth); }
+
+  /// The kernel of \p p (a kernel reused keeps its storage: no allocation
+  /// once it has seen a problem as large).
+  void reset(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth) {
+    p_ = &p, ring_ = Ring(), assembled_ = true;
     n_ = p.n, nf_ = p.fixed_bottom ? n_ - 1 : n_, nc_ = n_ - 1, b_ = bandwidth;
     const auto n = static_cast<std::size_t>(n_);
     auto z = [&](std::size_t i, const std::vector<long long>& s, const std::vector<cln::cl_I>& big) -> Z {
@@ -300,6 +394,9 @@ class Kernel {
   /// The exact residual check of the last case; then the answer into \p out.
   bool check(const std::vector<char>& closed);
   void write(const std::vector<char>& closed, Solution<cln::cl_RA>& out) const;
+  /// write() in native integers (bounded ring): false, with \p out untouched,
+  /// where a value's bound does not prove it exact.
+  bool write_native(const std::vector<char>& closed, Solution<cln::cl_RA>& out) const;
   /// The numerators of the energies and of the dissipation (see write()) in
   /// 256 bits; false where their bound does not prove that exact (or the
   /// ring is CLN's).
@@ -312,7 +409,7 @@ class Kernel {
 
   template <class>
   friend class Kernel;
-  const Problem<cln::cl_RA>& p_;
+  const Problem<cln::cl_RA>* p_ = nullptr;
   Ring ring_;
   int n_ = 0, nf_ = 0, nc_ = 0, b_ = 0;
   bool assembled_ = true;
@@ -328,6 +425,7 @@ class Kernel {
   std::vector<Z> W_, Lam_;    ///< Ŵ = d L_u W (n), Λ = L_m d L_u λ (nc)
   std::vector<Z> pivots_;
   Z d_;
+  std::vector<Z> rows_, yc_;  ///< check()'s rows and ŷ
 };
 
 template <class Ring>
@@ -341,8 +439,8 @@ void Kernel<Ring>::assemble() {
     if (r < c) std::swap(r, c);
     A(r, r - c) += x;
   };
-  for (std::size_t k = 0; k < p_.entries.size(); ++k) {
-    const auto& e = p_.entries[k];
+  for (std::size_t k = 0; k < p_->entries.size(); ++k) {
+    const auto& e = p_->entries[k];
     const Z& x = v_[k];
     const double size = 2 * absv_[k];
     row_[e.i] += size, row_[e.j] += size;
@@ -369,7 +467,7 @@ void Kernel<Ring>::assemble() {
     Z acc = Z(0);
     for (int d = 0; d <= b_ && d <= j; ++d) acc -= A(j, d) * u_[j - d];
     for (int d = 1; d <= b_ && j + d < n_; ++d) acc -= A(j + d, d) * u_[j + d];
-    if (p_.fixed_bottom && n_ - 1 - j <= b_) acc -= A(n_ - 1, n_ - 1 - j) * u_[n_ - 1];
+    if (p_->fixed_bottom && n_ - 1 - j <= b_) acc -= A(n_ - 1, n_ - 1 - j) * u_[n_ - 1];
     rhs_[j] = acc + m_[j] * u_[j];
   }
   for (int i = 0; i < nf_; ++i) A(i, 0) += m_[i], row_[i] += absm_[i];
@@ -389,8 +487,8 @@ bool Kernel<Ring>::solve_case(const std::vector<char>& closed) {
   cluster_.resize(n);
   cluster_[0] = 0;
   for (int c = 0; c < nc_; ++c) cluster_[c + 1] = cluster_[c] + (closed[c] ? 0 : 1);
-  const int fixed = p_.fixed_bottom ? cluster_[n_ - 1] : -1;
-  const int K = p_.fixed_bottom ? fixed : cluster_[n_ - 1] + 1;
+  const int fixed = p_->fixed_bottom ? cluster_[n_ - 1] : -1;
+  const int K = p_->fixed_bottom ? fixed : cluster_[n_ - 1] + 1;
   const int w = 2 * b_ + 1;
   const auto Ks = static_cast<std::size_t>(K);
   F_.assign(Ks * static_cast<std::size_t>(w), Z(0));
@@ -511,10 +609,11 @@ bool Kernel<Ring>::check(const std::vector<char>& closed) {
   // ŷ = Ŵ + d û, every free body's row
   //   Σ_entries v̂ (ŷ_k − ŷ_l)(e_i − e_j) [+ transpose] + m̂ (Ŵ − d û) − Λ_i + Λ_{i−1}
   // is 0, closed gaps are 0 with Λ >= 0, open gaps are >= 0.
-  std::vector<Z> rows(static_cast<std::size_t>(n_), Z(0)), y(static_cast<std::size_t>(n_));
+  std::vector<Z>&rows = rows_, &y = yc_;
+  rows.assign(static_cast<std::size_t>(n_), Z(0)), y.resize(static_cast<std::size_t>(n_));
   for (int i = 0; i < n_; ++i) y[i] = W_[i] + d_ * u_[i];
-  for (std::size_t k = 0; k < p_.entries.size(); ++k) {
-    const auto& e = p_.entries[k];
+  for (std::size_t k = 0; k < p_->entries.size(); ++k) {
+    const auto& e = p_->entries[k];
     const Z f = v_[k] * Z(y[e.k] - y[e.l]);
     rows[e.i] += f, rows[e.j] -= f;
     if (e.diagonal()) continue;
@@ -536,6 +635,8 @@ bool Kernel<Ring>::check(const std::vector<char>& closed) {
 
 template <class Ring>
 void Kernel<Ring>::write(const std::vector<char>& closed, Solution<cln::cl_RA>& out) const {
+  if constexpr (Ring::bounded)
+    if (write_native(closed, out)) return;
   // One gcd per value: numerators over the common denominators.
   const cln::cl_I d = to_integer(d_), Lm = to_integer(Lm_), Lu = to_integer(Lu_);
   const cln::cl_I den = d * Lu, lden = Lm * den;
@@ -568,8 +669,8 @@ void Kernel<Ring>::write(const std::vector<char>& closed, Solution<cln::cl_RA>& 
       const cln::cl_I mi = to_integer(m_[i]), ui = to_integer(u_[i]), wi = to_integer(W_[i]);
       eb = eb + mi * ui * ui, ea = ea + mi * wi * wi;
     }
-    for (std::size_t k = 0; k < p_.entries.size(); ++k) {
-      const auto& e = p_.entries[k];
+    for (std::size_t k = 0; k < p_->entries.size(); ++k) {
+      const auto& e = p_->entries[k];
       const cln::cl_I t = to_integer(v_[k]) * (y[e.i] - y[e.j]) * (y[e.k] - y[e.l]);
       diss = diss + (e.diagonal() ? t : cln::cl_I(2 * t));
     }
@@ -582,6 +683,80 @@ void Kernel<Ring>::write(const std::vector<char>& closed, Solution<cln::cl_RA>& 
   out.residual_motion = 0;
   out.residual_complementarity = 0;
   out.status = Status::Success;
+}
+
+template <class Ring>
+bool Kernel<Ring>::write_native(const std::vector<char>& closed, Solution<cln::cl_RA>& out) const {
+  if constexpr (!Ring::bounded) {
+    (void)closed, (void)out;
+    return false;
+  } else {
+    // The velocities share the denominator den = d L_u: divided first by
+    // g = gcd(den, Ŵ_0 … Ŵ_{n−1}), W = w / e with e = den / g, so that each
+    // fraction's own gcd (and those of the gaps, momenta and energy after,
+    // in that scale) works on smaller integers, natively where 128 bits hold
+    // them (fraction()).  The sums are those of write(), in 256 bits under
+    // the same kind of bound.
+    const auto n = static_cast<std::size_t>(n_), nc = static_cast<std::size_t>(nc_);
+    auto value = [](Wide x) { return static_cast<i128>(x.v); };
+    auto size = [](i128 x) { return x < 0 ? -static_cast<u128>(x) : static_cast<u128>(x); };
+    auto wide = [](i128 x) { return Wide::raw(static_cast<u128>(x)); };
+    auto small = [&](Wide x) { return static_cast<long long>(value(x)); };  // data: below 2^62
+    if (sign_of(d_) <= 0) return false;
+    const auto d = static_cast<u128>(value(d_)), L_m = static_cast<u128>(value(Lm_)), L_u = static_cast<u128>(value(Lu_));
+    u128 den = 0;
+    if (!product_fits({d, L_u}, den)) return false;
+    u128 g = den;
+    for (std::size_t i = 0; i < n && g != 1; ++i) g = gcd128(g, size(value(W_[i])));
+    const u128 e = den / g;
+    thread_local std::vector<i128> w, y;
+    w.resize(n), y.resize(n);
+    for (std::size_t i = 0; i < n; ++i) w[i] = value(W_[i]) / static_cast<i128>(g), y[i] = value(W_[i] + d_ * u_[i]);
+    // Bounds (Σ |terms|) of the 256-bit sums.
+    double eb = 0, ea = 0, ed = 0;
+    Wide256 pb, pa, b, a, dis;
+    for (int i = 0; i < nf_; ++i) {
+      const double wi = static_cast<double>(size(w[i]));
+      eb += absm_[i] * absu_[i] * absu_[i], ea += absm_[i] * std::max(wi * wi, wi);
+      const long long mi = small(m_[i]);
+      pb += product(u_[i], Wide(1), mi), b += product(u_[i], u_[i], mi);
+      pa += product(wide(w[i]), Wide(1), mi), a += product(wide(w[i]), wide(w[i]), mi);
+    }
+    for (std::size_t k = 0; k < p_->entries.size(); ++k) {
+      const auto& en = p_->entries[k];
+      const Wide yij = wide(y[en.i] - y[en.j]), ykl = wide(y[en.k] - y[en.l]);
+      const long long v = small(v_[k]) * (en.diagonal() ? 1 : 2);
+      ed += std::fabs(static_cast<double>(v)) * magnitude(yij) * magnitude(ykl);
+      dis += product(yij, ykl, v);
+    }
+    for (int c = 0; c < nc_; ++c)
+      if (sign_of(Lam_[c]) != 0) {
+        const Wide dy = wide(y[c] - y[c + 1]);
+        ed += magnitude(Lam_[c]) * magnitude(dy);
+        dis += product(Lam_[c], dy, -1);
+      }
+    if (!(std::max({eb, ea, ed}) * bound_margin < std::ldexp(1.0, 254))) return false;
+    out.velocities_after.resize(n);
+    out.gaps.resize(nc);
+    out.reactions.resize(nc);
+    for (std::size_t i = 0; i < n; ++i) out.velocities_after[i] = fraction(w[i], e);
+    if (out.closed.bodies() != n_) out.closed = ContactSet(n_);
+    for (std::size_t c = 0; c < nc; ++c) {
+      const i128 gap = w[c] - w[c + 1];
+      out.gaps[c] = fraction(gap, e);
+      out.reactions[c] = sign_of(Lam_[c]) == 0 ? cln::cl_RA(0) : fraction(product(Z(-Lam_[c]), Wide(1), 1), {L_m, den});
+      out.closed.set_closed(static_cast<int>(c), closed[c] || gap == 0);
+    }
+    out.momentum_before = fraction(pb, {L_m, L_u});
+    out.momentum_after = fraction(pa, {L_m, e});
+    out.kinetic_energy_before = fraction(b, {2, L_m, L_u, L_u});
+    out.kinetic_energy_after = fraction(a, {2, L_m, e, e});
+    out.dissipation = fraction(dis, {2, L_m, den, den});
+    out.residual_motion = 0;
+    out.residual_complementarity = 0;
+    out.status = Status::Success;
+    return true;
+  }
 }
 
 template <class Ring>
@@ -601,8 +776,8 @@ bool Kernel<Ring>::sums_in_256_bits(cln::cl_I& before, cln::cl_I& after, cln::cl
       b += product(u_[i], u_[i], small(m_[i]));
       a += product(W_[i], W_[i], small(m_[i]));
     }
-    for (std::size_t k = 0; k < p_.entries.size(); ++k) {
-      const auto& e = p_.entries[k];
+    for (std::size_t k = 0; k < p_->entries.size(); ++k) {
+      const auto& e = p_->entries[k];
       const Wide yij = y[e.i] - y[e.j], ykl = y[e.k] - y[e.l];
       const long long v = small(v_[k]) * (e.diagonal() ? 1 : 2);
       ed += std::fabs(static_cast<double>(v)) * magnitude(yij) * magnitude(ykl);
@@ -629,7 +804,7 @@ int pivot(int nc, ExactPivoting rule, int cap, std::vector<char>& closed, Solve&
   constexpr int block_pivot_patience = 10;  // ChainSolver's
   closed.assign(static_cast<std::size_t>(nc), rule == ExactPivoting::Block ? 1 : 0);
   int count = 0, best = std::numeric_limits<int>::max(), stall = 0;
-  std::vector<char> flip;
+  thread_local std::vector<char> flip;
   for (;;) {
     if (!solve(closed)) return -1;
     auto bad = [&](int c) { return closed[c] ? lambda_sign(c) < 0 : gap_sign(c) < 0; };
@@ -665,11 +840,13 @@ int pivot(int nc, ExactPivoting rule, int cap, std::vector<char>& closed, Solve&
 /// CLN integers; the answer from the kernel that solved the last case.
 bool run(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth, ExactPivoting rule, int cap,
          Solution<cln::cl_RA>& out) {
-  std::optional<Kernel<WideRing>> wide;
+  // The 128-bit kernel's storage is kept per thread from one solve to the next.
+  thread_local Kernel<WideRing> wide_storage;
+  Kernel<WideRing>* wide = nullptr;
   std::optional<Kernel<BigRing>> big;
   if (data.small) {
-    wide.emplace(p, data, bandwidth);
-    if (!wide->assembled()) wide.reset();
+    wide_storage.reset(p, data, bandwidth);
+    if (wide_storage.assembled()) wide = &wide_storage;
   }
   bool last_wide = false;
   auto solve = [&](const std::vector<char>& closed) {
@@ -685,7 +862,7 @@ bool run(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth, E
   };
   auto gap = [&](int c) { return last_wide ? wide->gap_sign(c) : big->gap_sign(c); };
   auto lambda = [&](int c) { return last_wide ? wide->lambda_sign(c) : big->lambda_sign(c); };
-  std::vector<char> closed;
+  thread_local std::vector<char> closed;
   const int count = pivot(p.n - 1, rule, cap, closed, solve, gap, lambda);
   if (count < 0) return false;
   if (last_wide ? !wide->check(closed) : !big->check(closed)) return false;
@@ -706,7 +883,7 @@ bool exact_integer_solve(const Problem<cln::cl_RA>& p, ExactPivoting rule, int m
   for (int i = 0; i < nf; ++i)
     if (!cln::plusp(p.mass[static_cast<std::size_t>(i)])) return false;
   const int bandwidth = p.bandwidth();
-  IntegerData data;
+  thread_local IntegerData data;
   if (!integers_small(p, nf, data)) integers_big(p, nf, data);
   return run(p, data, bandwidth, rule, max_iterations, out);
 }
