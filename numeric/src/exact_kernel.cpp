@@ -13,6 +13,13 @@
 #include <type_traits>
 #include <vector>
 
+// CLN's constructor of the fraction a/b from coprime a and b > 0 (no gcd).
+// It is exported by libcln but declared only in CLN's internal headers, so
+// it is referenced weakly: where a build of CLN lacks it, fraction() divides
+// with CLN's public operator/ instead (the same value, a gcd more).
+namespace cln {
+const cl_RA I_I_to_RA(const cl_I& a, const cl_I& b) __attribute__((weak));
+}
 namespace superball::numeric::detail {
 namespace {
 
@@ -139,14 +146,29 @@ int trailing_zeros(u128 x) {
 std::uint64_t gcd64(std::uint64_t a, std::uint64_t b) {
   if (a == 0) return b;
   if (b == 0) return a;
-  const int shift = __builtin_ctzll(a | b);
-  a >>= __builtin_ctzll(a);
-  do {
-    b >>= __builtin_ctzll(b);
-    if (a > b) std::swap(a, b);
-    b -= a;
-  } while (b != 0);
-  return a << shift;
+  if (((a | b) >> 63) != 0) {  // the loop below needs their difference in a signed word
+    const int shift = __builtin_ctzll(a | b);
+    a >>= __builtin_ctzll(a);
+    do {
+      b >>= __builtin_ctzll(b);
+      if (a > b) std::swap(a, b);
+      b -= a;
+    } while (b != 0);
+    return a << shift;
+  }
+  // The next shift is computed from the difference, alongside the min and
+  // the absolute value (no branch on which is larger).
+  int za = __builtin_ctzll(a);
+  const int zb = __builtin_ctzll(b), shift = std::min(za, zb);
+  b >>= zb;
+  while (a != 0) {
+    a >>= za;
+    const std::int64_t diff = static_cast<std::int64_t>(b - a);
+    za = __builtin_ctzll(static_cast<std::uint64_t>(diff) | (std::uint64_t(1) << 63));
+    b = std::min(a, b);
+    a = static_cast<std::uint64_t>(diff < 0 ? -diff : diff);
+  }
+  return b << shift;
 }
 
 /// gcd(a, b) of 128-bit integers: one Euclidean step when the sizes differ
@@ -188,8 +210,8 @@ bool narrow(const Wide256& x, i128& out) {
   return true;
 }
 
-/// num / den (den > 0, |num| < 2^127) reduced natively: the quotient of
-/// CLN's division (a gcd of already coprime parts, cheap on small ones).
+/// num / den (den > 0, |num| < 2^127) reduced natively, the fraction then
+/// made from its coprime parts.
 cln::cl_RA fraction(i128 num, u128 den) {
   if (num == 0) return cln::cl_RA(0);
   const bool negative = num < 0;
@@ -197,6 +219,7 @@ cln::cl_RA fraction(i128 num, u128 den) {
   const u128 g = gcd128(a, den);
   if (g != 1) a /= g, den /= g;
   if (den == 1) return to_integer(a, negative);
+  if (&cln::I_I_to_RA != nullptr) return cln::I_I_to_RA(to_integer(a, negative), to_integer(den, false));
   return to_integer(a, negative) / to_integer(den, false);
 }
 
@@ -426,6 +449,7 @@ class Kernel {
   std::vector<Z> pivots_;
   Z d_;
   std::vector<Z> rows_, yc_;  ///< check()'s rows and ŷ
+  mutable std::vector<i128> w_, y_wide_;  ///< write_native()'s w and ŷ
 };
 
 template <class Ring>
@@ -709,7 +733,7 @@ bool Kernel<Ring>::write_native(const std::vector<char>& closed, Solution<cln::c
     u128 g = den;
     for (std::size_t i = 0; i < n && g != 1; ++i) g = gcd128(g, size(value(W_[i])));
     const u128 e = den / g;
-    thread_local std::vector<i128> w, y;
+    std::vector<i128>&w = w_, &y = y_wide_;
     w.resize(n), y.resize(n);
     for (std::size_t i = 0; i < n; ++i) w[i] = value(W_[i]) / static_cast<i128>(g), y[i] = value(W_[i] + d_ * u_[i]);
     // Bounds (Σ |terms|) of the 256-bit sums.
@@ -800,11 +824,11 @@ bool Kernel<Ring>::sums_in_256_bits(cln::cl_I& before, cln::cl_I& after, cln::cl
 /// give; the number of pivots (Murty) or iterations (Block), −1 where the
 /// kernel declines.
 template <class Solve, class Gap, class Lambda>
-int pivot(int nc, ExactPivoting rule, int cap, std::vector<char>& closed, Solve&& solve, Gap&& gap_sign, Lambda&& lambda_sign) {
+int pivot(int nc, ExactPivoting rule, int cap, std::vector<char>& closed, std::vector<char>& flip, Solve&& solve, Gap&& gap_sign,
+          Lambda&& lambda_sign) {
   constexpr int block_pivot_patience = 10;  // ChainSolver's
   closed.assign(static_cast<std::size_t>(nc), rule == ExactPivoting::Block ? 1 : 0);
   int count = 0, best = std::numeric_limits<int>::max(), stall = 0;
-  thread_local std::vector<char> flip;
   for (;;) {
     if (!solve(closed)) return -1;
     auto bad = [&](int c) { return closed[c] ? lambda_sign(c) < 0 : gap_sign(c) < 0; };
@@ -838,10 +862,17 @@ int pivot(int nc, ExactPivoting rule, int cap, std::vector<char>& closed, Solve&
 
 /// Each case in 128 bits where its bounds allow (\p data small), else in
 /// CLN integers; the answer from the kernel that solved the last case.
-bool run(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth, ExactPivoting rule, int cap,
-         Solution<cln::cl_RA>& out) {
-  // The 128-bit kernel's storage is kept per thread from one solve to the next.
-  thread_local Kernel<WideRing> wide_storage;
+/// What a solve needs besides CLN's integers, kept per thread from one solve
+/// to the next (no allocation once a thread has solved a problem as large).
+struct Workspace {
+  IntegerData data;
+  Kernel<WideRing> wide;
+  std::vector<char> closed, flip;
+};
+
+bool run(const Problem<cln::cl_RA>& p, Workspace& ws, int bandwidth, ExactPivoting rule, int cap, Solution<cln::cl_RA>& out) {
+  const IntegerData& data = ws.data;
+  Kernel<WideRing>& wide_storage = ws.wide;
   Kernel<WideRing>* wide = nullptr;
   std::optional<Kernel<BigRing>> big;
   if (data.small) {
@@ -862,8 +893,8 @@ bool run(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth, E
   };
   auto gap = [&](int c) { return last_wide ? wide->gap_sign(c) : big->gap_sign(c); };
   auto lambda = [&](int c) { return last_wide ? wide->lambda_sign(c) : big->lambda_sign(c); };
-  thread_local std::vector<char> closed;
-  const int count = pivot(p.n - 1, rule, cap, closed, solve, gap, lambda);
+  std::vector<char>& closed = ws.closed;
+  const int count = pivot(p.n - 1, rule, cap, closed, ws.flip, solve, gap, lambda);
   if (count < 0) return false;
   if (last_wide ? !wide->check(closed) : !big->check(closed)) return false;
   if (last_wide)
@@ -883,9 +914,9 @@ bool exact_integer_solve(const Problem<cln::cl_RA>& p, ExactPivoting rule, int m
   for (int i = 0; i < nf; ++i)
     if (!cln::plusp(p.mass[static_cast<std::size_t>(i)])) return false;
   const int bandwidth = p.bandwidth();
-  thread_local IntegerData data;
-  if (!integers_small(p, nf, data)) integers_big(p, nf, data);
-  return run(p, data, bandwidth, rule, max_iterations, out);
+  thread_local Workspace ws;
+  if (!integers_small(p, nf, ws.data)) integers_big(p, nf, ws.data);
+  return run(p, ws, bandwidth, rule, max_iterations, out);
 }
 
 }  // namespace superball::numeric::detail
