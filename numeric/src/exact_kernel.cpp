@@ -252,19 +252,24 @@ class WideRing {
   void set_quotient_bits(int bits) { room_ = 127 - bits; }
   bool ok() const { return ok_; }
   Wide div(Wide x, Wide e) {
-    if (e.v == 0) return ok_ = false, Wide();
-    const int t = trailing_zeros(e.v);
-    if (t > room_) return ok_ = false, Wide();
-    const u128 odd = e.v >> t;
-    u128 inv = odd;  // correct to 3 bits: odd·odd ≡ 1 (mod 8)
-    for (int i = 0; i < 6; ++i) inv *= 2 - odd * inv;
-    const u128 q = (x.v >> t) * inv;
-    return Wide::raw(static_cast<u128>(static_cast<i128>(q << t) >> t));
+    if (e.v != divisor_) {  // a divisor is used for a whole elimination step: its inverse is kept
+      if (e.v == 0) return ok_ = false, Wide();
+      const int t = trailing_zeros(e.v);
+      const u128 odd = e.v >> t;
+      u128 inv = (3 * odd) ^ 2;  // correct to 5 bits (Montgomery's seed)
+      for (int i = 0; i < 5; ++i) inv *= 2 - odd * inv;
+      divisor_ = e.v, inverse_ = inv, shift_ = t;
+    }
+    if (shift_ > room_) return ok_ = false, Wide();
+    const u128 q = (x.v >> shift_) * inverse_;
+    return Wide::raw(static_cast<u128>(static_cast<i128>(q << shift_) >> shift_));
   }
 
  private:
   int room_ = 0;
   bool ok_ = true;
+  u128 divisor_ = 0, inverse_ = 0;  ///< the last divisor and the inverse of its odd part
+  int shift_ = 0;                   ///< its trailing zeros
 };
 
 /// CLN integers: every value is exact.
