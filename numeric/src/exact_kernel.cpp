@@ -210,6 +210,8 @@ bool narrow(const Wide256& x, i128& out) {
   return true;
 }
 
+cln::cl_RA coprime_fraction(const cln::cl_I& a, const cln::cl_I& b);
+
 /// num / den (den > 0, |num| < 2^127) reduced natively, the fraction then
 /// made from its coprime parts.
 cln::cl_RA fraction(i128 num, u128 den) {
@@ -219,8 +221,7 @@ cln::cl_RA fraction(i128 num, u128 den) {
   const u128 g = gcd128(a, den);
   if (g != 1) a /= g, den /= g;
   if (den == 1) return to_integer(a, negative);
-  if (&cln::I_I_to_RA != nullptr) return cln::I_I_to_RA(to_integer(a, negative), to_integer(den, false));
-  return to_integer(a, negative) / to_integer(den, false);
+  return coprime_fraction(to_integer(a, negative), to_integer(den, false));
 }
 
 /// The product of \p factors (positive), false where it reaches 2^127.
@@ -231,14 +232,91 @@ bool product_fits(std::initializer_list<u128> factors, u128& out) {
   return true;
 }
 
-/// num / (Π factors): natively where both fit in 128 bits, else CLN's division.
+/// The fraction a/b of coprime a and b > 0.
+cln::cl_RA coprime_fraction(const cln::cl_I& a, const cln::cl_I& b) {
+  if (&cln::I_I_to_RA != nullptr) return cln::I_I_to_RA(a, b);
+  return a / b;
+}
+
+/// (hi·2^64 + lo) / d for hi < d: the quotient, and the remainder in \p rem.
+inline std::uint64_t divide(std::uint64_t hi, std::uint64_t lo, std::uint64_t d, std::uint64_t& rem) {
+#if defined(__x86_64__)
+  std::uint64_t q;
+  __asm__("divq %4" : "=a"(q), "=d"(rem) : "a"(lo), "d"(hi), "rm"(d) : "cc");
+  return q;
+#else
+  const u128 x = (static_cast<u128>(hi) << 64) | lo;
+  rem = static_cast<std::uint64_t>(x % d);
+  return static_cast<std::uint64_t>(x / d);
+#endif
+}
+
+/// num / (Π factors), the factors positive.  Where they are below 2^64 (then
+/// packed into as few words as hold their product), the numerator's 256-bit
+/// magnitude is reduced by gcd(num, f) for each word f in turn: the p-adic
+/// valuation of gcd(num, f₁f₂) is min(v(num), v(f₁) + v(f₂)), which is what
+/// reducing by f₁ and then by f₂ takes out, so the parts left are coprime.
+/// Otherwise natively where both fit in 128 bits, else CLN's division.
 cln::cl_RA fraction(const Wide256& num, std::initializer_list<u128> factors) {
-  i128 n = 0;
+  constexpr int max_words = 8;
+  std::uint64_t f[max_words];
+  int words = 0;
+  bool small = factors.size() <= static_cast<std::size_t>(max_words);
+  for (u128 x : factors) {
+    if (!small || (x >> 64) != 0) {
+      small = false;
+      break;
+    }
+    const auto y = static_cast<std::uint64_t>(x);
+    std::uint64_t packed = 0;
+    if (words > 0 && !__builtin_mul_overflow(f[words - 1], y, &packed))
+      f[words - 1] = packed;
+    else
+      f[words++] = y;
+  }
+  if (!small) {
+    i128 n = 0;
+    u128 den = 1;
+    if (narrow(num, n) && product_fits(factors, den) && n != std::numeric_limits<i128>::min()) return fraction(n, den);
+    cln::cl_I d = 1;
+    for (u128 x : factors) d = d * to_integer(x, false);
+    return to_integer(num) / d;
+  }
+  Wide256 m = num;
+  const bool negative = (m.limb[3] >> 63) != 0;
+  if (negative) m.negate();
+  int top = 4;
+  while (top > 0 && m.limb[top - 1] == 0) --top;
+  if (top == 0) return cln::cl_RA(0);
+  for (int k = 0; k < words; ++k) {
+    if (f[k] == 1) continue;
+    std::uint64_t r = 0;
+    for (int i = top - 1; i >= 0; --i) divide(r, m.limb[i], f[k], r);
+    const std::uint64_t h = gcd64(r, f[k]);
+    if (h == 1) continue;
+    r = 0;
+    for (int i = top - 1; i >= 0; --i) m.limb[i] = divide(r, m.limb[i], h, r);
+    while (top > 0 && m.limb[top - 1] == 0) --top;
+    f[k] /= h;
+  }
+  cln::cl_I a;
+  if (top <= 2) {
+    a = to_integer((static_cast<u128>(m.limb[1]) << 64) | m.limb[0], negative);
+  } else {
+    if (negative) m.negate();
+    a = to_integer(m);
+  }
   u128 den = 1;
-  if (narrow(num, n) && product_fits(factors, den) && n != std::numeric_limits<i128>::min()) return fraction(n, den);
-  cln::cl_I d = 1;
-  for (u128 f : factors) d = d * to_integer(f, false);
-  return to_integer(num) / d;
+  bool fits = true;
+  for (int k = 0; k < words && fits; ++k) fits = !__builtin_mul_overflow(den, static_cast<u128>(f[k]), &den);
+  if (fits && den == 1) return a;
+  cln::cl_I b = 1;
+  if (fits) {
+    b = to_integer(den, false);
+  } else {
+    for (int k = 0; k < words; ++k) b = b * cln::cl_I(static_cast<unsigned long long>(f[k]));
+  }
+  return coprime_fraction(a, b);
 }
 
 /// Exact division in the 128-bit ring: x = q·e with |q| < 2^(127 − t), t the
@@ -773,14 +851,14 @@ bool Kernel<Ring>::write_native(const std::vector<char>& closed, Solution<cln::c
     for (std::size_t c = 0; c < nc; ++c) {
       const i128 gap = w[c] - w[c + 1];
       out.gaps[c] = fraction(gap, e);
-      out.reactions[c] = sign_of(Lam_[c]) == 0 ? cln::cl_RA(0) : fraction(product(Z(-Lam_[c]), Wide(1), 1), {L_m, den});
+      out.reactions[c] = sign_of(Lam_[c]) == 0 ? cln::cl_RA(0) : fraction(product(Z(-Lam_[c]), Wide(1), 1), {L_m, g, e});
       out.closed.set_closed(static_cast<int>(c), closed[c] || gap == 0);
     }
     out.momentum_before = fraction(pb, {L_m, L_u});
     out.momentum_after = fraction(pa, {L_m, e});
     out.kinetic_energy_before = fraction(b, {2, L_m, L_u, L_u});
     out.kinetic_energy_after = fraction(a, {2, L_m, e, e});
-    out.dissipation = fraction(dis, {2, L_m, den, den});
+    out.dissipation = fraction(dis, {2, L_m, g, e, g, e});  // den = g e
     out.residual_motion = 0;
     out.residual_complementarity = 0;
     out.status = Status::Success;
