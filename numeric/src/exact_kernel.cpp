@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
-#include <numeric>
 #include <optional>
 #include <type_traits>
 #include <vector>
@@ -393,8 +392,9 @@ bool integers_small(const Problem<cln::cl_RA>& p, int nf, IntegerData& d) {
     den.push_back(q);
     return true;
   };
-  auto lcm = [](long long& L, long long q) {
-    const long long g = std::gcd(L, q);
+  auto lcm = [](long long& L, long long q) {  // L, q > 0; most denominators divide L already
+    if (L % q == 0) return true;
+    const auto g = static_cast<long long>(gcd64(static_cast<std::uint64_t>(L), static_cast<std::uint64_t>(q)));
     return !__builtin_mul_overflow(L / g, q, &L) && L < (1LL << 62);
   };
   for (int i = 0; i < nf; ++i)
