@@ -3,8 +3,10 @@
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Dense>
+#include <cln/float.h>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/certify.hpp"
@@ -154,6 +156,34 @@ void BM_SolveRationals(benchmark::State& state) {
   if (out.status != numeric::Status::Success) state.SkipWithError("the solve did not succeed");
 }
 BENCHMARK(BM_SolveRationals)->Name("solve/paper/exact-rationals");
+
+/// A candidate for digits:N, measured beside it (not what digits:N does):
+/// the exact solve of the exact scene, then each of the answer's 15 values
+/// (velocities, reactions, gaps, energies, momenta, dissipation) rounded
+/// once to a CLN float of N digits, the correctly rounded answer.
+void BM_ExactRounded(benchmark::State& state) {
+  const auto format = cln::float_format(static_cast<int>(state.range(0)));
+  const auto problem = numeric::Problem<cln::cl_RA>::from(paper_scene());
+  numeric::CollisionSolver<cln::cl_RA> solver(numeric::Settings<cln::cl_RA>::defaults());
+  numeric::Solution<cln::cl_RA> out;
+  std::vector<cln::cl_F> rounded;
+  auto round_all = [&] {
+    rounded.clear();
+    for (const auto* v : {&out.velocities_after, &out.reactions, &out.gaps})
+      for (const auto& x : *v) rounded.push_back(cln::cl_float(x, format));
+    for (const auto* x : {&out.kinetic_energy_before, &out.kinetic_energy_after, &out.momentum_before, &out.momentum_after, &out.dissipation})
+      rounded.push_back(cln::cl_float(*x, format));
+  };
+  for (auto _ : state) {
+    solver.compute(problem, out);
+    round_all();
+    benchmark::DoNotOptimize(rounded.data());
+  }
+  if (out.status != numeric::Status::Success || rounded.size() != 15) state.SkipWithError("the solve did not succeed");
+}
+BENCHMARK(BM_ExactRounded)->Arg(20)->Name("solve/paper/exact-rounded-to-digits:20");
+BENCHMARK(BM_ExactRounded)->Arg(50)->Name("solve/paper/exact-rounded-to-digits:50");
+BENCHMARK(BM_ExactRounded)->Arg(100)->Name("solve/paper/exact-rounded-to-digits:100");
 
 /// cases/scenes/chain-32.toml by the banded ChainSolver (what numeric::solve
 /// picks for it) in double, exact (integer kernel) and exact in rationals.

@@ -6,12 +6,19 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
-#include <numeric>
 #include <optional>
 #include <type_traits>
 #include <vector>
 
+// CLN's constructor of the fraction a/b from coprime a and b > 0 (no gcd).
+// It is exported by libcln but declared only in CLN's internal headers, so
+// it is referenced weakly: where a build of CLN lacks it, fraction() divides
+// with CLN's public operator/ instead (the same value, a gcd more).
+namespace cln {
+const cl_RA I_I_to_RA(const cl_I& a, const cl_I& b) __attribute__((weak));
+}
 namespace superball::numeric::detail {
 namespace {
 
@@ -131,6 +138,186 @@ int trailing_zeros(u128 x) {
   return lo ? __builtin_ctzll(lo) : 64 + __builtin_ctzll(static_cast<std::uint64_t>(x >> 64));
 }
 
+// ---------------------------------------------------------------------------
+// Fractions written from native integers.
+
+/// gcd(a, b) of 64-bit integers (binary, Stein).
+std::uint64_t gcd64(std::uint64_t a, std::uint64_t b) {
+  if (a == 0) return b;
+  if (b == 0) return a;
+  if (((a | b) >> 63) != 0) {  // the loop below needs their difference in a signed word
+    const int shift = __builtin_ctzll(a | b);
+    a >>= __builtin_ctzll(a);
+    do {
+      b >>= __builtin_ctzll(b);
+      if (a > b) std::swap(a, b);
+      b -= a;
+    } while (b != 0);
+    return a << shift;
+  }
+  // The next shift is computed from the difference, alongside the min and
+  // the absolute value (no branch on which is larger).
+  int za = __builtin_ctzll(a);
+  const int zb = __builtin_ctzll(b), shift = std::min(za, zb);
+  b >>= zb;
+  while (a != 0) {
+    a >>= za;
+    const std::int64_t diff = static_cast<std::int64_t>(b - a);
+    za = __builtin_ctzll(static_cast<std::uint64_t>(diff) | (std::uint64_t(1) << 63));
+    b = std::min(a, b);
+    a = static_cast<std::uint64_t>(diff < 0 ? -diff : diff);
+  }
+  return b << shift;
+}
+
+/// gcd(a, b) of 128-bit integers: one Euclidean step when the sizes differ
+/// by a word, then binary steps, in 64 bits once both fit.
+u128 gcd128(u128 a, u128 b) {
+  if (a < b) std::swap(a, b);
+  if (b == 0) return a;
+  if ((a >> 64) != 0 && (b >> 64) == 0) {
+    a %= b;
+    if (a == 0) return b;
+  }
+  if (((a | b) >> 64) == 0) return gcd64(static_cast<std::uint64_t>(a), static_cast<std::uint64_t>(b));
+  const int shift = trailing_zeros(a | b);
+  a >>= trailing_zeros(a);
+  b >>= trailing_zeros(b);
+  for (;;) {  // a, b odd
+    if (((a | b) >> 64) == 0) return static_cast<u128>(gcd64(static_cast<std::uint64_t>(a), static_cast<std::uint64_t>(b))) << shift;
+    if (a > b) std::swap(a, b);
+    b -= a;
+    if (b == 0) return a << shift;
+    b >>= trailing_zeros(b);
+  }
+}
+
+/// The integer ±m.
+cln::cl_I to_integer(u128 m, bool negative) {
+  if ((m >> 63) == 0) return cln::cl_I(negative ? -static_cast<long long>(m) : static_cast<long long>(m));
+  cln::cl_I r = (m >> 64) == 0 ? cln::cl_I(static_cast<unsigned long long>(m))
+                               : cln::logior(cln::ash(cln::cl_I(static_cast<unsigned long long>(m >> 64)), 64),
+                                             cln::cl_I(static_cast<unsigned long long>(m)));
+  return negative ? cln::cl_I(-r) : r;
+}
+
+/// Whether x (modulo 2^256) is a signed 128-bit integer; then its value.
+bool narrow(const Wide256& x, i128& out) {
+  const std::uint64_t ext = (x.limb[1] >> 63) ? ~std::uint64_t(0) : 0;
+  if (x.limb[2] != ext || x.limb[3] != ext) return false;
+  out = static_cast<i128>((static_cast<u128>(x.limb[1]) << 64) | x.limb[0]);
+  return true;
+}
+
+cln::cl_RA coprime_fraction(const cln::cl_I& a, const cln::cl_I& b);
+
+/// num / den (den > 0, |num| < 2^127) reduced natively, the fraction then
+/// made from its coprime parts.
+cln::cl_RA fraction(i128 num, u128 den) {
+  if (num == 0) return cln::cl_RA(0);
+  const bool negative = num < 0;
+  u128 a = negative ? -static_cast<u128>(num) : static_cast<u128>(num);
+  const u128 g = gcd128(a, den);
+  if (g != 1) a /= g, den /= g;
+  if (den == 1) return to_integer(a, negative);
+  return coprime_fraction(to_integer(a, negative), to_integer(den, false));
+}
+
+/// The product of \p factors (positive), false where it reaches 2^127.
+bool product_fits(std::initializer_list<u128> factors, u128& out) {
+  out = 1;
+  for (u128 f : factors)
+    if (__builtin_mul_overflow(out, f, &out) || (out >> 127) != 0) return false;
+  return true;
+}
+
+/// The fraction a/b of coprime a and b > 0.
+cln::cl_RA coprime_fraction(const cln::cl_I& a, const cln::cl_I& b) {
+  if (&cln::I_I_to_RA != nullptr) return cln::I_I_to_RA(a, b);
+  return a / b;
+}
+
+/// (hi·2^64 + lo) / d for hi < d: the quotient, and the remainder in \p rem.
+inline std::uint64_t divide(std::uint64_t hi, std::uint64_t lo, std::uint64_t d, std::uint64_t& rem) {
+#if defined(__x86_64__)
+  std::uint64_t q;
+  __asm__("divq %4" : "=a"(q), "=d"(rem) : "a"(lo), "d"(hi), "rm"(d) : "cc");
+  return q;
+#else
+  const u128 x = (static_cast<u128>(hi) << 64) | lo;
+  rem = static_cast<std::uint64_t>(x % d);
+  return static_cast<std::uint64_t>(x / d);
+#endif
+}
+
+/// num / (Π factors), the factors positive.  Where they are below 2^64 (then
+/// packed into as few words as hold their product), the numerator's 256-bit
+/// magnitude is reduced by gcd(num, f) for each word f in turn: the p-adic
+/// valuation of gcd(num, f₁f₂) is min(v(num), v(f₁) + v(f₂)), which is what
+/// reducing by f₁ and then by f₂ takes out, so the parts left are coprime.
+/// Otherwise natively where both fit in 128 bits, else CLN's division.
+cln::cl_RA fraction(const Wide256& num, std::initializer_list<u128> factors) {
+  constexpr int max_words = 8;
+  std::uint64_t f[max_words];
+  int words = 0;
+  bool small = factors.size() <= static_cast<std::size_t>(max_words);
+  for (u128 x : factors) {
+    if (!small || (x >> 64) != 0) {
+      small = false;
+      break;
+    }
+    const auto y = static_cast<std::uint64_t>(x);
+    std::uint64_t packed = 0;
+    if (words > 0 && !__builtin_mul_overflow(f[words - 1], y, &packed))
+      f[words - 1] = packed;
+    else
+      f[words++] = y;
+  }
+  if (!small) {
+    i128 n = 0;
+    u128 den = 1;
+    if (narrow(num, n) && product_fits(factors, den) && n != std::numeric_limits<i128>::min()) return fraction(n, den);
+    cln::cl_I d = 1;
+    for (u128 x : factors) d = d * to_integer(x, false);
+    return to_integer(num) / d;
+  }
+  Wide256 m = num;
+  const bool negative = (m.limb[3] >> 63) != 0;
+  if (negative) m.negate();
+  int top = 4;
+  while (top > 0 && m.limb[top - 1] == 0) --top;
+  if (top == 0) return cln::cl_RA(0);
+  for (int k = 0; k < words; ++k) {
+    if (f[k] == 1) continue;
+    std::uint64_t r = 0;
+    for (int i = top - 1; i >= 0; --i) divide(r, m.limb[i], f[k], r);
+    const std::uint64_t h = gcd64(r, f[k]);
+    if (h == 1) continue;
+    r = 0;
+    for (int i = top - 1; i >= 0; --i) m.limb[i] = divide(r, m.limb[i], h, r);
+    while (top > 0 && m.limb[top - 1] == 0) --top;
+    f[k] /= h;
+  }
+  cln::cl_I a;
+  if (top <= 2) {
+    a = to_integer((static_cast<u128>(m.limb[1]) << 64) | m.limb[0], negative);
+  } else {
+    if (negative) m.negate();
+    a = to_integer(m);
+  }
+  u128 den = 1;
+  bool fits = true;
+  for (int k = 0; k < words && fits; ++k) fits = !__builtin_mul_overflow(den, static_cast<u128>(f[k]), &den);
+  if (fits && den == 1) return a;
+  cln::cl_I b = 1;
+  if (fits) {
+    b = to_integer(den, false);
+  } else {
+    for (int k = 0; k < words; ++k) b = b * cln::cl_I(static_cast<unsigned long long>(f[k]));
+  }
+  return coprime_fraction(a, b);
+}
+
 /// Exact division in the 128-bit ring: x = q·e with |q| < 2^(127 − t), t the
 /// trailing zeros of e, gives q from x and e modulo 2^128 (the odd part of e
 /// is invertible there; Newton's iteration doubles the correct bits).
@@ -142,19 +329,24 @@ class WideRing {
   void set_quotient_bits(int bits) { room_ = 127 - bits; }
   bool ok() const { return ok_; }
   Wide div(Wide x, Wide e) {
-    if (e.v == 0) return ok_ = false, Wide();
-    const int t = trailing_zeros(e.v);
-    if (t > room_) return ok_ = false, Wide();
-    const u128 odd = e.v >> t;
-    u128 inv = odd;  // correct to 3 bits: odd·odd ≡ 1 (mod 8)
-    for (int i = 0; i < 6; ++i) inv *= 2 - odd * inv;
-    const u128 q = (x.v >> t) * inv;
-    return Wide::raw(static_cast<u128>(static_cast<i128>(q << t) >> t));
+    if (e.v != divisor_) {  // a divisor is used for a whole elimination step: its inverse is kept
+      if (e.v == 0) return ok_ = false, Wide();
+      const int t = trailing_zeros(e.v);
+      const u128 odd = e.v >> t;
+      u128 inv = (3 * odd) ^ 2;  // correct to 5 bits (Montgomery's seed)
+      for (int i = 0; i < 5; ++i) inv *= 2 - odd * inv;
+      divisor_ = e.v, inverse_ = inv, shift_ = t;
+    }
+    if (shift_ > room_) return ok_ = false, Wide();
+    const u128 q = (x.v >> shift_) * inverse_;
+    return Wide::raw(static_cast<u128>(static_cast<i128>(q << shift_) >> shift_));
   }
 
  private:
   int room_ = 0;
   bool ok_ = true;
+  u128 divisor_ = 0, inverse_ = 0;  ///< the last divisor and the inverse of its odd part
+  int shift_ = 0;                   ///< its trailing zeros
 };
 
 /// CLN integers: every value is exact.
@@ -178,6 +370,7 @@ struct IntegerData {
   long long Lm = 1, Lu = 1;
   std::vector<cln::cl_I> M, V, U;
   cln::cl_I LM = 1, LU = 1;
+  std::vector<long long> den;  ///< scratch of integers_small()
 };
 
 bool fits(const cln::cl_I& x, long long& out) {
@@ -190,8 +383,8 @@ bool fits(const cln::cl_I& x, long long& out) {
 bool integers_small(const Problem<cln::cl_RA>& p, int nf, IntegerData& d) {
   const std::size_t n = static_cast<std::size_t>(p.n), ne = p.entries.size();
   std::vector<long long>& num = d.m;  // numerators first, scaled in place below
-  std::vector<long long> den;
-  den.reserve(n + n + ne);
+  std::vector<long long>& den = d.den;
+  den.clear();
   num.assign(n, 0), d.v.assign(ne, 0), d.u.assign(n, 0);
   auto split = [&den](const cln::cl_RA& x, long long& to) {
     long long q = 1;
@@ -199,8 +392,9 @@ bool integers_small(const Problem<cln::cl_RA>& p, int nf, IntegerData& d) {
     den.push_back(q);
     return true;
   };
-  auto lcm = [](long long& L, long long q) {
-    const long long g = std::gcd(L, q);
+  auto lcm = [](long long& L, long long q) {  // L, q > 0; most denominators divide L already
+    if (L % q == 0) return true;
+    const auto g = static_cast<long long>(gcd64(static_cast<std::uint64_t>(L), static_cast<std::uint64_t>(q)));
     return !__builtin_mul_overflow(L / g, q, &L) && L < (1LL << 62);
   };
   for (int i = 0; i < nf; ++i)
@@ -250,7 +444,13 @@ class Kernel {
  public:
   using Z = typename Ring::Z;
 
-  Kernel(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth) : p_(p) {
+  Kernel() = default;
+  Kernel(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth) { reset(p, data, bandwidth); }
+
+  /// The kernel of \p p (a kernel reused keeps its storage: no allocation
+  /// once it has seen a problem as large).
+  void reset(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth) {
+    p_ = &p, ring_ = Ring(), assembled_ = true;
     n_ = p.n, nf_ = p.fixed_bottom ? n_ - 1 : n_, nc_ = n_ - 1, b_ = bandwidth;
     const auto n = static_cast<std::size_t>(n_);
     auto z = [&](std::size_t i, const std::vector<long long>& s, const std::vector<cln::cl_I>& big) -> Z {
@@ -300,6 +500,9 @@ class Kernel {
   /// The exact residual check of the last case; then the answer into \p out.
   bool check(const std::vector<char>& closed);
   void write(const std::vector<char>& closed, Solution<cln::cl_RA>& out) const;
+  /// write() in native integers (bounded ring): false, with \p out untouched,
+  /// where a value's bound does not prove it exact.
+  bool write_native(const std::vector<char>& closed, Solution<cln::cl_RA>& out) const;
   /// The numerators of the energies and of the dissipation (see write()) in
   /// 256 bits; false where their bound does not prove that exact (or the
   /// ring is CLN's).
@@ -312,7 +515,7 @@ class Kernel {
 
   template <class>
   friend class Kernel;
-  const Problem<cln::cl_RA>& p_;
+  const Problem<cln::cl_RA>* p_ = nullptr;
   Ring ring_;
   int n_ = 0, nf_ = 0, nc_ = 0, b_ = 0;
   bool assembled_ = true;
@@ -328,6 +531,8 @@ class Kernel {
   std::vector<Z> W_, Lam_;    ///< Ŵ = d L_u W (n), Λ = L_m d L_u λ (nc)
   std::vector<Z> pivots_;
   Z d_;
+  std::vector<Z> rows_, yc_;  ///< check()'s rows and ŷ
+  mutable std::vector<i128> w_, y_wide_;  ///< write_native()'s w and ŷ
 };
 
 template <class Ring>
@@ -341,8 +546,8 @@ void Kernel<Ring>::assemble() {
     if (r < c) std::swap(r, c);
     A(r, r - c) += x;
   };
-  for (std::size_t k = 0; k < p_.entries.size(); ++k) {
-    const auto& e = p_.entries[k];
+  for (std::size_t k = 0; k < p_->entries.size(); ++k) {
+    const auto& e = p_->entries[k];
     const Z& x = v_[k];
     const double size = 2 * absv_[k];
     row_[e.i] += size, row_[e.j] += size;
@@ -369,7 +574,7 @@ void Kernel<Ring>::assemble() {
     Z acc = Z(0);
     for (int d = 0; d <= b_ && d <= j; ++d) acc -= A(j, d) * u_[j - d];
     for (int d = 1; d <= b_ && j + d < n_; ++d) acc -= A(j + d, d) * u_[j + d];
-    if (p_.fixed_bottom && n_ - 1 - j <= b_) acc -= A(n_ - 1, n_ - 1 - j) * u_[n_ - 1];
+    if (p_->fixed_bottom && n_ - 1 - j <= b_) acc -= A(n_ - 1, n_ - 1 - j) * u_[n_ - 1];
     rhs_[j] = acc + m_[j] * u_[j];
   }
   for (int i = 0; i < nf_; ++i) A(i, 0) += m_[i], row_[i] += absm_[i];
@@ -389,8 +594,8 @@ bool Kernel<Ring>::solve_case(const std::vector<char>& closed) {
   cluster_.resize(n);
   cluster_[0] = 0;
   for (int c = 0; c < nc_; ++c) cluster_[c + 1] = cluster_[c] + (closed[c] ? 0 : 1);
-  const int fixed = p_.fixed_bottom ? cluster_[n_ - 1] : -1;
-  const int K = p_.fixed_bottom ? fixed : cluster_[n_ - 1] + 1;
+  const int fixed = p_->fixed_bottom ? cluster_[n_ - 1] : -1;
+  const int K = p_->fixed_bottom ? fixed : cluster_[n_ - 1] + 1;
   const int w = 2 * b_ + 1;
   const auto Ks = static_cast<std::size_t>(K);
   F_.assign(Ks * static_cast<std::size_t>(w), Z(0));
@@ -511,10 +716,11 @@ bool Kernel<Ring>::check(const std::vector<char>& closed) {
   // ŷ = Ŵ + d û, every free body's row
   //   Σ_entries v̂ (ŷ_k − ŷ_l)(e_i − e_j) [+ transpose] + m̂ (Ŵ − d û) − Λ_i + Λ_{i−1}
   // is 0, closed gaps are 0 with Λ >= 0, open gaps are >= 0.
-  std::vector<Z> rows(static_cast<std::size_t>(n_), Z(0)), y(static_cast<std::size_t>(n_));
+  std::vector<Z>&rows = rows_, &y = yc_;
+  rows.assign(static_cast<std::size_t>(n_), Z(0)), y.resize(static_cast<std::size_t>(n_));
   for (int i = 0; i < n_; ++i) y[i] = W_[i] + d_ * u_[i];
-  for (std::size_t k = 0; k < p_.entries.size(); ++k) {
-    const auto& e = p_.entries[k];
+  for (std::size_t k = 0; k < p_->entries.size(); ++k) {
+    const auto& e = p_->entries[k];
     const Z f = v_[k] * Z(y[e.k] - y[e.l]);
     rows[e.i] += f, rows[e.j] -= f;
     if (e.diagonal()) continue;
@@ -536,6 +742,8 @@ bool Kernel<Ring>::check(const std::vector<char>& closed) {
 
 template <class Ring>
 void Kernel<Ring>::write(const std::vector<char>& closed, Solution<cln::cl_RA>& out) const {
+  if constexpr (Ring::bounded)
+    if (write_native(closed, out)) return;
   // One gcd per value: numerators over the common denominators.
   const cln::cl_I d = to_integer(d_), Lm = to_integer(Lm_), Lu = to_integer(Lu_);
   const cln::cl_I den = d * Lu, lden = Lm * den;
@@ -568,8 +776,8 @@ void Kernel<Ring>::write(const std::vector<char>& closed, Solution<cln::cl_RA>& 
       const cln::cl_I mi = to_integer(m_[i]), ui = to_integer(u_[i]), wi = to_integer(W_[i]);
       eb = eb + mi * ui * ui, ea = ea + mi * wi * wi;
     }
-    for (std::size_t k = 0; k < p_.entries.size(); ++k) {
-      const auto& e = p_.entries[k];
+    for (std::size_t k = 0; k < p_->entries.size(); ++k) {
+      const auto& e = p_->entries[k];
       const cln::cl_I t = to_integer(v_[k]) * (y[e.i] - y[e.j]) * (y[e.k] - y[e.l]);
       diss = diss + (e.diagonal() ? t : cln::cl_I(2 * t));
     }
@@ -582,6 +790,80 @@ void Kernel<Ring>::write(const std::vector<char>& closed, Solution<cln::cl_RA>& 
   out.residual_motion = 0;
   out.residual_complementarity = 0;
   out.status = Status::Success;
+}
+
+template <class Ring>
+bool Kernel<Ring>::write_native(const std::vector<char>& closed, Solution<cln::cl_RA>& out) const {
+  if constexpr (!Ring::bounded) {
+    (void)closed, (void)out;
+    return false;
+  } else {
+    // The velocities share the denominator den = d L_u: divided first by
+    // g = gcd(den, Ŵ_0 … Ŵ_{n−1}), W = w / e with e = den / g, so that each
+    // fraction's own gcd (and those of the gaps, momenta and energy after,
+    // in that scale) works on smaller integers, natively where 128 bits hold
+    // them (fraction()).  The sums are those of write(), in 256 bits under
+    // the same kind of bound.
+    const auto n = static_cast<std::size_t>(n_), nc = static_cast<std::size_t>(nc_);
+    auto value = [](Wide x) { return static_cast<i128>(x.v); };
+    auto size = [](i128 x) { return x < 0 ? -static_cast<u128>(x) : static_cast<u128>(x); };
+    auto wide = [](i128 x) { return Wide::raw(static_cast<u128>(x)); };
+    auto small = [&](Wide x) { return static_cast<long long>(value(x)); };  // data: below 2^62
+    if (sign_of(d_) <= 0) return false;
+    const auto d = static_cast<u128>(value(d_)), L_m = static_cast<u128>(value(Lm_)), L_u = static_cast<u128>(value(Lu_));
+    u128 den = 0;
+    if (!product_fits({d, L_u}, den)) return false;
+    u128 g = den;
+    for (std::size_t i = 0; i < n && g != 1; ++i) g = gcd128(g, size(value(W_[i])));
+    const u128 e = den / g;
+    std::vector<i128>&w = w_, &y = y_wide_;
+    w.resize(n), y.resize(n);
+    for (std::size_t i = 0; i < n; ++i) w[i] = value(W_[i]) / static_cast<i128>(g), y[i] = value(W_[i] + d_ * u_[i]);
+    // Bounds (Σ |terms|) of the 256-bit sums.
+    double eb = 0, ea = 0, ed = 0;
+    Wide256 pb, pa, b, a, dis;
+    for (int i = 0; i < nf_; ++i) {
+      const double wi = static_cast<double>(size(w[i]));
+      eb += absm_[i] * absu_[i] * absu_[i], ea += absm_[i] * std::max(wi * wi, wi);
+      const long long mi = small(m_[i]);
+      pb += product(u_[i], Wide(1), mi), b += product(u_[i], u_[i], mi);
+      pa += product(wide(w[i]), Wide(1), mi), a += product(wide(w[i]), wide(w[i]), mi);
+    }
+    for (std::size_t k = 0; k < p_->entries.size(); ++k) {
+      const auto& en = p_->entries[k];
+      const Wide yij = wide(y[en.i] - y[en.j]), ykl = wide(y[en.k] - y[en.l]);
+      const long long v = small(v_[k]) * (en.diagonal() ? 1 : 2);
+      ed += std::fabs(static_cast<double>(v)) * magnitude(yij) * magnitude(ykl);
+      dis += product(yij, ykl, v);
+    }
+    for (int c = 0; c < nc_; ++c)
+      if (sign_of(Lam_[c]) != 0) {
+        const Wide dy = wide(y[c] - y[c + 1]);
+        ed += magnitude(Lam_[c]) * magnitude(dy);
+        dis += product(Lam_[c], dy, -1);
+      }
+    if (!(std::max({eb, ea, ed}) * bound_margin < std::ldexp(1.0, 254))) return false;
+    out.velocities_after.resize(n);
+    out.gaps.resize(nc);
+    out.reactions.resize(nc);
+    for (std::size_t i = 0; i < n; ++i) out.velocities_after[i] = fraction(w[i], e);
+    if (out.closed.bodies() != n_) out.closed = ContactSet(n_);
+    for (std::size_t c = 0; c < nc; ++c) {
+      const i128 gap = w[c] - w[c + 1];
+      out.gaps[c] = fraction(gap, e);
+      out.reactions[c] = sign_of(Lam_[c]) == 0 ? cln::cl_RA(0) : fraction(product(Z(-Lam_[c]), Wide(1), 1), {L_m, g, e});
+      out.closed.set_closed(static_cast<int>(c), closed[c] || gap == 0);
+    }
+    out.momentum_before = fraction(pb, {L_m, L_u});
+    out.momentum_after = fraction(pa, {L_m, e});
+    out.kinetic_energy_before = fraction(b, {2, L_m, L_u, L_u});
+    out.kinetic_energy_after = fraction(a, {2, L_m, e, e});
+    out.dissipation = fraction(dis, {2, L_m, g, e, g, e});  // den = g e
+    out.residual_motion = 0;
+    out.residual_complementarity = 0;
+    out.status = Status::Success;
+    return true;
+  }
 }
 
 template <class Ring>
@@ -601,8 +883,8 @@ bool Kernel<Ring>::sums_in_256_bits(cln::cl_I& before, cln::cl_I& after, cln::cl
       b += product(u_[i], u_[i], small(m_[i]));
       a += product(W_[i], W_[i], small(m_[i]));
     }
-    for (std::size_t k = 0; k < p_.entries.size(); ++k) {
-      const auto& e = p_.entries[k];
+    for (std::size_t k = 0; k < p_->entries.size(); ++k) {
+      const auto& e = p_->entries[k];
       const Wide yij = y[e.i] - y[e.j], ykl = y[e.k] - y[e.l];
       const long long v = small(v_[k]) * (e.diagonal() ? 1 : 2);
       ed += std::fabs(static_cast<double>(v)) * magnitude(yij) * magnitude(ykl);
@@ -625,11 +907,11 @@ bool Kernel<Ring>::sums_in_256_bits(cln::cl_I& before, cln::cl_I& after, cln::cl
 /// give; the number of pivots (Murty) or iterations (Block), −1 where the
 /// kernel declines.
 template <class Solve, class Gap, class Lambda>
-int pivot(int nc, ExactPivoting rule, int cap, std::vector<char>& closed, Solve&& solve, Gap&& gap_sign, Lambda&& lambda_sign) {
+int pivot(int nc, ExactPivoting rule, int cap, std::vector<char>& closed, std::vector<char>& flip, Solve&& solve, Gap&& gap_sign,
+          Lambda&& lambda_sign) {
   constexpr int block_pivot_patience = 10;  // ChainSolver's
   closed.assign(static_cast<std::size_t>(nc), rule == ExactPivoting::Block ? 1 : 0);
   int count = 0, best = std::numeric_limits<int>::max(), stall = 0;
-  std::vector<char> flip;
   for (;;) {
     if (!solve(closed)) return -1;
     auto bad = [&](int c) { return closed[c] ? lambda_sign(c) < 0 : gap_sign(c) < 0; };
@@ -663,13 +945,22 @@ int pivot(int nc, ExactPivoting rule, int cap, std::vector<char>& closed, Solve&
 
 /// Each case in 128 bits where its bounds allow (\p data small), else in
 /// CLN integers; the answer from the kernel that solved the last case.
-bool run(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth, ExactPivoting rule, int cap,
-         Solution<cln::cl_RA>& out) {
-  std::optional<Kernel<WideRing>> wide;
+/// What a solve needs besides CLN's integers, kept per thread from one solve
+/// to the next (no allocation once a thread has solved a problem as large).
+struct Workspace {
+  IntegerData data;
+  Kernel<WideRing> wide;
+  std::vector<char> closed, flip;
+};
+
+bool run(const Problem<cln::cl_RA>& p, Workspace& ws, int bandwidth, ExactPivoting rule, int cap, Solution<cln::cl_RA>& out) {
+  const IntegerData& data = ws.data;
+  Kernel<WideRing>& wide_storage = ws.wide;
+  Kernel<WideRing>* wide = nullptr;
   std::optional<Kernel<BigRing>> big;
   if (data.small) {
-    wide.emplace(p, data, bandwidth);
-    if (!wide->assembled()) wide.reset();
+    wide_storage.reset(p, data, bandwidth);
+    if (wide_storage.assembled()) wide = &wide_storage;
   }
   bool last_wide = false;
   auto solve = [&](const std::vector<char>& closed) {
@@ -685,8 +976,8 @@ bool run(const Problem<cln::cl_RA>& p, const IntegerData& data, int bandwidth, E
   };
   auto gap = [&](int c) { return last_wide ? wide->gap_sign(c) : big->gap_sign(c); };
   auto lambda = [&](int c) { return last_wide ? wide->lambda_sign(c) : big->lambda_sign(c); };
-  std::vector<char> closed;
-  const int count = pivot(p.n - 1, rule, cap, closed, solve, gap, lambda);
+  std::vector<char>& closed = ws.closed;
+  const int count = pivot(p.n - 1, rule, cap, closed, ws.flip, solve, gap, lambda);
   if (count < 0) return false;
   if (last_wide ? !wide->check(closed) : !big->check(closed)) return false;
   if (last_wide)
@@ -706,9 +997,9 @@ bool exact_integer_solve(const Problem<cln::cl_RA>& p, ExactPivoting rule, int m
   for (int i = 0; i < nf; ++i)
     if (!cln::plusp(p.mass[static_cast<std::size_t>(i)])) return false;
   const int bandwidth = p.bandwidth();
-  IntegerData data;
-  if (!integers_small(p, nf, data)) integers_big(p, nf, data);
-  return run(p, data, bandwidth, rule, max_iterations, out);
+  thread_local Workspace ws;
+  if (!integers_small(p, nf, ws.data)) integers_big(p, nf, ws.data);
+  return run(p, ws, bandwidth, rule, max_iterations, out);
 }
 
 }  // namespace superball::numeric::detail

@@ -3,8 +3,10 @@
 // rationals throughout (integer_kernel = false): the same fractions for every
 // field of the answer (velocities, reactions, gaps, the case, energies,
 // momenta, dissipation), the same pivot count and status, on random scenes
-// of 2 to 8 bodies, on chains by both solvers, and on scenes whose data span
-// hundreds of decimal exponents (the kernel's CLN-integer path); and the
+// of 2 to 8 bodies, on chains by both solvers, on scenes whose data have
+// large prime denominators (answers whose parts outgrow 64 and 128 bits), and
+// on scenes whose data span hundreds of decimal exponents (the kernel's
+// CLN-integer path); and the
 // physics of the answer checked on its own (momentum, energy balance).
 #include <gtest/gtest.h>
 
@@ -139,6 +141,28 @@ TEST(ExactKernel, MixedMagnitudesInOneSceneGiveTheRationalPathsFractions) {
     auto p = problem_of<cl_RA>(r.scene());
     p.mass[0] = p.mass[0] * cln::expt(cl_RA(10), -200);
     if (!p.fixed_bottom) p.mass.back() = p.mass.back() * cln::expt(cl_RA(10), 200);
+    const Solution<cl_RA> s = expect_kernel_matches_rationals(p);
+    expect_physics(p, s);
+  }
+}
+
+TEST(ExactKernel, LargePrimeDenominatorsGiveTheRationalPathsFractions) {
+  // Masses, entries of M and velocities multiplied by (q + 1)/q for primes q
+  // near 2^10, 2^15, 2^16 and 2^17: common denominators of up to 62 bits
+  // (beyond, the data leave 64 bits and the CLN-integer path takes over), so
+  // that the answer's denominators outgrow 64 bits and the fractions are
+  // reduced by each of their paths (word by word, in 128 bits, by CLN's
+  // division), all against the rational path.
+  const long long primes[4][3] = {{1021, 1019, 1013}, {32749, 32719, 32717}, {65521, 65519, 65497}, {131071, 131063, 131059}};
+  for (std::uint64_t seed = 700; seed < 780; ++seed) {
+    const RandomScene r = random_scene(seed, {2, 8});
+    SCOPED_TRACE(r.describe());
+    auto p = problem_of<cl_RA>(r.scene());
+    const auto& q = primes[seed % 4];
+    auto perturb = [&](cl_RA& x, std::size_t k) { x = x * cl_RA(q[k % 3] + 1) / q[k % 3]; };
+    for (std::size_t i = 0; i < p.mass.size(); ++i) perturb(p.mass[i], i);
+    for (std::size_t e = 0; e < p.entries.size(); ++e) perturb(p.entries[e].value, e + 1);
+    for (std::size_t i = 0; i < p.u.size(); ++i) perturb(p.u[i], i + 2);
     const Solution<cl_RA> s = expect_kernel_matches_rationals(p);
     expect_physics(p, s);
   }

@@ -9,8 +9,11 @@
 // storage, one exact division per update, by the previous pivot), which gives
 // the Cramer numerators X and the determinant d: W = X / (d L_u), and the
 // reactions λ = Λ / (L_m d L_u) with Λ the running sums of the integer row
-// residuals ÂŴ − d b̂.  No gcd is taken until the answer is written out, once
-// per value.
+// residuals ÂŴ − d b̂.  No gcd is taken until the answer is written out;
+// there the velocities' common factor gcd(d L_u, Ŵ) is taken out first, then
+// each fraction is reduced in native integers where they hold it (word by
+// word, 64-bit binary gcds; 128 bits; else CLN's division), and CLN makes the
+// rational from parts already coprime.
 //
 // Integers live in 128 bits, computed modulo 2^128, wherever Hadamard's bound
 // on the minors of the case's system (and a bound on every later sum and
