@@ -93,7 +93,7 @@ struct Settings {
   /// Exact rationals only: solve by fraction-free elimination on integers
   /// (the data over common denominators, 128-bit arithmetic where bounds
   /// prove it exact, CLN integers elsewhere), the same pivoting and the same
-  /// fractions and pivot counts as in rationals, 7× (paper scene) to 18×
+  /// fractions and pivot counts as in rationals, about 13× (paper scene) and 22×
   /// (chain-32) faster (docs/PERFORMANCE.md); false solves in CLN rationals
   /// throughout (the reference the tests compare with).
   bool integer_kernel = true;
