@@ -113,6 +113,15 @@ class Distribution {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Tasks 0 … count−1 whose results every process needs (the stages of one
+/// verification spread over the ranks, `verify --case`): under MPI, handed
+/// out to the ranks as Distribution::run() does (rank 0 computing too), then
+/// every result sent from rank 0 to every rank; otherwise run here, one after
+/// the other.  Returns the results in task order, in every process.  A task
+/// that throws: as in Distribution::run(), on rank 0; the other ranks throw
+/// a message that is not printed.  Every rank must call it, in the same order.
+std::vector<std::string> run_everywhere(std::size_t count, const Distribution::Task& task);
+
 /// `superball merge PART… [-o FILE]` on \p app, for its --help: main()
 /// runs a merge through merge_arguments() before parsing.
 void add_merge(CLI::App& app);

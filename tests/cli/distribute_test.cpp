@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -42,8 +43,11 @@ std::vector<std::string> with(std::vector<std::string> args, const std::vector<s
 
 /// The runs compared: derive of every case of a 5-body pattern (16 cases,
 /// text and JSON), sweeps of 5 blocks of values (rows) and 2 (switch
-/// points, each block bisected exactly) and verify of the 8 cases of a
-/// pattern, each spread over 3 ranks or shards.
+/// points, each block bisected exactly), verify of the 8 cases of a pattern,
+/// verify of one case (under MPI its 5 tasks of drawn points and 8 of
+/// boundary searches spread over the ranks), explore of the 64 cells of the
+/// pattern table and of the 8 cases of a pattern (JSON, on a small budget),
+/// each spread over 3 ranks or shards.
 const std::vector<std::vector<std::string>>& runs() {
   static const std::vector<std::vector<std::string>> r = {
       {"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--all", "--format", "json"},
@@ -51,8 +55,18 @@ const std::vector<std::vector<std::string>>& runs() {
       {"sweep", kPaper, "--vary", "K.3-4=0:20:20001", "--csv"},
       {"sweep", kPaper, "--vary", "K.3-4=20:0:8193", "--switch-points"},
       {"verify", "--all", "--alphas", "5", "--samples", "20", "--epsilons", "1e-2", "--boundary-pairs", "2", "--json"},
+      {"verify", "--case", "1", "--alphas", "2", "--samples", "900", "--epsilons", "1e-2,1e-3", "--boundary-pairs", "3"},
+      {"explore", "--all-patterns", "--starts", "2", "--evaluations", "60"},
+      {"explore", "--alphas", "4", "--all", "--json", "--starts", "4", "--evaluations", "200"},
   };
   return r;
+}
+
+/// The option that makes a run use one thread (or worker process) per rank.
+std::vector<std::string> one_thread(const std::string& command) {
+  if (command == "derive") return {"--jobs", "1"};
+  if (command == "explore") return {};  // one thread always
+  return {"--threads", "1"};
 }
 
 /// The shard runs of \p args into \p dir (part I written as pI); their paths.
@@ -231,10 +245,13 @@ TEST(Distribute, KilledAndResumedGivesTheUninterruptedOutput) {
 
 #ifdef SUPERBALL_MPIEXEC
 /// `mpirun -n P superball ARGS...` (as root in a container too, more ranks than cores).
-RunResult mpirun(int ranks, const std::vector<std::string>& args) {
+/// \p environment: NAME=VALUE set in every rank.
+RunResult mpirun(int ranks, const std::vector<std::string>& args, const std::vector<std::string>& environment = {}) {
   // No single-copy transfers (CMA): containers often forbid the ptrace they need.
   std::vector<std::string> all = {"--oversubscribe", "--allow-run-as-root", "--mca", "btl_vader_single_copy_mechanism", "none",
-                                  "-n", std::to_string(ranks), SUPERBALL_EXE};
+                                  "-n", std::to_string(ranks)};
+  for (const std::string& e : environment) all.insert(all.end(), {"-x", e});
+  all.push_back(SUPERBALL_EXE);
   all.insert(all.end(), args.begin(), args.end());
   return run_program(SUPERBALL_MPIEXEC, all);
 }
@@ -244,7 +261,7 @@ TEST(DistributeMpi, TwoAndThreeRanksGiveTheSingleProcessOutputByteForByte) {
     const RunResult whole = run(args);
     ASSERT_EQ(whole.exit_code, 0) << describe(whole);
     for (int p : {2, 3}) {
-      const RunResult r = mpirun(p, with(args, {args[0] == "derive" ? "--jobs" : "--threads", "1"}));
+      const RunResult r = mpirun(p, with(args, one_thread(args[0])));
       ASSERT_EQ(r.exit_code, 0) << p << " ranks: " << describe(r);
       EXPECT_EQ(r.out, whole.out) << p << " ranks: " << args[0] << " " << args.back();
       EXPECT_EQ(r.err, "");
@@ -288,9 +305,55 @@ TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
   EXPECT_NE(shard.exit_code, 0);
   EXPECT_NE(shard.err.find("--shard runs one part in one process"), std::string::npos) << shard.err;
   // A command that is not a task list would run whole on every rank: refused.
-  const RunResult explore = mpirun(2, {"explore", "--alphas", "3", "--case", "1"});
-  EXPECT_EQ(explore.out, "");
-  EXPECT_NE(explore.err.find("superball: explore does not spread over MPI ranks"), std::string::npos) << explore.err;
+  const RunResult map = mpirun(2, {"map", kPaper, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-150:0:5"});
+  EXPECT_EQ(map.out, "");
+  EXPECT_NE(map.err.find("superball: map does not spread over MPI ranks"), std::string::npos) << map.err;
+}
+
+/// The lines of \p err that superball wrote (not the launcher's notes).
+std::vector<std::string> said(const RunResult& r) {
+  std::vector<std::string> lines;
+  for (const std::string& line : r.err_lines())
+    if (line.rfind("superball:", 0) == 0) lines.push_back(line);
+  return lines;
+}
+
+TEST(DistributeMpi, ATaskThatFailsOnARankIsOneLineNamingItAndNoOutput) {
+  // No task of these commands fails on valid input: the test hook
+  // SUPERBALL_TEST_FAIL_TASK=K (cli/distribute.cpp) makes task K throw on
+  // whichever rank runs it.
+  const std::string dir = folder("mpi-failing");
+  const std::vector<std::string> hook = {"SUPERBALL_TEST_FAIL_TASK=5"};
+  // derive -o with a checkpoint: no output file (not even in part), one line naming the rank and task 5 of 16.
+  const RunResult derive = mpirun(3, with(runs()[0], {"--jobs", "1", "--checkpoint", dir + "/ck", "-o", dir + "/out.json"}), hook);
+  EXPECT_EQ(derive.exit_code, 4) << describe(derive);
+  EXPECT_EQ(derive.out, "");
+  ASSERT_EQ(said(derive).size(), 1u) << derive.err;
+  EXPECT_TRUE(std::regex_match(said(derive)[0], std::regex("superball: internal error: rank [012], task 5 of 16: SUPERBALL_TEST_FAIL_TASK=5: .*")))
+      << said(derive)[0];
+  EXPECT_FALSE(fs::exists(dir + "/out.json"));
+  // The tasks before it were kept; the run again (without the hook) finishes with the single run's bytes.
+  for (const std::string k : {"00000000", "00000001", "00000002", "00000003"}) EXPECT_TRUE(fs::exists(dir + "/ck/task-" + k)) << k;
+  EXPECT_FALSE(fs::exists(dir + "/ck/task-00000004"));
+  const RunResult again = mpirun(2, with(runs()[0], {"--jobs", "1", "--checkpoint", dir + "/ck", "-o", dir + "/out.json"}));
+  ASSERT_EQ(again.exit_code, 0) << describe(again);
+  EXPECT_EQ(slurp(dir + "/out.json"), run(runs()[0]).out);
+  // verify of one case: its tasks are blocks of points (5 of drawn points here), spread over the ranks.
+  const RunResult one = mpirun(2, with(runs()[5], {"--threads", "1"}), hook);
+  EXPECT_EQ(one.exit_code, 4) << describe(one);
+  EXPECT_EQ(one.out, "");
+  ASSERT_EQ(said(one).size(), 1u) << one.err;
+  EXPECT_TRUE(std::regex_match(said(one)[0], std::regex("superball: internal error: rank [01], task 5 of 5: SUPERBALL_TEST_FAIL_TASK=5: .*")))
+      << said(one)[0];
+  // sweep to standard output: the blocks before the failing one are written, none after it.
+  const RunResult sweep = mpirun(3, with(runs()[2], {"--threads", "1"}), {"SUPERBALL_TEST_FAIL_TASK=3"});
+  EXPECT_EQ(sweep.exit_code, 4) << describe(sweep);
+  const std::string whole = run(runs()[2]).out;
+  std::size_t rows = 0, at = 0;
+  for (; rows < 1 + 2 * 4096; ++rows) at = whole.find('\n', at) + 1;  // the header and blocks 1 and 2
+  EXPECT_EQ(sweep.out, whole.substr(0, at));
+  ASSERT_EQ(said(sweep).size(), 1u) << sweep.err;
+  EXPECT_NE(said(sweep)[0].find("task 3 of 5: SUPERBALL_TEST_FAIL_TASK=3"), std::string::npos) << said(sweep)[0];
 }
 #endif
 
