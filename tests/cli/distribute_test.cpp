@@ -310,6 +310,30 @@ TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
   EXPECT_NE(map.err.find("superball: map does not spread over MPI ranks"), std::string::npos) << map.err;
 }
 
+TEST(DistributeMpi, OneVerifyCaseOverRanksWritesTheSameSceneFiles) {
+  // The disagreements of one case come back from the ranks as text (their
+  // points as fractions); rank 0 makes their scene files again from them.
+  const std::string dir = folder("mpi-one-case"), out = dir + "/scenes";
+  const std::vector<std::string> args = {"verify", "--case", "3.2", "--alphas", "5", "--samples", "400", "--epsilons", "1e-2,1e-3",
+                                         "--boundary-pairs", "3", "--out", out};
+  auto files = [&] {
+    std::map<std::string, std::string> f;
+    for (const auto& e : fs::directory_iterator(out)) f[e.path().filename().string()] = slurp(e.path().string());
+    fs::remove_all(out);
+    return f;
+  };
+  const RunResult single = run(args);
+  ASSERT_EQ(single.exit_code, 0) << describe(single);
+  const auto expected = files();
+  ASSERT_GT(expected.size(), 10u) << "the asymptotic forms disagree near the boundaries";
+  for (int p : {2, 3}) {
+    const RunResult r = mpirun(p, with(args, {"--threads", "1"}));
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_EQ(r.out, single.out) << p << " ranks";
+    EXPECT_EQ(files(), expected) << p << " ranks";
+  }
+}
+
 /// The lines of \p err that superball wrote (not the launcher's notes).
 std::vector<std::string> said(const RunResult& r) {
   std::vector<std::string> lines;
