@@ -281,7 +281,12 @@ void share(std::vector<std::string>& results, bool failed) {
     for (const std::string& r : results) sizes.push_back(r.size());
   }
   std::uint64_t n = sizes.size();
-  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  // The first message waits without spinning (see wait_gently()) while rank 0
+  // finishes its last task; the rest follows at once, blocking (polled in
+  // pauses, a long message would crawl: a piece per poll).
+  MPI_Request first;
+  MPI_Ibcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &first);
+  wait_gently(first);
   sizes.resize(static_cast<std::size_t>(n));
   MPI_Bcast(sizes.data(), static_cast<int>(n), MPI_UINT64_T, 0, MPI_COMM_WORLD);
   if (sizes.at(0) != 0) {
