@@ -273,6 +273,14 @@ Distribution::Distribution(const CLI::App& cmd, const DistributeOptions& options
   }
   for (std::size_t k = d.shard; k < count; k += d.shards)
     if (!d.done.count(k)) d.todo.push_back(k);
+  if (d.mpi) {  // only rank 0 read the checkpoint: every rank learns what is left (verify --case computes it on all)
+    std::vector<std::string> left(1);
+    for (std::size_t k : d.todo) left[0] += std::to_string(k) + " ";
+    share(left, false);
+    d.todo.clear();
+    std::istringstream in(left.at(0));
+    for (std::size_t k = 0; in >> k;) d.todo.push_back(k);
+  }
   if (!d.done.empty() && mpi_rank() == 0)
     std::cerr << "superball: --checkpoint " << d.checkpoint << ": " << d.done.size() << " of " << count << " tasks done already, "
               << d.todo.size() << " to compute\n";
@@ -467,6 +475,7 @@ std::vector<std::string> merge_arguments(const std::vector<std::string>& args) {
 namespace superball::cli {
 void start_mpi(int*, char***) {}
 void stop_mpi(int) {}
+void abandon_ranks() {}
 int mpi_rank() { return 0; }
 int mpi_size() { return 1; }
 namespace detail {

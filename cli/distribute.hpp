@@ -92,7 +92,8 @@ class Distribution {
   /// runner (not MPI, not a merge).
   bool local() const;
   /// The tasks this process computes with the local runner (when local()):
-  /// those of its shard not found in the checkpoint folder.
+  /// those of its shard not found in the checkpoint folder; under MPI, the
+  /// tasks of the run not in the checkpoint (on every rank).
   const std::vector<std::size_t>& todo() const;
 
   /// \p task, which also writes its result to the checkpoint folder (if
@@ -141,6 +142,11 @@ void start_mpi(int* argc, char*** argv);
 /// the checkpoint could not be written), aborts the job with \p code
 /// instead: they could not be told to stop.
 void stop_mpi(int code);
+/// Rank 0 is ending the command with an error (main(), when the command
+/// throws): other ranks may still wait for it (a task, the results), and only
+/// rank 0 said why, so stop_mpi() aborts the job with the exit code instead
+/// of waiting for them.  No effect on other ranks or without MPI.
+void abandon_ranks();
 /// This process's rank (0 without MPI).
 int mpi_rank();
 /// The number of ranks (1 without MPI).

@@ -96,6 +96,10 @@ void stop_mpi(int code) {
   started = false;
 }
 
+void abandon_ranks() {
+  if (started && rank_ == 0 && size_ > 1) abandoned = true;
+}
+
 int mpi_rank() { return rank_; }
 int mpi_size() { return size_; }
 

@@ -114,18 +114,23 @@ int run(int argc, char** argv) {
   }
   try {
     return action();
-  } catch (const superball::InputError& e) {
-    err << "superball: " << printable(e.what()) << '\n';
-    return bad_input;
-  } catch (const OutputError& e) {
-    err << "superball: " << printable(e.what()) << '\n';
-    return output_error;
-  } catch (const std::invalid_argument& e) {
-    err << "superball: " << printable(superball::without_function_prefix(e.what())) << '\n';
-    return bad_input;
-  } catch (const std::exception& e) {
-    err << "superball: internal error: " << printable(e.what()) << '\n';
-    return internal_error;
+  } catch (...) {
+    abandon_ranks();  // under MPI, ranks waiting for rank 0 are not left hanging
+    try {
+      throw;
+    } catch (const superball::InputError& e) {
+      err << "superball: " << printable(e.what()) << '\n';
+      return bad_input;
+    } catch (const OutputError& e) {
+      err << "superball: " << printable(e.what()) << '\n';
+      return output_error;
+    } catch (const std::invalid_argument& e) {
+      err << "superball: " << printable(superball::without_function_prefix(e.what())) << '\n';
+      return bad_input;
+    } catch (const std::exception& e) {
+      err << "superball: internal error: " << printable(e.what()) << '\n';
+      return internal_error;
+    }
   }
 }
 

@@ -192,7 +192,7 @@ void add_verify(CLI::App& app, Action& action) {
       // the ranks share the one task of the case; the case's text is then the
       // same on every rank, whichever the Distribution gives the task to.
       std::optional<std::string> shared;
-      if (count == 1 && mpi_size() > 1 && !merged_run) {
+      if (count == 1 && mpi_size() > 1 && !merged_run && !run.todo().empty()) {
         options.runner = run_everywhere;
         shared = task(0, nullptr);
       }

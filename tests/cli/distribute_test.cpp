@@ -294,6 +294,14 @@ TEST(DistributeMpi, ACheckpointThatCannotBeWrittenEndsTheJob) {
   EXPECT_FALSE(fs::exists(dir + "/out.json"));
 }
 
+/// The lines of \p err that superball wrote (not the launcher's notes).
+std::vector<std::string> superball_lines(const RunResult& r) {
+  std::vector<std::string> lines;
+  for (const std::string& line : r.err_lines())
+    if (line.rfind("superball:", 0) == 0) lines.push_back(line);
+  return lines;
+}
+
 TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
   const RunResult r = mpirun(3, {"sweep", kPaper, "--vary", "K.3-4=0:20:1"});
   EXPECT_NE(r.exit_code, 0);
@@ -304,6 +312,15 @@ TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
   const RunResult shard = mpirun(2, with(runs()[2], {"--shard", "1/2"}));
   EXPECT_NE(shard.exit_code, 0);
   EXPECT_NE(shard.err.find("--shard runs one part in one process"), std::string::npos) << shard.err;
+  // An error of rank 0 alone (the checkpoint folder of another run) while the
+  // other ranks wait for it: one line, the job ended (it was left hanging).
+  const std::string dir = folder("mpi-other-run");
+  ASSERT_EQ(run(with(runs()[2], {"--checkpoint", dir})).exit_code, 0);
+  const RunResult other = mpirun(2, {"sweep", kPaper, "--vary", "K.3-4=0:20:20002", "--checkpoint", dir});
+  EXPECT_EQ(other.exit_code, 2) << describe(other);
+  EXPECT_EQ(other.out, "");
+  ASSERT_EQ(superball_lines(other).size(), 1u) << other.err;
+  EXPECT_EQ(superball_lines(other)[0].rfind("superball: --checkpoint " + dir + ": holds run", 0), 0u) << other.err;
   // A command that is not a task list would run whole on every rank: refused.
   const RunResult map = mpirun(2, {"map", kPaper, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-150:0:5"});
   EXPECT_EQ(map.out, "");
@@ -332,14 +349,15 @@ TEST(DistributeMpi, OneVerifyCaseOverRanksWritesTheSameSceneFiles) {
     EXPECT_EQ(r.out, single.out) << p << " ranks";
     EXPECT_EQ(files(), expected) << p << " ranks";
   }
-}
-
-/// The lines of \p err that superball wrote (not the launcher's notes).
-std::vector<std::string> said(const RunResult& r) {
-  std::vector<std::string> lines;
-  for (const std::string& line : r.err_lines())
-    if (line.rfind("superball:", 0) == 0) lines.push_back(line);
-  return lines;
+  // With a checkpoint: the case kept, the same command again computes nothing and writes the same.
+  const RunResult first = mpirun(2, with(args, {"--checkpoint", dir + "/ck"}));
+  ASSERT_EQ(first.exit_code, 0) << describe(first);
+  EXPECT_EQ(files(), expected);
+  const RunResult again = mpirun(2, with(args, {"--checkpoint", dir + "/ck"}));
+  ASSERT_EQ(again.exit_code, 0) << describe(again);
+  EXPECT_EQ(again.out, single.out);
+  EXPECT_EQ(again.err, "superball: --checkpoint " + dir + "/ck: 1 of 1 tasks done already, 0 to compute\n");
+  EXPECT_EQ(files(), expected);
 }
 
 TEST(DistributeMpi, ATaskThatFailsOnARankIsOneLineNamingItAndNoOutput) {
@@ -352,9 +370,9 @@ TEST(DistributeMpi, ATaskThatFailsOnARankIsOneLineNamingItAndNoOutput) {
   const RunResult derive = mpirun(3, with(runs()[0], {"--jobs", "1", "--checkpoint", dir + "/ck", "-o", dir + "/out.json"}), hook);
   EXPECT_EQ(derive.exit_code, 4) << describe(derive);
   EXPECT_EQ(derive.out, "");
-  ASSERT_EQ(said(derive).size(), 1u) << derive.err;
-  EXPECT_TRUE(std::regex_match(said(derive)[0], std::regex("superball: internal error: rank [012], task 5 of 16: SUPERBALL_TEST_FAIL_TASK=5: .*")))
-      << said(derive)[0];
+  ASSERT_EQ(superball_lines(derive).size(), 1u) << derive.err;
+  EXPECT_TRUE(std::regex_match(superball_lines(derive)[0], std::regex("superball: internal error: rank [012], task 5 of 16: SUPERBALL_TEST_FAIL_TASK=5: .*")))
+      << superball_lines(derive)[0];
   EXPECT_FALSE(fs::exists(dir + "/out.json"));
   // The tasks before it were kept; the run again (without the hook) finishes with the single run's bytes.
   for (const std::string k : {"00000000", "00000001", "00000002", "00000003"}) EXPECT_TRUE(fs::exists(dir + "/ck/task-" + k)) << k;
@@ -366,9 +384,9 @@ TEST(DistributeMpi, ATaskThatFailsOnARankIsOneLineNamingItAndNoOutput) {
   const RunResult one = mpirun(2, with(runs()[5], {"--threads", "1"}), hook);
   EXPECT_EQ(one.exit_code, 4) << describe(one);
   EXPECT_EQ(one.out, "");
-  ASSERT_EQ(said(one).size(), 1u) << one.err;
-  EXPECT_TRUE(std::regex_match(said(one)[0], std::regex("superball: internal error: rank [01], task 5 of 5: SUPERBALL_TEST_FAIL_TASK=5: .*")))
-      << said(one)[0];
+  ASSERT_EQ(superball_lines(one).size(), 1u) << one.err;
+  EXPECT_TRUE(std::regex_match(superball_lines(one)[0], std::regex("superball: internal error: rank [01], task 5 of 5: SUPERBALL_TEST_FAIL_TASK=5: .*")))
+      << superball_lines(one)[0];
   // sweep to standard output: the blocks before the failing one are written, none after it.
   const RunResult sweep = mpirun(3, with(runs()[2], {"--threads", "1"}), {"SUPERBALL_TEST_FAIL_TASK=3"});
   EXPECT_EQ(sweep.exit_code, 4) << describe(sweep);
@@ -376,8 +394,8 @@ TEST(DistributeMpi, ATaskThatFailsOnARankIsOneLineNamingItAndNoOutput) {
   std::size_t rows = 0, at = 0;
   for (; rows < 1 + 2 * 4096; ++rows) at = whole.find('\n', at) + 1;  // the header and blocks 1 and 2
   EXPECT_EQ(sweep.out, whole.substr(0, at));
-  ASSERT_EQ(said(sweep).size(), 1u) << sweep.err;
-  EXPECT_NE(said(sweep)[0].find("task 3 of 5: SUPERBALL_TEST_FAIL_TASK=3"), std::string::npos) << said(sweep)[0];
+  ASSERT_EQ(superball_lines(sweep).size(), 1u) << sweep.err;
+  EXPECT_NE(superball_lines(sweep)[0].find("task 3 of 5: SUPERBALL_TEST_FAIL_TASK=3"), std::string::npos) << superball_lines(sweep)[0];
 }
 #endif
 
