@@ -62,12 +62,6 @@ const std::vector<std::vector<std::string>>& runs() {
   return r;
 }
 
-/// The option that makes a run use one thread (or worker process) per rank.
-std::vector<std::string> one_thread(const std::string& command) {
-  if (command == "derive") return {"--jobs", "1"};
-  if (command == "explore") return {};  // one thread always
-  return {"--threads", "1"};
-}
 
 /// The shard runs of \p args into \p dir (part I written as pI); their paths.
 std::vector<std::string> shards(const std::vector<std::string>& args, const std::string& dir, int n) {
@@ -254,6 +248,13 @@ RunResult mpirun(int ranks, const std::vector<std::string>& args, const std::vec
   all.push_back(SUPERBALL_EXE);
   all.insert(all.end(), args.begin(), args.end());
   return run_program(SUPERBALL_MPIEXEC, all);
+}
+
+/// The option that makes a run use one thread (or worker process) per rank.
+std::vector<std::string> one_thread(const std::string& command) {
+  if (command == "derive") return {"--jobs", "1"};
+  if (command == "explore") return {};  // one thread always
+  return {"--threads", "1"};
 }
 
 TEST(DistributeMpi, TwoAndThreeRanksGiveTheSingleProcessOutputByteForByte) {
