@@ -13,6 +13,7 @@
 #  - the serial part: `superball merge` of the run's one part (--shard 1/1):
 #    the set-up, the results in task order and the output written, no task
 #    computed;
+#  - verify --case 1's stages: its drawn points alone, and its set-up;
 #  - the start of MPI: mpirun -n 2 of a two-value sweep.
 set -euo pipefail
 exe="${1:?usage: cluster_side_by_side.sh SUPERBALL [RUNS]}"
@@ -62,7 +63,12 @@ derive=(derive --bodies 6 --pairs near2 --coupling near2 --all --format json)
 measure "derive 6 bodies near2" --jobs "${derive[@]}"
 tasks "derive 6 bodies near2" "${derive[@]}" --jobs 1
 verify=(verify --case 1 --alphas 2)
-measure "verify --case 1 --alphas 2 (one task)" --threads "${verify[@]}"
+measure "verify --case 1 --alphas 2 (one case, its blocks of points spread)" --threads "${verify[@]}"
+# Its two stages (50 tasks of drawn points, then 20 boundary searches) and its set-up, on one thread.
+t=$(for ((r = 1; r <= runs; ++r)); do seconds "$exe" "${verify[@]}" --threads 1 --boundary-pairs 0; done | median)
+echo "verify --case 1 --alphas 2: the drawn points alone (--boundary-pairs 0), one thread, median $t s"
+t=$(for ((r = 1; r <= runs; ++r)); do seconds "$exe" "${verify[@]}" --threads 1 --samples 1 --boundary-pairs 0 --epsilons 1e-2; done | median)
+echo "verify --case 1 --alphas 2: the set-up (one point), median $t s"
 sweep=(sweep "$scene" --vary K.3-4=0:20:16385 --switch-points)
 measure "sweep switch points, 16385 values" --threads "${sweep[@]}"
 tasks "sweep switch points, 16385 values" "${sweep[@]}" --threads 1

@@ -11,7 +11,9 @@
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -113,6 +115,21 @@ Header read_header(std::istream& in, const std::string& kind, const std::string&
     if (value.size() != size) throw bad("an argument of the wrong length");
     h.arguments.push_back(value);
   }
+}
+
+Distribution::Task with_test_hook(const Distribution::Task& task) {
+  // A TEST HOOK, not a feature: the tests of a task that fails on a rank
+  // (tests/cli/distribute_test.cpp) set SUPERBALL_TEST_FAIL_TASK=K to make
+  // task K (numbered from 1, as the messages number them) throw wherever it
+  // runs, since no task of these commands fails on valid input.  Unset (as
+  // always outside those tests), the task is returned as it is.
+  const char* hook = std::getenv("SUPERBALL_TEST_FAIL_TASK");
+  if (!hook || !*hook) return task;
+  const unsigned long long failing = std::strtoull(hook, nullptr, 10);
+  return [task, failing](std::size_t k) -> std::string {
+    if (k + 1 == failing) throw std::runtime_error("SUPERBALL_TEST_FAIL_TASK=" + std::to_string(failing) + ": this task made to fail (a test hook)");
+    return task(k);
+  };
 }
 
 std::string task_file(const std::string& dir, std::size_t k) {
@@ -256,6 +273,14 @@ Distribution::Distribution(const CLI::App& cmd, const DistributeOptions& options
   }
   for (std::size_t k = d.shard; k < count; k += d.shards)
     if (!d.done.count(k)) d.todo.push_back(k);
+  if (d.mpi) {  // only rank 0 read the checkpoint: every rank learns what is left (verify --case computes it on all)
+    std::vector<std::string> left(1);
+    for (std::size_t k : d.todo) left[0] += std::to_string(k) + " ";
+    share(left, false);
+    d.todo.clear();
+    std::istringstream in(left.at(0));
+    for (std::size_t k = 0; in >> k;) d.todo.push_back(k);
+  }
   if (!d.done.empty() && mpi_rank() == 0)
     std::cerr << "superball: --checkpoint " << d.checkpoint << ": " << d.done.size() << " of " << count << " tasks done already, "
               << d.todo.size() << " to compute\n";
@@ -277,8 +302,31 @@ Distribution::Task Distribution::keeping(const Task& task) const {
   };
 }
 
-void Distribution::run(const Task& task, const Deliver& deliver, const Local& local) {
+std::vector<std::string> run_everywhere(std::size_t count, const Distribution::Task& task) {
+  const Distribution::Task t = with_test_hook(task);
+  std::vector<std::string> results(count);
+  if (mpi_size() <= 1) {
+    for (std::size_t k = 0; k < count; ++k) results[k] = t(k);
+    return results;
+  }
+  std::vector<std::size_t> todo(count);
+  for (std::size_t k = 0; k < count; ++k) todo[k] = k;
+  std::map<std::size_t, std::string> done;
+  std::exception_ptr error;
+  try {
+    run_on_ranks(
+        count, todo, done, t, [](std::size_t, const std::string&) {}, [&](std::size_t k, std::string&& text) { results[k] = std::move(text); });
+  } catch (...) {
+    error = std::current_exception();
+  }
+  share(results, error != nullptr);
+  if (error) std::rethrow_exception(error);
+  return results;
+}
+
+void Distribution::run(const Task& unhooked, const Deliver& deliver, const Local& local) {
   Impl& d = *impl_;
+  const Task task = with_test_hook(unhooked);
   if (merged_run) {
     for (auto& [k, text] : d.done) deliver(k, std::move(text));
     return;
@@ -427,6 +475,7 @@ std::vector<std::string> merge_arguments(const std::vector<std::string>& args) {
 namespace superball::cli {
 void start_mpi(int*, char***) {}
 void stop_mpi(int) {}
+void abandon_ranks() {}
 int mpi_rank() { return 0; }
 int mpi_size() { return 1; }
 namespace detail {
@@ -434,6 +483,7 @@ void run_on_ranks(std::size_t, const std::vector<std::size_t>&, std::map<std::si
                   const std::function<void(std::size_t, const std::string&)>&, const Distribution::Deliver&) {
   throw std::logic_error("run_on_ranks(): built without MPI");
 }
+void share(std::vector<std::string>&, bool) { throw std::logic_error("share(): built without MPI"); }
 }  // namespace detail
 }  // namespace superball::cli
 #endif

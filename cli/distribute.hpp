@@ -92,7 +92,8 @@ class Distribution {
   /// runner (not MPI, not a merge).
   bool local() const;
   /// The tasks this process computes with the local runner (when local()):
-  /// those of its shard not found in the checkpoint folder.
+  /// those of its shard not found in the checkpoint folder; under MPI, the
+  /// tasks of the run not in the checkpoint (on every rank).
   const std::vector<std::size_t>& todo() const;
 
   /// \p task, which also writes its result to the checkpoint folder (if
@@ -113,6 +114,15 @@ class Distribution {
   std::unique_ptr<Impl> impl_;
 };
 
+/// Tasks 0 … count−1 whose results every process needs (the stages of one
+/// verification spread over the ranks, `verify --case`): under MPI, handed
+/// out to the ranks as Distribution::run() does (rank 0 computing too), then
+/// every result sent from rank 0 to every rank; otherwise run here, one after
+/// the other.  Returns the results in task order, in every process.  A task
+/// that throws: as in Distribution::run(), on rank 0; the other ranks throw
+/// a message that is not printed.  Every rank must call it, in the same order.
+std::vector<std::string> run_everywhere(std::size_t count, const Distribution::Task& task);
+
 /// `superball merge PART… [-o FILE]` on \p app, for its --help: main()
 /// runs a merge through merge_arguments() before parsing.
 void add_merge(CLI::App& app);
@@ -132,6 +142,11 @@ void start_mpi(int* argc, char*** argv);
 /// the checkpoint could not be written), aborts the job with \p code
 /// instead: they could not be told to stop.
 void stop_mpi(int code);
+/// Rank 0 is ending the command with an error (main(), when the command
+/// throws): other ranks may still wait for it (a task, the results), and only
+/// rank 0 said why, so stop_mpi() aborts the job with the exit code instead
+/// of waiting for them.  No effect on other ranks or without MPI.
+void abandon_ranks();
 /// This process's rank (0 without MPI).
 int mpi_rank();
 /// The number of ranks (1 without MPI).

@@ -40,4 +40,15 @@ void run_on_ranks(std::size_t count, const std::vector<std::size_t>& todo, std::
                   const Distribution::Task& task, const std::function<void(std::size_t, const std::string&)>& save,
                   const Distribution::Deliver& deliver);
 
+/// After run_on_ranks() on every rank: rank 0 sends \p results (every
+/// task's, in order) to the other ranks, or, when \p failed (its
+/// run_on_ranks() threw), tells them to stop; they then throw (their
+/// message is not printed: rank 0 says why).  Returns at once when rank 0
+/// left ranks waiting for tasks (stop_mpi() then aborts the job).
+void share(std::vector<std::string>& results, bool failed);
+
+/// The test hook of Distribution: \p task, made to throw for the task named
+/// by the environment variable SUPERBALL_TEST_FAIL_TASK (see distribute.cpp).
+Distribution::Task with_test_hook(const Distribution::Task& task);
+
 }  // namespace superball::cli::detail

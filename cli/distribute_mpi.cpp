@@ -96,6 +96,10 @@ void stop_mpi(int code) {
   started = false;
 }
 
+void abandon_ranks() {
+  if (started && rank_ == 0 && size_ > 1) abandoned = true;
+}
+
 int mpi_rank() { return rank_; }
 int mpi_size() { return size_; }
 
@@ -103,6 +107,27 @@ namespace detail {
 namespace {
 
 std::string name_task(std::size_t k, std::size_t count) { return "task " + std::to_string(k + 1) + " of " + std::to_string(count); }
+
+/// Runs task \p k into \p text: its result (Kind::Result), or what it threw
+/// (the kind of exception, its message in \p text) to be sent or thrown again.
+Kind attempt(const Distribution::Task& task, std::size_t k, std::string& text) {
+  try {
+    text = task(k);
+    return Kind::Result;
+  } catch (const std::invalid_argument& e) {
+    text = without_function_prefix(e.what());
+    return Kind::InvalidArgument;
+  } catch (const InputError& e) {
+    text = e.what();
+    return Kind::InvalidArgument;
+  } catch (const std::logic_error& e) {
+    text = e.what();
+    return Kind::LogicError;
+  } catch (const std::exception& e) {
+    text = e.what();
+    return Kind::RuntimeError;
+  }
+}
 
 /// A rank other than 0: compute what rank 0 hands out until told to stop.
 void serve(std::size_t count, const Distribution::Task& task) {
@@ -122,19 +147,8 @@ void serve(std::size_t count, const Distribution::Task& task) {
     if (k == kStop) break;
     death_length = static_cast<std::size_t>(std::snprintf(death_line, sizeof death_line, "superball: rank %d died in %s (a signal)\n", rank_,
                                                           name_task(static_cast<std::size_t>(k), count).c_str()));
-    Kind kind = Kind::Result;
     std::string text;
-    try {
-      text = task(static_cast<std::size_t>(k));
-    } catch (const std::invalid_argument& e) {
-      kind = Kind::InvalidArgument, text = without_function_prefix(e.what());
-    } catch (const InputError& e) {
-      kind = Kind::InvalidArgument, text = e.what();
-    } catch (const std::logic_error& e) {
-      kind = Kind::LogicError, text = e.what();
-    } catch (const std::exception& e) {
-      kind = Kind::RuntimeError, text = e.what();
-    }
+    const Kind kind = attempt(task, static_cast<std::size_t>(k), text);
     death_length = 0;
     reply.assign(1, static_cast<char>(kind));
     reply += text;
@@ -227,19 +241,8 @@ void run_on_ranks(std::size_t count, const std::vector<std::size_t>& todo, std::
       const std::uint64_t k = take();
       if (k != kStop) {
         guard.unlock();
-        Kind kind = Kind::Result;
         std::string text;
-        try {
-          text = task(static_cast<std::size_t>(k));
-        } catch (const std::invalid_argument& e) {
-          kind = Kind::InvalidArgument, text = without_function_prefix(e.what());
-        } catch (const InputError& e) {
-          kind = Kind::InvalidArgument, text = e.what();
-        } catch (const std::logic_error& e) {
-          kind = Kind::LogicError, text = e.what();
-        } catch (const std::exception& e) {
-          kind = Kind::RuntimeError, text = e.what();
-        }
+        const Kind kind = attempt(task, static_cast<std::size_t>(k), text);
         if (kind == Kind::Result) save(static_cast<std::size_t>(k), text);
         guard.lock();
         if (kind == Kind::Result)
@@ -269,6 +272,39 @@ void run_on_ranks(std::size_t count, const std::vector<std::size_t>& todo, std::
     case Kind::InvalidArgument: throw std::invalid_argument(failed_text);
     case Kind::LogicError: throw std::logic_error(failed_text);
     case Kind::RuntimeError: throw std::runtime_error(failed_text);
+  }
+}
+
+void share(std::vector<std::string>& results, bool failed) {
+  if (abandoned) return;  // the ranks still wait for tasks: stop_mpi() aborts the job
+  // Rank 0: a flag (1: failed), the number of results, each result's length, then their bytes.
+  std::vector<std::uint64_t> sizes;
+  if (rank_ == 0) {
+    sizes.push_back(failed ? 1 : 0);
+    sizes.push_back(results.size());
+    for (const std::string& r : results) sizes.push_back(r.size());
+  }
+  std::uint64_t n = sizes.size();
+  // The first message waits without spinning (see wait_gently()) while rank 0
+  // finishes its last task; the rest follows at once, blocking (polled in
+  // pauses, a long message would crawl: a piece per poll).
+  MPI_Request first;
+  MPI_Ibcast(&n, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD, &first);
+  wait_gently(first);
+  sizes.resize(static_cast<std::size_t>(n));
+  MPI_Bcast(sizes.data(), static_cast<int>(n), MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  if (sizes.at(0) != 0) {
+    if (rank_ == 0) return;
+    throw std::runtime_error("share(): rank 0 ended the run");  // said by rank 0
+  }
+  results.resize(static_cast<std::size_t>(sizes.at(1)));
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    std::string& r = results[k];
+    r.resize(static_cast<std::size_t>(sizes.at(k + 2)));
+    // In pieces of at most 1 GiB (an MPI count is an int).
+    constexpr std::size_t piece = std::size_t{1} << 30;
+    for (std::size_t at = 0; at < r.size(); at += piece)
+      MPI_Bcast(r.data() + at, static_cast<int>(std::min(piece, r.size() - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
   }
 }
 

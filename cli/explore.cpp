@@ -4,11 +4,15 @@
 // (superball::verify::explore_case); --all-patterns gives the table of every
 // single alpha_k and {alpha_1, alpha_6} against every case of n = 4.
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
+#include "distribute.hpp"
 #include "selection.hpp"
+#include "superball/cases/vocabulary.hpp"
 #include "superball/verify/explore.hpp"
 
 namespace superball::cli {
@@ -50,6 +54,7 @@ void add_explore(CLI::App& app, Action& action) {
     bool all_patterns = false, json = false;
     std::string box = "1e-3:1e3", out, output;
     verify::ExploreOptions explore;
+    DistributeOptions distribute;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("explore", "Is the superball reachable for a pattern of M in a case? A witness checked exactly, or a proof that it is not");
@@ -85,7 +90,11 @@ void add_explore(CLI::App& app, Action& action) {
       "  superball explore --alphas 5 --all --json            every case of one pattern, for programs\n"
       "  superball explore --all-patterns                     the table: each alpha_k and {alpha_1, alpha_6} x every case\n"
       "  superball explore --alphas 2 --case 1 --box 1e-2:1e2 --starts 40 --seed 7\n"
-      "Check a witness: superball solve FILE --precision exact");
+      "Check a witness: superball solve FILE --precision exact\n\n"
+      "Clusters (docs/CLUSTER.md): the cases (with --all-patterns the 64 cells) are the tasks.  Under MPI\n"
+      "(`mpirun -n P superball explore ...`, built with -DSUPERBALL_WITH_MPI=ON) the ranks take them as they become\n"
+      "free and rank 0 writes; --shard I/N explores the tasks k with k mod N = I-1 into a part file for\n"
+      "`superball merge`; --checkpoint DIR keeps each finished one.  The same bytes every way.");
   add_selection_options(cmd, o->selection, false);
   cmd->add_flag("--all-patterns", o->all_patterns, "Every single alpha_k (k = 1..7) and {alpha_1, alpha_6} against every case of n = 4, as one table");
   cmd->add_option("--seed", o->explore.seed, "Seed of the starting points")->capture_default_str();
@@ -95,43 +104,88 @@ void add_explore(CLI::App& app, Action& action) {
   cmd->add_option("--out", o->out, "Write each witness scene file into this folder (created if missing)")->check(non_empty());
   cmd->add_flag("--json", o->json, "Print JSON for programs");
   cmd->add_option("--output,-o", o->output, "Write the report to this file instead of standard output")->check(non_empty());
-  cmd->callback([o, &action] {
-    action = [o] {
+  add_distribute_options(cmd, o->distribute, "case (with --all-patterns: cell)");
+  cmd->callback([o, cmd, &action] {
+    action = [o, cmd] {
       std::tie(o->explore.box_low, o->explore.box_high) = parse_box(o->box);
       const SelectionOptions& sel = o->selection;
       std::ostringstream command;
       command << "superball explore";
-      std::vector<verify::ExploreResult> results;
-      std::string text;
+      // The tasks: the cells of the table (pattern by pattern, case by case)
+      // or the cases chosen, each explored on its own (explore_case()).
+      verify::PatternTable table;
+      std::optional<Selection> selection;
+      std::vector<ContactSet> cases;
       if (o->all_patterns) {
         if (!sel.case_name.empty() || !sel.closed.empty() || sel.all || !sel.alphas.empty() || !sel.coupling.empty() || !sel.scene.empty())
           throw std::invalid_argument("--all-patterns chooses the patterns and cases: drop --case/--closed/--all/--alphas/--coupling/--scene");
-        const verify::PatternTable t = verify::explore_all_patterns(o->explore);
-        for (const auto& row : t.cells) results.insert(results.end(), row.begin(), row.end());
+        table.options = o->explore;
+        table.patterns = verify::table_patterns();
+        for (const NamedCase& c : Vocabulary::paper().cases()) {
+          table.cases.push_back(c.name);
+          cases.push_back(c.closed);
+        }
         command << " --all-patterns";
-        text = o->json ? verify::to_json(t).dump(2) + "\n" : verify::to_text(t);
       } else {
-        const Selection selection = resolve(sel);
-        if (selection.cases.empty()) throw std::invalid_argument("give a case (--case, --closed or --all) or --all-patterns");
-        for (const ContactSet& c : selection.cases) results.push_back(verify::explore_case(*selection.deriver, c, o->explore));
+        selection = resolve(sel);
+        if (selection->cases.empty()) throw std::invalid_argument("give a case (--case, --closed or --all) or --all-patterns");
+        cases = selection->cases;
         command << (sel.alphas.empty() ? "" : " --alphas " + sel.alphas) << (sel.coupling.empty() ? "" : " --coupling " + sel.coupling)
                 << (sel.scene.empty() ? "" : " --scene " + sel.scene) << (sel.case_name.empty() ? "" : " --case " + sel.case_name)
                 << (sel.closed.empty() ? "" : " --closed " + sel.closed) << (sel.all ? " --all" : "");
-        if (o->json) {
-          nlohmann::ordered_json j = nlohmann::ordered_json::array();
-          for (const auto& r : results) j.push_back(verify::to_json(r));
-          text = (results.size() == 1 ? j[0] : j).dump(2) + "\n";
-        } else {
-          for (const auto& r : results) text += verify::to_text(r) + "\n";
-        }
       }
       command << " --seed " << o->explore.seed << " --starts " << o->explore.starts << " --evaluations " << o->explore.evaluations << " --box " << o->box;
+      const std::size_t columns = cases.size(), count = o->all_patterns ? table.patterns.size() * columns : columns;
+      // The table's derivers, one per pattern, made when a task first needs it (a process computes few rows).
+      std::map<std::size_t, std::unique_ptr<symbolic::Deriver>> derivers;
+      auto deriver = [&](std::size_t row) -> const symbolic::Deriver& {
+        if (!o->all_patterns) return *selection->deriver;
+        auto& d = derivers[row];
+        if (!d) d = std::make_unique<symbolic::Deriver>(symbolic::Pattern::paper(table.patterns[row]), symbolic::Obstacle::Infinite);
+        return *d;
+      };
+      // A task's text: the result rendered every way the output may need it (JSON).
+      auto task = [&](std::size_t k) {
+        const verify::ExploreResult r = verify::explore_case(deriver(k / columns), cases[k % columns], o->explore);
+        const verify::RenderedCell cell = verify::render(r);
+        nlohmann::ordered_json j;
+        j["pattern"] = cell.pattern;
+        j["cell"] = cell.text;
+        j["json"] = cell.json;
+        j["text"] = verify::to_text(r);
+        if (r.scene) j["witness"] = {witness_name(r), verify::witness_file(r, command.str())};
+        return j.dump() + "\n";
+      };
+      Distribution run(*cmd, o->distribute, count);
+      std::vector<std::vector<verify::RenderedCell>> cells;
+      std::vector<nlohmann::ordered_json> results;
+      std::string text;
+      std::vector<std::pair<std::string, std::string>> witnesses;
+      run.run(task, [&](std::size_t k, std::string&& piece) {
+        nlohmann::ordered_json j = nlohmann::ordered_json::parse(piece);
+        if (j.contains("witness")) witnesses.emplace_back(j["witness"][0].get<std::string>(), j["witness"][1].get<std::string>());
+        if (o->all_patterns) {
+          if (k % columns == 0) cells.emplace_back();
+          cells.back().push_back({j["pattern"].get<std::string>(), j["cell"].get<std::string>(), j["json"]});
+        } else if (o->json) {
+          results.push_back(j["json"]);
+        } else {
+          text += j["text"].get<std::string>() + "\n";
+        }
+      });
+      if (!run.writes_output()) return ok;  // a part file, or a rank other than 0
+      if (o->all_patterns) {
+        text = o->json ? verify::to_json(table, cells).dump(2) + "\n" : verify::to_text(table, cells);
+      } else if (o->json) {
+        nlohmann::ordered_json j = nlohmann::ordered_json::array();
+        for (auto& r : results) j.push_back(std::move(r));
+        text = (results.size() == 1 ? j[0] : j).dump(2) + "\n";
+      }
       if (!o->out.empty()) {
         std::error_code error;
         std::filesystem::create_directories(o->out, error);
         if (error) throw OutputError("--out: cannot create folder '" + o->out + "': " + error.message());
-        for (const auto& r : results)
-          if (r.scene) write_output((std::filesystem::path(o->out) / witness_name(r)).string(), verify::witness_file(r, command.str()));
+        for (const auto& [name, file] : witnesses) write_output((std::filesystem::path(o->out) / name).string(), file);
       }
       write_output(o->output, text);
       return ok;

@@ -107,25 +107,30 @@ int run(int argc, char** argv) {
   // any other would run whole on every rank, each writing its output.
   if (mpi_size() > 1) {
     const std::string name = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
-    if (name != "derive" && name != "sweep" && name != "verify") {
-      err << "superball: " << name << " does not spread over MPI ranks (derive, sweep and verify do); run it in one process, with its --threads\n";
+    if (name != "derive" && name != "sweep" && name != "verify" && name != "explore") {
+      err << "superball: " << name << " does not spread over MPI ranks (derive, sweep, verify and explore do); run it in one process, with its --threads\n";
       return bad_input;
     }
   }
   try {
     return action();
-  } catch (const superball::InputError& e) {
-    err << "superball: " << printable(e.what()) << '\n';
-    return bad_input;
-  } catch (const OutputError& e) {
-    err << "superball: " << printable(e.what()) << '\n';
-    return output_error;
-  } catch (const std::invalid_argument& e) {
-    err << "superball: " << printable(superball::without_function_prefix(e.what())) << '\n';
-    return bad_input;
-  } catch (const std::exception& e) {
-    err << "superball: internal error: " << printable(e.what()) << '\n';
-    return internal_error;
+  } catch (...) {
+    abandon_ranks();  // under MPI, ranks waiting for rank 0 are not left hanging
+    try {
+      throw;
+    } catch (const superball::InputError& e) {
+      err << "superball: " << printable(e.what()) << '\n';
+      return bad_input;
+    } catch (const OutputError& e) {
+      err << "superball: " << printable(e.what()) << '\n';
+      return output_error;
+    } catch (const std::invalid_argument& e) {
+      err << "superball: " << printable(superball::without_function_prefix(e.what())) << '\n';
+      return bad_input;
+    } catch (const std::exception& e) {
+      err << "superball: internal error: " << printable(e.what()) << '\n';
+      return internal_error;
+    }
   }
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -131,7 +132,8 @@ void add_verify(CLI::App& app, Action& action) {
       "`mpirun -n P superball verify --all ...` hands the cases out to the ranks, each verifying its case on its\n"
       "--threads, rank 0 writing the report and the scene files; --shard I/N verifies the cases k with\n"
       "k mod N = I-1 into a part file for `superball merge`; --checkpoint DIR keeps each verified case.  The\n"
-      "same bytes every way.  One case is one task: it does not spread over ranks (use its --threads).");
+      "same bytes every way.  One case alone (--case K) is spread over the ranks too: its blocks of 400 drawn\n"
+      "points, then its boundary searches, are handed out to them (each on its --threads).");
   add_selection_options(cmd, o->selection);
   cmd->add_option("--epsilons", o->epsilons, "Values of eps in (0, 1), comma-separated (decimals, 1e-3 or fractions 1/1000)")->capture_default_str();
   cmd->add_option("--samples", o->samples, "Points drawn per eps")->check(CLI::Range(1, 100000000))->capture_default_str();
@@ -185,6 +187,15 @@ void add_verify(CLI::App& app, Action& action) {
         return text;
       };
       Distribution run(*cmd, o->distribute, count);
+      // One case over several ranks: every rank takes part in its verification
+      // (its blocks of points handed out as tasks, run_everywhere()), so that
+      // the ranks share the one task of the case; the case's text is then the
+      // same on every rank, whichever the Distribution gives the task to.
+      std::optional<std::string> shared;
+      if (count == 1 && mpi_size() > 1 && !merged_run && !run.todo().empty()) {
+        options.runner = run_everywhere;
+        shared = task(0, nullptr);
+      }
       const bool writes = run.writes_output();
       bool exact_agrees = true;
       int written = 0;
@@ -194,7 +205,7 @@ void add_verify(CLI::App& app, Action& action) {
         auto label = [&](std::size_t k) {
           return "case " + Vocabulary::paper().case_name(selection.cases[k]) + (count > 1 ? " (" + std::to_string(k + 1) + "/" + std::to_string(count) + ")" : "");
         };
-        run.run([&](std::size_t k) { return task(k, run.local() ? progress.for_task(static_cast<int>(k), label(k)) : nullptr); },
+        run.run([&](std::size_t k) { return shared ? *shared : task(k, run.local() ? progress.for_task(static_cast<int>(k), label(k)) : nullptr); },
                 [&](std::size_t k, std::string&& piece) {
                   exact_agrees = exact_agrees && piece[0] == 'A';
                   std::size_t at = 2;

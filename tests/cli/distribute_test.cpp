@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -42,8 +43,11 @@ std::vector<std::string> with(std::vector<std::string> args, const std::vector<s
 
 /// The runs compared: derive of every case of a 5-body pattern (16 cases,
 /// text and JSON), sweeps of 5 blocks of values (rows) and 2 (switch
-/// points, each block bisected exactly) and verify of the 8 cases of a
-/// pattern, each spread over 3 ranks or shards.
+/// points, each block bisected exactly), verify of the 8 cases of a pattern,
+/// verify of one case (under MPI its 5 tasks of drawn points and 8 of
+/// boundary searches spread over the ranks), explore of the 64 cells of the
+/// pattern table and of the 8 cases of a pattern (JSON, on a small budget),
+/// each spread over 3 ranks or shards.
 const std::vector<std::vector<std::string>>& runs() {
   static const std::vector<std::vector<std::string>> r = {
       {"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--all", "--format", "json"},
@@ -51,9 +55,13 @@ const std::vector<std::vector<std::string>>& runs() {
       {"sweep", kPaper, "--vary", "K.3-4=0:20:20001", "--csv"},
       {"sweep", kPaper, "--vary", "K.3-4=20:0:8193", "--switch-points"},
       {"verify", "--all", "--alphas", "5", "--samples", "20", "--epsilons", "1e-2", "--boundary-pairs", "2", "--json"},
+      {"verify", "--case", "1", "--alphas", "2", "--samples", "900", "--epsilons", "1e-2,1e-3", "--boundary-pairs", "3"},
+      {"explore", "--all-patterns", "--starts", "2", "--evaluations", "60"},
+      {"explore", "--alphas", "4", "--all", "--json", "--starts", "4", "--evaluations", "200"},
   };
   return r;
 }
+
 
 /// The shard runs of \p args into \p dir (part I written as pI); their paths.
 std::vector<std::string> shards(const std::vector<std::string>& args, const std::string& dir, int n) {
@@ -231,12 +239,22 @@ TEST(Distribute, KilledAndResumedGivesTheUninterruptedOutput) {
 
 #ifdef SUPERBALL_MPIEXEC
 /// `mpirun -n P superball ARGS...` (as root in a container too, more ranks than cores).
-RunResult mpirun(int ranks, const std::vector<std::string>& args) {
+/// \p environment: NAME=VALUE set in every rank.
+RunResult mpirun(int ranks, const std::vector<std::string>& args, const std::vector<std::string>& environment = {}) {
   // No single-copy transfers (CMA): containers often forbid the ptrace they need.
   std::vector<std::string> all = {"--oversubscribe", "--allow-run-as-root", "--mca", "btl_vader_single_copy_mechanism", "none",
-                                  "-n", std::to_string(ranks), SUPERBALL_EXE};
+                                  "-n", std::to_string(ranks)};
+  for (const std::string& e : environment) all.insert(all.end(), {"-x", e});
+  all.push_back(SUPERBALL_EXE);
   all.insert(all.end(), args.begin(), args.end());
   return run_program(SUPERBALL_MPIEXEC, all);
+}
+
+/// The option that makes a run use one thread (or worker process) per rank.
+std::vector<std::string> one_thread(const std::string& command) {
+  if (command == "derive") return {"--jobs", "1"};
+  if (command == "explore") return {};  // one thread always
+  return {"--threads", "1"};
 }
 
 TEST(DistributeMpi, TwoAndThreeRanksGiveTheSingleProcessOutputByteForByte) {
@@ -244,7 +262,7 @@ TEST(DistributeMpi, TwoAndThreeRanksGiveTheSingleProcessOutputByteForByte) {
     const RunResult whole = run(args);
     ASSERT_EQ(whole.exit_code, 0) << describe(whole);
     for (int p : {2, 3}) {
-      const RunResult r = mpirun(p, with(args, {args[0] == "derive" ? "--jobs" : "--threads", "1"}));
+      const RunResult r = mpirun(p, with(args, one_thread(args[0])));
       ASSERT_EQ(r.exit_code, 0) << p << " ranks: " << describe(r);
       EXPECT_EQ(r.out, whole.out) << p << " ranks: " << args[0] << " " << args.back();
       EXPECT_EQ(r.err, "");
@@ -277,6 +295,14 @@ TEST(DistributeMpi, ACheckpointThatCannotBeWrittenEndsTheJob) {
   EXPECT_FALSE(fs::exists(dir + "/out.json"));
 }
 
+/// The lines of \p err that superball wrote (not the launcher's notes).
+std::vector<std::string> superball_lines(const RunResult& r) {
+  std::vector<std::string> lines;
+  for (const std::string& line : r.err_lines())
+    if (line.rfind("superball:", 0) == 0) lines.push_back(line);
+  return lines;
+}
+
 TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
   const RunResult r = mpirun(3, {"sweep", kPaper, "--vary", "K.3-4=0:20:1"});
   EXPECT_NE(r.exit_code, 0);
@@ -287,10 +313,90 @@ TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
   const RunResult shard = mpirun(2, with(runs()[2], {"--shard", "1/2"}));
   EXPECT_NE(shard.exit_code, 0);
   EXPECT_NE(shard.err.find("--shard runs one part in one process"), std::string::npos) << shard.err;
+  // An error of rank 0 alone (the checkpoint folder of another run) while the
+  // other ranks wait for it: one line, the job ended (it was left hanging).
+  const std::string dir = folder("mpi-other-run");
+  ASSERT_EQ(run(with(runs()[2], {"--checkpoint", dir})).exit_code, 0);
+  const RunResult other = mpirun(2, {"sweep", kPaper, "--vary", "K.3-4=0:20:20002", "--checkpoint", dir});
+  EXPECT_EQ(other.exit_code, 2) << describe(other);
+  EXPECT_EQ(other.out, "");
+  ASSERT_EQ(superball_lines(other).size(), 1u) << other.err;
+  EXPECT_EQ(superball_lines(other)[0].rfind("superball: --checkpoint " + dir + ": holds run", 0), 0u) << other.err;
   // A command that is not a task list would run whole on every rank: refused.
-  const RunResult explore = mpirun(2, {"explore", "--alphas", "3", "--case", "1"});
-  EXPECT_EQ(explore.out, "");
-  EXPECT_NE(explore.err.find("superball: explore does not spread over MPI ranks"), std::string::npos) << explore.err;
+  const RunResult map = mpirun(2, {"map", kPaper, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-150:0:5"});
+  EXPECT_EQ(map.out, "");
+  EXPECT_NE(map.err.find("superball: map does not spread over MPI ranks"), std::string::npos) << map.err;
+}
+
+TEST(DistributeMpi, OneVerifyCaseOverRanksWritesTheSameSceneFiles) {
+  // The disagreements of one case come back from the ranks as text (their
+  // points as fractions); rank 0 makes their scene files again from them.
+  const std::string dir = folder("mpi-one-case"), out = dir + "/scenes";
+  const std::vector<std::string> args = {"verify", "--case", "3.2", "--alphas", "5", "--samples", "400", "--epsilons", "1e-2,1e-3",
+                                         "--boundary-pairs", "3", "--out", out};
+  auto files = [&] {
+    std::map<std::string, std::string> f;
+    for (const auto& e : fs::directory_iterator(out)) f[e.path().filename().string()] = slurp(e.path().string());
+    fs::remove_all(out);
+    return f;
+  };
+  const RunResult single = run(args);
+  ASSERT_EQ(single.exit_code, 0) << describe(single);
+  const auto expected = files();
+  ASSERT_GT(expected.size(), 10u) << "the asymptotic forms disagree near the boundaries";
+  for (int p : {2, 3}) {
+    const RunResult r = mpirun(p, with(args, {"--threads", "1"}));
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_EQ(r.out, single.out) << p << " ranks";
+    EXPECT_EQ(files(), expected) << p << " ranks";
+  }
+  // With a checkpoint: the case kept, the same command again computes nothing and writes the same.
+  const RunResult first = mpirun(2, with(args, {"--checkpoint", dir + "/ck"}));
+  ASSERT_EQ(first.exit_code, 0) << describe(first);
+  EXPECT_EQ(files(), expected);
+  const RunResult again = mpirun(2, with(args, {"--checkpoint", dir + "/ck"}));
+  ASSERT_EQ(again.exit_code, 0) << describe(again);
+  EXPECT_EQ(again.out, single.out);
+  EXPECT_EQ(again.err, "superball: --checkpoint " + dir + "/ck: 1 of 1 tasks done already, 0 to compute\n");
+  EXPECT_EQ(files(), expected);
+}
+
+TEST(DistributeMpi, ATaskThatFailsOnARankIsOneLineNamingItAndNoOutput) {
+  // No task of these commands fails on valid input: the test hook
+  // SUPERBALL_TEST_FAIL_TASK=K (cli/distribute.cpp) makes task K throw on
+  // whichever rank runs it.
+  const std::string dir = folder("mpi-failing");
+  const std::vector<std::string> hook = {"SUPERBALL_TEST_FAIL_TASK=5"};
+  // derive -o with a checkpoint: no output file (not even in part), one line naming the rank and task 5 of 16.
+  const RunResult derive = mpirun(3, with(runs()[0], {"--jobs", "1", "--checkpoint", dir + "/ck", "-o", dir + "/out.json"}), hook);
+  EXPECT_EQ(derive.exit_code, 4) << describe(derive);
+  EXPECT_EQ(derive.out, "");
+  ASSERT_EQ(superball_lines(derive).size(), 1u) << derive.err;
+  EXPECT_TRUE(std::regex_match(superball_lines(derive)[0], std::regex("superball: internal error: rank [012], task 5 of 16: SUPERBALL_TEST_FAIL_TASK=5: .*")))
+      << superball_lines(derive)[0];
+  EXPECT_FALSE(fs::exists(dir + "/out.json"));
+  // The tasks before it were kept; the run again (without the hook) finishes with the single run's bytes.
+  for (const std::string k : {"00000000", "00000001", "00000002", "00000003"}) EXPECT_TRUE(fs::exists(dir + "/ck/task-" + k)) << k;
+  EXPECT_FALSE(fs::exists(dir + "/ck/task-00000004"));
+  const RunResult again = mpirun(2, with(runs()[0], {"--jobs", "1", "--checkpoint", dir + "/ck", "-o", dir + "/out.json"}));
+  ASSERT_EQ(again.exit_code, 0) << describe(again);
+  EXPECT_EQ(slurp(dir + "/out.json"), run(runs()[0]).out);
+  // verify of one case: its tasks are blocks of points (5 of drawn points here), spread over the ranks.
+  const RunResult one = mpirun(2, with(runs()[5], {"--threads", "1"}), hook);
+  EXPECT_EQ(one.exit_code, 4) << describe(one);
+  EXPECT_EQ(one.out, "");
+  ASSERT_EQ(superball_lines(one).size(), 1u) << one.err;
+  EXPECT_TRUE(std::regex_match(superball_lines(one)[0], std::regex("superball: internal error: rank [01], task 5 of 5: SUPERBALL_TEST_FAIL_TASK=5: .*")))
+      << superball_lines(one)[0];
+  // sweep to standard output: the blocks before the failing one are written, none after it.
+  const RunResult sweep = mpirun(3, with(runs()[2], {"--threads", "1"}), {"SUPERBALL_TEST_FAIL_TASK=3"});
+  EXPECT_EQ(sweep.exit_code, 4) << describe(sweep);
+  const std::string whole = run(runs()[2]).out;
+  std::size_t rows = 0, at = 0;
+  for (; rows < 1 + 2 * 4096; ++rows) at = whole.find('\n', at) + 1;  // the header and blocks 1 and 2
+  EXPECT_EQ(sweep.out, whole.substr(0, at));
+  ASSERT_EQ(superball_lines(sweep).size(), 1u) << sweep.err;
+  EXPECT_NE(superball_lines(sweep)[0].find("task 3 of 5: SUPERBALL_TEST_FAIL_TASK=3"), std::string::npos) << superball_lines(sweep)[0];
 }
 #endif
 

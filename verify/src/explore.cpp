@@ -810,7 +810,24 @@ std::string to_text(const ExploreResult& r) {
   return os.str();
 }
 
-std::string to_text(const PatternTable& t) {
+RenderedCell render(const ExploreResult& r) { return {r.pattern, cell_text(r), to_json(r)}; }
+
+namespace {
+
+std::vector<std::vector<RenderedCell>> render_cells(const PatternTable& t) {
+  std::vector<std::vector<RenderedCell>> cells;
+  for (const auto& row : t.cells) {
+    cells.emplace_back();
+    for (const ExploreResult& c : row) cells.back().push_back(render(c));
+  }
+  return cells;
+}
+
+}  // namespace
+
+std::string to_text(const PatternTable& t) { return to_text(t, render_cells(t)); }
+
+std::string to_text(const PatternTable& t, const std::vector<std::vector<RenderedCell>>& cells) {
   std::ostringstream os;
   os << "| pattern |";
   for (const std::string& c : t.cases) os << " case " << c << " |";
@@ -818,8 +835,8 @@ std::string to_text(const PatternTable& t) {
   for (std::size_t k = 0; k < t.cases.size(); ++k) os << "---|";
   os << "\n";
   for (std::size_t r = 0; r < t.patterns.size(); ++r) {
-    os << "| " << (t.cells[r].empty() ? std::string() : t.cells[r].front().pattern) << " |";
-    for (const ExploreResult& c : t.cells[r]) os << " " << cell_text(c) << " |";
+    os << "| " << (cells[r].empty() ? std::string() : cells[r].front().pattern) << " |";
+    for (const RenderedCell& c : cells[r]) os << " " << c.text << " |";
     os << "\n";
   }
   os << "\nbox: " << describe_box(t.options) << "; per cell: seed " << t.options.seed << ", " << t.options.starts << " starts of at most "
@@ -853,7 +870,9 @@ nlohmann::ordered_json to_json(const ExploreResult& r) {
   return j;
 }
 
-nlohmann::ordered_json to_json(const PatternTable& t) {
+nlohmann::ordered_json to_json(const PatternTable& t) { return to_json(t, render_cells(t)); }
+
+nlohmann::ordered_json to_json(const PatternTable& t, const std::vector<std::vector<RenderedCell>>& cells) {
   nlohmann::ordered_json j;
   j["box"] = describe_box(t.options);
   j["seed"] = t.options.seed;
@@ -862,9 +881,9 @@ nlohmann::ordered_json to_json(const PatternTable& t) {
   j["cases"] = t.cases;
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (std::size_t r = 0; r < t.patterns.size(); ++r) {
-    nlohmann::ordered_json cells = nlohmann::ordered_json::array();
-    for (const ExploreResult& c : t.cells[r]) cells.push_back(to_json(c));
-    rows.push_back({{"alphas", t.patterns[r]}, {"cells", cells}});
+    nlohmann::ordered_json row = nlohmann::ordered_json::array();
+    for (const RenderedCell& c : cells[r]) row.push_back(c.json);
+    rows.push_back({{"alphas", t.patterns[r]}, {"cells", row}});
   }
   j["rows"] = rows;
   return j;

@@ -58,6 +58,7 @@ struct BlockResult {
   std::vector<Disagreement> disagreements;
   std::vector<Point> points;              ///< bulk: the points drawn
   std::vector<std::vector<bool>> sides;   ///< bulk: per point, per condition, whether the exact form holds
+  std::vector<Point> disagreement_points; ///< the point of each disagreement (to send it as text)
 };
 
 const char* yes(bool b) { return b ? "holds" : "fails"; }
@@ -131,6 +132,7 @@ void evaluate(Context& ctx, const std::vector<VerifiedCondition>& names, const P
   d.exact_form = exact_form || exact != truth;
   d.details = std::move(details);
   out.disagreements.push_back(std::move(d));
+  out.disagreement_points.push_back(x);
 }
 
 /// Whether \p c is exactly on its boundary at \p x (numerator or denominator zero).
@@ -232,6 +234,127 @@ void merge(Tally& into, const Tally& from) {
   }
   for (std::size_t c = 0; c < into.conditions.size(); ++c) merge(into.conditions[c], from.conditions[c]);
 }
+
+/// Block results as plain text, for VerifyOptions::runner: numbers as
+/// decimal words, strings and exact values (p/q) with their length first.
+class Writer {
+ public:
+  void number(long long n) { text_ += std::to_string(n) + ' '; }
+  void string(const std::string& s) {
+    number(static_cast<long long>(s.size()));
+    text_ += s;
+  }
+  void point(const Point& x) {
+    number(static_cast<long long>(x.size()));
+    for (const cl_RA& v : x) string(to_string(v));
+  }
+  void tally(const Tally& t) {
+    for (long long n : {t.points, t.found, t.undrawn, t.unsolved}) number(n);
+    for (const Confusion* m : {&t.exact, &t.asymptotic})
+      for (long long n : {m->holds_true, m->holds_false, m->fails_true, m->fails_false}) number(n);
+    number(static_cast<long long>(t.conditions.size()));
+    for (const ConditionTally& c : t.conditions)
+      for (long long n : {c.holds, c.fails, c.near_holds, c.near_fails, c.exact_agree, c.asymptotic_agree, c.near_asymptotic_agree}) number(n);
+  }
+  void block(const BlockResult& r) {
+    number(static_cast<long long>(r.epsilon));
+    tally(r.tally);
+    number(static_cast<long long>(r.points.size()));
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      point(r.points[i]);
+      std::string sides;
+      for (bool b : r.sides[i]) sides += b ? '1' : '0';
+      string(sides);
+    }
+    number(static_cast<long long>(r.disagreements.size()));
+    for (std::size_t i = 0; i < r.disagreements.size(); ++i) {
+      const Disagreement& d = r.disagreements[i];
+      for (bool b : {d.near, d.truth, d.exact, d.asymptotic, d.exact_form}) number(b);
+      point(r.disagreement_points[i]);
+      string(d.actual_case);
+      string(d.quantity);
+      number(static_cast<long long>(d.details.size()));
+      for (const std::string& line : d.details) string(line);
+    }
+  }
+  std::string& text() { return text_; }
+
+ private:
+  std::string text_;
+};
+
+[[noreturn]] void damaged(const std::string& what) { throw std::logic_error("verify_case(): a damaged block result (" + what + ")"); }
+
+/// Reads what Writer wrote; \p space and \p title remake each
+/// disagreement's named point and scene from its point, as evaluate() does.
+class Reader {
+ public:
+  Reader(const std::string& text, const ParameterSpace& space, const std::string& title, const std::vector<cl_RA>& epsilons)
+      : text_(text), space_(space), title_(title), epsilons_(epsilons) {}
+  bool done() const { return at_ == text_.size(); }
+  long long number() {
+    const std::size_t space = text_.find(' ', at_);
+    if (space == std::string::npos) damaged("a number is missing");
+    const long long n = std::stoll(text_.substr(at_, space - at_));
+    at_ = space + 1;
+    return n;
+  }
+  std::string string() {
+    const std::size_t size = static_cast<std::size_t>(number());
+    if (size > text_.size() - at_) damaged("a text is cut short");
+    at_ += size;
+    return text_.substr(at_ - size, size);
+  }
+  Point point() {
+    Point x(static_cast<std::size_t>(number()));
+    for (cl_RA& v : x) v = cl_RA(string().c_str());
+    return x;
+  }
+  void tally(Tally& t) {
+    for (long long* n : {&t.points, &t.found, &t.undrawn, &t.unsolved}) *n = number();
+    for (Confusion* m : {&t.exact, &t.asymptotic})
+      for (long long* n : {&m->holds_true, &m->holds_false, &m->fails_true, &m->fails_false}) *n = number();
+    t.conditions.resize(static_cast<std::size_t>(number()));
+    for (ConditionTally& c : t.conditions)
+      for (long long* n : {&c.holds, &c.fails, &c.near_holds, &c.near_fails, &c.exact_agree, &c.asymptotic_agree, &c.near_asymptotic_agree}) *n = number();
+  }
+  BlockResult block() {
+    BlockResult r;
+    r.epsilon = static_cast<std::size_t>(number());
+    if (r.epsilon >= epsilons_.size()) damaged("no such epsilon");
+    tally(r.tally);
+    r.points.resize(static_cast<std::size_t>(number()));
+    for (Point& x : r.points) {
+      x = point();
+      std::vector<bool> sides;
+      for (char c : string()) sides.push_back(c == '1');
+      r.sides.push_back(std::move(sides));
+    }
+    const std::size_t n = static_cast<std::size_t>(number());
+    for (std::size_t i = 0; i < n; ++i) {
+      Disagreement d;
+      d.epsilon_index = static_cast<int>(r.epsilon);
+      for (bool* b : {&d.near, &d.truth, &d.exact, &d.asymptotic, &d.exact_form}) *b = number() != 0;
+      const Point x = point();
+      d.point = space_.named(x);
+      d.scene = space_.scene(x, title_ + " at eps = " + epsilon_name(epsilons_[r.epsilon]));
+      d.actual_case = string();
+      d.quantity = string();
+      d.details.resize(static_cast<std::size_t>(number()));
+      for (std::string& line : d.details) line = string();
+      r.disagreements.push_back(std::move(d));
+      r.disagreement_points.push_back(x);
+    }
+    return r;
+  }
+
+ private:
+  const std::string& text_;
+  std::size_t at_ = 0;
+  const ParameterSpace& space_;
+  const std::string& title_;
+  const std::vector<cl_RA>& epsilons_;
+};
 
 std::string pad(const std::string& s, std::size_t width, bool right = true) {
   // width in characters: count UTF-8 lead bytes only
@@ -354,8 +477,29 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
   // Each worker thread takes one of the contexts cloned above (its state in numeric::parallel_map).
   std::atomic<std::size_t> taken{0};
   auto context = [&] { return &contexts.at(taken++); };
-  const auto bulk = numeric::parallel_map(n_eps * per_eps, threads, context, [&](Context* worker, std::size_t block) {
-    Context& ctx = *worker;
+  // A stage: its blocks here on the threads, or, with options.runner, in
+  // tasks of \p group blocks run wherever the runner runs them, each sent
+  // back as text.
+  auto stage = [&](std::size_t blocks, std::size_t group, const std::function<BlockResult(Context&, std::size_t)>& block) {
+    auto on_threads = [&](std::size_t first, std::size_t size) {
+      taken = 0;
+      return numeric::parallel_map(size, threads, context, [&](Context* worker, std::size_t i) { return block(*worker, first + i); });
+    };
+    if (!options.runner) return on_threads(0, blocks);
+    const std::size_t tasks = (blocks + group - 1) / group;
+    const std::vector<std::string> texts = options.runner(tasks, [&](std::size_t t) {
+      detail::Writer out;
+      for (const BlockResult& r : on_threads(t * group, std::min(group, blocks - t * group))) out.block(r);
+      return std::move(out.text());
+    });
+    if (texts.size() != tasks) throw std::logic_error("verify_case(): the runner returned " + std::to_string(texts.size()) + " results of " + std::to_string(tasks) + " tasks");
+    std::vector<BlockResult> all;
+    for (const std::string& text : texts)
+      for (detail::Reader in(text, space, title, options.epsilons); !in.done();) all.push_back(in.block());
+    if (all.size() != blocks) throw std::logic_error("verify_case(): the runner's results hold " + std::to_string(all.size()) + " of " + std::to_string(blocks) + " blocks");
+    return all;
+  };
+  const auto bulk = stage(n_eps * per_eps, verify_task_blocks, [&](Context& ctx, std::size_t block) {
     const std::size_t e = block / per_eps, k = block % per_eps;
     BlockResult r = fresh(e);
     const int count = std::min<int>(verify_block_points, options.samples - static_cast<int>(k) * verify_block_points);
@@ -404,9 +548,7 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
       work.push_back(std::move(w));
     }
   }
-  taken = 0;
-  const auto boundary = numeric::parallel_map(work.size(), threads, context, [&](Context* worker, std::size_t block) {
-    Context& ctx = *worker;
+  const auto boundary = stage(work.size(), 1, [&](Context& ctx, std::size_t block) {
     const Work& w = work[block];
     BlockResult r = fresh(w.epsilon);
     for (const auto& [hold, fails] : w.pairs) detail::bisect(ctx, v.conditions, hold, fails, w.condition, r);

@@ -134,6 +134,22 @@ struct PatternTable {
   std::vector<std::vector<ExploreResult>> cells;  ///< [row][column]
 };
 
+/// One cell of the table as the table prints it, for a table whose cells
+/// were explored one at a time elsewhere (`superball explore --all-patterns`
+/// as a task list over processes): plain text, no CLN object.
+struct RenderedCell {
+  std::string pattern;          ///< ExploreResult::pattern (the row's label)
+  std::string text;             ///< cell_text()
+  nlohmann::ordered_json json;  ///< to_json() of the result
+};
+RenderedCell render(const ExploreResult& r);
+
+/// to_text() and to_json() of a table from its options, patterns and cases
+/// (its cells left empty) and its cells rendered: \p cells[row][column].
+/// The same text as from the table with its cells filled.
+std::string to_text(const PatternTable& t, const std::vector<std::vector<RenderedCell>>& cells);
+nlohmann::ordered_json to_json(const PatternTable& t, const std::vector<std::vector<RenderedCell>>& cells);
+
 /// The patterns of the table (rows).
 std::vector<std::vector<int>> table_patterns();
 

@@ -57,7 +57,20 @@ struct VerifyOptions {
   /// Called with (points evaluated, points planned) as the run goes, from the
   /// worker threads one at a time (under a lock); may be empty.
   std::function<void(long long, long long)> progress;
+  /// Where the blocks of work run, to spread one case over several processes
+  /// (`mpirun -n P superball verify --case …`); empty: here, on `threads`.
+  /// Called twice, for the drawn points and for the boundary stage, with a
+  /// number of tasks T and a function computing task t (a group of blocks,
+  /// solved on `threads`) as plain text; it must return the T texts in task
+  /// order, in every process that calls verify_case() (each process then
+  /// builds the boundary stage from the drawn points, and the result).  The
+  /// result is the same, bit for bit, whoever runs the tasks.
+  std::function<std::vector<std::string>(std::size_t, const std::function<std::string(std::size_t)>&)> runner;
 };
+
+/// Blocks of drawn points per task of VerifyOptions::runner (400 points):
+/// enough work to outweigh sending the points, enough tasks to share out.
+inline constexpr std::size_t verify_task_blocks = 8;
 
 /// A 2×2 confusion table: the conditions (hold / fail) against the truth.
 struct Confusion {
