@@ -37,7 +37,11 @@ double group_momentum_residual(const Problem<S>& p, const std::vector<S>& W, con
   const auto join = [&parent](int a, int b) { parent[static_cast<std::size_t>(root_of(parent, a))] = root_of(parent, b); };
   for (const Entry<S>& e : p.entries) {
     if (e.value == S(0)) continue;
-    join(e.i, e.j), join(e.k, e.l), join(e.i, e.k);
+    join(e.i, e.j);
+    // A diagonal entry's other two joins are (i, j) again and (i, i): they
+    // change no root, so skipping them leaves every group and its
+    // representative as they were.
+    if (!e.diagonal()) join(e.k, e.l), join(e.i, e.k);
   }
   for (int c = 0; c + 1 < n; ++c)
     if (active[static_cast<std::size_t>(c)]) join(c, c + 1);
