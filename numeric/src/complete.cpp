@@ -34,7 +34,14 @@ double group_momentum_residual(const Problem<S>& p, const std::vector<S>& W, con
   auto& parent = work.group;
   parent.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) parent[static_cast<std::size_t>(i)] = i;
-  const auto join = [&parent](int a, int b) { parent[static_cast<std::size_t>(root_of(parent, a))] = root_of(parent, b); };
+  // parent[root(a)] = root(b); a join of two bodies whose parents show them
+  // in one tree already changes no root and is skipped without walking the
+  // tree (most joins of a chain's entries are such).
+  const auto join = [&parent](int a, int b) {
+    const int pa = parent[static_cast<std::size_t>(a)], pb = parent[static_cast<std::size_t>(b)];
+    if (pa == pb || pa == b || pb == a) return;
+    parent[static_cast<std::size_t>(root_of(parent, a))] = root_of(parent, b);
+  };
   for (const Entry<S>& e : p.entries) {
     if (e.value == S(0)) continue;
     join(e.i, e.j);
