@@ -69,6 +69,7 @@ class Small {
   S& A(int i, int d) { return A_[i][d]; }
   S& R(int i, int d) { return R_[i][d]; }
   void assemble();
+  void assemble_scale();  // scale_, at the first case with a closed contact
   bool factor(int k);
   bool factor_and_solve(int k);  // factor(k), then y_ := R⁻¹ y_ on the first k rows
   bool solve_case(const char* closed);  // ClusterSystem::solve() into W_, lambda_
@@ -88,7 +89,8 @@ class Small {
   S m_[N], u_[N];      // the masses and velocities before, copied out of the problem's vectors (which the output's could alias)
   S A_[N][N];     // lower band: A(i, d) = A_{i, i−d}, d <= min(i, band()) (only those are zeroed and read)
   S rhs_[N];      // b̃ on the free bodies
-  S scale_[N];    // per row: Σ |terms| of the assembly
+  S scale_[N];    // per row: Σ |terms| of the assembly (formed by assemble_scale() when first needed)
+  bool scaled_ = false;
   int cluster_[N];
   S R_[N][N];     // the reduced banded system of a case
   S y_[N];
@@ -111,7 +113,6 @@ void Small<S, N, Full>::assemble() {
   // the whole arrays: a `rep stos` was 7 % of a 4-body solve).
   for (int i = 0; i < N; ++i) {
     for (int d = 0; d <= i; ++d) A(i, d) = S(0);
-    scale_[i] = S(0);
     basic_[i] = 0;
   }
   auto add = [&](int r, int c, const S& v) {
@@ -126,17 +127,12 @@ void Small<S, N, Full>::assemble() {
       entry_groups_.join(e.i, e.j);
       if (!e.diagonal()) entry_groups_.join(e.k, e.l), entry_groups_.join(e.i, e.k);
     }
-    const S size = S(2) * (e.value < S(0) ? S(-e.value) : e.value);
-    scale_[e.i] += size;
-    scale_[e.j] += size;
     if (e.diagonal()) {
       A(e.i, 0) += e.value;
       A(e.j, 0) += e.value;
       add(e.j, e.i, -e.value);
       continue;
     }
-    scale_[e.k] += size;
-    scale_[e.l] += size;
     const int rows[2] = {e.i, e.j}, cols[2] = {e.k, e.l};
     for (int a = 0; a < 2; ++a)
       for (int c = 0; c < 2; ++c) {
@@ -157,8 +153,25 @@ void Small<S, N, Full>::assemble() {
   for (int i = 0; i < nf_; ++i) {
     rhs_[i] += m_[i] * u_[i];
     A(i, 0) += m_[i];
-    scale_[i] += m_[i];
   }
+}
+
+template <class S, int N, bool Full>
+void Small<S, N, Full>::assemble_scale() {
+  // The assembly's per-row sums of |terms| (the general path forms them with
+  // A, entry by entry, then the mass): only a case with a closed contact
+  // reads them, so a solve without a pivot never forms them.
+  for (int i = 0; i < N; ++i) scale_[i] = S(0);
+  for (const Entry<S>& e : p_.entries) {
+    const S size = S(2) * (e.value < S(0) ? S(-e.value) : e.value);
+    scale_[e.i] += size;
+    scale_[e.j] += size;
+    if (e.diagonal()) continue;
+    scale_[e.k] += size;
+    scale_[e.l] += size;
+  }
+  for (int i = 0; i < nf_; ++i) scale_[i] += m_[i];
+  scaled_ = true;
 }
 
 template <class S, int N, bool Full>
@@ -189,6 +202,7 @@ inline __attribute__((always_inline)) bool Small<S, N, Full>::factor(int k) {
 
 template <class S, int N, bool Full>
 S Small<S, N, Full>::row_residual(int c) {
+  if (c < 0 || c >= N || nf_ > N || band() < 0) __builtin_unreachable();  // tells the compiler the indices stay inside the arrays
   S r = -rhs_[c];
   for (int d = 0; d <= band() && d <= c; ++d) r += A(c, d) * W_[c - d];
   for (int d = 1; d <= band() && c + d < nf_; ++d) r += A(c + d, d) * W_[c + d];
@@ -251,6 +265,7 @@ bool Small<S, N, Full>::solve_case(const char* closed) {
     if (bottom > top) {
       int pivot = bottom;
       if (cluster_[top] != fixed) {
+        if (!scaled_) assemble_scale();
         S largest = S(-1);
         for (int j = top; j <= bottom; ++j)
           if (scale_[j] > largest) largest = scale_[j], pivot = j;
