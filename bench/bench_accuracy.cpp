@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/chain.hpp"
@@ -17,10 +18,22 @@ namespace {
 
 using namespace superball;
 
+/// The largest n of CollisionSolver's fixed-size path (numeric/src/detail/small_solver.hpp).
+constexpr int kSmallMaxBodies = 8;
+
+/// Which path of CollisionSolver a row times (double and long double).
+enum class Path {
+  Default,  ///< Settings::defaults(): the fixed-size path for n <= 8, else the general one
+  General   ///< Settings::small_sizes = false: the runtime-sized path at every n
+};
+
 /// Time per solve of \p problem by a reused Solver; its last answer in \p out.
 template <class Solver, class S>
-void time_solves(benchmark::State& state, const numeric::Problem<S>& problem, int digits, numeric::Solution<S>& out) {
-  Solver solver(numeric::Settings<S>::defaults(digits));
+void time_solves(benchmark::State& state, const numeric::Problem<S>& problem, int digits, numeric::Solution<S>& out,
+                 Path path = Path::Default) {
+  numeric::Settings<S> settings = numeric::Settings<S>::defaults(digits);
+  if (path == Path::General) settings.small_sizes = false;
+  Solver solver(settings);
   solver.compute(problem, out);
   for (auto _ : state) {
     solver.compute(problem, out);
@@ -28,9 +41,12 @@ void time_solves(benchmark::State& state, const numeric::Problem<S>& problem, in
   }
 }
 
-/// The formulation numeric::solve() picks (labelled "dense" or "chain").
+/// The formulation numeric::solve() picks, labelled "chain", "dense" (the
+/// general path) or "dense, fixed-size" (double and long double, n <= 8:
+/// the path of small_solver.cpp, bit for bit the general one); \p path
+/// General times the general path where the fixed-size one would run.
 template <class S>
-void measure(benchmark::State& state, const numeric::ExactScene& scene, int digits) {
+void measure(benchmark::State& state, const numeric::ExactScene& scene, int digits, Path path = Path::Default) {
   const auto exact = numeric::CollisionSolver<cln::cl_RA>().compute(numeric::Problem<cln::cl_RA>::from(scene));
   const auto problem = numeric::Problem<S>::from(scene, digits);
   numeric::Solution<S> out;
@@ -38,8 +54,8 @@ void measure(benchmark::State& state, const numeric::ExactScene& scene, int digi
     time_solves<numeric::ChainSolver<S>>(state, problem, digits, out);
     state.SetLabel("chain");
   } else {
-    time_solves<numeric::CollisionSolver<S>>(state, problem, digits, out);
-    state.SetLabel("dense");
+    time_solves<numeric::CollisionSolver<S>>(state, problem, digits, out, path);
+    state.SetLabel(std::is_floating_point<S>::value && path == Path::Default && problem.n <= kSmallMaxBodies ? "dense, fixed-size" : "dense");
   }
   // max_i |U_i − exact U_i| / max_i |exact U_i|, measured in exact arithmetic.
   cln::cl_RA error = 0, scale = 0;
@@ -77,6 +93,12 @@ int main(int argc, char** argv) {
     const std::string name = std::string("accuracy/") + scenes[k] + "/";
     benchmark::RegisterBenchmark((name + "double").c_str(), [&scene](benchmark::State& s) { measure<double>(s, scene, 0); });
     benchmark::RegisterBenchmark((name + "long-double").c_str(), [&scene](benchmark::State& s) { measure<long double>(s, scene, 0); });
+    if (scene.n <= kSmallMaxBodies) {  // the general path beside the fixed-size one: same answers, bit for bit
+      benchmark::RegisterBenchmark((name + "double/general-path").c_str(),
+                                   [&scene](benchmark::State& s) { measure<double>(s, scene, 0, Path::General); });
+      benchmark::RegisterBenchmark((name + "long-double/general-path").c_str(),
+                                   [&scene](benchmark::State& s) { measure<long double>(s, scene, 0, Path::General); });
+    }
     for (int d : {20, 50, 100})
       benchmark::RegisterBenchmark((name + "digits:" + std::to_string(d)).c_str(),
                                    [&scene, d](benchmark::State& s) { measure<cln::cl_R>(s, scene, d); });

@@ -6,7 +6,9 @@
   bench/plot.py --accuracy acc.json --chain chain.json --out docs/figures
 
 Writes accuracy-vs-time.{png,svg} (time per solve against the relative error
-of the velocities, one series per scene, one point per precision) and
+of the velocities, one series per scene, one point per precision; the rows
+.../general-path, the general solve path where n <= 8 takes the fixed-size
+one, as one more series of open squares) and
 chain-scaling.{png,svg} (time per solve against n, log-log, with the slope of
 a least-squares line through n >= 1000), each with its .dat and .gp beside
 it.  Needs gnuplot.  Prints the fitted slope.
@@ -42,10 +44,21 @@ def gnuplot(script, out_stem):
 
 
 def accuracy(path, out):
+    # One series per scene (the path numeric::solve takes: fixed-size for
+    # n <= 8 in double and long double); the rows .../general-path (the
+    # runtime-sized path on the same problems, the same answers bit for bit)
+    # form one more series, drawn as open squares at their own times.
     series = {}
+    general = "general path (n <= 8)"
     for r in load(path):
-        _, scene, precision = r["name"].split("/")[:3]
+        parts = r["name"].split("/")
+        scene, precision = parts[1], parts[2]
+        if len(parts) > 3 and parts[3] == "general-path":
+            series.setdefault(general, []).append((f"{scene} {precision}", nanoseconds(r), r["rel_error"], r["case_ok"] >= 1))
+            continue
         series.setdefault(scene, []).append((precision, nanoseconds(r), r["rel_error"], r["case_ok"] >= 1))
+    if general in series:  # last, so that the scenes keep their colours
+        series[general] = series.pop(general)
     dat = out + "/accuracy-vs-time.dat"
     with open(dat, "w", encoding="utf-8") as f:
         for scene, points in series.items():
@@ -55,7 +68,12 @@ def accuracy(path, out):
             f.write("\n\n")
     plots = []
     for k, scene in enumerate(series):
-        plots.append(f"'accuracy-vs-time.dat' index {k} using 2:3 with linespoints pt 7 ps 1.2 title '{scene}'")
+        source = "'accuracy-vs-time.dat'" if k == 0 else "''"
+        if scene == general:
+            plots.append(f"{source} index {k} using 2:3 with points pt 4 ps 1.6 lw 2 lc rgb 'gray40' title '{scene}'")
+            plots.append(f"'' index {k} using 2:($4 == 0 ? $3 : 1/0) with points pt 6 ps 3 lw 2 lc rgb 'black' notitle")
+            continue
+        plots.append(f"{source} index {k} using 2:3 with linespoints pt 7 ps 1.2 title '{scene}'")
         plots.append(f"'' index {k} using 2:($4 == 0 ? $3 : 1/0) with points pt 6 ps 3 lw 2 lc rgb 'black' notitle")
         plots.append(f"'' index {k} using 2:3:1 with labels offset 0.6,0.6 left font ',8' notitle")
     script = (

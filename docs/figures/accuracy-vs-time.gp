@@ -10,12 +10,12 @@ set title 'What accuracy costs (bench\_accuracy; black circle: wrong case; exact
 plot 'accuracy-vs-time.dat' index 0 using 2:3 with linespoints pt 7 ps 1.2 title 'paper-4.4-alpha2', \
      '' index 0 using 2:($4 == 0 ? $3 : 1/0) with points pt 6 ps 3 lw 2 lc rgb 'black' notitle, \
      '' index 0 using 2:3:1 with labels offset 0.6,0.6 left font ',8' notitle, \
-     'accuracy-vs-time.dat' index 1 using 2:3 with linespoints pt 7 ps 1.2 title 'hard-eps-1e-8', \
+     '' index 1 using 2:3 with linespoints pt 7 ps 1.2 title 'hard-eps-1e-8', \
      '' index 1 using 2:($4 == 0 ? $3 : 1/0) with points pt 6 ps 3 lw 2 lc rgb 'black' notitle, \
      '' index 1 using 2:3:1 with labels offset 0.6,0.6 left font ',8' notitle, \
-     'accuracy-vs-time.dat' index 2 using 2:3 with linespoints pt 7 ps 1.2 title 'hard-mass-ratio-1e12', \
+     '' index 2 using 2:3 with linespoints pt 7 ps 1.2 title 'hard-mass-ratio-1e12', \
      '' index 2 using 2:($4 == 0 ? $3 : 1/0) with points pt 6 ps 3 lw 2 lc rgb 'black' notitle, \
      '' index 2 using 2:3:1 with labels offset 0.6,0.6 left font ',8' notitle, \
-     'accuracy-vs-time.dat' index 3 using 2:3 with linespoints pt 7 ps 1.2 title 'chain-32', \
+     '' index 3 using 2:3 with linespoints pt 7 ps 1.2 title 'chain-32', \
      '' index 3 using 2:($4 == 0 ? $3 : 1/0) with points pt 6 ps 3 lw 2 lc rgb 'black' notitle, \
      '' index 3 using 2:3:1 with labels offset 0.6,0.6 left font ',8' notitle

@@ -32,12 +32,41 @@ double group_momentum_residual(const Problem<S>& p, const std::vector<S>& W, con
                                CheckWorkspace<S>& work) {
   const int n = p.n, nf = p.fixed_bottom ? n - 1 : n;
   auto& parent = work.group;
-  parent.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) parent[static_cast<std::size_t>(i)] = i;
-  const auto join = [&parent](int a, int b) { parent[static_cast<std::size_t>(root_of(parent, a))] = root_of(parent, b); };
-  for (const Entry<S>& e : p.entries) {
-    if (e.value == S(0)) continue;
-    join(e.i, e.j), join(e.k, e.l), join(e.i, e.k);
+  // parent[root(a)] = root(b); a join of two bodies whose parents show them
+  // in one tree already changes no root and is skipped without walking the
+  // tree (most joins of a chain's entries are such).
+  const auto join = [&parent](int a, int b) {
+    const int pa = parent[static_cast<std::size_t>(a)], pb = parent[static_cast<std::size_t>(b)];
+    if (pa == pb || pa == b || pb == a) return;
+    parent[static_cast<std::size_t>(root_of(parent, a))] = root_of(parent, b);
+  };
+  // M's joins, or their outcome kept from the last problem with the same n
+  // and the same bodies and zero-ness of M's entries (the same joins give
+  // the same parents).
+  auto& key = work.entry_key;
+  bool same = work.entry_bodies == n && key.size() == 5 * p.entries.size();
+  for (std::size_t k = 0; same && k < p.entries.size(); ++k) {
+    const Entry<S>& e = p.entries[k];
+    const int* x = &key[5 * k];
+    same = x[0] == e.i && x[1] == e.j && x[2] == e.k && x[3] == e.l && x[4] == (e.value == S(0) ? 0 : 1);
+  }
+  if (same) {
+    parent = work.entry_group;
+  } else {
+    parent.resize(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) parent[static_cast<std::size_t>(i)] = i;
+    for (const Entry<S>& e : p.entries) {
+      if (e.value == S(0)) continue;
+      join(e.i, e.j);
+      // A diagonal entry's other two joins are (i, j) again and (i, i): they
+      // change no root, so skipping them leaves every group and its
+      // representative as they were.
+      if (!e.diagonal()) join(e.k, e.l), join(e.i, e.k);
+    }
+    key.clear();
+    for (const Entry<S>& e : p.entries) key.insert(key.end(), {e.i, e.j, e.k, e.l, e.value == S(0) ? 0 : 1});
+    work.entry_group = parent;
+    work.entry_bodies = n;
   }
   for (int c = 0; c + 1 < n; ++c)
     if (active[static_cast<std::size_t>(c)]) join(c, c + 1);

@@ -23,6 +23,30 @@ S magnitude(const S& x) {
   return std::fabs(x);
 }
 
+/// Union-find over at most 8 bodies as one label byte per body in a 64-bit
+/// word: join(a, b) relabels the group of a with the label of b's group, as
+/// complete.cpp's parent[root(a)] = root(b) does, so the groups and their
+/// representatives (hence the order of the final loop) are the same.
+class Labels {
+ public:
+  Labels() {
+    for (int i = 0; i < 8; ++i) word_ |= static_cast<std::uint64_t>(i) << (8 * i);
+  }
+  int of(int i) const { return static_cast<int>((word_ >> (8 * i)) & 0xffu); }
+  void join(int a, int b) {
+    constexpr std::uint64_t ones = 0x0101010101010101ull, low7 = 0x7f7f7f7f7f7f7f7full;
+    const std::uint64_t ra = static_cast<std::uint64_t>(of(a)), rb = static_cast<std::uint64_t>(of(b));
+    if (ra == rb) return;  // most joins of a scene are (predictably) inside a group: off the dependency chain
+    const std::uint64_t x = word_ ^ (ra * ones);           // zero bytes where the label is ra
+    const std::uint64_t zero = ~(((x & low7) + low7) | x | low7);  // 0x80 in exactly those bytes
+    const std::uint64_t mask = (zero >> 7) * 0xffu;
+    word_ = (word_ & ~mask) | ((rb * ones) & mask);
+  }
+
+ private:
+  std::uint64_t word_ = 0;
+};
+
 /// One solve of a problem of exactly N bodies.  Members are arrays of N
 /// (or N × N); a Small lives on the stack of small_solve().  Full: the
 /// bandwidth of DᵀMD is N − 1 (every loop over the band has a length known
@@ -30,7 +54,9 @@ S magnitude(const S& x) {
 template <class S, int N, bool Full>
 class Small {
  public:
-  Small(const Problem<S>& p, int bandwidth) : p_(p), bandwidth_(bandwidth), nf_(p.fixed_bottom ? N - 1 : N) {}
+  Small(const Problem<S>& p, int bandwidth) : p_(p), bandwidth_(bandwidth), nf_(p.fixed_bottom ? N - 1 : N) {
+    for (int i = 0; i < N; ++i) m_[i] = p.mass[static_cast<std::size_t>(i)], u_[i] = p.u[static_cast<std::size_t>(i)];
+  }
 
   /// CollisionSolver::compute(): false to hand over to the general path.
   bool compute(const Settings<S>& settings, Solution<S>& out);
@@ -43,9 +69,11 @@ class Small {
   S& A(int i, int d) { return A_[i][d]; }
   S& R(int i, int d) { return R_[i][d]; }
   void assemble();
+  void assemble_scale();  // scale_, at the first case with a closed contact
   bool factor(int k);
   bool factor_and_solve(int k);  // factor(k), then y_ := R⁻¹ y_ on the first k rows
   bool solve_case(const char* closed);  // ClusterSystem::solve() into W_, lambda_
+  bool solve_open_case();               // solve_case() with every contact open, its bookkeeping done at compile time
   S row_residual(int c);
   bool factorize();
   void solve_in_place(S* x, int stride) const;
@@ -53,46 +81,58 @@ class Small {
   bool pivot_on(int p);
   int pivot(const Settings<S>& settings);
   double group_momentum_residual(const char* active) const;
+  bool finite_answer(const Solution<S>& out) const;
   void complete(const Settings<S>& settings, Solution<S>& out);
 
   const Problem<S>& p_;
   const int bandwidth_, nf_;
-  S A_[N][N] = {};     // lower band: A(i, d) = A_{i, i−d}, d <= band()
+  S m_[N], u_[N];      // the masses and velocities before, copied out of the problem's vectors (which the output's could alias)
+  S A_[N][N];     // lower band: A(i, d) = A_{i, i−d}, d <= min(i, band()) (only those are zeroed and read)
   S rhs_[N];      // b̃ on the free bodies
-  S scale_[N] = {};    // per row: Σ |terms| of the assembly
+  S scale_[N];    // per row: Σ |terms| of the assembly (formed by assemble_scale() when first needed)
+  bool scaled_ = false;
   int cluster_[N];
   S R_[N][N];     // the reduced banded system of a case
   S y_[N];
   S l_[N];
   S W_[N];        // velocities after of the case solved last
   S lambda_[N];   // λ on contacts, 0 where open
-  char basic_[N] = {};  // contact c closed (λ_c basic)
+  char basic_[N];  // contact c closed (λ_c basic)
   S Ad_[N][N];    // dense LDLᵀ of A on the free bodies
   S G_[N][N];     // A⁻¹ C_Fᵀ, column c in G_[.][c]
   S T_[N][N];     // the tableau
   S t_[N];        // its constant column
   bool tableau_ = false;
+  Labels entry_groups_;  // the groups of bodies that the nonzero entries of M join (found by assemble())
 };
 
 template <class S, int N, bool Full>
 void Small<S, N, Full>::assemble() {
   const int n = n_;
+  // Zeroed by loops of known length over what is read (no block clear of
+  // the whole arrays: a `rep stos` was 7 % of a 4-body solve).
+  for (int i = 0; i < N; ++i) {
+    for (int d = 0; d <= i; ++d) A(i, d) = S(0);
+    basic_[i] = 0;
+  }
   auto add = [&](int r, int c, const S& v) {
     if (r < c) std::swap(r, c);
     A(r, r - c) += v;
   };
   for (const Entry<S>& e : p_.entries) {
-    const S size = S(2) * (e.value < S(0) ? S(-e.value) : e.value);
-    scale_[e.i] += size;
-    scale_[e.j] += size;
+    // The groups of the momentum balance (complete()): the joins complete.cpp
+    // makes before the contacts' ones, in the same order (a diagonal entry
+    // joins only i and j).
+    if (!(e.value == S(0))) {
+      entry_groups_.join(e.i, e.j);
+      if (!e.diagonal()) entry_groups_.join(e.k, e.l), entry_groups_.join(e.i, e.k);
+    }
     if (e.diagonal()) {
       A(e.i, 0) += e.value;
       A(e.j, 0) += e.value;
       add(e.j, e.i, -e.value);
       continue;
     }
-    scale_[e.k] += size;
-    scale_[e.l] += size;
     const int rows[2] = {e.i, e.j}, cols[2] = {e.k, e.l};
     for (int a = 0; a < 2; ++a)
       for (int c = 0; c < 2; ++c) {
@@ -105,16 +145,33 @@ void Small<S, N, Full>::assemble() {
   }
   for (int j = 0; j < nf_; ++j) {
     S acc = S(0);
-    for (int d = 0; d <= band() && d <= j; ++d) acc -= A(j, d) * p_.u[j - d];
-    for (int d = 1; d <= band() && j + d < n; ++d) acc -= A(j + d, d) * p_.u[j + d];
-    if (p_.fixed_bottom && n - 1 - j <= band()) acc -= A(n - 1, n - 1 - j) * p_.u[n - 1];
+    for (int d = 0; d <= band() && d <= j; ++d) acc -= A(j, d) * u_[j - d];
+    for (int d = 1; d <= band() && j + d < n; ++d) acc -= A(j + d, d) * u_[j + d];
+    if (p_.fixed_bottom && n - 1 - j <= band()) acc -= A(n - 1, n - 1 - j) * u_[n - 1];
     rhs_[j] = acc;
   }
   for (int i = 0; i < nf_; ++i) {
-    rhs_[i] += p_.mass[i] * p_.u[i];
-    A(i, 0) += p_.mass[i];
-    scale_[i] += p_.mass[i];
+    rhs_[i] += m_[i] * u_[i];
+    A(i, 0) += m_[i];
   }
+}
+
+template <class S, int N, bool Full>
+void Small<S, N, Full>::assemble_scale() {
+  // The assembly's per-row sums of |terms| (the general path forms them with
+  // A, entry by entry, then the mass): only a case with a closed contact
+  // reads them, so a solve without a pivot never forms them.
+  for (int i = 0; i < N; ++i) scale_[i] = S(0);
+  for (const Entry<S>& e : p_.entries) {
+    const S size = S(2) * (e.value < S(0) ? S(-e.value) : e.value);
+    scale_[e.i] += size;
+    scale_[e.j] += size;
+    if (e.diagonal()) continue;
+    scale_[e.k] += size;
+    scale_[e.l] += size;
+  }
+  for (int i = 0; i < nf_; ++i) scale_[i] += m_[i];
+  scaled_ = true;
 }
 
 template <class S, int N, bool Full>
@@ -145,6 +202,7 @@ inline __attribute__((always_inline)) bool Small<S, N, Full>::factor(int k) {
 
 template <class S, int N, bool Full>
 S Small<S, N, Full>::row_residual(int c) {
+  if (c < 0 || c >= N || nf_ > N || band() < 0) __builtin_unreachable();  // tells the compiler the indices stay inside the arrays
   S r = -rhs_[c];
   for (int d = 0; d <= band() && d <= c; ++d) r += A(c, d) * W_[c - d];
   for (int d = 1; d <= band() && c + d < nf_; ++d) r += A(c + d, d) * W_[c + d];
@@ -158,7 +216,7 @@ bool Small<S, N, Full>::solve_case(const char* closed) {
   for (int c = 0; c < nc; ++c) cluster_[c + 1] = cluster_[c] + (closed[c] ? 0 : 1);
   const int fixed = p_.fixed_bottom ? cluster_[n - 1] : -1;
   const int k = p_.fixed_bottom ? fixed : cluster_[n - 1] + 1;
-  const S u_fixed = p_.fixed_bottom ? p_.u[n - 1] : S(0);
+  const S u_fixed = p_.fixed_bottom ? u_[n - 1] : S(0);
   for (int i = 0; i < k; ++i) {
     for (int d = 0; d <= band(); ++d) R(i, d) = S(0);
     y_[i] = S(0);
@@ -207,6 +265,7 @@ bool Small<S, N, Full>::solve_case(const char* closed) {
     if (bottom > top) {
       int pivot = bottom;
       if (cluster_[top] != fixed) {
+        if (!scaled_) assemble_scale();
         S largest = S(-1);
         for (int j = top; j <= bottom; ++j)
           if (scale_[j] > largest) largest = scale_[j], pivot = j;
@@ -218,6 +277,31 @@ bool Small<S, N, Full>::solve_case(const char* closed) {
     }
     top = bottom + 1;
   }
+  return true;
+}
+
+template <class S, int N, bool Full>
+bool Small<S, N, Full>::solve_open_case() {
+  // solve_case() with no contact closed: one cluster per body, so its sums
+  // are single terms (0 + x, which only turns −0 into +0, as there), no
+  // reaction, and the size of the factorization is a constant.
+  constexpr int n = N;
+  const int fixed = p_.fixed_bottom ? n - 1 : -1;
+  for (int i = 0; i < n; ++i) cluster_[i] = i;
+  for (int i = 0; i < nf_; ++i) {
+    y_[i] = S(0) + rhs_[i];
+    R(i, 0) = S(0) + A(i, 0);
+    for (int d = 1; d <= band(); ++d) R(i, d) = d <= i ? S(S(0) + A(i, d)) : S(0);
+  }
+  if (fixed >= 0) {  // b̃ holds the obstacle's share (assemble()); only bodies it is in contact with add more
+    if (!factor_and_solve(N - 1)) return false;
+    for (int i = 0; i < n - 1; ++i) W_[i] = y_[i];
+    W_[n - 1] = u_[n - 1];
+  } else {
+    if (!factor_and_solve(N)) return false;
+    for (int i = 0; i < n; ++i) W_[i] = y_[i];
+  }
+  for (int c = 0; c < nc_; ++c) lambda_[c] = S(0);
   return true;
 }
 
@@ -305,44 +389,16 @@ int Small<S, N, Full>::pivot(const Settings<S>& settings) {
   }
 }
 
-/// Union-find over at most 8 bodies as one label byte per body in a 64-bit
-/// word: join(a, b) relabels the group of a with the label of b's group, as
-/// complete.cpp's parent[root(a)] = root(b) does, so the groups and their
-/// representatives (hence the order of the final loop) are the same.
-class Labels {
- public:
-  Labels() {
-    for (int i = 0; i < 8; ++i) word_ |= static_cast<std::uint64_t>(i) << (8 * i);
-  }
-  int of(int i) const { return static_cast<int>((word_ >> (8 * i)) & 0xffu); }
-  void join(int a, int b) {
-    constexpr std::uint64_t ones = 0x0101010101010101ull, low7 = 0x7f7f7f7f7f7f7f7full;
-    const std::uint64_t ra = static_cast<std::uint64_t>(of(a)), rb = static_cast<std::uint64_t>(of(b));
-    if (ra == rb) return;  // most joins of a scene are (predictably) inside a group: off the dependency chain
-    const std::uint64_t x = word_ ^ (ra * ones);           // zero bytes where the label is ra
-    const std::uint64_t zero = ~(((x & low7) + low7) | x | low7);  // 0x80 in exactly those bytes
-    const std::uint64_t mask = (zero >> 7) * 0xffu;
-    word_ = (word_ & ~mask) | ((rb * ones) & mask);
-  }
-
- private:
-  std::uint64_t word_ = 0;
-};
-
 template <class S, int N, bool Full>
 double Small<S, N, Full>::group_momentum_residual(const char* active) const {
   static_assert(N <= 8, "Labels holds 8 bodies");
   const int n = n_;
-  Labels group;
-  for (const Entry<S>& e : p_.entries) {
-    if (e.value == S(0)) continue;
-    group.join(e.i, e.j), group.join(e.k, e.l), group.join(e.i, e.k);
-  }
+  Labels group = entry_groups_;
   for (int c = 0; c + 1 < n; ++c)
     if (active[c]) group.join(c, c + 1);
   Sized<S> sum[N];
   for (int i = 0; i < nf_; ++i)
-    sum[group.of(i)].add(p_.mass[i] * (W_[i] - p_.u[i]), p_.mass[i] * (magnitude<S>(W_[i]) + magnitude<S>(p_.u[i])));
+    sum[group.of(i)].add(m_[i] * (W_[i] - u_[i]), m_[i] * (magnitude<S>(W_[i]) + magnitude<S>(u_[i])));
   const int anchored = p_.fixed_bottom ? group.of(n - 1) : -1;
   S worst = S(0);
   for (int r = 0; r < n; ++r) {
@@ -351,6 +407,18 @@ double Small<S, N, Full>::group_momentum_residual(const char* active) const {
     if (size > S(0) && v > worst * size) worst = v / size;
   }
   return to_double(worst);
+}
+
+template <class S, int N, bool Full>
+bool Small<S, N, Full>::finite_answer(const Solution<S>& out) const {
+  // all_finite(out) on arrays of known length, without a branch per value:
+  // x·0 is ±0 for a finite x and NaN for ±inf and NaN, so the sum is 0
+  // exactly when every value is finite.
+  S zero = S(0) * out.kinetic_energy_before + S(0) * out.kinetic_energy_after + S(0) * out.dissipation +
+           S(0) * out.momentum_before + S(0) * out.momentum_after;
+  for (int i = 0; i < n_; ++i) zero += S(0) * out.velocities_after[static_cast<std::size_t>(i)];
+  for (int c = 0; c < nc_; ++c) zero += S(0) * out.reactions[static_cast<std::size_t>(c)];
+  return zero == S(0);
 }
 
 template <class S, int N, bool Full>
@@ -364,26 +432,27 @@ void Small<S, N, Full>::complete(const Settings<S>& settings, Solution<S>& out) 
   out.reactions.resize(static_cast<std::size_t>(nc));
   out.gaps.resize(static_cast<std::size_t>(nc));
   if (out.closed.bodies() != n) out.closed = ContactSet(n);
-  S gaps[N];
+  S gaps[N], reactions[N];
   for (int i = 0; i < n; ++i) out.velocities_after[static_cast<std::size_t>(i)] = W[i];
   for (int c = 0; c < nc; ++c) {
     const auto k = static_cast<std::size_t>(c);
     gaps[c] = W[c] - W[c + 1];
+    reactions[c] = active[c] ? S(-lambda_[c]) : S(0);
     out.gaps[k] = gaps[c];
-    out.reactions[k] = active[c] ? S(-lambda_[c]) : S(0);
+    out.reactions[k] = reactions[c];
     out.closed.set_closed(c, active[c]);
   }
   S ke_before = S(0), ke_after = S(0), p_before = S(0), p_after = S(0);
   for (int i = 0; i < nf; ++i) {
-    ke_before += p_.mass[i] * p_.u[i] * p_.u[i] / S(2);
-    ke_after += p_.mass[i] * W[i] * W[i] / S(2);
-    p_before += p_.mass[i] * p_.u[i];
-    p_after += p_.mass[i] * W[i];
+    ke_before += m_[i] * u_[i] * u_[i] / S(2);
+    ke_after += m_[i] * W[i] * W[i] / S(2);
+    p_before += m_[i] * u_[i];
+    p_after += m_[i] * W[i];
   }
   out.kinetic_energy_before = ke_before, out.kinetic_energy_after = ke_after;
   out.momentum_before = p_before, out.momentum_after = p_after;
   Sized<S> y[N], rows[N];
-  for (int i = 0; i < n; ++i) y[i].set(W[i] + p_.u[i], magnitude<S>(W[i]) + magnitude<S>(p_.u[i]));
+  for (int i = 0; i < n; ++i) y[i].set(W[i] + u_[i], magnitude<S>(W[i]) + magnitude<S>(u_[i]));
   S dissipation = S(0);
   for (const Entry<S>& e : p_.entries) {
     const S yij = y[e.i].value() - y[e.j].value(), ykl = y[e.k].value() - y[e.l].value();
@@ -397,14 +466,14 @@ void Small<S, N, Full>::complete(const Settings<S>& settings, Solution<S>& out) 
     rows[e.k].add(g, t), rows[e.l].add(-g, t);
     dissipation += g * ykl;
   }
-  for (int c = 0; c < nc; ++c) dissipation += out.reactions[static_cast<std::size_t>(c)] * S(y[c].value() - y[c + 1].value()) / S(2);
+  for (int c = 0; c < nc; ++c) dissipation += reactions[c] * S(y[c].value() - y[c + 1].value()) / S(2);
   out.dissipation = dissipation;
 
   S motion_s = S(0);
   for (int i = 0; i < nf; ++i) {
     S r = rows[i].value(), size = rows[i].size();
-    r += p_.mass[i] * (W[i] - p_.u[i]);
-    size += magnitude<S>(p_.mass[i] * W[i]) + magnitude<S>(p_.mass[i] * p_.u[i]);
+    r += m_[i] * (W[i] - u_[i]);
+    size += magnitude<S>(m_[i] * W[i]) + magnitude<S>(m_[i] * u_[i]);
     if (i < nc) r -= lambda_[i], size += magnitude<S>(lambda_[i]);
     if (i > 0) r += lambda_[i - 1], size += magnitude<S>(lambda_[i - 1]);
     rows[i].set(r, size);
@@ -416,7 +485,7 @@ void Small<S, N, Full>::complete(const Settings<S>& settings, Solution<S>& out) 
   const auto raise = [](S& to, const S& x) {
     if (to < x) to = x;
   };
-  for (int i = 0; i < n; ++i) raise(vscale, magnitude<S>(W[i])), raise(vscale, magnitude<S>(p_.u[i]));
+  for (int i = 0; i < n; ++i) raise(vscale, magnitude<S>(W[i])), raise(vscale, magnitude<S>(u_[i]));
   for (int i = 0; i < nf; ++i) raise(lscale, rows[i].size());
   for (int c = 0; c < nc; ++c) {
     const S& w = gaps[c];
@@ -433,7 +502,7 @@ void Small<S, N, Full>::complete(const Settings<S>& settings, Solution<S>& out) 
   out.residual_complementarity = comp;
   const double tol = to_double(settings.residual);
   if (out.status == Status::Success && !(motion <= tol && comp <= tol)) out.status = Status::NumericalIssue;
-  if (out.status == Status::Success && !(p_.in_range && all_finite(out))) out.status = Status::NumericalIssue;
+  if (out.status == Status::Success && !(p_.in_range && finite_answer(out))) out.status = Status::NumericalIssue;
 }
 
 template <class S, int N, bool Full>
@@ -441,8 +510,8 @@ bool Small<S, N, Full>::compute(const Settings<S>& settings, Solution<S>& out) {
   assemble();
   // The case with every contact open; a pivot of A that is not positive
   // sends the problem to the general path (its dense factors, its verdict).
-  if (!solve_case(basic_)) return false;
-  for (int c = 0; c < nc_; ++c) t_[c] = c + 1 < nf_ ? S(W_[c] - W_[c + 1]) : S(W_[c] - p_.u[n_ - 1]);
+  if (!solve_open_case()) return false;
+  for (int c = 0; c < nc_; ++c) t_[c] = c + 1 < nf_ ? S(W_[c] - W_[c + 1]) : S(W_[c] - u_[n_ - 1]);
   const int pivots = pivot(settings);
   if (pivots < 0) return false;
   if (pivots > 0 && !solve_case(basic_)) return false;

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "detail/small_solver.hpp"
+#include "superball/numeric/chain.hpp"
 #include "support.hpp"
 
 namespace superball::testing {
@@ -140,6 +141,43 @@ TYPED_TEST(SmallSolver, TheSolverChoosesThePathOncePerSizeAndReusesItsOutput) {
     general.compute(p, b);
     expect_identical(a, b);
   }
+}
+
+TYPED_TEST(SmallSolver, AReusedSolverKeepsMsGroupsOnlyWhileTheEntriesAreTheSame) {
+  // The residual check keeps the union-find of M's joins between solves
+  // while n and the bodies and zero-ness of M's entries stay the same
+  // (CheckWorkspace::entry_key).  One solver reused over problems that keep,
+  // then change, then restore them (every value set to 0, an entry
+  // dropped) must give what a new solver gives, bit for bit, every field:
+  // the residuals included, which the groups of the momentum balance set.
+  using S = TypeParam;
+  numeric::Settings<S> general_settings = numeric::Settings<S>::defaults();
+  general_settings.small_sizes = false;
+  numeric::CollisionSolver<S> reused_dense(general_settings);
+  numeric::ChainSolver<S> reused_chain;
+  int changed = 0;
+  for (std::uint64_t seed = 7000; seed < 7040; ++seed) {
+    const RandomScene r = random_scene(seed, {3, 12});
+    SCOPED_TRACE(r.describe());
+    const auto p = problem_of<S>(r.scene());
+    if (p.entries.empty()) continue;
+    // M = 0 (every entry kept, each value 0: no group but the contacts'),
+    // and M without its last entry.
+    Problem<S> zeroed = p, dropped = p;
+    for (auto& e : zeroed.entries) e.value = S(0);
+    dropped.entries.pop_back();
+    changed += 1;
+    for (const Problem<S>* q : std::initializer_list<const Problem<S>*>{&zeroed, &p, &dropped, &p, &zeroed, &p}) {
+      Solution<S> a, b, c, d;
+      reused_dense.compute(*q, a);
+      numeric::CollisionSolver<S>(general_settings).compute(*q, b);
+      expect_identical(a, b);
+      reused_chain.compute(*q, c);
+      numeric::ChainSolver<S>().compute(*q, d);
+      expect_identical(c, d);
+    }
+  }
+  EXPECT_GT(changed, 30);
 }
 
 TYPED_TEST(SmallSolver, OnlySizesTwoToEightHaveAFixedSizePath) {

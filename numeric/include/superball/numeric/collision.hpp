@@ -64,6 +64,12 @@ struct CheckWorkspace {
   std::vector<Sized<S>> rows;  ///< per body: the residual of its equation of motion and the sum of |terms|
   std::vector<int> group;      ///< per body: union-find parent over the bodies M and the closed contacts join
   std::vector<Sized<S>> momentum;  ///< per group: Σ m (W − u) and Σ m (|W| + |u|)
+  /// The union-find after M's joins, which depend only on n and on the
+  /// bodies and zero-ness of M's entries: kept with those (entry_key: i, j,
+  /// k, l and value ≠ 0 per entry) and reused while the next problem has the
+  /// same (a reused solver, a sweep or a map varying values only).
+  std::vector<int> entry_key, entry_group;
+  int entry_bodies = -1;
 };
 }  // namespace detail
 
