@@ -321,11 +321,13 @@ class Words {
     if (w != "0" && w != "1") damaged("'" + w + "' is not 0 or 1");
     return w == "1";
   }
-  int number() {
+  /// An integer from \p low to \p high.
+  int number(long low = std::numeric_limits<int>::min(), long high = std::numeric_limits<int>::max()) {
     const std::string w = word();
     char* end = nullptr;
     const long n = std::strtol(w.c_str(), &end, 10);
-    if (w.empty() || *end || n < std::numeric_limits<int>::min() || n > std::numeric_limits<int>::max()) damaged("'" + w + "' is not an integer");
+    if (w.empty() || *end || n < low || n > high)
+      damaged("'" + w + "' is not an integer from " + std::to_string(low) + " to " + std::to_string(high));
     return static_cast<int>(n);
   }
   double real() {
@@ -365,14 +367,18 @@ class Words {
   std::string line_;
 };
 
-/// The lines of \p text, each ended by '\n'.
-std::vector<std::string> lines(const std::string& text, const char* function) {
-  std::vector<std::string> out;
+/// One R from each line of \p text (each ended by '\n'), read by \p read
+/// from the line's Words, which must hold nothing more.
+template <class R, class Read>
+std::vector<R> read_lines(const std::string& text, const char* function, const Read& read) {
+  std::vector<R> out;
   std::size_t at = 0;
   while (at < text.size()) {
     const std::size_t eol = text.find('\n', at);
     if (eol == std::string::npos) throw std::invalid_argument(std::string(function) + ": the last line is cut");
-    out.push_back(text.substr(at, eol - at));
+    Words in(text.substr(at, eol - at), function);
+    out.push_back(read(in));
+    in.end();
     at = eol + 1;
   }
   return out;
@@ -392,22 +398,15 @@ std::string points_to_text(const std::vector<MapPoint>& points) {
 }
 
 std::vector<MapPoint> points_from_text(const std::string& text) {
-  std::vector<MapPoint> points;
-  for (const std::string& line : lines(text, "points_from_text()")) {
-    Words in(line, "points_from_text()");
+  return read_lines<MapPoint>(text, "points_from_text()", [](Words& in) {
     MapPoint p;
     p.admissible = in.flag();
-    const int status = in.number();
-    if (status < static_cast<int>(Status::Success) || status > static_cast<int>(Status::NoConvergence))
-      throw std::invalid_argument("points_from_text(): a damaged line, status " + std::to_string(status) + ": " + line);
-    p.status = static_cast<Status>(status);
+    p.status = static_cast<Status>(in.number(static_cast<int>(Status::Success), static_cast<int>(Status::NoConvergence)));
     p.region.superball = in.flag();
     p.ratio = in.real();
     p.region.closed = in.contacts();
-    in.end();
-    points.push_back(std::move(p));
-  }
-  return points;
+    return p;
+  });
 }
 
 std::string boundaries_to_text(const std::vector<MapBoundary>& boundaries) {
@@ -420,9 +419,7 @@ std::string boundaries_to_text(const std::vector<MapBoundary>& boundaries) {
 }
 
 std::vector<MapBoundary> boundaries_from_text(const std::string& text) {
-  std::vector<MapBoundary> boundaries;
-  for (const std::string& line : lines(text, "boundaries_from_text()")) {
-    Words in(line, "boundaries_from_text()");
+  return read_lines<MapBoundary>(text, "boundaries_from_text()", [](Words& in) {
     MapBoundary b;
     b.along_x = in.flag();
     b.i = in.number();
@@ -435,10 +432,8 @@ std::vector<MapBoundary> boundaries_from_text(const std::string& text) {
     b.above.superball = in.flag();
     b.below.closed = in.contacts();
     b.above.closed = in.contacts();
-    in.end();
-    boundaries.push_back(std::move(b));
-  }
-  return boundaries;
+    return b;
+  });
 }
 
 }  // namespace detail

@@ -379,6 +379,14 @@ TEST(DistributeMpi, AMapOverRanksIsTheSingleProcessMapByteForByte) {
       EXPECT_EQ(r.err, "");
     }
   }
+  // --plot: rank 0 draws the figure from the whole map; its data and script are the single run's bytes.
+  const std::string one = folder("map-plot-one"), two = folder("map-plot-two");
+  ASSERT_EQ(run(with(kMap, {"--plot", one + "/m"})).exit_code, 0);
+  const RunResult plotted = mpirun(2, with(kMap, {"--plot", two + "/m", "--threads", "1"}));
+  ASSERT_EQ(plotted.exit_code, 0) << describe(plotted);
+  for (const std::string file : {"/m.dat", "/m.gp"}) EXPECT_EQ(slurp(two + file), slurp(one + file)) << file;
+  EXPECT_GT(fs::file_size(two + "/m.png"), 0u);
+  EXPECT_GT(fs::file_size(two + "/m.svg"), 0u);
   // Bad input: one line, from rank 0.
   const RunResult bad = mpirun(2, {"map", kPaper, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-400:-200:5"});
   EXPECT_EQ(bad.exit_code, 2) << describe(bad);
