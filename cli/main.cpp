@@ -107,8 +107,8 @@ int run(int argc, char** argv) {
   // any other would run whole on every rank, each writing its output.
   if (mpi_size() > 1) {
     const std::string name = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
-    if (name != "derive" && name != "sweep" && name != "verify" && name != "explore") {
-      err << "superball: " << name << " does not spread over MPI ranks (derive, sweep, verify and explore do); run it in one process, with its --threads\n";
+    if (name != "derive" && name != "sweep" && name != "verify" && name != "explore" && name != "map") {
+      err << "superball: " << name << " does not spread over MPI ranks (derive, sweep, verify, explore and map do); run it in one process, with its --threads\n";
       return bad_input;
     }
   }

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "distribute.hpp"
 #include "gnuplot.hpp"
 #include "range.hpp"
 #include "superball/cases/scene_file.hpp"
@@ -79,7 +80,10 @@ void add_map(CLI::App& app, Action& action) {
       "alpha, coupling, mass, fall_speed and a rational fall speed.\n"
       "A corner of the grid that a scene file could not hold (g <= 0, a mass <= 0, a contact opening before the\n"
       "collision), the same KEY on both axes, or a grid where M is nowhere positive semi-definite is refused\n"
-      "before anything is written.  The output does not depend on --threads.\n\n"
+      "before anything is written.  The output does not depend on --threads.\n"
+      "Over MPI (`mpirun -n P superball map ...`, built with -DSUPERBALL_WITH_MPI=ON) the grid points, then the\n"
+      "bisections, are handed out to the ranks as tasks (each on --threads threads); rank 0 writes the same bytes\n"
+      "as one process (and draws --plot, runs --overlay).  map has no --shard or --checkpoint.\n\n"
       "Examples:\n"
       "  superball map cases/scenes/paper-fig5-alpha2.toml --x alpha.2=-200:100:121 --y alpha.5=-10:10:81\n"
       "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:101 --y alpha.2=-150:0:101 --plot k34-alpha2\n"
@@ -111,7 +115,12 @@ void add_map(CLI::App& app, Action& action) {
       numeric::MapSettings settings;
       settings.precision = numeric::Precision::parse(o->precision);
       settings.threads = o->threads;
+      // Under MPI every rank takes part in the map (its grid points, then its
+      // bisections, handed out as tasks by run_everywhere()) and holds the
+      // whole map after it; rank 0 alone goes on (overlay, output, figures).
+      if (mpi_size() > 1) settings.runner = run_everywhere;
       const numeric::Map m = numeric::map(scene, {rx.parameter, rx.from, rx.to, rx.steps}, {ry.parameter, ry.from, ry.to, ry.steps}, settings);
+      if (mpi_rank() != 0) return ok;
       std::optional<verify::Overlay> overlay;
       if (o->overlay) overlay = verify::overlay(scene, m, settings.bits);
       const std::string precision = settings.precision.name();

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <tuple>
 #include <utility>
@@ -169,6 +172,37 @@ MapBoundary psd_edge(Scene& line, const Parameter& parameter, cln::cl_RA a, cln:
 }  // namespace
 
 namespace detail {
+std::string points_to_text(const std::vector<MapPoint>& points);
+std::vector<MapPoint> points_from_text(const std::string& text);
+std::string boundaries_to_text(const std::vector<MapBoundary>& boundaries);
+std::vector<MapBoundary> boundaries_from_text(const std::string& text);
+}  // namespace detail
+
+namespace {
+
+/// The results of \p count items (grid points, or neighbour pairs each giving
+/// its boundary points) computed by \p compute(first, size): here in one
+/// call, or, with settings.runner, in at most map_tasks tasks of consecutive
+/// items, each sent back as text (\p write) and read again (\p read).
+template <class R, class Compute, class Write, class Read>
+std::vector<R> in_tasks(const MapSettings& settings, std::size_t count, const Compute& compute, const Write& write, const Read& read) {
+  if (!settings.runner || count == 0) return compute(0, count);
+  const std::size_t per = (count + map_tasks - 1) / map_tasks, tasks = (count + per - 1) / per;
+  const std::vector<std::string> texts =
+      settings.runner(tasks, [&](std::size_t t) { return write(compute(t * per, std::min(per, count - t * per))); });
+  if (texts.size() != tasks)
+    throw std::logic_error("map(): the runner returned " + std::to_string(texts.size()) + " results of " + std::to_string(tasks) + " tasks");
+  std::vector<R> all;
+  for (const std::string& text : texts) {
+    std::vector<R> some = read(text);
+    all.insert(all.end(), std::make_move_iterator(some.begin()), std::make_move_iterator(some.end()));
+  }
+  return all;
+}
+
+}  // namespace
+
+namespace detail {
 
 std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b) {
   const ExactScene p = ExactScene::from(a, ExactScene::MCheck::Caller), q = ExactScene::from(b, ExactScene::MCheck::Caller);
@@ -200,7 +234,7 @@ std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::Matri
 
 template <class S>
 std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::size_t ky, const Axis& x, const Axis& y,
-                                   const MapSettings& settings) {
+                                   const MapSettings& settings, std::size_t first, std::size_t size) {
   using T = ScalarTraits<S>;
   const int digits = settings.precision.digits;
   // The grid values as text (for the exact fallback) and in S, made on the calling thread.
@@ -234,9 +268,11 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
     st.work.resize(size, size);
     return st;
   };
-  const std::size_t nx = tx.size();
-  return parallel_map(nx * ty.size(), settings.threads, make_state, [&](State& st, std::size_t k) {
-    const std::size_t i = k % nx, j = k / nx;
+  const std::size_t nx = tx.size(), count = nx * ty.size();
+  first = std::min(first, count);
+  size = std::min(size, count - first);
+  return parallel_map(size, settings.threads, make_state, [&](State& st, std::size_t at) {
+    const std::size_t k = first + at, i = k % nx, j = k / nx;
     Problem<S>& p = st.problem;
     p.entries[kx].value = sx[i];
     p.entries[ky].value = sy[j];
@@ -257,9 +293,148 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
   });
 }
 
-template std::vector<MapPoint> entry_points<double>(const Scene&, std::size_t, std::size_t, const Axis&, const Axis&, const MapSettings&);
+template std::vector<MapPoint> entry_points<double>(const Scene&, std::size_t, std::size_t, const Axis&, const Axis&, const MapSettings&,
+                                                    std::size_t, std::size_t);
 template std::vector<MapPoint> entry_points<long double>(const Scene&, std::size_t, std::size_t, const Axis&, const Axis&,
-                                                         const MapSettings&);
+                                                         const MapSettings&, std::size_t, std::size_t);
+
+namespace {
+
+/// A contact set as its bits ("." for none: the default, empty set).
+std::string bits(const ContactSet& c) {
+  std::string s;
+  for (int k = 0; k < c.contacts(); ++k) s += c.closed(k) ? '1' : '0';
+  return s.empty() ? "." : s;
+}
+
+/// The words of one line of a task's text, read in order.
+class Words {
+ public:
+  Words(const std::string& line, const char* function) : in_(line), function_(function), line_(line) {}
+  std::string word() {
+    std::string w;
+    if (!(in_ >> w)) damaged("a field is missing");
+    return w;
+  }
+  bool flag() {
+    const std::string w = word();
+    if (w != "0" && w != "1") damaged("'" + w + "' is not 0 or 1");
+    return w == "1";
+  }
+  /// An integer from \p low to \p high.
+  int number(long low = std::numeric_limits<int>::min(), long high = std::numeric_limits<int>::max()) {
+    const std::string w = word();
+    char* end = nullptr;
+    const long n = std::strtol(w.c_str(), &end, 10);
+    if (w.empty() || *end || n < low || n > high)
+      damaged("'" + w + "' is not an integer from " + std::to_string(low) + " to " + std::to_string(high));
+    return static_cast<int>(n);
+  }
+  double real() {
+    const std::string w = word();
+    char* end = nullptr;
+    const double v = std::strtod(w.c_str(), &end);
+    if (w.empty() || *end) damaged("'" + w + "' is not a number");
+    return v;
+  }
+  cln::cl_RA rational() {
+    const std::string w = word();
+    try {
+      return parse_rational(w);
+    } catch (const std::exception&) {
+      damaged("'" + w + "' is not a fraction");
+    }
+  }
+  ContactSet contacts() {
+    const std::string w = word();
+    if (w == ".") return {};
+    if (w.find_first_not_of("01") != std::string::npos) damaged("'" + w + "' is not the bits of a contact set");
+    ContactSet c(static_cast<int>(w.size()) + 1);
+    for (std::size_t k = 0; k < w.size(); ++k) c.set_closed(static_cast<int>(k), w[k] == '1');
+    return c;
+  }
+  void end() {
+    std::string more;
+    if (in_ >> more) damaged("'" + more + "' after the last field");
+  }
+
+ private:
+  [[noreturn]] void damaged(const std::string& what) const {
+    throw std::invalid_argument(std::string(function_) + ": a damaged line, " + what + ": " + line_);
+  }
+  std::istringstream in_;
+  const char* function_;
+  std::string line_;
+};
+
+/// One R from each line of \p text (each ended by '\n'), read by \p read
+/// from the line's Words, which must hold nothing more.
+template <class R, class Read>
+std::vector<R> read_lines(const std::string& text, const char* function, const Read& read) {
+  std::vector<R> out;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t eol = text.find('\n', at);
+    if (eol == std::string::npos) throw std::invalid_argument(std::string(function) + ": the last line is cut");
+    Words in(text.substr(at, eol - at), function);
+    out.push_back(read(in));
+    in.end();
+    at = eol + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string points_to_text(const std::vector<MapPoint>& points) {
+  std::string text;
+  char ratio[64];
+  for (const MapPoint& p : points) {
+    std::snprintf(ratio, sizeof ratio, "%a", p.ratio);
+    text += std::string(p.admissible ? "1 " : "0 ") + std::to_string(static_cast<int>(p.status)) + (p.region.superball ? " 1 " : " 0 ") +
+            ratio + " " + bits(p.region.closed) + "\n";
+  }
+  return text;
+}
+
+std::vector<MapPoint> points_from_text(const std::string& text) {
+  return read_lines<MapPoint>(text, "points_from_text()", [](Words& in) {
+    MapPoint p;
+    p.admissible = in.flag();
+    p.status = static_cast<Status>(in.number(static_cast<int>(Status::Success), static_cast<int>(Status::NoConvergence)));
+    p.region.superball = in.flag();
+    p.ratio = in.real();
+    p.region.closed = in.contacts();
+    return p;
+  });
+}
+
+std::string boundaries_to_text(const std::vector<MapBoundary>& boundaries) {
+  std::string text;
+  for (const MapBoundary& b : boundaries)
+    text += std::string(b.along_x ? "1 " : "0 ") + std::to_string(b.i) + " " + std::to_string(b.j) + " " + to_string(b.low) + " " +
+            to_string(b.high) + (b.below_psd ? " 1" : " 0") + (b.above_psd ? " 1" : " 0") + (b.below.superball ? " 1" : " 0") +
+            (b.above.superball ? " 1 " : " 0 ") + bits(b.below.closed) + " " + bits(b.above.closed) + "\n";
+  return text;
+}
+
+std::vector<MapBoundary> boundaries_from_text(const std::string& text) {
+  return read_lines<MapBoundary>(text, "boundaries_from_text()", [](Words& in) {
+    MapBoundary b;
+    b.along_x = in.flag();
+    b.i = in.number();
+    b.j = in.number();
+    b.low = in.rational();
+    b.high = in.rational();
+    b.below_psd = in.flag();
+    b.above_psd = in.flag();
+    b.below.superball = in.flag();
+    b.above.superball = in.flag();
+    b.below.closed = in.contacts();
+    b.above.closed = in.contacts();
+    return b;
+  });
+}
 
 }  // namespace detail
 
@@ -299,16 +474,22 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   const Scene corner = with_value(with_value(scene, x.parameter, x.from), y.parameter, y.from);
   const auto kx = detail::entry_changed(corner, with_value(corner, x.parameter, x.to));
   const auto ky = detail::entry_changed(corner, with_value(corner, y.parameter, y.to));
-  if (kx && ky && settings.precision.kind == Precision::Kind::Double)
-    m.points = detail::entry_points<double>(corner, *kx, *ky, x, y, settings);
-  else if (kx && ky && settings.precision.kind == Precision::Kind::LongDouble)
-    m.points = detail::entry_points<long double>(corner, *kx, *ky, x, y, settings);
-  else
-    m.points = parallel_map(count, settings.threads, [&scene] { return scene; }, [&](Scene& s, std::size_t k) {
+  // The grid points first … first + size − 1 (k = j·nx + i), on settings.threads.
+  auto points = [&](std::size_t first, std::size_t size) -> std::vector<MapPoint> {
+    if (kx && ky && settings.precision.kind == Precision::Kind::Double)
+      return detail::entry_points<double>(corner, *kx, *ky, x, y, settings, first, size);
+    if (kx && ky && settings.precision.kind == Precision::Kind::LongDouble)
+      return detail::entry_points<long double>(corner, *kx, *ky, x, y, settings, first, size);
+    return parallel_map(size, settings.threads, [&scene] { return scene; }, [&](Scene& s, std::size_t at) {
+      const std::size_t k = first + at;
       x.parameter.assign(s, Number::parse(tx[k % nx]));
       y.parameter.assign(s, Number::parse(ty[k / nx]));
       return with_scalar(settings.precision, [&](auto tag) { return solve_point<decltype(tag)>(s, settings.precision); });
     });
+  };
+  m.points = in_tasks<MapPoint>(settings, count, points, detail::points_to_text, detail::points_from_text);
+  if (m.points.size() != count)
+    throw std::logic_error("map(): the runner's results hold " + std::to_string(m.points.size()) + " of " + std::to_string(count) + " points");
   if (std::none_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return p.admissible; }))
     throw InputError(scene.origin + ": M is not positive semi-definite at any point of the map (" + x.parameter.key() + " from " +
                      to_string(x.from) + " to " + to_string(x.to) + ", " + y.parameter.key() + " from " + to_string(y.from) + " to " +
@@ -335,7 +516,7 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
     return Region{p.closed, *p.superball}.label();
   };
   const int bodies = scene.size();
-  const auto found = parallel_map(pending.size(), settings.threads, [] { return 0; }, [&](int&, std::size_t k) {
+  const auto bisect = [&](std::size_t k) {
     const Pending& p = pending[k];
     // The line through the two neighbours: the other parameter fixed at its grid value.
     const Axis& along = p.along_x ? x : y;
@@ -358,8 +539,16 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
                                               proven_region))
       out.push_back({p.along_x, p.i, p.j, c.low, c.high, Region::parse(c.below, bodies), Region::parse(c.above, bodies)});
     return out;
-  });
-  for (const auto& f : found) m.boundaries.insert(m.boundaries.end(), f.begin(), f.end());
+  };
+  // The boundaries of the pairs first … first + size − 1, in order, on settings.threads.
+  auto boundaries = [&](std::size_t first, std::size_t size) {
+    const auto found = parallel_map(size, settings.threads, [] { return 0; }, [&](int&, std::size_t at) { return bisect(first + at); });
+    std::vector<MapBoundary> all;
+    for (const auto& f : found) all.insert(all.end(), f.begin(), f.end());
+    return all;
+  };
+  if (!pending.empty())
+    m.boundaries = in_tasks<MapBoundary>(settings, pending.size(), boundaries, detail::boundaries_to_text, detail::boundaries_from_text);
   m.curves = chain(m);
   return m;
 }

@@ -323,9 +323,9 @@ TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
   ASSERT_EQ(superball_lines(other).size(), 1u) << other.err;
   EXPECT_EQ(superball_lines(other)[0].rfind("superball: --checkpoint " + dir + ": holds run", 0), 0u) << other.err;
   // A command that is not a task list would run whole on every rank: refused.
-  const RunResult map = mpirun(2, {"map", kPaper, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-150:0:5"});
-  EXPECT_EQ(map.out, "");
-  EXPECT_NE(map.err.find("superball: map does not spread over MPI ranks"), std::string::npos) << map.err;
+  const RunResult solve = mpirun(2, {"solve", kPaper});
+  EXPECT_EQ(solve.out, "");
+  EXPECT_NE(solve.err.find("superball: solve does not spread over MPI ranks"), std::string::npos) << solve.err;
 }
 
 TEST(DistributeMpi, OneVerifyCaseOverRanksWritesTheSameSceneFiles) {
@@ -359,6 +359,40 @@ TEST(DistributeMpi, OneVerifyCaseOverRanksWritesTheSameSceneFiles) {
   EXPECT_EQ(again.out, single.out);
   EXPECT_EQ(again.err, "superball: --checkpoint " + dir + "/ck: 1 of 1 tasks done already, 0 to compute\n");
   EXPECT_EQ(files(), expected);
+}
+
+/// A small map across the edge of M's PSD cone (K₃₄, α₂ at §4.4): 81 points
+/// (41 tasks of 2), then its bisections, as tasks over the ranks.
+const std::vector<std::string> kMap = {"map", kPaper, "--x", "K.3-4=0:20:9", "--y", "alpha.2=-150:0:9"};
+
+TEST(DistributeMpi, AMapOverRanksIsTheSingleProcessMapByteForByte) {
+  // Every output of map: the summary with the boundary points, the grid and
+  // the boundary points as CSV, everything as JSON.
+  for (const std::vector<std::string>& output : std::vector<std::vector<std::string>>{{"--boundary-points"}, {"--csv"}, {"--boundary-points", "--csv"}, {"--json"}}) {
+    const RunResult whole = run(with(kMap, output));
+    ASSERT_EQ(whole.exit_code, 0) << describe(whole);
+    ASSERT_NE(whole.out.find(output[0] == "--json" ? "\"boundaries\"" : output.back() == "--csv" ? "," : "M not PSD"), std::string::npos) << whole.out;
+    for (int p : {2, 3}) {
+      const RunResult r = mpirun(p, with(with(kMap, output), {"--threads", "1"}));
+      ASSERT_EQ(r.exit_code, 0) << p << " ranks: " << describe(r);
+      EXPECT_EQ(r.out, whole.out) << p << " ranks: map " << output.back();
+      EXPECT_EQ(r.err, "");
+    }
+  }
+  // --plot: rank 0 draws the figure from the whole map; its data and script are the single run's bytes.
+  const std::string one = folder("map-plot-one"), two = folder("map-plot-two");
+  ASSERT_EQ(run(with(kMap, {"--plot", one + "/m"})).exit_code, 0);
+  const RunResult plotted = mpirun(2, with(kMap, {"--plot", two + "/m", "--threads", "1"}));
+  ASSERT_EQ(plotted.exit_code, 0) << describe(plotted);
+  for (const std::string file : {"/m.dat", "/m.gp"}) EXPECT_EQ(slurp(two + file), slurp(one + file)) << file;
+  EXPECT_GT(fs::file_size(two + "/m.png"), 0u);
+  EXPECT_GT(fs::file_size(two + "/m.svg"), 0u);
+  // Bad input: one line, from rank 0.
+  const RunResult bad = mpirun(2, {"map", kPaper, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-400:-200:5"});
+  EXPECT_EQ(bad.exit_code, 2) << describe(bad);
+  EXPECT_EQ(bad.out, "");
+  ASSERT_EQ(superball_lines(bad).size(), 1u) << bad.err;
+  EXPECT_NE(superball_lines(bad)[0].find("not positive semi-definite at any point of the map"), std::string::npos) << bad.err;
 }
 
 TEST(DistributeMpi, ATaskThatFailsOnARankIsOneLineNamingItAndNoOutput) {
@@ -397,6 +431,13 @@ TEST(DistributeMpi, ATaskThatFailsOnARankIsOneLineNamingItAndNoOutput) {
   EXPECT_EQ(sweep.out, whole.substr(0, at));
   ASSERT_EQ(superball_lines(sweep).size(), 1u) << sweep.err;
   EXPECT_NE(superball_lines(sweep)[0].find("task 3 of 5: SUPERBALL_TEST_FAIL_TASK=3"), std::string::npos) << superball_lines(sweep)[0];
+  // map: a task of its grid points (41 of 2 points) fails; nothing written.
+  const RunResult map = mpirun(3, with(kMap, {"--threads", "1"}), hook);
+  EXPECT_EQ(map.exit_code, 4) << describe(map);
+  EXPECT_EQ(map.out, "");
+  ASSERT_EQ(superball_lines(map).size(), 1u) << map.err;
+  EXPECT_TRUE(std::regex_match(superball_lines(map)[0], std::regex("superball: internal error: rank [012], task 5 of 41: SUPERBALL_TEST_FAIL_TASK=5: .*")))
+      << superball_lines(map)[0];
 }
 #endif
 

@@ -8,6 +8,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
+#include <limits>
+#include <vector>
 #include <string>
 
 #include "superball/cases/error.hpp"
@@ -213,6 +216,125 @@ TEST(Map, TheMapDoesNotDependOnTheThreads) {
   }
   ASSERT_EQ(a.curves.size(), b.curves.size());
   for (std::size_t k = 0; k < a.curves.size(); ++k) EXPECT_EQ(a.curves[k].points, b.curves[k].points);
+}
+
+/// \p a and \p b hold the same points, boundaries and curves, field for field
+/// (ratios bit for bit, NaN as NaN).
+void expect_same_points(const std::vector<numeric::MapPoint>& a, const std::vector<numeric::MapPoint>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].admissible, b[k].admissible) << k;
+    EXPECT_EQ(a[k].status, b[k].status) << k;
+    EXPECT_EQ(a[k].region, b[k].region) << k;
+    EXPECT_EQ(a[k].region.closed.contacts(), b[k].region.closed.contacts()) << k;
+    if (std::isnan(a[k].ratio))
+      EXPECT_TRUE(std::isnan(b[k].ratio)) << k;
+    else
+      EXPECT_EQ(std::memcmp(&a[k].ratio, &b[k].ratio, sizeof(double)), 0) << k << ": " << a[k].ratio << " " << b[k].ratio;
+  }
+}
+
+void expect_same_boundaries(const std::vector<numeric::MapBoundary>& a, const std::vector<numeric::MapBoundary>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].along_x, b[k].along_x) << k;
+    EXPECT_EQ(a[k].i, b[k].i) << k;
+    EXPECT_EQ(a[k].j, b[k].j) << k;
+    EXPECT_TRUE(a[k].low == b[k].low && a[k].high == b[k].high) << k;
+    EXPECT_EQ(a[k].below, b[k].below) << k;
+    EXPECT_EQ(a[k].above, b[k].above) << k;
+    EXPECT_EQ(a[k].below.closed.contacts(), b[k].below.closed.contacts()) << k;
+    EXPECT_EQ(a[k].above.closed.contacts(), b[k].above.closed.contacts()) << k;
+    EXPECT_EQ(a[k].below_psd, b[k].below_psd) << k;
+    EXPECT_EQ(a[k].above_psd, b[k].above_psd) << k;
+  }
+}
+
+void expect_same_maps(const numeric::Map& a, const numeric::Map& b) {
+  expect_same_points(a.points, b.points);
+  expect_same_boundaries(a.boundaries, b.boundaries);
+  ASSERT_EQ(a.curves.size(), b.curves.size());
+  for (std::size_t k = 0; k < a.curves.size(); ++k) {
+    EXPECT_EQ(a.curves[k].kind, b.curves[k].kind);
+    EXPECT_EQ(a.curves[k].first, b.curves[k].first);
+    EXPECT_EQ(a.curves[k].second, b.curves[k].second);
+    EXPECT_EQ(a.curves[k].points, b.curves[k].points);
+    EXPECT_EQ(a.curves[k].closed, b.curves[k].closed);
+  }
+}
+
+TEST(Map, PointsAndBoundariesAsTextReadBackExactly) {
+  // Hand-made fields at the edges of what the text must carry: ratios that
+  // 17 digits of %g would not all keep, NaN, −0, subnormal; no contact set and
+  // sets of 4 contacts; every status; brackets of fractions 2^-70 wide.
+  std::vector<numeric::MapPoint> points;
+  const double ratios[] = {1.0 / 3, std::nan(""), -0.0, std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::max(),
+                           std::nextafter(1.0, 0.0), 0.1 + 0.2};
+  int k = 0;
+  for (double r : ratios) {
+    numeric::MapPoint p;
+    p.admissible = k % 2 == 0;
+    p.status = static_cast<numeric::Status>(k % 3);
+    p.region.superball = k % 3 == 1;
+    if (k % 4 != 3) p.region.closed = ContactSet::from_mask(static_cast<std::uint64_t>(k), 5);
+    p.ratio = r;
+    points.push_back(p);
+    ++k;
+  }
+  const std::string text = numeric::detail::points_to_text(points);
+  expect_same_points(points, numeric::detail::points_from_text(text));
+  EXPECT_EQ(numeric::detail::points_to_text(numeric::detail::points_from_text(text)), text);
+
+  std::vector<numeric::MapBoundary> boundaries(3);
+  const cl_RA tiny = cln::expt(cl_RA(2), -70);
+  boundaries[0] = {true, 3, 7, cl_RA(-1025) / 7, cl_RA(-1025) / 7 + tiny, {ContactSet::parse("2-3", 4), true}, {ContactSet::parse("", 4), false}};
+  boundaries[1] = {false, 0, 12, cl_RA(1) / 3 - tiny, cl_RA(1) / 3, {ContactSet::parse("3-4", 4), false}, {}, true, false};
+  boundaries[2] = {false, 9999, 0, 0, tiny, {}, {ContactSet::parse("2-3,3-4", 4), true}, false, true};
+  const std::string lines = numeric::detail::boundaries_to_text(boundaries);
+  expect_same_boundaries(boundaries, numeric::detail::boundaries_from_text(lines));
+  EXPECT_EQ(numeric::detail::boundaries_to_text(numeric::detail::boundaries_from_text(lines)), lines);
+
+  // A map's own points and boundaries, across the edge of the PSD cone.
+  const Scene scene = load_scene(kPaper);
+  const numeric::Map m = paper_map(scene, 1);
+  ASSERT_FALSE(m.boundaries.empty());
+  expect_same_points(m.points, numeric::detail::points_from_text(numeric::detail::points_to_text(m.points)));
+  expect_same_boundaries(m.boundaries, numeric::detail::boundaries_from_text(numeric::detail::boundaries_to_text(m.boundaries)));
+
+  // Damaged texts are refused, not read as something else.
+  for (const std::string& bad : {"1 0 0 0x1p+0\n", "1 0 0 0x1p+0 01", "1 3 0 0x1p+0 01\n", "2 0 0 0x1p+0 01\n", "1 0 0 0x1p+0 012\n",
+                                 "1 0 0 0x1p+0x 01\n", "1 0 0 0x1p+0 01 1\n"})
+    EXPECT_THROW(numeric::detail::points_from_text(bad), std::invalid_argument) << bad;
+  for (const std::string& bad : {"1 0 0 1/3 1/2 1 1 0 0 . \n", "1 0 0 1/3 1/2 1 1 0 0 . 1/2\n", "1 0 x 1/3 1/2 1 1 0 0 . .\n"})
+    EXPECT_THROW(numeric::detail::boundaries_from_text(bad), std::invalid_argument) << bad;
+}
+
+TEST(Map, TasksOfARunnerGiveTheSameMapFieldForField) {
+  // A runner that computes its tasks last to first, each through its text:
+  // the map is the one computed in one call, field for field.
+  const Scene scene = load_scene(kPaper);
+  std::vector<std::size_t> calls;
+  numeric::MapSettings settings;
+  settings.threads = 2;
+  settings.runner = [&](std::size_t tasks, const std::function<std::string(std::size_t)>& task) {
+    calls.push_back(tasks);
+    std::vector<std::string> texts(tasks);
+    for (std::size_t t = tasks; t-- > 0;) texts[t] = task(t);
+    return texts;
+  };
+  const auto x = axis(scene, "K.3-4", 0, 20, 13), y = axis(scene, "alpha.2", -150, 0, 11);
+  const numeric::Map whole = numeric::map(scene, x, y), tasks = numeric::map(scene, x, y, settings);
+  ASSERT_EQ(calls.size(), 2u);  // the points, then the boundaries
+  EXPECT_EQ(calls[0], 48u);     // 143 points, 3 per task (at most map_tasks = 64 tasks)
+  EXPECT_GT(calls[1], 1u);
+  EXPECT_LE(calls[1], numeric::map_tasks);
+  EXPECT_FALSE(whole.boundaries.empty());
+  expect_same_maps(whole, tasks);
+  // Also the path that solves each scene from scratch (an axis that is not an entry of M).
+  calls.clear();
+  const auto g = axis(scene, "g", 1, 20, 7);
+  expect_same_maps(numeric::map(scene, x, g), numeric::map(scene, x, g, settings));
+  EXPECT_GE(calls.size(), 1u);
 }
 
 TEST(Map, BadAxesAreRefusedBeforeAnythingIsSolved) {

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -107,7 +108,23 @@ struct MapSettings {
   int bits = 64;     ///< bisection to 2^-bits of the grid step (as switch_points())
   int threads = 1;   ///< 0: all cores; the result does not depend on it
   bool boundaries = true;
+  /// Where the work runs, to spread one map over several processes (`mpirun
+  /// -n P superball map …`); empty: here, on `threads`.  Called once for the
+  /// grid points and once for the boundaries (when there are any to bisect),
+  /// with a number of tasks T (at most map_tasks, consecutive points or
+  /// neighbour pairs each, solved on `threads`) and a function computing task
+  /// t as plain text (detail::points_to_text(), detail::boundaries_to_text());
+  /// it must return the T texts in task order, in every process that calls
+  /// map().  Each process then reads them back exactly, finds the pairs to
+  /// bisect and chains the curves: the map is the same, bit for bit, whoever
+  /// runs the tasks.
+  std::function<std::vector<std::string>(std::size_t, const std::function<std::string(std::size_t)>&)> runner;
 };
+
+/// The most tasks of each phase of a map given to MapSettings::runner:
+/// enough to share out over the ranks of a job, few enough that each task's
+/// work outweighs sending its text.
+inline constexpr std::size_t map_tasks = 64;
 
 /// A map: every grid point, the boundaries between neighbours of different
 /// region, and the curves they chain into.
@@ -185,9 +202,26 @@ std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::Matri
 /// not decide, exactly for positive_semidefinite().  The problem solved is
 /// Problem<S>::from() of the point's scene, bit for bit, so the points are
 /// those of solving each scene from scratch.
+/// Only the grid points first … first + size − 1 (k = j·x.steps + i) are
+/// solved and returned (a task of MapSettings::runner); the defaults: all.
 template <class S>
 std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::size_t ky, const Axis& x, const Axis& y,
-                                   const MapSettings& settings);
+                                   const MapSettings& settings, std::size_t first = 0, std::size_t size = static_cast<std::size_t>(-1));
+
+/// Grid points as plain text, for MapSettings::runner: one line per point,
+/// "ADMISSIBLE STATUS SUPERBALL RATIO CLOSED" with the ratio as a C99
+/// hexadecimal floating literal (exact, NaN as "nan") and CLOSED the
+/// contacts' bits ("." for a set of no contact).  points_from_text() gives
+/// back the same points, field for field.
+std::string points_to_text(const std::vector<MapPoint>& points);
+/// The points of points_to_text(); throws std::invalid_argument("points_from_text(): …") on a damaged text.
+std::vector<MapPoint> points_from_text(const std::string& text);
+/// Boundary points as plain text, one line each: "ALONG_X I J LOW HIGH
+/// BELOW_PSD ABOVE_PSD BELOW_SUPERBALL ABOVE_SUPERBALL BELOW ABOVE", the
+/// bracket's ends exact as p/q and the cases as in points_to_text().
+std::string boundaries_to_text(const std::vector<MapBoundary>& boundaries);
+/// The boundaries of boundaries_to_text(); throws std::invalid_argument("boundaries_from_text(): …") on a damaged text.
+std::vector<MapBoundary> boundaries_from_text(const std::string& text);
 
 }  // namespace detail
 
