@@ -302,10 +302,10 @@ TEST(Map, PointsAndBoundariesAsTextReadBackExactly) {
   expect_same_boundaries(m.boundaries, numeric::detail::boundaries_from_text(numeric::detail::boundaries_to_text(m.boundaries)));
 
   // Damaged texts are refused, not read as something else.
-  for (const std::string& bad : {"1 0 0 0x1p+0\n", "1 0 0 0x1p+0 01", "1 3 0 0x1p+0 01\n", "2 0 0 0x1p+0 01\n", "1 0 0 0x1p+0 012\n",
+  for (const char* bad : {"1 0 0 0x1p+0\n", "1 0 0 0x1p+0 01", "1 3 0 0x1p+0 01\n", "2 0 0 0x1p+0 01\n", "1 0 0 0x1p+0 012\n",
                                  "1 0 0 0x1p+0x 01\n", "1 0 0 0x1p+0 01 1\n"})
     EXPECT_THROW(numeric::detail::points_from_text(bad), std::invalid_argument) << bad;
-  for (const std::string& bad : {"1 0 0 1/3 1/2 1 1 0 0 . \n", "1 0 0 1/3 1/2 1 1 0 0 . 1/2\n", "1 0 x 1/3 1/2 1 1 0 0 . .\n"})
+  for (const char* bad : {"1 0 0 1/3 1/2 1 1 0 0 . \n", "1 0 0 1/3 1/2 1 1 0 0 . 1/2\n", "1 0 x 1/3 1/2 1 1 0 0 . .\n"})
     EXPECT_THROW(numeric::detail::boundaries_from_text(bad), std::invalid_argument) << bad;
 }
 
