@@ -142,15 +142,16 @@ std::string task_file(const std::string& dir, std::size_t k) {
 
 using namespace detail;
 
-void add_distribute_options(CLI::App* cmd, DistributeOptions& o, const std::string& noun) {
+void add_distribute_options(CLI::App* cmd, DistributeOptions& o, const std::string& noun, bool shards) {
+  cmd->add_option("--checkpoint", o.checkpoint,
+                  "Folder where each finished " + noun + " is written at once; the same command run again computes only those missing")
+      ->check(non_empty());
+  if (!shards) return;
   cmd->add_option("--shard", o.shard,
                   "I/N: compute only the " + noun + "s k with k mod N = I-1 and write them as a part file (see --part); "
                   "`superball merge` joins the N parts into this run's output")
       ->check(non_empty());
   cmd->add_option("--part", o.part, "The part file of --shard (default: superball-RUN-I-of-N.part here, RUN naming the run)")->check(non_empty());
-  cmd->add_option("--checkpoint", o.checkpoint,
-                  "Folder where each finished " + noun + " is written at once; the same command run again computes only those missing")
-      ->check(non_empty());
 }
 
 std::vector<std::string> run_arguments(const CLI::App& cmd) {
@@ -302,6 +303,26 @@ Distribution::Task Distribution::keeping(const Task& task) const {
   };
 }
 
+namespace {
+
+/// run_on_ranks(), then every result sent to every rank (share()): the
+/// results in task order, in every process.
+std::vector<std::string> gather_everywhere(std::size_t count, const std::vector<std::size_t>& todo, std::map<std::size_t, std::string>& done,
+                                           const Distribution::Task& task, const std::function<void(std::size_t, const std::string&)>& save) {
+  std::vector<std::string> results(count);
+  std::exception_ptr error;
+  try {
+    run_on_ranks(count, todo, done, task, save, [&](std::size_t k, std::string&& text) { results[k] = std::move(text); });
+  } catch (...) {
+    error = std::current_exception();
+  }
+  share(results, error != nullptr);
+  if (error) std::rethrow_exception(error);
+  return results;
+}
+
+}  // namespace
+
 std::vector<std::string> run_everywhere(std::size_t count, const Distribution::Task& task) {
   const Distribution::Task t = with_test_hook(task);
   std::vector<std::string> results(count);
@@ -312,15 +333,15 @@ std::vector<std::string> run_everywhere(std::size_t count, const Distribution::T
   std::vector<std::size_t> todo(count);
   for (std::size_t k = 0; k < count; ++k) todo[k] = k;
   std::map<std::size_t, std::string> done;
-  std::exception_ptr error;
-  try {
-    run_on_ranks(
-        count, todo, done, t, [](std::size_t, const std::string&) {}, [&](std::size_t k, std::string&& text) { results[k] = std::move(text); });
-  } catch (...) {
-    error = std::current_exception();
-  }
-  share(results, error != nullptr);
-  if (error) std::rethrow_exception(error);
+  return gather_everywhere(count, todo, done, t, [](std::size_t, const std::string&) {});
+}
+
+std::vector<std::string> Distribution::run_everywhere(const Task& task) {
+  Impl& d = *impl_;
+  if (!d.part.empty()) throw std::logic_error("Distribution::run_everywhere(): a shard run has only its part of the results");
+  if (d.mpi) return gather_everywhere(d.count, d.todo, d.done, with_test_hook(task), [&](std::size_t k, const std::string& text) { d.save(k, text); });
+  std::vector<std::string> results(d.count);
+  run(task, [&](std::size_t k, std::string&& text) { results[k] = std::move(text); });
   return results;
 }
 

@@ -40,9 +40,11 @@ struct DistributeOptions {
   std::string checkpoint;  ///< a folder; empty: none
 };
 
-/// Register --shard, --part and --checkpoint on \p cmd; \p noun names a task
-/// in the help ("case", "block of 4096 values").
-void add_distribute_options(CLI::App* cmd, DistributeOptions& o, const std::string& noun);
+/// Register --shard, --part and --checkpoint on \p cmd (only --checkpoint
+/// when not \p shards: a command whose later tasks need all the earlier
+/// results, map); \p noun names a task in the help ("case", "block of 4096
+/// values").
+void add_distribute_options(CLI::App* cmd, DistributeOptions& o, const std::string& noun, bool shards = true);
 
 /// The results of a whole run read from its part files by `superball merge`
 /// (cli/merge.cpp): the command, parsed again from the parts' arguments,
@@ -108,6 +110,14 @@ class Distribution {
   /// and the exception is thrown again here (under MPI its message names the
   /// rank and the task: "rank 2, task 7 of 16: …").
   void run(const Task& task, const Deliver& deliver, const Local& local = {});
+
+  /// Runs the tasks as run() does (one after the other here, or over the
+  /// ranks; the checkpoint kept and read) and returns every result in task
+  /// order, in every process: for a command that goes on from all of them
+  /// (map bisects between the grid points the tasks solved).  Under MPI,
+  /// rank 0 then sends the results to every rank, as run_everywhere() does;
+  /// every rank must call it.  std::logic_error in a shard run.
+  std::vector<std::string> run_everywhere(const Task& task);
 
  private:
   struct Impl;

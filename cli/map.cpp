@@ -53,6 +53,7 @@ void add_map(CLI::App& app, Action& action) {
     std::string scene, x, y, precision = "double", plot, out;
     bool csv = false, json = false, boundary_points = false, overlay = false;
     int threads = numeric::thread_count(0);
+    DistributeOptions distribute;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("map", "Evolution cases and the superball over a grid of two parameters, with exact boundaries");
@@ -83,7 +84,9 @@ void add_map(CLI::App& app, Action& action) {
       "before anything is written.  The output does not depend on --threads.\n"
       "Over MPI (`mpirun -n P superball map ...`, built with -DSUPERBALL_WITH_MPI=ON) the grid points, then the\n"
       "bisections, are handed out to the ranks as tasks (each on --threads threads); rank 0 writes the same bytes\n"
-      "as one process (and draws --plot, runs --overlay).  map has no --shard or --checkpoint.\n\n"
+      "as one process (and draws --plot, runs --overlay).  --checkpoint DIR keeps each finished task (DIR/points,\n"
+      "then DIR/boundaries; at most 64 of each): the same command run again, also under MPI, computes only those\n"
+      "missing and writes the same bytes.  map has no --shard: its bisections need every grid point first.\n\n"
       "Examples:\n"
       "  superball map cases/scenes/paper-fig5-alpha2.toml --x alpha.2=-200:100:121 --y alpha.5=-10:10:81\n"
       "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:101 --y alpha.2=-150:0:101 --plot k34-alpha2\n"
@@ -103,8 +106,9 @@ void add_map(CLI::App& app, Action& action) {
   cmd->add_option("--out", o->out, "With --overlay: write each disagreeing boundary point as a scene file in this folder")
       ->check(non_empty());
   cmd->add_option("--threads,-j", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024))->capture_default_str();
-  cmd->callback([o, &action] {
-    action = [o] {
+  add_distribute_options(cmd, o->distribute, "group of grid points (then of bisections)", false);
+  cmd->callback([o, cmd, &action] {
+    action = [o, cmd] {
       if (o->csv && o->json) throw std::invalid_argument("map: --csv and --json: choose one");
       if (!o->out.empty() && !o->overlay) throw std::invalid_argument("map: --out writes the disagreements of --overlay; add --overlay");
       if (!o->out.empty() && std::filesystem::exists(o->out) && !std::filesystem::is_directory(o->out))
@@ -116,9 +120,19 @@ void add_map(CLI::App& app, Action& action) {
       settings.precision = numeric::Precision::parse(o->precision);
       settings.threads = o->threads;
       // Under MPI every rank takes part in the map (its grid points, then its
-      // bisections, handed out as tasks by run_everywhere()) and holds the
-      // whole map after it; rank 0 alone goes on (overlay, output, figures).
-      if (mpi_size() > 1) settings.runner = run_everywhere;
+      // bisections, handed out as tasks) and holds the whole map after it;
+      // rank 0 alone goes on (overlay, output, figures).  Each of the two
+      // stages is a task list of its own, with its checkpoint subfolder.
+      int stage = 0;
+      if (mpi_size() > 1 || !o->distribute.checkpoint.empty())
+        settings.runner = [&](std::size_t count, const Distribution::Task& task) {
+          DistributeOptions options;
+          if (!o->distribute.checkpoint.empty())
+            options.checkpoint = (std::filesystem::path(o->distribute.checkpoint) / (stage == 0 ? "points" : "boundaries")).string();
+          ++stage;
+          Distribution run(*cmd, options, count);
+          return run.run_everywhere(task);
+        };
       const numeric::Map m = numeric::map(scene, {rx.parameter, rx.from, rx.to, rx.steps}, {ry.parameter, ry.from, ry.to, ry.steps}, settings);
       if (mpi_rank() != 0) return ok;
       std::optional<verify::Overlay> overlay;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -62,6 +63,10 @@ const std::vector<std::vector<std::string>>& runs() {
   return r;
 }
 
+
+/// A map across the edge of M positive semi-definite: 81 grid points (41
+/// tasks of 2 on one thread), then the bisections of its boundaries.
+const std::vector<std::string> kMap = {"map", kPaper, "--x", "K.3-4=0:20:9", "--y", "alpha.2=-150:0:9"};
 
 /// The shard runs of \p args into \p dir (part I written as pI); their paths.
 std::vector<std::string> shards(const std::vector<std::string>& args, const std::string& dir, int n) {
@@ -237,6 +242,68 @@ TEST(Distribute, KilledAndResumedGivesTheUninterruptedOutput) {
       << resumed.err;
 }
 
+/// The lines of \p err that superball wrote (not the launcher's notes).
+std::vector<std::string> superball_lines(const RunResult& r) {
+  std::vector<std::string> lines;
+  for (const std::string& line : r.err_lines())
+    if (line.rfind("superball:", 0) == 0) lines.push_back(line);
+  return lines;
+}
+
+/// The names of the task files in the checkpoint folder \p dir.
+std::vector<std::string> task_files(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  names.erase(std::remove_if(names.begin(), names.end(), [](const std::string& n) { return n.rfind("task-", 0) != 0; }), names.end());
+  return names;
+}
+
+TEST(Distribute, AMapResumesFromItsCheckpointInBothStages) {
+  // map's two task lists, its grid points and then its bisections, each kept
+  // in a subfolder of the checkpoint.
+  const std::string dir = folder("map-checkpoint"), ck = dir + "/ck";
+  const std::vector<std::string> args = with(kMap, {"--json", "--threads", "1"});
+  const RunResult whole = run(args);
+  ASSERT_EQ(whole.exit_code, 0) << describe(whole);
+  // Task 5 of the grid points fails (the test hook of cli/distribute.cpp): no
+  // output, the four before it kept, no bisection begun.
+  ::setenv("SUPERBALL_TEST_FAIL_TASK", "5", 1);
+  const RunResult failed = run(with(args, {"--checkpoint", ck}));
+  ::unsetenv("SUPERBALL_TEST_FAIL_TASK");
+  EXPECT_EQ(failed.exit_code, 4) << describe(failed);
+  EXPECT_EQ(failed.out, "");
+  EXPECT_EQ(task_files(ck + "/points"), (std::vector<std::string>{"task-00000000", "task-00000001", "task-00000002", "task-00000003"}));
+  EXPECT_FALSE(fs::exists(ck + "/boundaries"));
+  // Run again: the same bytes as the run without a checkpoint.
+  const RunResult resumed = run(with(args, {"--checkpoint", ck}));
+  ASSERT_EQ(resumed.exit_code, 0) << describe(resumed);
+  EXPECT_EQ(resumed.out, whole.out);
+  EXPECT_EQ(resumed.err, "superball: --checkpoint " + ck + "/points: 4 of 41 tasks done already, 37 to compute\n");
+  // Two tasks of each stage lost (on two threads now): only those computed again.
+  const std::size_t bisections = task_files(ck + "/boundaries").size();
+  ASSERT_GE(bisections, 2u);
+  fs::remove(ck + "/points/task-00000007");
+  fs::remove(ck + "/points/task-00000030");
+  fs::remove(ck + "/boundaries/task-00000000");
+  fs::remove(ck + "/boundaries/" + task_files(ck + "/boundaries").back());
+  const RunResult again = run(with(kMap, {"--json", "--threads", "2", "--checkpoint", ck}));
+  ASSERT_EQ(again.exit_code, 0) << describe(again);
+  EXPECT_EQ(again.out, whole.out);
+  EXPECT_EQ(again.err, "superball: --checkpoint " + ck + "/points: 39 of 41 tasks done already, 2 to compute\n" + "superball: --checkpoint " + ck +
+                           "/boundaries: " + std::to_string(bisections - 2) + " of " + std::to_string(bisections) + " tasks done already, 2 to compute\n");
+  // The folder of another map: refused with one line, nothing written.
+  const RunResult other = run({"map", kPaper, "--x", "K.3-4=0:20:9", "--y", "alpha.2=-150:0:11", "--checkpoint", ck});
+  EXPECT_EQ(other.exit_code, 2) << describe(other);
+  EXPECT_EQ(other.out, "");
+  EXPECT_EQ(superball_lines(other).size(), 1u) << other.err;
+  EXPECT_NE(other.err.find("--checkpoint " + ck + "/points: holds run"), std::string::npos) << other.err;
+  // No shards of a map: its bisections need every grid point.
+  const RunResult shard = run(with(kMap, {"--shard", "1/2"}));
+  EXPECT_EQ(shard.exit_code, 2) << describe(shard);
+  EXPECT_NE(shard.err.find("--shard"), std::string::npos) << shard.err;
+}
+
 #ifdef SUPERBALL_MPIEXEC
 /// `mpirun -n P superball ARGS...` (as root in a container too, more ranks than cores).
 /// \p environment: NAME=VALUE set in every rank.
@@ -293,14 +360,6 @@ TEST(DistributeMpi, ACheckpointThatCannotBeWrittenEndsTheJob) {
   EXPECT_EQ(r.exit_code, 3) << describe(r);
   EXPECT_NE(r.err.find("superball: " + dir + "/ck/task-00000001: Is a directory\n"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir + "/out.json"));
-}
-
-/// The lines of \p err that superball wrote (not the launcher's notes).
-std::vector<std::string> superball_lines(const RunResult& r) {
-  std::vector<std::string> lines;
-  for (const std::string& line : r.err_lines())
-    if (line.rfind("superball:", 0) == 0) lines.push_back(line);
-  return lines;
 }
 
 TEST(DistributeMpi, BadInputIsOneLineFromRankZero) {
@@ -363,8 +422,6 @@ TEST(DistributeMpi, OneVerifyCaseOverRanksWritesTheSameSceneFiles) {
 
 /// A small map across the edge of M's PSD cone (K₃₄, α₂ at §4.4): 81 points
 /// (41 tasks of 2), then its bisections, as tasks over the ranks.
-const std::vector<std::string> kMap = {"map", kPaper, "--x", "K.3-4=0:20:9", "--y", "alpha.2=-150:0:9"};
-
 TEST(DistributeMpi, AMapOverRanksIsTheSingleProcessMapByteForByte) {
   // Every output of map: the summary with the boundary points, the grid and
   // the boundary points as CSV, everything as JSON.
@@ -393,6 +450,29 @@ TEST(DistributeMpi, AMapOverRanksIsTheSingleProcessMapByteForByte) {
   EXPECT_EQ(bad.out, "");
   ASSERT_EQ(superball_lines(bad).size(), 1u) << bad.err;
   EXPECT_NE(superball_lines(bad)[0].find("not positive semi-definite at any point of the map"), std::string::npos) << bad.err;
+}
+
+TEST(DistributeMpi, AMapOverRanksResumesFromItsCheckpoint) {
+  const std::string dir = folder("mpi-map-checkpoint"), ck = dir + "/ck";
+  const std::vector<std::string> args = with(kMap, {"--json", "--threads", "1"});
+  const RunResult whole = run(args);
+  ASSERT_EQ(whole.exit_code, 0) << describe(whole);
+  // Task 5 of the grid points fails on some rank; rank 0 kept what it gathered.
+  const RunResult failed = mpirun(3, with(args, {"--checkpoint", ck}), {"SUPERBALL_TEST_FAIL_TASK=5"});
+  EXPECT_EQ(failed.exit_code, 4) << describe(failed);
+  EXPECT_EQ(failed.out, "");
+  EXPECT_FALSE(fs::exists(ck + "/points/task-00000004"));
+  // Resumed on 2 ranks: the single run's bytes; then a run with every task kept computes nothing.
+  const RunResult resumed = mpirun(2, with(args, {"--checkpoint", ck}));
+  ASSERT_EQ(resumed.exit_code, 0) << describe(resumed);
+  EXPECT_EQ(resumed.out, whole.out);
+  EXPECT_EQ(resumed.err.rfind("superball: --checkpoint " + ck + "/points: ", 0), 0u) << resumed.err;
+  const std::string bisections = std::to_string(task_files(ck + "/boundaries").size());
+  const RunResult again = mpirun(3, with(args, {"--checkpoint", ck}));
+  ASSERT_EQ(again.exit_code, 0) << describe(again);
+  EXPECT_EQ(again.out, whole.out);
+  EXPECT_EQ(again.err, "superball: --checkpoint " + ck + "/points: 41 of 41 tasks done already, 0 to compute\n" + "superball: --checkpoint " + ck +
+                           "/boundaries: " + bisections + " of " + bisections + " tasks done already, 0 to compute\n");
 }
 
 TEST(DistributeMpi, ATaskThatFailsOnARankIsOneLineNamingItAndNoOutput) {

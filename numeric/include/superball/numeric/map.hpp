@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "superball/cases/parameter.hpp"
+#include "superball/numeric/parallel.hpp"
 #include "superball/numeric/precision.hpp"
 #include "superball/numeric/sweep.hpp"
 
@@ -118,7 +119,7 @@ struct MapSettings {
   /// map().  Each process then reads them back exactly, finds the pairs to
   /// bisect and chains the curves: the map is the same, bit for bit, whoever
   /// runs the tasks.
-  std::function<std::vector<std::string>(std::size_t, const std::function<std::string(std::size_t)>&)> runner;
+  TaskRunner runner;
 };
 
 /// The most tasks of each phase of a map given to MapSettings::runner:

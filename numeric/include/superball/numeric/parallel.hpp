@@ -14,8 +14,10 @@
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <system_error>
 #include <thread>
 #include <type_traits>
@@ -23,6 +25,15 @@
 #include <vector>
 
 namespace superball::numeric {
+
+/// Where a long computation's tasks run, to spread it over several processes
+/// (`mpirun -n P superball …`): called with a number of tasks T and a
+/// function computing task t as plain text, it returns the T texts in task
+/// order, in every process that calls it.  Empty: the caller runs the tasks
+/// itself, on its threads.  Only text crosses processes, so a task's result
+/// must read back exactly (MapSettings::runner, verify's VerifyOptions::runner).
+using TaskRunner =
+    std::function<std::vector<std::string>(std::size_t, const std::function<std::string(std::size_t)>&)>;
 
 /// The number of threads for a request: \p requested when it is positive,
 /// else std::thread::hardware_concurrency() (all cores; 1 when unknown).

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "superball/cases/model.hpp"
+#include "superball/numeric/parallel.hpp"
 #include "superball/symbolic/derivation.hpp"
 
 namespace superball::verify {
@@ -65,7 +66,7 @@ struct VerifyOptions {
   /// order, in every process that calls verify_case() (each process then
   /// builds the boundary stage from the drawn points, and the result).  The
   /// result is the same, bit for bit, whoever runs the tasks.
-  std::function<std::vector<std::string>(std::size_t, const std::function<std::string(std::size_t)>&)> runner;
+  numeric::TaskRunner runner;
 };
 
 /// Blocks of drawn points per task of VerifyOptions::runner (400 points):
