@@ -146,7 +146,11 @@ void add_distribute_options(CLI::App* cmd, DistributeOptions& o, const std::stri
   cmd->add_option("--checkpoint", o.checkpoint,
                   "Folder where each finished " + noun + " is written at once; the same command run again computes only those missing")
       ->check(non_empty());
-  if (!shards) return;
+  if (!shards) {  // not offered (hidden from --help); the command refuses them, saying why
+    cmd->add_option("--shard", o.shard)->group("");
+    cmd->add_option("--part", o.part)->group("");
+    return;
+  }
   cmd->add_option("--shard", o.shard,
                   "I/N: compute only the " + noun + "s k with k mod N = I-1 and write them as a part file (see --part); "
                   "`superball merge` joins the N parts into this run's output")

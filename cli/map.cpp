@@ -110,6 +110,9 @@ void add_map(CLI::App& app, Action& action) {
   cmd->callback([o, cmd, &action] {
     action = [o, cmd] {
       if (o->csv && o->json) throw std::invalid_argument("map: --csv and --json: choose one");
+      if (!o->distribute.shard.empty() || !o->distribute.part.empty())
+        throw std::invalid_argument(std::string("map: ") + (o->distribute.shard.empty() ? "--part" : "--shard") +
+                                    ": a map is not split into shards (its bisections need every grid point first); run it over MPI ranks, or resume it with --checkpoint");
       if (!o->out.empty() && !o->overlay) throw std::invalid_argument("map: --out writes the disagreements of --overlay; add --overlay");
       if (!o->out.empty() && std::filesystem::exists(o->out) && !std::filesystem::is_directory(o->out))
         throw OutputError("--out " + o->out + ": exists and is not a folder");
