@@ -40,10 +40,10 @@ struct DistributeOptions {
   std::string checkpoint;  ///< a folder; empty: none
 };
 
-/// Register --shard, --part and --checkpoint on \p cmd (when not \p shards,
-/// --shard and --part are hidden and the command refuses them, saying why: a
-/// command whose later tasks need all the earlier results, map); \p noun names a task in the help ("case", "block of 4096
-/// values").
+/// Register --shard, --part and --checkpoint on \p cmd; \p noun names a task
+/// in the help ("case", "block of 4096 values").  When not \p shards (a
+/// command whose later tasks need all the earlier results: map), --shard and
+/// --part are hidden and the command refuses them, saying why.
 void add_distribute_options(CLI::App* cmd, DistributeOptions& o, const std::string& noun, bool shards = true);
 
 /// The results of a whole run read from its part files by `superball merge`
