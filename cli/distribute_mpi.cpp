@@ -30,6 +30,9 @@ int rank_ = 0, size_ = 1;
 /// Rank 0 left a run while other ranks still waited for it (its serving
 /// thread failed): they cannot be told to stop, so stop_mpi() aborts the job.
 bool abandoned = false;
+/// A copy of MPI_COMM_WORLD for the end of the job alone (stop_mpi()), so
+/// that its message cannot be taken for one of a run's.
+MPI_Comm ending = MPI_COMM_NULL;
 
 constexpr int kTagTask = 1, kTagResult = 2;
 constexpr std::uint64_t kStop = ~std::uint64_t{0};
@@ -85,14 +88,27 @@ void start_mpi(int* argc, char*** argv) {
   started = true;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  if (size_ > 1) MPI_Comm_dup(MPI_COMM_WORLD, &ending);
   if (size_ > 1 && provided < MPI_THREAD_SERIALIZED) {
     if (rank_ == 0) std::fputs("superball: this MPI library gives no thread support (MPI_THREAD_SERIALIZED): rank 0 will not compute tasks\n", stderr);
   }
 }
 
 void stop_mpi(int code) {
-  if (started && abandoned) MPI_Abort(MPI_COMM_WORLD, code ? code : 1);
-  if (started) MPI_Finalize();
+  if (!started) return;
+  if (abandoned) MPI_Abort(MPI_COMM_WORLD, code ? code : 1);
+  // The other ranks wait here, in MPI, until rank 0 has ended its command:
+  // when rank 0 must abort the job they are then alive and waiting (Open MPI
+  // 4.1's mpirun can hang for good when it aborts ranks that are already in
+  // MPI_Finalize), and otherwise everyone finalizes together.
+  if (ending != MPI_COMM_NULL) {
+    std::uint64_t verdict = static_cast<std::uint64_t>(code);
+    MPI_Request r;
+    MPI_Ibcast(&verdict, 1, MPI_UINT64_T, 0, ending, &r);
+    wait_gently(r);
+    MPI_Comm_free(&ending);
+  }
+  MPI_Finalize();
   started = false;
 }
 
