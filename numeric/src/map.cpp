@@ -172,37 +172,6 @@ MapBoundary psd_edge(Scene& line, const Parameter& parameter, cln::cl_RA a, cln:
 }  // namespace
 
 namespace detail {
-std::string points_to_text(const std::vector<MapPoint>& points);
-std::vector<MapPoint> points_from_text(const std::string& text);
-std::string boundaries_to_text(const std::vector<MapBoundary>& boundaries);
-std::vector<MapBoundary> boundaries_from_text(const std::string& text);
-}  // namespace detail
-
-namespace {
-
-/// The results of \p count items (grid points, or neighbour pairs each giving
-/// its boundary points) computed by \p compute(first, size): here in one
-/// call, or, with settings.runner, in at most map_tasks tasks of consecutive
-/// items, each sent back as text (\p write) and read again (\p read).
-template <class R, class Compute, class Write, class Read>
-std::vector<R> in_tasks(const MapSettings& settings, std::size_t count, const Compute& compute, const Write& write, const Read& read) {
-  if (!settings.runner || count == 0) return compute(0, count);
-  const std::size_t per = (count + map_tasks - 1) / map_tasks, tasks = (count + per - 1) / per;
-  const std::vector<std::string> texts =
-      settings.runner(tasks, [&](std::size_t t) { return write(compute(t * per, std::min(per, count - t * per))); });
-  if (texts.size() != tasks)
-    throw std::logic_error("map(): the runner returned " + std::to_string(texts.size()) + " results of " + std::to_string(tasks) + " tasks");
-  std::vector<R> all;
-  for (const std::string& text : texts) {
-    std::vector<R> some = read(text);
-    all.insert(all.end(), std::make_move_iterator(some.begin()), std::make_move_iterator(some.end()));
-  }
-  return all;
-}
-
-}  // namespace
-
-namespace detail {
 
 std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b) {
   const ExactScene p = ExactScene::from(a, ExactScene::MCheck::Caller), q = ExactScene::from(b, ExactScene::MCheck::Caller);
@@ -487,7 +456,9 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
       return with_scalar(settings.precision, [&](auto tag) { return solve_point<decltype(tag)>(s, settings.precision); });
     });
   };
-  m.points = in_tasks<MapPoint>(settings, count, points, detail::points_to_text, detail::points_from_text);
+  // At most map_tasks tasks of consecutive points when a runner spreads them.
+  auto per_task = [](std::size_t n) { return (n + map_tasks - 1) / map_tasks; };
+  m.points = in_tasks<MapPoint>(settings.runner, count, per_task(count), "map()", points, detail::points_to_text, detail::points_from_text);
   if (m.points.size() != count)
     throw std::logic_error("map(): the runner's results hold " + std::to_string(m.points.size()) + " of " + std::to_string(count) + " points");
   if (std::none_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return p.admissible; }))
@@ -547,8 +518,8 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
     for (const auto& f : found) all.insert(all.end(), f.begin(), f.end());
     return all;
   };
-  if (!pending.empty())
-    m.boundaries = in_tasks<MapBoundary>(settings, pending.size(), boundaries, detail::boundaries_to_text, detail::boundaries_from_text);
+  m.boundaries = in_tasks<MapBoundary>(settings.runner, pending.size(), per_task(pending.size()), "map()", boundaries, detail::boundaries_to_text,
+                                       detail::boundaries_from_text);
   m.curves = chain(m);
   return m;
 }

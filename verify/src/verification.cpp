@@ -485,17 +485,18 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
       taken = 0;
       return numeric::parallel_map(size, threads, context, [&](Context* worker, std::size_t i) { return block(*worker, first + i); });
     };
-    if (!options.runner) return on_threads(0, blocks);
-    const std::size_t tasks = (blocks + group - 1) / group;
-    const std::vector<std::string> texts = options.runner(tasks, [&](std::size_t t) {
-      detail::Writer out;
-      for (const BlockResult& r : on_threads(t * group, std::min(group, blocks - t * group))) out.block(r);
-      return std::move(out.text());
-    });
-    if (texts.size() != tasks) throw std::logic_error("verify_case(): the runner returned " + std::to_string(texts.size()) + " results of " + std::to_string(tasks) + " tasks");
-    std::vector<BlockResult> all;
-    for (const std::string& text : texts)
-      for (detail::Reader in(text, space, title, options.epsilons); !in.done();) all.push_back(in.block());
+    std::vector<BlockResult> all = numeric::in_tasks<BlockResult>(
+        options.runner, blocks, group, "verify_case()", on_threads,
+        [](const std::vector<BlockResult>& results) {
+          detail::Writer out;
+          for (const BlockResult& r : results) out.block(r);
+          return std::move(out.text());
+        },
+        [&](const std::string& text) {
+          std::vector<BlockResult> some;
+          for (detail::Reader in(text, space, title, options.epsilons); !in.done();) some.push_back(in.block());
+          return some;
+        });
     if (all.size() != blocks) throw std::logic_error("verify_case(): the runner's results hold " + std::to_string(all.size()) + " of " + std::to_string(blocks) + " blocks");
     return all;
   };

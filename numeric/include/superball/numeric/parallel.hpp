@@ -16,7 +16,9 @@
 #include <exception>
 #include <functional>
 #include <mutex>
+#include <iterator>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <thread>
@@ -34,6 +36,31 @@ namespace superball::numeric {
 /// must read back exactly (MapSettings::runner, verify's VerifyOptions::runner).
 using TaskRunner =
     std::function<std::vector<std::string>(std::size_t, const std::function<std::string(std::size_t)>&)>;
+
+/// The results of \p count items computed by compute(first, size), which
+/// returns the results of items first … first + size − 1 (a std::vector<R>):
+/// with no \p runner, in one call here; else in ⌈count / per⌉ tasks of \p per
+/// consecutive items run by \p runner, each task's results sent as text
+/// (write(results) → std::string) and read back (read(text) →
+/// std::vector<R>), then joined in task order.  \p function names the caller
+/// in the std::logic_error thrown when the runner returns another number of
+/// texts than of tasks.
+template <class R, class Compute, class Write, class Read>
+std::vector<R> in_tasks(const TaskRunner& runner, std::size_t count, std::size_t per, const char* function, const Compute& compute,
+                        const Write& write, const Read& read) {
+  if (!runner || count == 0) return compute(std::size_t{0}, count);
+  per = std::max<std::size_t>(per, 1);
+  const std::size_t tasks = (count + per - 1) / per;
+  const std::vector<std::string> texts = runner(tasks, [&](std::size_t t) { return write(compute(t * per, std::min(per, count - t * per))); });
+  if (texts.size() != tasks)
+    throw std::logic_error(std::string(function) + ": the runner returned " + std::to_string(texts.size()) + " results of " + std::to_string(tasks) + " tasks");
+  std::vector<R> all;
+  for (const std::string& text : texts) {
+    std::vector<R> some = read(text);
+    all.insert(all.end(), std::make_move_iterator(some.begin()), std::make_move_iterator(some.end()));
+  }
+  return all;
+}
 
 /// The number of threads for a request: \p requested when it is positive,
 /// else std::thread::hardware_concurrency() (all cores; 1 when unknown).
