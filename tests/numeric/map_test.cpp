@@ -195,8 +195,8 @@ TEST(Map, CurvesChainThroughNeighbouringCells) {
   EXPECT_EQ(edges, 1);
 }
 
-/// \p a and \p b hold the same points, boundaries and curves, field for field
-/// (ratios bit for bit, NaN as NaN).
+/// \p a and \p b hold the same points, field for field (ratios bit for bit,
+/// NaN as NaN).
 void expect_same_points(const std::vector<numeric::MapPoint>& a, const std::vector<numeric::MapPoint>& b) {
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t k = 0; k < a.size(); ++k) {
