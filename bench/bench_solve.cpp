@@ -136,6 +136,120 @@ void BM_NaivePrototype(benchmark::State& state) {
   if (!ok) state.SkipWithError("the prototype's answer differs from the solver's");
 }
 BENCHMARK(BM_NaivePrototype)->Name("solve/paper/double/naive-prototype");
+
+/// A rewrite of the fixed-size path free of its one constraint, as evidence
+/// for issue 16 point 2: the answer need not be the general path's bit for
+/// bit.  The all-open case only (the paper scene's), n bodies known at
+/// compile time, no obstacle: one pass over the entries forms DᵀMD densely
+/// (K) with the sums of |v| per place (Ka) and M's groups; A = diag(m) + K
+/// and b̃ = m u − K u; LDLᵀ with one reciprocal per pivot (no division in
+/// the elimination or the solve); then the residual check on the same
+/// quantities as the solver's (complete.cpp): the rows m(W − u) + K(W + u)
+/// relative to m|W| + m|u| + Ka(|W| + |u|), the momentum of each group of M,
+/// the gaps, energies, momenta and the dissipation ½(W + u)ᵀK(W + u) — as a
+/// dense product formed beside the solve instead of the entry-by-entry
+/// scatter.  With check = false only the solve and the answer are written.
+template <int N, bool check>
+bool unconstrained_rewrite(const numeric::Problem<double>& p, double feasibility, double residual, numeric::Solution<double>& out) {
+  double m[N], u[N], K[N][N] = {}, Ka[N][N] = {};
+  for (int i = 0; i < N; ++i) m[i] = p.mass[static_cast<std::size_t>(i)], u[i] = p.u[static_cast<std::size_t>(i)];
+  int group[N];
+  for (int i = 0; i < N; ++i) group[i] = i;
+  const auto join = [&group](int a, int b) {  // relabel a's group with b's label
+    const int from = group[a], to = group[b];
+    for (int i = 0; i < N; ++i) group[i] = group[i] == from ? to : group[i];
+  };
+  for (const auto& e : p.entries) {
+    const double v = e.value, a = std::abs(v);
+    if (check && v != 0) {
+      join(e.i, e.j);
+      if (!e.diagonal()) join(e.k, e.l), join(e.i, e.k);
+    }
+    K[e.i][e.k] += v, K[e.i][e.l] -= v, K[e.j][e.k] -= v, K[e.j][e.l] += v;
+    if (check) Ka[e.i][e.k] += a, Ka[e.i][e.l] += a, Ka[e.j][e.k] += a, Ka[e.j][e.l] += a;
+    if (e.diagonal()) continue;
+    K[e.k][e.i] += v, K[e.k][e.j] -= v, K[e.l][e.i] -= v, K[e.l][e.j] += v;
+    if (check) Ka[e.k][e.i] += a, Ka[e.k][e.j] += a, Ka[e.l][e.i] += a, Ka[e.l][e.j] += a;
+  }
+  double A[N][N], W[N], inverse[N];
+  for (int i = 0; i < N; ++i) {
+    double b = m[i] * u[i];
+    for (int j = 0; j < N; ++j) b -= K[i][j] * u[j], A[i][j] = K[i][j];
+    A[i][i] += m[i];
+    W[i] = b;
+  }
+  for (int j = 0; j < N; ++j) {
+    if (!(A[j][j] > 0)) return false;
+    inverse[j] = 1 / A[j][j];
+    for (int r = j + 1; r < N; ++r) {
+      const double l = A[r][j] * inverse[j];
+      for (int i = r; i < N; ++i) A[i][r] -= A[i][j] * l;
+      A[r][j] = l;
+    }
+  }
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < i; ++j) W[i] -= A[i][j] * W[j];
+  for (int i = 0; i < N; ++i) W[i] *= inverse[i];
+  for (int i = N - 1; i >= 0; --i)
+    for (int j = i + 1; j < N; ++j) W[i] -= A[j][i] * W[j];
+  double vscale = 0;
+  for (int i = 0; i < N; ++i) vscale = std::max({vscale, std::abs(W[i]), std::abs(u[i])});
+  for (int c = 0; c + 1 < N; ++c) {
+    const double gap = W[c] - W[c + 1];
+    if (gap < -feasibility * vscale) return false;  // a contact must close: not this kernel's case
+    out.gaps[static_cast<std::size_t>(c)] = gap, out.reactions[static_cast<std::size_t>(c)] = 0;
+  }
+  for (int i = 0; i < N; ++i) out.velocities_after[static_cast<std::size_t>(i)] = W[i];
+  out.pivots = 0;
+  out.status = numeric::Status::Success;
+  if (!check) return true;
+  double motion = 0, dissipation = 0, ke_before = 0, ke_after = 0, p_before = 0, p_after = 0, sum[N] = {}, size_of[N] = {}, ratio[N];
+  for (int i = 0; i < N; ++i) {
+    double force = 0, size = std::abs(m[i] * W[i]) + std::abs(m[i] * u[i]);
+    for (int j = 0; j < N; ++j) force += K[i][j] * (W[j] + u[j]), size += Ka[i][j] * (std::abs(W[j]) + std::abs(u[j]));
+    const double r = std::abs(m[i] * (W[i] - u[i]) + force);
+    ratio[i] = size > 0 ? r / size : 0;
+    dissipation += (W[i] + u[i]) * force;
+    ke_before += m[i] * u[i] * u[i] / 2, ke_after += m[i] * W[i] * W[i] / 2, p_before += m[i] * u[i], p_after += m[i] * W[i];
+    sum[group[i]] += m[i] * (W[i] - u[i]), size_of[group[i]] += m[i] * (std::abs(W[i]) + std::abs(u[i]));
+  }
+  for (int r = 0; r < N; ++r) motion = std::max(motion, ratio[r]);
+  for (int r = 0; r < N; ++r)
+    if (group[r] == r && size_of[r] > 0) motion = std::max(motion, std::abs(sum[r]) / size_of[r]);
+  double complementarity = 0;
+  for (int c = 0; c + 1 < N; ++c)
+    if (out.gaps[static_cast<std::size_t>(c)] < 0) complementarity = std::max(complementarity, -out.gaps[static_cast<std::size_t>(c)] / vscale);
+  out.kinetic_energy_before = ke_before, out.kinetic_energy_after = ke_after, out.momentum_before = p_before, out.momentum_after = p_after;
+  out.dissipation = dissipation / 2;
+  out.residual_motion = motion, out.residual_complementarity = complementarity;
+  if (!(motion <= residual && complementarity <= residual)) out.status = numeric::Status::NumericalIssue;
+  return true;
+}
+
+template <bool check>
+void BM_UnconstrainedRewrite(benchmark::State& state) {
+  const auto problem = numeric::Problem<double>::from(paper_scene());
+  const auto settings = numeric::Settings<double>::defaults();
+  const numeric::Solution<double> reference = numeric::solve(problem);
+  numeric::Solution<double> out = reference;
+  bool ok = !problem.fixed_bottom && problem.n == 4;
+  for (auto _ : state) {
+    problem.check("unconstrained_rewrite()");  // the argument checks the solver makes
+    ok = unconstrained_rewrite<4, check>(problem, settings.feasibility, settings.residual, out) && ok;
+    benchmark::DoNotOptimize(out.velocities_after.data());
+  }
+  // The same answer to rounding; with the check, the same verdict and
+  // derived values.
+  const double scale = std::abs(reference.velocities_after[0]);
+  for (int i = 0; i < 4; ++i)
+    ok = ok && std::abs(out.velocities_after[static_cast<std::size_t>(i)] - reference.velocities_after[static_cast<std::size_t>(i)]) <= 1e-13 * scale;
+  if (check)
+    ok = ok && out.status == reference.status && std::abs(out.dissipation - reference.dissipation) <= 1e-12 * reference.kinetic_energy_before &&
+         std::abs(out.kinetic_energy_after - reference.kinetic_energy_after) <= 1e-12 * reference.kinetic_energy_before;
+  if (!ok) state.SkipWithError("the rewrite's answer differs from the solver's");
+}
+BENCHMARK_TEMPLATE(BM_UnconstrainedRewrite, true)->Name("solve/paper/double/unconstrained-rewrite");
+BENCHMARK_TEMPLATE(BM_UnconstrainedRewrite, false)->Name("solve/paper/double/unconstrained-rewrite-no-check");
 BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(20)->Name("solve/paper/digits:20");
 BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(50)->Name("solve/paper/digits:50");
 BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(100)->Name("solve/paper/digits:100");
