@@ -123,9 +123,11 @@ for stage in $STAGES; do
       echo "== stage 2: test suite under AddressSanitizer + UndefinedBehaviorSanitizer"
       # Line tables (-g1) are all a sanitizer's report needs, and the headers' compile-alone
       # tests (stage 1) find nothing a sanitizer could: both only cost build time here.
+      # -O1, as AddressSanitizer's documentation advises: on 2 cores it builds in 611 s
+      # against about 1,040 s at -O2, and the suite under it ran in 258 s against 276 s.
       BUILD_DIR="$ROOT/build-asan" configure_and_build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUPERBALL_BUILD_TESTS=ON \
         -DSUPERBALL_BUILD_BENCH=OFF -DSUPERBALL_SANITIZE=address,undefined -DSUPERBALL_BUILD_HEADER_TESTS=OFF \
-        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG"
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
       run_ctest "$ROOT/build-asan" "suite under ASan+UBSan"
       ;;
     3)
