@@ -22,6 +22,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -51,18 +52,26 @@ void add_distribute_options(CLI::App* cmd, DistributeOptions& o, const std::stri
 /// takes its results from here instead of computing them.
 struct MergedRun {
   std::string run;                        ///< the run's name (a hash of its identity)
+  std::vector<std::string> arguments;     ///< the run's arguments as the parts hold them
   std::size_t tasks = 0;                  ///< T
   std::map<std::size_t, std::string> results;
+  std::map<std::size_t, std::string> files;  ///< the part file of each task (for messages)
 };
+
+/// The most bytes a task's result may have (Distribution's max_task_bytes
+/// is at most this): a part file's or checkpoint's record claiming more is
+/// refused before anything is read or allocated for it.
+inline constexpr std::uint64_t kMaxTaskBytes = std::uint64_t{1} << 30;
 
 /// Set by `superball merge` before it runs the command again; null otherwise.
 extern const MergedRun* merged_run;
 
 /// The arguments that define a run of \p cmd (the subcommand as parsed): its
 /// name, then every option given except those that do not change the output
-/// (--shard, --part, --checkpoint, --output, --threads, --jobs, --quiet,
-/// --progress), as "--name=value", positionals first.  `superball merge`
-/// runs the command again from these.
+/// (--shard, --part, --checkpoint, --output, --out, --plot, --threads,
+/// --jobs, --quiet, --progress), as "--name=value", positionals first.
+/// `superball merge` runs the command again from these, refusing parts whose
+/// arguments are not exactly these (nothing in a part says where to write).
 std::vector<std::string> run_arguments(const CLI::App& cmd);
 
 /// The name of a run: 16 hex digits of a hash of the superball version, the
@@ -79,10 +88,14 @@ class Distribution {
   /// deliver(j, result) for todo[j] in that order.
   using Local = std::function<void(const std::vector<std::size_t>& todo, const Task& task, const Deliver& deliver)>;
 
-  /// The run of \p cmd (parsed) with \p count tasks.  Reads the checkpoint
-  /// folder (refusing one of another run), checks --shard, and under MPI
-  /// learns this rank.  Throws std::invalid_argument on bad options.
-  Distribution(const CLI::App& cmd, const DistributeOptions& options, std::size_t count);
+  /// The run of \p cmd (parsed) with \p count tasks, each giving at most
+  /// \p max_task_bytes bytes (at most kMaxTaskBytes).  Reads the checkpoint
+  /// folder (refusing one of another run; a task file that fails its checks
+  /// is said on standard error, removed and computed again), checks --shard,
+  /// and under MPI learns this rank.  In a merge, checks that the parts'
+  /// arguments are exactly this run's and their results within the bound.
+  /// Throws std::invalid_argument on bad options.
+  Distribution(const CLI::App& cmd, const DistributeOptions& options, std::size_t count, std::uint64_t max_task_bytes = kMaxTaskBytes);
   Distribution(const Distribution&) = delete;
   Distribution& operator=(const Distribution&) = delete;
   ~Distribution();
@@ -97,6 +110,11 @@ class Distribution {
   /// those of its shard not found in the checkpoint folder; under MPI, the
   /// tasks of the run not in the checkpoint (on every rank).
   const std::vector<std::size_t>& todo() const;
+
+  /// Where task \p k's result came from, for a message about it: "merge:
+  /// PART: task K", "--checkpoint DIR: task-0000000K" or "task K".  A
+  /// command that reads a result back and finds it damaged names it so.
+  std::string origin(std::size_t k) const;
 
   /// \p task, which also writes its result to the checkpoint folder (if
   /// any) as soon as it has it: for a local runner made before run() (derive's
@@ -137,12 +155,26 @@ std::vector<std::string> run_everywhere(std::size_t count, const Distribution::T
 /// runs a merge through merge_arguments() before parsing.
 void add_merge(CLI::App& app);
 
-/// When \p args (without the program name) are `merge PART… [-o FILE]`:
-/// reads the parts, checks that they are every part of one run (else
+/// When \p args (without the program name) are `merge PART… [-o FILE] [--out DIR]`:
+/// reads the parts as data (every record's checksum checked, nothing after
+/// `end`, no stored argument that says where to write or which shard to
+/// run), checks that they are every part of one run (else
 /// std::invalid_argument, one line naming the part and what is wrong), sets
 /// merged_run and returns the arguments of that run (with --output FILE for
-/// -o); main() then parses and runs those.  Other arguments: returned as they are.
+/// -o, --out DIR for --out, where the command has them); main() then parses
+/// and runs those.  Other arguments: returned as they are.
 std::vector<std::string> merge_arguments(const std::vector<std::string>& args);
+
+/// Whether this superball was built with MPI (SUPERBALL_WITH_MPI).
+bool built_with_mpi();
+/// When an MPI launcher started this process as one of several ranks (its
+/// environment: OMPI_COMM_WORLD_SIZE, PMI_SIZE, or Slurm's
+/// SLURM_STEP_NUM_TASKS greater than 1): that variable as "NAME=VALUE";
+/// otherwise "".  main() refuses to run on ranks when built without MPI.
+std::string launched_on_ranks();
+/// Whether the launcher's rank variable (OMPI_COMM_WORLD_RANK, PMI_RANK,
+/// PMIX_RANK, SLURM_PROCID) is 0 or unset: the rank that says why it refuses.
+bool first_launched_rank();
 
 /// MPI (built with SUPERBALL_WITH_MPI): starts MPI when this process was
 /// launched by an MPI launcher (mpirun, mpiexec, srun), from main().

@@ -3,8 +3,10 @@
 /// What distribute.cpp and distribute_mpi.cpp share: the header of part
 /// files and checkpoint folders, and the MPI runner.
 #include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <utility>
 #include <functional>
-#include <istream>
 #include <map>
 #include <string>
 #include <vector>
@@ -20,14 +22,56 @@ struct Header {
   std::size_t tasks = 0;
 };
 
+/// The first line of a part file and of a checkpoint's `run` file: the
+/// format's version is in it, and a file of another version is refused.
+inline constexpr const char* kPartKind = "superball part 2";
+inline constexpr const char* kCheckpointKind = "superball checkpoint 2";
+
 /// "KIND\nrun RUN\nsuperball VERSION\nargument LENGTH TEXT\n…tasks T\n".
 std::string header(const std::string& kind, const std::string& run, const std::vector<std::string>& arguments, std::size_t tasks);
 
-/// Reads a header of \p kind; std::invalid_argument("WHERE: what is wrong") otherwise.
-Header read_header(std::istream& in, const std::string& kind, const std::string& where);
+/// A file read as data, never trusted: opened without blocking (a FIFO does
+/// not wait) and, unless \p follow, without following a symbolic link; only
+/// a regular file of at most \p max_size bytes (its size known from fstat()
+/// before anything is read).  Every length is checked against the bytes left
+/// before anything is allocated.  Errors: std::invalid_argument("WHERE: …").
+class DataFile {
+ public:
+  DataFile(const std::string& path, const std::string& where, bool follow, std::uint64_t max_size);
+  DataFile(const DataFile&) = delete;
+  DataFile& operator=(const DataFile&) = delete;
+  ~DataFile();
+  /// The next line without its newline, at most \p max bytes; "cut short in
+  /// \p what" at the end of the file.
+  std::string line(std::size_t max, const std::string& what);
+  /// The next \p n bytes, \p n checked against the bytes left first.
+  std::string bytes(std::uint64_t n, const std::string& what);
+  /// Bytes not read yet.
+  std::uint64_t left() const { return size_ - read_; }
+  /// std::invalid_argument("WHERE: what").
+  std::invalid_argument bad(const std::string& what) const;
 
-/// The file of task \p k in the checkpoint folder \p dir.
-std::string task_file(const std::string& dir, std::size_t k);
+ private:
+  int get();
+  int fd_ = -1;
+  std::string where_;
+  std::uint64_t size_ = 0, read_ = 0;
+  std::string buffer_;
+  std::size_t at_ = 0;
+};
+
+/// Reads a header of \p kind; std::invalid_argument("WHERE: what is wrong") otherwise.
+Header read_header(DataFile& in, const std::string& kind);
+
+/// A task's result as stored in a part file or a checkpoint's task file:
+/// "task K SIZE CHECKSUM\nTEXT\n", the checksum covering the run, K and TEXT.
+std::string record(const std::string& run, std::size_t k, const std::string& text);
+
+/// The record whose first line, \p line, was just read from \p in (of run \p run, for at most \p tasks tasks, a
+/// result of at most \p max_bytes): its task and text.  A record that fails
+/// its checksum, is cut short, or claims more: std::invalid_argument.
+std::pair<std::size_t, std::string> read_record(DataFile& in, const std::string& line, const std::string& run, std::size_t tasks,
+                                                std::uint64_t max_bytes);
 
 /// The MPI runner: every rank calls it.  Rank 0 hands out the tasks of
 /// \p todo one at a time to the ranks as they become free, itself included

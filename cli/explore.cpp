@@ -13,6 +13,7 @@
 #include "distribute.hpp"
 #include "selection.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/scalar.hpp"
 #include "superball/verify/explore.hpp"
 
 namespace superball::cli {
@@ -44,6 +45,53 @@ std::string witness_name(const verify::ExploreResult& r) {
   for (char& c : pattern)
     if (c == ',') c = '_';
   return "explore_" + pattern + "_case" + r.case_name + ".toml";
+}
+
+/// Reads back task \p k's text (a case of \p case_name explored) as data and
+/// checks it: the fields of the task's JSON, the case it is of, a verdict
+/// that is one of the four with what it rests on (yes: a witness whose exact
+/// U1+/a exceeds 1; no (proved), case impossible: the clash that proves it,
+/// and no witness beyond U1+ = a), and a witness file name that is a plain
+/// name of this case.  std::invalid_argument naming the task otherwise.
+nlohmann::ordered_json read_result(std::size_t k, const std::string& text, const std::string& case_name, const Distribution& run) {
+  auto damaged = [&](const std::string& what) { return std::invalid_argument(run.origin(k) + ": a damaged result (" + what + ")"); };
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(text, nullptr, false);
+  auto is_string = [&](const nlohmann::ordered_json& o, const char* key) { return o.contains(key) && o[key].is_string(); };
+  if (j.is_discarded() || !j.is_object() || !is_string(j, "pattern") || !is_string(j, "cell") || !is_string(j, "text") || !j.contains("json") ||
+      !j["json"].is_object())
+    throw damaged("not the JSON of an explored case");
+  const nlohmann::ordered_json& r = j["json"];
+  if (!is_string(r, "case") || r["case"].get<std::string>() != case_name) throw damaged("not a result of case " + case_name);
+  if (!is_string(r, "reach") || !is_string(r, "pattern")) throw damaged("no verdict");
+  const std::string reach = r["reach"].get<std::string>(), cell = j["cell"].get<std::string>();
+  if (reach != "yes" && reach != "no (proved)" && reach != "case impossible" && reach != "not found") throw damaged("'" + reach.substr(0, 40) + "' is not a verdict");
+  if (j["text"].get<std::string>().find("  verdict: " + reach + ":") == std::string::npos || cell.rfind(reach == "yes" ? "yes " : reach, 0) != 0)
+    throw damaged("its texts do not say its verdict, " + reach);
+  std::optional<cln::cl_RA> ratio;
+  if (r.contains("ratio")) {
+    try {
+      if (!r["ratio"].is_string() || r["ratio"].get<std::string>().size() > 4096) throw std::invalid_argument("");
+      ratio = numeric::parse_rational(r["ratio"].get<std::string>());
+    } catch (const std::exception&) {
+      throw damaged("its U1+/a is not a fraction");
+    }
+  }
+  const bool witness = j.contains("witness");
+  if (witness != (r.contains("witness") && ratio.has_value())) throw damaged("a witness without its exact solve");
+  if (reach == "yes" && !(witness && *ratio > 1)) throw damaged("the verdict yes without a witness where U1+ > a");
+  if (reach != "yes" && ratio && *ratio > 1) throw damaged("the verdict " + reach + " with a witness where U1+ > a");
+  if ((reach == "no (proved)" || reach == "case impossible") &&
+      !(r.contains("clash") && r["clash"].is_object() && r["clash"].contains("superball") && r["clash"]["superball"] == (reach == "no (proved)")))
+    throw damaged("the verdict " + reach + " without its proof");
+  if (witness) {
+    const nlohmann::ordered_json& w = j["witness"];
+    if (!w.is_array() || w.size() != 2 || !w[0].is_string() || !w[1].is_string()) throw damaged("a damaged witness");
+    const std::string name = w[0].get<std::string>();
+    if (name.find('/') != std::string::npos || name.rfind("explore_", 0) != 0 || name.size() < case_name.size() + 18 ||
+        name.compare(name.size() - case_name.size() - 10, std::string::npos, "_case" + case_name + ".toml") != 0)
+      throw damaged("'" + name.substr(0, 60) + "' is not the file name of a witness of case " + case_name);
+  }
+  return j;
 }
 
 }  // namespace
@@ -162,7 +210,7 @@ void add_explore(CLI::App& app, Action& action) {
       std::string text;
       std::vector<std::pair<std::string, std::string>> witnesses;
       run.run(task, [&](std::size_t k, std::string&& piece) {
-        nlohmann::ordered_json j = nlohmann::ordered_json::parse(piece);
+        nlohmann::ordered_json j = read_result(k, piece, Vocabulary::paper().case_name(cases[k % columns]), run);
         if (j.contains("witness")) witnesses.emplace_back(j["witness"][0].get<std::string>(), j["witness"][1].get<std::string>());
         if (o->all_patterns) {
           if (k % columns == 0) cells.emplace_back();

@@ -137,6 +137,16 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Started by mpirun or srun as one of several ranks, a superball without MPI
+  // would run the whole command on every rank, each writing its output.
+  const std::string ranks = superball::cli::launched_on_ranks();
+  if (!superball::cli::built_with_mpi() && !ranks.empty()) {
+    if (superball::cli::first_launched_rank())
+      std::cerr << "superball: started on several ranks by an MPI launcher (" << superball::printable(ranks)
+                << "), but this superball is built without MPI: every rank would run the whole command; run one process, or build with "
+                   "-DSUPERBALL_WITH_MPI=ON\n";
+    return superball::cli::bad_input;
+  }
   superball::cli::start_mpi(&argc, &argv);
   const int code = run(argc, argv);
   superball::cli::stop_mpi(code);

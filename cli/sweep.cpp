@@ -1,6 +1,8 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <set>
+#include <tuple>
 #include <sstream>
 
 #include "commands.hpp"
@@ -88,6 +90,137 @@ std::string switch_block(std::size_t k, const Scene& scene, const Range& r, bool
   return os.str();
 }
 
+/// Whether \p name is the name of a case of a scene of \p n bodies
+/// (Vocabulary::case_name() of one of its contact sets); the set in \p set.
+bool case_of_scene(const std::string& name, int n, ContactSet& set) {
+  const Vocabulary& v = Vocabulary::paper();
+  if (name.size() >= 2 && name.front() == '{' && name.back() == '}') {
+    try {
+      set = ContactSet::parse(name.substr(1, name.size() - 2), n);
+    } catch (const std::exception&) {
+      return false;
+    }
+    return v.case_name(set) == name;
+  }
+  for (const NamedCase& c : v.cases())
+    if (c.name == name && c.closed.bodies() == n) return set = c.closed, true;
+  return false;
+}
+
+/// \p text split at each \p sep; a CSV field's quotes ("{1-2,2-3}") kept whole and removed.
+std::vector<std::string> fields(const std::string& text, const std::string& sep) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    if (sep == "," && text[k] == '"') {
+      if (quoted && k + 1 < text.size() && text[k + 1] == '"') out.back() += '"', ++k;
+      else quoted = !quoted;
+    } else if (!quoted && text.compare(k, sep.size(), sep) == 0) {
+      out.emplace_back();
+      k += sep.size() - 1;
+    } else {
+      out.back() += text[k];
+    }
+  }
+  return out;
+}
+
+/// A number printed by the sweep: the whole of \p text; nullopt otherwise.
+std::optional<double> number(const std::string& text) {
+  char* end = nullptr;
+  const double v = text.empty() ? 0 : std::strtod(text.c_str(), &end);
+  if (text.empty() || *end) return std::nullopt;
+  return v;
+}
+
+/// Reads back task \p k's text of the rows (rows_block()) or the switch
+/// points (switch_block()) as data and checks it against the run: the rows
+/// of the block (their count, fields, cases of this scene, statuses, the
+/// count of failures), the switch points inside the block's range with cases
+/// of this scene that differ.  Returns the number of failures (rows) and
+/// leaves the text to write; std::invalid_argument naming the task (\p run
+/// says where it came from) otherwise.
+int check_block(std::size_t k, std::string& text, const Scene& scene, const Range& r, bool csv, bool switches, const Distribution& run) {
+  auto damaged = [&](const std::string& what) { return std::invalid_argument(run.origin(k) + ": a damaged result (" + what + ")"); };
+  const int n = scene.size();
+  const std::string sep = csv ? "," : "  ";
+  const int first = static_cast<int>(k) * kChunk;
+  std::set<std::string> cases;  // the names already found to be cases of this scene
+  ContactSet set;
+  auto check_case = [&](const std::string& name) {
+    if (cases.count(name)) return;
+    if (!case_of_scene(name, n, set)) throw damaged("'" + name.substr(0, 40) + "' is not a case of this scene");
+    cases.insert(name);
+  };
+  std::size_t at = 0;
+  int failures = 0, expected = 0;
+  if (!switches) {
+    const std::size_t eol = text.find('\n');
+    const std::optional<double> f = eol == std::string::npos ? std::nullopt : number(text.substr(0, eol));
+    if (!f || *f < 0 || *f > kChunk || *f != static_cast<int>(*f)) throw damaged("no count of failures");
+    expected = static_cast<int>(*f);
+    at = eol + 1;
+  }
+  const cln::cl_RA& low = r.from < r.to ? r.from : r.to;
+  const cln::cl_RA& high = r.from < r.to ? r.to : r.from;
+  const int size = switches ? std::min(kChunk + 1, r.steps - first) : std::min(kChunk, r.steps - first);
+  const auto ends = numeric::linspace(low, high, r.steps, first, 1), last = numeric::linspace(low, high, r.steps, first + size - 1, 1);
+  const double lo = cln::double_approx(ends.at(0)), hi = cln::double_approx(last.at(0)), slack = 1e-12 * std::max({std::abs(lo), std::abs(hi), hi - lo});
+  int rows = 0;
+  const std::set<std::string> statuses = {numeric::to_string(numeric::Status::Success), numeric::to_string(numeric::Status::NumericalIssue),
+                                          numeric::to_string(numeric::Status::NoConvergence)};
+  while (at < text.size()) {
+    const std::size_t eol = text.find('\n', at);
+    if (eol == std::string::npos) throw damaged("its last line is cut");
+    const std::string line = text.substr(at, eol - at);
+    at = eol + 1;
+    ++rows;
+    if (!switches) {  // VALUE U1 … Un CASE [STATUS]
+      const std::vector<std::string> f = fields(line, sep);
+      if (f.size() != static_cast<std::size_t>(n + 2) + (csv ? 1 : 0) && f.size() != static_cast<std::size_t>(n + 3)) throw damaged("a row of the wrong fields");
+      for (int i = 0; i <= n; ++i)
+        if (!number(f[static_cast<std::size_t>(i)])) throw damaged("'" + f[static_cast<std::size_t>(i)].substr(0, 40) + "' is not a number");
+      check_case(f[static_cast<std::size_t>(n + 1)]);
+      if (f.size() == static_cast<std::size_t>(n + 3)) {
+        if (!statuses.count(f.back()) || (!csv && f.back() == "success")) throw damaged("'" + f.back().substr(0, 40) + "' is not a status");
+        failures += f.back() != "success";
+      }
+      continue;
+    }
+    // AT  (bracket width W): case B {..} -> case A {..}, or AT,W,B,A.
+    std::string below, above, where, width;
+    if (csv) {
+      const std::vector<std::string> f = fields(line, ",");
+      if (f.size() != 4) throw damaged("a switch point of the wrong fields");
+      where = f[0], width = f[1], below = f[2], above = f[3];
+    } else {
+      const std::string key = r.parameter.key() + " = ", mid = "  (bracket width ", cases_at = "): case ", arrow = " -> case ";
+      const std::size_t m = line.find(mid), c = line.find(cases_at), a = line.find(arrow);
+      if (line.rfind(key, 0) != 0 || m == std::string::npos || c == std::string::npos || a == std::string::npos || !(key.size() <= m && m < c && c < a))
+        throw damaged("a switch point of the wrong form");
+      where = line.substr(key.size(), m - key.size());
+      width = line.substr(m + mid.size(), c - m - mid.size());
+      for (auto [from, to, name] : {std::make_tuple(c + cases_at.size(), a, &below), std::make_tuple(a + arrow.size(), line.size(), &above)}) {
+        const std::string both = line.substr(from, to - from);
+        const std::size_t space = both.find(' ');
+        *name = both.substr(0, space);
+        check_case(*name);
+        case_of_scene(*name, n, set);
+        if (space == std::string::npos || both.substr(space + 1) != set.to_string()) throw damaged("'" + both.substr(0, 40) + "' is not a case and its contacts");
+      }
+    }
+    check_case(below);
+    check_case(above);
+    if (below == above) throw damaged("a switch point between a case and itself");
+    const std::optional<double> x = number(where), w = number(width);
+    if (!x || !(*x >= lo - slack && *x <= hi + slack))
+      throw damaged("a switch point at " + where.substr(0, 40) + ", outside the values of its block (" + decimal(ends.at(0)) + " to " + decimal(last.at(0)) + ")");
+    if (!w || !(*w > 0 && *w <= hi - lo + slack)) throw damaged("a bracket width of " + width.substr(0, 40));
+  }
+  if (!switches && (rows != size || failures != expected)) throw damaged("not the rows of its block");
+  return failures;
+}
+
 }  // namespace
 
 void add_sweep(CLI::App& app, Action& action) {
@@ -134,7 +267,8 @@ void add_sweep(CLI::App& app, Action& action) {
       const auto precision = numeric::Precision::parse(o->precision);
       numeric::check_range(scene, r.parameter, r.from, r.to);  // every value, before any output
       const std::size_t count = sweep_tasks(r, o->switches);
-      Distribution run(*cmd, o->distribute, count);
+      // A block's text: at most kChunk + 1 lines of a few numbers each.
+      Distribution run(*cmd, o->distribute, count, static_cast<std::uint64_t>(kChunk + 2) * (256 + 64 * static_cast<std::uint64_t>(scene.size())));
       std::optional<Output> out;
       if (run.writes_output()) out.emplace("");
       int failures = 0;
@@ -145,12 +279,9 @@ void add_sweep(CLI::App& app, Action& action) {
           [&](std::size_t k) {
             return o->switches ? switch_block(k, scene, r, o->csv, o->threads) : rows_block(k, scene, r, precision, o->csv, o->threads);
           },
-          [&](std::size_t, std::string&& text) {
-            if (!o->switches) {
-              const std::size_t eol = text.find('\n');
-              failures += std::stoi(text.substr(0, eol));
-              text.erase(0, eol + 1);
-            }
+          [&](std::size_t k, std::string&& text) {
+            failures += check_block(k, text, scene, r, o->csv, o->switches, run);
+            if (!o->switches) text.erase(0, text.find('\n') + 1);
             any = any || !text.empty();
             out->write(text);
           });

@@ -159,21 +159,21 @@ void add_verify(CLI::App& app, Action& action) {
       const std::size_t count = selection.cases.size();
       // One task per case: its verification as plain text, "A" or "D" (the
       // exact conditions agree or not), then each disagreement's scene file
-      // ("LENGTH PATH" and the text), then the case's report (text, or JSON
-      // as the array's dump(2) would write it), written in case order.
+      // ("LENGTH NAME" and the text; NAME a file name, written in --out, if
+      // given, by the process that writes the output: the task says what,
+      // never where), then the case's report (text, or JSON as the array's
+      // dump(2) would write it), written in case order.
       auto task = [&](std::size_t k, const std::function<void(long long, long long)>& progress) {
         verify::VerifyOptions mine = options;
         mine.progress = progress;
         const verify::Verification v = verify::verify_case(*selection.deriver, selection.cases[k], mine);
         std::string text = v.exact_agrees() ? "A\n" : "D\n";
-        for (std::size_t i = 0; !o->out.empty() && i < v.disagreements.size(); ++i) {
+        for (std::size_t i = 0; i < v.disagreements.size(); ++i) {
           const verify::Disagreement& d = v.disagreements[i];
-          const std::string path = (std::filesystem::path(o->out) /
-                                    ("case-" + file_part(v.case_name) + "-eps-" + file_part(verify::epsilon_name(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon)) +
-                                     "-" + numbered(i + 1) + ".toml"))
-                                       .string();
-          const std::string scene = write_scene(d.scene, verify::describe(v, d) + "\nrerun: superball solve " + path + " --precision exact");
-          text += std::to_string(scene.size()) + " " + path + "\n" + scene;
+          const std::string name = "case-" + file_part(v.case_name) + "-eps-" +
+                                   file_part(verify::epsilon_name(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon)) + "-" + numbered(i + 1) + ".toml";
+          const std::string scene = write_scene(d.scene, verify::describe(v, d) + "\nrerun: superball solve " + name + " --precision exact");
+          text += std::to_string(scene.size()) + " " + name + "\n" + scene;
         }
         text += "report\n";
         if (!o->json) return text + verify::to_text(v) + "\n";
@@ -207,19 +207,37 @@ void add_verify(CLI::App& app, Action& action) {
         };
         run.run([&](std::size_t k) { return shared ? *shared : task(k, run.local() ? progress.for_task(static_cast<int>(k), label(k)) : nullptr); },
                 [&](std::size_t k, std::string&& piece) {
+                  // The task's text read back as data (it may come from a part or a checkpoint).
+                  auto damaged = [&](const std::string& what) { return std::invalid_argument(run.origin(k) + ": a damaged result (" + what + ")"); };
+                  if (piece.size() < 2 || (piece[0] != 'A' && piece[0] != 'D') || piece[1] != '\n') throw damaged("no verdict of the exact conditions");
                   exact_agrees = exact_agrees && piece[0] == 'A';
+                  const std::string prefix = "case-" + file_part(Vocabulary::paper().case_name(selection.cases[k])) + "-eps-";
                   std::size_t at = 2;
                   while (piece.compare(at, 7, "report\n") != 0) {  // the scene files
                     const std::size_t space = piece.find(' ', at), eol = piece.find('\n', at);
+                    if (space == std::string::npos || eol == std::string::npos || space > eol || space == at || space - at > 12 ||
+                        piece.find_first_not_of("0123456789", at) != space)
+                      throw damaged("a damaged scene file line");
                     const std::size_t size = std::stoull(piece.substr(at, space - at));
-                    const std::string path = piece.substr(space + 1, eol - space - 1);
-                    if (written == 0) {
-                      std::error_code error;
-                      std::filesystem::create_directories(o->out, error);
-                      if (error) throw OutputError("--out " + o->out + ": cannot create the folder: " + error.message());
+                    const std::string name = piece.substr(space + 1, eol - space - 1);
+                    if (name.find('/') != std::string::npos || name.rfind(prefix, 0) != 0 || name.size() < prefix.size() + 5 ||
+                        name.compare(name.size() - 5, 5, ".toml") != 0)
+                      throw damaged("'" + name.substr(0, 60) + "' is not the file name of a disagreement of this case");
+                    if (size > piece.size() - eol - 1) throw damaged("a scene file cut short");
+                    if (!o->out.empty()) {
+                      if (written == 0) {
+                        std::error_code error;
+                        std::filesystem::create_directories(o->out, error);
+                        if (error) throw OutputError("--out " + o->out + ": cannot create the folder: " + error.message());
+                      }
+                      const std::string path = (std::filesystem::path(o->out) / name).string();
+                      std::string scene = piece.substr(eol + 1, size);
+                      const std::string rerun = "# rerun: superball solve " + name + " ";
+                      const std::size_t line = scene.find(rerun);
+                      if (line != std::string::npos) scene.replace(line, rerun.size(), "# rerun: superball solve " + path + " ");
+                      write_output(path, scene);
+                      ++written;
                     }
-                    write_output(path, std::string_view(piece).substr(eol + 1, size));
-                    ++written;
                     at = eol + 1 + size;
                   }
                   text += piece.substr(at + 7);

@@ -326,11 +326,12 @@ class Words {
     std::string more;
     if (in_ >> more) damaged("'" + more + "' after the last field");
   }
+  /// Throws std::invalid_argument("FUNCTION: a damaged line, WHAT: LINE").
+  [[noreturn]] void damaged(const std::string& what) const {
+    throw std::invalid_argument(std::string(function_) + ": a damaged line, " + what + ": " + line_.substr(0, 120));
+  }
 
  private:
-  [[noreturn]] void damaged(const std::string& what) const {
-    throw std::invalid_argument(std::string(function_) + ": a damaged line, " + what + ": " + line_);
-  }
   std::istringstream in_;
   const char* function_;
   std::string line_;
@@ -367,13 +368,22 @@ std::string points_to_text(const std::vector<MapPoint>& points) {
 }
 
 std::vector<MapPoint> points_from_text(const std::string& text) {
-  return read_lines<MapPoint>(text, "points_from_text()", [](Words& in) {
+  int contacts = -1;  // every solved point of a map has the same contacts
+  return read_lines<MapPoint>(text, "points_from_text()", [&](Words& in) {
     MapPoint p;
     p.admissible = in.flag();
     p.status = static_cast<Status>(in.number(static_cast<int>(Status::Success), static_cast<int>(Status::NoConvergence)));
     p.region.superball = in.flag();
     p.ratio = in.real();
     p.region.closed = in.contacts();
+    // What solved() can give: an unsolved point keeps every default; a
+    // solved one has U1+/|U1-| on the side of 1 of its verdict (NaN when U1- = 0).
+    if (!p.admissible && (p.status != Status::Success || p.region.superball || p.ratio != 0 || p.region.closed.contacts() != 0))
+      in.damaged("a point not solved with the fields of a solved one");
+    if (p.admissible && (p.region.superball ? p.ratio < 1 : p.ratio > 1))
+      in.damaged("U1+/|U1-| against its verdict");
+    if (p.admissible && contacts >= 0 && p.region.closed.contacts() != contacts) in.damaged("a case of another number of contacts");
+    if (p.admissible) contacts = p.region.closed.contacts();
     return p;
   });
 }
@@ -391,8 +401,8 @@ std::vector<MapBoundary> boundaries_from_text(const std::string& text) {
   return read_lines<MapBoundary>(text, "boundaries_from_text()", [](Words& in) {
     MapBoundary b;
     b.along_x = in.flag();
-    b.i = in.number();
-    b.j = in.number();
+    b.i = in.number(0, static_cast<long>(map_max_steps) - 1);
+    b.j = in.number(0, static_cast<long>(map_max_steps) - 1);
     b.low = in.rational();
     b.high = in.rational();
     b.below_psd = in.flag();
@@ -401,6 +411,9 @@ std::vector<MapBoundary> boundaries_from_text(const std::string& text) {
     b.above.superball = in.flag();
     b.below.closed = in.contacts();
     b.above.closed = in.contacts();
+    // A bracket, and a change across it.
+    if (!(b.low < b.high)) in.damaged("a bracket whose low end is not below its high end");
+    if (b.below_psd == b.above_psd && b.below.superball == b.above.superball && b.below.closed == b.above.closed) in.damaged("no change across the bracket");
     return b;
   });
 }

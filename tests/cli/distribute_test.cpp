@@ -99,7 +99,7 @@ TEST(Distribute, ThreeShardsMergedAreTheSingleRunByteForByte) {
   const RunResult merged = run({"merge", parts[0], parts[1], parts[2], "-o", dir + "/merged.json"});
   ASSERT_EQ(merged.exit_code, 0) << describe(merged);
   EXPECT_EQ(slurp(dir + "/merged.json"), slurp(dir + "/whole.json"));
-  // verify --out: the scene files of the disagreements, written by the merge, are those of the single run.
+  // verify --out: the scene files of the disagreements, written by the merge (--out), are those of the single run.
   const std::vector<std::string> verify = {"verify", "--all", "--alphas", "5", "--samples", "20", "--epsilons", "1e-2", "--boundary-pairs", "2",
                                            "--out", dir + "/scenes"};
   const RunResult single = run(verify);
@@ -109,7 +109,8 @@ TEST(Distribute, ThreeShardsMergedAreTheSingleRunByteForByte) {
   fs::remove_all(dir + "/scenes");
   const auto vparts = shards(verify, dir, 3);
   EXPECT_FALSE(fs::exists(dir + "/scenes")) << "a shard writes its part file only";
-  const RunResult vmerged = run({"merge", vparts[0], vparts[1], vparts[2]});
+  // The parts never say where to write: the merge's own --out does.
+  const RunResult vmerged = run({"merge", vparts[0], vparts[1], vparts[2], "--out", dir + "/scenes"});
   EXPECT_EQ(vmerged.out, single.out);
   EXPECT_EQ(vmerged.exit_code, single.exit_code);
   std::map<std::string, std::string> merged_files;
@@ -195,7 +196,9 @@ TEST(Distribute, ACheckpointThatCannotBeWrittenEndsTheRunWithExitThreeAndNoOutpu
   const std::string dir = unwritable_checkpoint("unwritable");
   const RunResult r = run(with(runs()[0], {"--checkpoint", dir + "/ck", "-o", dir + "/out.json"}));
   EXPECT_EQ(r.exit_code, 3) << describe(r);
-  EXPECT_EQ(r.err, "superball: " + dir + "/ck/task-00000001: Is a directory\n");
+  // The folder is said once when the checkpoint is read (a task file that is not one is computed again), then its write fails.
+  EXPECT_EQ(r.err, "superball: --checkpoint " + dir + "/ck: task-00000001: a folder, not a file: not read; task 1 computed again\n" + "superball: " + dir +
+                       "/ck/task-00000001: Is a directory\n");
   EXPECT_FALSE(fs::exists(dir + "/out.json"));
 }
 
