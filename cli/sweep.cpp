@@ -2,6 +2,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <string_view>
 #include <tuple>
 #include <sstream>
 
@@ -107,22 +108,24 @@ bool case_of_scene(const std::string& name, int n, ContactSet& set) {
   return false;
 }
 
-/// \p text split at each \p sep; a CSV field's quotes ("{1-2,2-3}") kept whole and removed.
-std::vector<std::string> fields(const std::string& text, const std::string& sep) {
-  std::vector<std::string> out(1);
+/// The fields of \p line split at each \p sep ("," or two spaces), into
+/// \p out (reused: no allocation per row); a CSV field in quotes
+/// ("{1-2,2-3}", no quote inside) kept whole, without its quotes.
+void fields(std::string_view line, std::string_view sep, std::vector<std::string_view>& out) {
+  out.clear();
+  std::size_t start = 0;
   bool quoted = false;
-  for (std::size_t k = 0; k < text.size(); ++k) {
-    if (sep == "," && text[k] == '"') {
-      if (quoted && k + 1 < text.size() && text[k + 1] == '"') out.back() += '"', ++k;
-      else quoted = !quoted;
-    } else if (!quoted && text.compare(k, sep.size(), sep) == 0) {
-      out.emplace_back();
+  for (std::size_t k = 0; k <= line.size(); ++k) {
+    if (k < line.size() && sep == "," && line[k] == '"') {
+      quoted = !quoted;
+    } else if (k == line.size() || (!quoted && line.compare(k, sep.size(), sep) == 0)) {
+      std::string_view f = line.substr(start, k - start);
+      if (f.size() >= 2 && f.front() == '"' && f.back() == '"') f = f.substr(1, f.size() - 2);
+      out.push_back(f);
+      start = k + sep.size();
       k += sep.size() - 1;
-    } else {
-      out.back() += text[k];
     }
   }
-  return out;
 }
 
 /// A number printed by the sweep: the whole of \p text; nullopt otherwise.
@@ -145,20 +148,21 @@ int check_block(std::size_t k, std::string& text, const Scene& scene, const Rang
   const int n = scene.size();
   const std::string sep = csv ? "," : "  ";
   const int first = static_cast<int>(k) * kChunk;
-  std::set<std::string> cases;  // the names already found to be cases of this scene
+  std::set<std::string, std::less<>> cases;  // the names already found to be cases of this scene
   ContactSet set;
-  auto check_case = [&](const std::string& name) {
+  auto check_case = [&](std::string_view name) {
     if (cases.count(name)) return;
-    if (!case_of_scene(name, n, set)) throw damaged("'" + name.substr(0, 40) + "' is not a case of this scene");
-    cases.insert(name);
+    if (!case_of_scene(std::string(name), n, set)) throw damaged("'" + std::string(name.substr(0, 40)) + "' is not a case of this scene");
+    cases.emplace(name);
   };
+  std::vector<std::string_view> f;
   std::size_t at = 0;
   int failures = 0, expected = 0;
   if (!switches) {
     const std::size_t eol = text.find('\n');
-    const std::optional<double> f = eol == std::string::npos ? std::nullopt : number(text.substr(0, eol));
-    if (!f || *f < 0 || *f > kChunk || *f != static_cast<int>(*f)) throw damaged("no count of failures");
-    expected = static_cast<int>(*f);
+    const std::optional<double> count = eol == std::string::npos ? std::nullopt : number(text.substr(0, eol));
+    if (!count || !(*count >= 0 && *count <= kChunk) || *count != static_cast<int>(*count)) throw damaged("no count of failures");
+    expected = static_cast<int>(*count);
     at = eol + 1;
   }
   const cln::cl_RA& low = r.from < r.to ? r.from : r.to;
@@ -167,22 +171,21 @@ int check_block(std::size_t k, std::string& text, const Scene& scene, const Rang
   const auto ends = numeric::linspace(low, high, r.steps, first, 1), last = numeric::linspace(low, high, r.steps, first + size - 1, 1);
   const double lo = cln::double_approx(ends.at(0)), hi = cln::double_approx(last.at(0)), slack = 1e-12 * std::max({std::abs(lo), std::abs(hi), hi - lo});
   int rows = 0;
-  const std::set<std::string> statuses = {numeric::to_string(numeric::Status::Success), numeric::to_string(numeric::Status::NumericalIssue),
-                                          numeric::to_string(numeric::Status::NoConvergence)};
+  const std::set<std::string, std::less<>> statuses = {numeric::to_string(numeric::Status::Success), numeric::to_string(numeric::Status::NumericalIssue),
+                                                       numeric::to_string(numeric::Status::NoConvergence)};
   while (at < text.size()) {
     const std::size_t eol = text.find('\n', at);
     if (eol == std::string::npos) throw damaged("its last line is cut");
-    const std::string line = text.substr(at, eol - at);
+    const std::string_view line = std::string_view(text).substr(at, eol - at);
     at = eol + 1;
     ++rows;
-    if (!switches) {  // VALUE U1 … Un CASE [STATUS]
-      const std::vector<std::string> f = fields(line, sep);
-      if (f.size() != static_cast<std::size_t>(n + 2) + (csv ? 1 : 0) && f.size() != static_cast<std::size_t>(n + 3)) throw damaged("a row of the wrong fields");
-      for (int i = 0; i <= n; ++i)
-        if (!number(f[static_cast<std::size_t>(i)])) throw damaged("'" + f[static_cast<std::size_t>(i)].substr(0, 40) + "' is not a number");
-      check_case(f[static_cast<std::size_t>(n + 1)]);
-      if (f.size() == static_cast<std::size_t>(n + 3)) {
-        if (!statuses.count(f.back()) || (!csv && f.back() == "success")) throw damaged("'" + f.back().substr(0, 40) + "' is not a status");
+    if (!switches) {  // VALUE U1 … Un CASE [STATUS]: the case and the status checked
+      fields(line, sep, f);
+      const auto fn = static_cast<std::size_t>(n);
+      if (f.size() != fn + 3 && (csv || f.size() != fn + 2)) throw damaged("a row of the wrong fields");
+      check_case(f[fn + 1]);
+      if (f.size() == fn + 3) {
+        if (!statuses.count(f.back()) || (!csv && f.back() == "success")) throw damaged("'" + std::string(f.back().substr(0, 40)) + "' is not a status");
         failures += f.back() != "success";
       }
       continue;
@@ -190,18 +193,18 @@ int check_block(std::size_t k, std::string& text, const Scene& scene, const Rang
     // AT  (bracket width W): case B {..} -> case A {..}, or AT,W,B,A.
     std::string below, above, where, width;
     if (csv) {
-      const std::vector<std::string> f = fields(line, ",");
+      fields(line, ",", f);
       if (f.size() != 4) throw damaged("a switch point of the wrong fields");
-      where = f[0], width = f[1], below = f[2], above = f[3];
+      where = std::string(f[0]), width = std::string(f[1]), below = std::string(f[2]), above = std::string(f[3]);
     } else {
       const std::string key = r.parameter.key() + " = ", mid = "  (bracket width ", cases_at = "): case ", arrow = " -> case ";
       const std::size_t m = line.find(mid), c = line.find(cases_at), a = line.find(arrow);
       if (line.rfind(key, 0) != 0 || m == std::string::npos || c == std::string::npos || a == std::string::npos || !(key.size() <= m && m < c && c < a))
         throw damaged("a switch point of the wrong form");
-      where = line.substr(key.size(), m - key.size());
-      width = line.substr(m + mid.size(), c - m - mid.size());
+      where = std::string(line.substr(key.size(), m - key.size()));
+      width = std::string(line.substr(m + mid.size(), c - m - mid.size()));
       for (auto [from, to, name] : {std::make_tuple(c + cases_at.size(), a, &below), std::make_tuple(a + arrow.size(), line.size(), &above)}) {
-        const std::string both = line.substr(from, to - from);
+        const std::string both(line.substr(from, to - from));
         const std::size_t space = both.find(' ');
         *name = both.substr(0, space);
         check_case(*name);
