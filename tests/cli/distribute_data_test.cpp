@@ -326,6 +326,41 @@ TEST(DistributeData, AForgedCheckpointIsRefusedAndAnotherRunsFolderNamedForWhatI
   expect_refused(run(with(kSwitches, {"--checkpoint", ck})), {"its run file names this run (" + run_id + ") but does not hold its arguments and task count"});
 }
 
+TEST(DistributeData, AMapCheckpointEditedIsComputedAgainAndForgedIsRefused) {
+  const std::string dir = folder("map"), ck = dir + "/ck";
+  const std::vector<std::string> map = {"map", kPaper, "--x", "K.3-4=0:20:9", "--y", "alpha.2=-150:0:9"};
+  const RunResult whole = run(map);
+  ASSERT_EQ(whole.exit_code, 0) << describe(whole);
+  ASSERT_EQ(run(with(map, {"--checkpoint", ck})).out, whole.out);
+  // A task of the grid points with a superball point: its U1+/a edited to 2^100.
+  std::string file, kept;
+  for (const std::string& f : task_files(ck + "/points"))
+    if (slurp(f).find("\n1 0 1 ") != std::string::npos) file = f;
+  ASSERT_FALSE(file.empty());
+  kept = slurp(file);
+  const std::string run_id = run_of(slurp(ck + "/points/run"));
+  const std::size_t k = std::stoul(kept.substr(5));
+  auto ratio = [](const std::string& verdict) {
+    return [verdict](std::string t) {
+      const std::size_t at = t.find("1 0 1 ");
+      return t.substr(0, at) + verdict + "0x1p+100" + t.substr(t.find(' ', at + 6));
+    };
+  };
+  write(file, edited(kept, run_id, k, ratio("1 0 1 "), false));
+  const RunResult resumed = run(with(map, {"--checkpoint", ck}));
+  EXPECT_EQ(resumed.out, whole.out);
+  EXPECT_NE(resumed.err.find("task " + std::to_string(k) + ": fails its checksum (changed or damaged since it was written); task " + std::to_string(k) +
+                             " computed again"),
+            std::string::npos)
+      << resumed.err;
+  // Forged with its checksum, against the point's verdict (no superball, U1+/a = 2^100): refused.
+  write(file, edited(kept, run_id, k, ratio("1 0 0 "), true));
+  const RunResult forged = run(with(map, {"--checkpoint", ck}));
+  EXPECT_EQ(forged.exit_code, 2) << describe(forged);
+  EXPECT_EQ(forged.out, "");
+  EXPECT_NE(forged.err.find("superball: a damaged line, U1+/|U1-| against its verdict: 1 0 0 0x1p+100"), std::string::npos) << forged.err;
+}
+
 #ifndef SUPERBALL_MPIEXEC
 // Built without MPI (as CI's stage 2): started by a launcher as one of
 // several ranks, superball refuses rather than run the whole command on each.
