@@ -392,7 +392,7 @@ void Distribution::Impl::read_checkpoint() {
   namespace fs = std::filesystem;
   std::error_code error;
   fs::create_directories(checkpoint, error);
-  if (error || !fs::is_directory(checkpoint)) throw OutputError("--checkpoint " + checkpoint + ": cannot make the folder" + (error ? ": " + error.message() : ""));
+  if (error || !fs::is_directory(checkpoint, error)) throw OutputError("--checkpoint " + checkpoint + ": cannot make the folder" + (error ? ": " + error.message() : ""));
   const std::string file = (fs::path(checkpoint) / "run").string();
   const std::string mine = header(kCheckpointKind, run, arguments, count);
   const std::string where = "--checkpoint " + checkpoint;
@@ -424,7 +424,8 @@ void Distribution::Impl::read_checkpoint() {
     write_atomically(file, mine);
   }
   std::vector<fs::path> entries;  // in order, so that what is said of them is too
-  for (const auto& entry : fs::directory_iterator(checkpoint)) entries.push_back(entry.path());
+  for (fs::directory_iterator it(checkpoint, error), end; !error && it != end; it.increment(error)) entries.push_back(it->path());
+  if (error) throw OutputError(where + ": cannot be read: " + error.message());
   std::sort(entries.begin(), entries.end());
   for (const fs::path& entry : entries) {
     const std::string leaf = entry.filename().string();

@@ -197,6 +197,10 @@ TEST(DistributeData, APartCutShortAnywhereIsRefusedWithOneLine) {
   expect_refused(run({"merge", dir + "/huge"}), {"bytes after its 'end' line", "not read"});
   EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
   fs::remove(dir + "/huge");
+  // Not a regular file: a FIFO (not waited for), a folder.
+  ASSERT_EQ(::mkfifo((dir + "/fifo").c_str(), 0600), 0);
+  expect_refused(run({"merge", dir + "/fifo"}), {"merge: " + dir + "/fifo: a FIFO, not a regular file: not read"});
+  expect_refused(run({"merge", dir}), {"merge: " + dir + ": a folder, not a file: not read"});
   // A part of the format before this one.
   write(dir + "/old", replaced(text, "superball part 2", "superball part 1"));
   expect_refused(run({"merge", dir + "/old"}), {"a part file of another format ('superball part 1'", "make it again with this superball"});
@@ -321,6 +325,11 @@ TEST(DistributeData, AForgedCheckpointIsRefusedAndAnotherRunsFolderNamedForWhatI
   const RunResult other = run({"sweep", kPaper, "--vary", "K.3-4=0:20:8194", "--switch-points", "--checkpoint", ck});
   expect_refused(other, {"--checkpoint " + ck + ": holds run " + run_id + " (superball sweep", "and this command is run "});
   EXPECT_EQ(other.err.find("this command is run " + run_id), std::string::npos) << other.err;
+  // A folder of the format before this one.
+  const std::string run_file = slurp(ck + "/run");
+  write(ck + "/run", replaced(run_file, "superball checkpoint 2", "superball checkpoint 1"));
+  expect_refused(run(with(kSwitches, {"--checkpoint", ck})), {"--checkpoint " + ck + ": its run file: a checkpoint folder's run file of another format ('superball checkpoint 1'"});
+  write(ck + "/run", run_file);
   // Its run file edited (the run's name kept): said so.
   write(ck + "/run", replaced(slurp(ck + "/run"), "tasks 2", "tasks 3"));
   expect_refused(run(with(kSwitches, {"--checkpoint", ck})), {"its run file names this run (" + run_id + ") but does not hold its arguments and task count"});
