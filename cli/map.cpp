@@ -7,9 +7,9 @@
 #include "commands.hpp"
 #include "distribute.hpp"
 #include "gnuplot.hpp"
-#include "range.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/parallel.hpp"
+#include "superball/numeric/range.hpp"
 #include "superball/verify/overlay.hpp"
 
 namespace superball::cli {
@@ -117,8 +117,8 @@ void add_map(CLI::App& app, Action& action) {
       if (!o->out.empty() && std::filesystem::exists(o->out) && !std::filesystem::is_directory(o->out))
         throw OutputError("--out " + o->out + ": exists and is not a folder");
       const Scene scene = load_scene(o->scene);
-      const Range rx = parse_range("--x", o->x, scene, numeric::map_max_steps);
-      const Range ry = parse_range("--y", o->y, scene, numeric::map_max_steps);
+      const numeric::Range rx = numeric::parse_range("--x", o->x, scene, numeric::map_max_steps);
+      const numeric::Range ry = numeric::parse_range("--y", o->y, scene, numeric::map_max_steps);
       numeric::MapSettings settings;
       settings.precision = numeric::Precision::parse(o->precision);
       settings.threads = o->threads;

@@ -5,14 +5,16 @@
 
 #include "commands.hpp"
 #include "distribute.hpp"
-#include "range.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/parallel.hpp"
+#include "superball/numeric/range.hpp"
 #include "superball/numeric/sweep.hpp"
 
 namespace superball::cli {
 namespace {
+
+using numeric::Range;
 
 std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_decimal(x, digits); }
 
@@ -128,7 +130,7 @@ void add_sweep(CLI::App& app, Action& action) {
   cmd->callback([o, cmd, &action] {
     action = [o, cmd] {
       const Scene scene = load_scene(o->scene);
-      const Range r = parse_range("--vary", o->vary, scene, 10000000);
+      const Range r = numeric::parse_range("--vary", o->vary, scene, numeric::sweep_max_steps);
       if (o->switches && cmd->count("--precision") > 0)
         throw std::invalid_argument("sweep: --switch-points bisects on the exact solution; --precision does not apply to it");
       const auto precision = numeric::Precision::parse(o->precision);

@@ -178,8 +178,19 @@ std::string Scaling::describe(const Symbols& symbols, Style style) const {
 
 // ---------------------------------------------------------------- Deriver
 
+int max_bodies(Obstacle obstacle) { return obstacle == Obstacle::Infinite ? max_moving_clusters + 1 : max_moving_clusters; }
+
+void check_bodies(int bodies, Obstacle obstacle) {
+  if (bodies < 2 || bodies > max_bodies(obstacle))
+    throw std::invalid_argument("check_bodies(): " + std::to_string(bodies) + " bodies: the symbolic derivation takes 2 to " +
+                                std::to_string(max_bodies(Obstacle::Infinite)) + " bodies with a fixed obstacle, 2 to " +
+                                std::to_string(max_bodies(Obstacle::Finite)) + " with a finite one (at most " +
+                                std::to_string(max_moving_clusters) + " bodies moving apart: determinants of up to " +
+                                std::to_string(max_moving_clusters) + " x " + std::to_string(max_moving_clusters) + ")");
+}
+
 Deriver::Deriver(const Pattern& pattern, Obstacle obstacle, std::optional<Scaling> scaling, int order)
-    : symbols_(std::make_shared<const Symbols>(pattern, obstacle)), order_(order) {
+    : symbols_((check_bodies(pattern.bodies, obstacle), std::make_shared<const Symbols>(pattern, obstacle))), order_(order) {
   if (order < 0) throw std::invalid_argument("Deriver::Deriver(): the order must be >= 0 (got " + std::to_string(order) + ")");
   scaling_ = scaling ? *scaling : Scaling::paper(*symbols_);
   for (const SymbolInfo& info : symbols_->all()) {
