@@ -277,6 +277,19 @@ TEST(Parameter, PaperSpellingsNameOneEntry) {
   EXPECT_EQ(Parameter::parse("coupling.2-3/1-2", s).key(), "coupling.1-2/2-3");
 }
 
+// A value past 64 bits is an exact number like any other: set() writes the
+// scene and reads it back (issue 25: 1e19 was "not representable in 64 bits").
+TEST(Parameter, SetsValuesPastSixtyFourBits) {
+  Scene s = parse_scene(kFourBodies, "four");
+  for (const char* big : {"10000000000000000000", "-10000000000000000000/3", "1" "000000000000000000000000000000000000000000"}) {
+    Parameter::parse(std::string(big).front() == '-' ? "alpha.2" : "K.1-4", s).set(s, Number::parse(big));
+    const Scene back = parse_scene(write_scene(s), "back");
+    EXPECT_EQ(write_scene(back), write_scene(s)) << big;
+  }
+  EXPECT_EQ(s.find(Pair::parse("1-4"), Pair::parse("1-4"))->value.fraction(), "1000000000000000000000000000000000000000000/1");
+  EXPECT_EQ(s.find(Pair::parse("1-2"), Pair::parse("1-4"))->value.fraction(), "-10000000000000000000/3");
+}
+
 // Spellings that are not indices stay refused (no sign, space or other digits).
 TEST(Parameter, IndicesAreDecimalDigitsOnly) {
   const Scene four = parse_scene(kFourBodies, "four");
