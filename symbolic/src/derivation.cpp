@@ -182,7 +182,7 @@ int max_bodies(Obstacle obstacle) { return obstacle == Obstacle::Infinite ? max_
 
 void check_bodies(int bodies, Obstacle obstacle) {
   if (bodies < 2 || bodies > max_bodies(obstacle))
-    throw std::invalid_argument("check_bodies(): " + std::to_string(bodies) + " bodies: the symbolic derivation takes 2 to " +
+    throw std::invalid_argument("check_bodies(): n = " + std::to_string(bodies) + ": the symbolic derivation takes 2 to " +
                                 std::to_string(max_bodies(Obstacle::Infinite)) + " bodies with a fixed obstacle, 2 to " +
                                 std::to_string(max_bodies(Obstacle::Finite)) + " with a finite one (at most " +
                                 std::to_string(max_moving_clusters) + " bodies moving apart: determinants of up to " +

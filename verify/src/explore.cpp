@@ -636,8 +636,8 @@ void ExploreOptions::check() const {
   if (starts < 1) fail("starts must be >= 1 (got " + std::to_string(starts) + ")");
   if (evaluations < 10) fail("evaluations must be >= 10 (got " + std::to_string(evaluations) + ")");
   if (!(box_low > 0) || !(box_high > box_low) || !std::isnormal(box_low) || !std::isnormal(box_high))
-    fail("the box " + numeric::to_string(box_low, 6) + ":" + numeric::to_string(box_high, 6) + " needs 0 < LOW < HIGH, both normal doubles (" +
-         numeric::to_string(std::numeric_limits<double>::min(), 17) + " <= LOW, HIGH finite)");
+    fail("box " + numeric::to_string(box_low, 6) + ":" + numeric::to_string(box_high, 6) + ": needs 0 < LOW < HIGH with LOW >= " +
+         numeric::to_string(std::numeric_limits<double>::min(), 17) + " and HIGH finite (normal doubles)");
 }
 
 std::string describe_box(const ExploreOptions& o) {

@@ -223,7 +223,7 @@ inline constexpr int max_moving_clusters = 20;
 /// fixed obstacle, 20 with a finite one).
 int max_bodies(Obstacle obstacle);
 
-/// Throws std::invalid_argument("check_bodies(): N bodies: ...") when a
+/// Throws std::invalid_argument("check_bodies(): n = N: ...") when a
 /// pattern of \p bodies bodies cannot be derived with \p obstacle: fewer
 /// than 2, or more than max_bodies(), in one line that gives the rule.
 void check_bodies(int bodies, Obstacle obstacle);
