@@ -68,7 +68,9 @@ void add_explore(CLI::App& app, Action& action) {
       "The box.  a = 1 (the velocities after are linear in a) and the bottom body fixed (m_n = infinity); every\n"
       "mass and K in [LOW, HIGH] of --box on a log scale; each coupling t * sqrt(K_p K_q) with t in [-1, 1], so\n"
       "its 2x2 minor of M holds.  \"Largest U1+/a found\" is a statement about that box: in the paper's regime\n"
-      "U1+/a is unbounded (§4.1 gets a/(2 eps)), so a wider box gives a larger number.\n\n"
+      "U1+/a is unbounded (§4.1 gets a/(2 eps)), so a wider box gives a larger number.  Any box with\n"
+      "0 < LOW < HIGH, both normal doubles, is searched (1e-300:1e300 too): a point where a condition overflows\n"
+      "or underflows in double counts as infeasible, and a witness is still confirmed exactly.\n\n"
       "Without a witness it tries to prove impossibility: nonnegative weights in {0, 1, 2} on the conditions'\n"
       "polynomials N_i and Q = t * x^T M x (t in {0, 1, 2}, x in {-1, 0, 1} on the coupled pairs) such that\n"
       "-(sum w_i N_i) - Q has only nonnegative terms (even powers of couplings): then the weighted conditions\n"
@@ -96,7 +98,7 @@ void add_explore(CLI::App& app, Action& action) {
   cmd->add_option("--seed", o->explore.seed, "Seed of the starting points")->capture_default_str();
   cmd->add_option("--starts", o->explore.starts, "Local searches (Nelder-Mead) per case")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--evaluations", o->explore.evaluations, "Objective evaluations per local search")->check(CLI::Range(10, 10000000))->capture_default_str();
-  cmd->add_option("--box", o->box, "LOW:HIGH, the range of every mass and K (log scale)")->capture_default_str();
+  cmd->add_option("--box", o->box, "LOW:HIGH, the range of every mass and K (log scale): 0 < LOW < HIGH, both normal doubles")->capture_default_str();
   cmd->add_option("--out", o->out, "Write each witness scene file into this folder (created if missing)")->check(non_empty());
   cmd->add_flag("--json", o->json, "Print JSON for programs");
   cmd->add_option("--output,-o", o->output, "Write the report to this file instead of standard output")->check(non_empty());
