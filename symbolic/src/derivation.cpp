@@ -12,6 +12,7 @@
 
 #include "poly.hpp"
 #include "polynomial.hpp"
+#include "superball/cases/error.hpp"
 #include "superball/cases/vocabulary.hpp"
 
 namespace superball::symbolic {
@@ -141,8 +142,7 @@ Scaling Scaling::parse(const std::string& text, const Symbols& symbols) {
     try {
       symbols.by_name(name);
     } catch (const std::invalid_argument& e) {
-      const std::string why = e.what();
-      throw std::invalid_argument("Scaling::parse(): " + why.substr(why.find(':') + 2));
+      throw std::invalid_argument("Scaling::parse(): " + without_function_prefix(e.what()));
     }
     GiNaC::numeric order;
     try {

@@ -79,6 +79,20 @@ TEST(ExamApi, BodyCountIsWhatTheDeterminantsTake) {
   EXPECT_EQ(d.derive(closed).velocities.size(), 21u);
 }
 
+// One entry under two spellings is declared twice, and the message names it
+// (issue 25); a name --scaling does not know is refused without a stray prefix.
+TEST(ExamApi, OneEntryDeclaredTwiceIsNamed) {
+  Pattern p;
+  p.bodies = 4;
+  p.diagonal = Pattern::parse_pairs("1-2,01-2", 4);
+  EXPECT_EQ(message_of([&] { p.check(); }), "Pattern::check(): the diagonal entry K 1-2 is declared twice");
+  p.diagonal = Pattern::parse_pairs("1-2,1-4", 4);
+  p.couplings = Pattern::parse_couplings("1-2/1-4,1-4/01-2", 4);
+  EXPECT_EQ(message_of([&] { p.check(); }), "Pattern::check(): the coupling 1-2/1-4 is declared twice (the order of its pairs does not matter)");
+  const Symbols s(Pattern::paper({2}), Obstacle::Infinite);
+  EXPECT_TRUE(starts_with(message_of([&] { Scaling::parse("c_14_12=1", s); }), "Scaling::parse(): no parameter 'c_14_12' in this pattern"));
+}
+
 TEST(ExamApi, OrderOneKeepsTheNextCorrection) {
   const Deriver d(Pattern::paper({2}), Obstacle::Infinite, std::nullopt, 1);
   const Derivation r = d.derive(Vocabulary::paper().named_case("1").closed);
