@@ -7,9 +7,9 @@
 #include "commands.hpp"
 #include "distribute.hpp"
 #include "gnuplot.hpp"
-#include "range.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/parallel.hpp"
+#include "superball/numeric/range.hpp"
 #include "superball/verify/overlay.hpp"
 
 namespace superball::cli {
@@ -80,7 +80,8 @@ void add_map(CLI::App& app, Action& action) {
       "disagreement as a scene file into --out DIR (exit 1 when there is one).  It needs the keys among K,\n"
       "alpha, coupling, mass, fall_speed and a rational fall speed.\n"
       "A corner of the grid that a scene file could not hold (g <= 0, a mass <= 0, a contact opening before the\n"
-      "collision), the same KEY on both axes, or a grid where M is nowhere positive semi-definite is refused\n"
+      "collision), one parameter on both axes (in any spelling: K.03-4 is K.3-4, alpha.2 is coupling.1-2/1-4), or a\n"
+      "grid where M is nowhere positive semi-definite is refused\n"
       "before anything is written.  The output does not depend on --threads.\n"
       "Over MPI (`mpirun -n P superball map ...`, built with -DSUPERBALL_WITH_MPI=ON) the grid points, then the\n"
       "bisections, are handed out to the ranks as tasks (each on --threads threads); rank 0 writes the same bytes\n"
@@ -117,8 +118,8 @@ void add_map(CLI::App& app, Action& action) {
       if (!o->out.empty() && std::filesystem::exists(o->out) && !std::filesystem::is_directory(o->out))
         throw OutputError("--out " + o->out + ": exists and is not a folder");
       const Scene scene = load_scene(o->scene);
-      const Range rx = parse_range("--x", o->x, scene, numeric::map_max_steps);
-      const Range ry = parse_range("--y", o->y, scene, numeric::map_max_steps);
+      const numeric::Range rx = numeric::parse_range("--x", o->x, scene, numeric::map_max_steps);
+      const numeric::Range ry = numeric::parse_range("--y", o->y, scene, numeric::map_max_steps);
       numeric::MapSettings settings;
       settings.precision = numeric::Precision::parse(o->precision);
       settings.threads = o->threads;

@@ -5,7 +5,7 @@
 namespace superball::cli {
 
 void add_selection_options(CLI::App* cmd, SelectionOptions& o, bool require_case) {
-  CLI::Option* bodies = cmd->add_option("--bodies,-n", o.bodies, "Number of bodies n >= 2, the bottom one being the obstacle")->capture_default_str();
+  CLI::Option* bodies = cmd->add_option("--bodies,-n", o.bodies, "Number of bodies n, the bottom one being the obstacle: 2 to 21 (20 with --obstacle finite)")->capture_default_str();
   auto* g = cmd->add_option_group("case", "Which evolution case (one of)");
   g->add_option("--case", o.case_name, "The paper's case name (n = 4): 0, 1, 2.1, 2.2, 3.1, 3.2, 3.3, 3.4")->check(non_empty());
   g->add_option("--closed", o.closed, "The closed contacts, e.g. 2-3,3-4 (\"none\" for no closed contact)")->check(non_empty());

@@ -8,14 +8,16 @@
 
 #include "commands.hpp"
 #include "distribute.hpp"
-#include "range.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/parallel.hpp"
+#include "superball/numeric/range.hpp"
 #include "superball/numeric/sweep.hpp"
 
 namespace superball::cli {
 namespace {
+
+using numeric::Range;
 
 std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_decimal(x, digits); }
 
@@ -237,7 +239,9 @@ void add_sweep(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand("sweep", "Velocities after the collision along one parameter, and where the case changes");
   cmd->footer(
       "KEY names a parameter: K.i-j, alpha.k (n = 4), coupling.i-j/k-l, mass.i, velocity.i, drop_height,\n"
-      "fall_speed, g.  FROM and TO are numbers or fractions (exact), in either order; STEPS counts the values,\n"
+      "fall_speed, g; every spelling of one entry is one parameter (K.03-4 is K.3-4, coupling.1-4/1-2 is\n"
+      "coupling.1-2/1-4 and, n = 4, alpha.2), printed by its canonical key.  FROM and TO are any numbers a\n"
+      "scene file takes (integers of any size, decimals, fractions; exact), in either order; STEPS counts the values,\n"
       "ends included.  A range holding a value a scene file could not hold (g <= 0, a mass <= 0, M not\n"
       "positive semi-definite, a contact opening before the collision, ...) is refused before anything is\n"
       "printed.  Rows are printed as they are solved, a few thousand at a time.\n"
@@ -264,7 +268,7 @@ void add_sweep(CLI::App& app, Action& action) {
   cmd->callback([o, cmd, &action] {
     action = [o, cmd] {
       const Scene scene = load_scene(o->scene);
-      const Range r = parse_range("--vary", o->vary, scene, 10000000);
+      const Range r = numeric::parse_range("--vary", o->vary, scene, numeric::sweep_max_steps);
       if (o->switches && cmd->count("--precision") > 0)
         throw std::invalid_argument("sweep: --switch-points bisects on the exact solution; --precision does not apply to it");
       const auto precision = numeric::Precision::parse(o->precision);

@@ -24,15 +24,15 @@ Pair pair_of(const std::string& key, const std::string& text, int n) {
   return p;
 }
 
+/// A body or alpha index: decimal digits only (leading zeros allowed, so
+/// `mass.01` is `mass.1`), at most 9 of them; 0 for anything else.
+int index_of(const std::string& text) {
+  if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos) return 0;
+  return std::stoi(text);
+}
+
 int body_of(const std::string& key, const std::string& text, int n) {
-  int b = 0;
-  try {
-    std::size_t used = 0;
-    b = std::stoi(text, &used);
-    if (used != text.size()) b = 0;
-  } catch (const std::exception&) {
-    b = 0;
-  }
+  const int b = index_of(text);
   if (b < 1 || b > n) bad(key, "body must be 1.." + std::to_string(n));
   return b;
 }
@@ -41,7 +41,7 @@ int body_of(const std::string& key, const std::string& text, int n) {
 
 Parameter Parameter::parse(const std::string& key, const Scene& scene) {
   Parameter p;
-  p.key_ = key;
+  p.spelling_ = key;
   const int n = scene.size();
   const auto dot = key.find('.');
   const std::string head = key.substr(0, dot), tail = dot == std::string::npos ? "" : key.substr(dot + 1);
@@ -51,12 +51,12 @@ Parameter Parameter::parse(const std::string& key, const Scene& scene) {
   } else if (head == "alpha") {
     const Vocabulary& v = Vocabulary::paper();
     if (n != v.bodies()) bad(key, "the paper's alpha_k name couplings of 4 bodies; use coupling.i-j/k-l");
-    int k = 0;
-    if (tail.size() == 1 && tail[0] >= '1' && tail[0] <= '9') k = tail[0] - '0';
+    const int k = index_of(tail);
     if (k < 1 || k > static_cast<int>(v.alphas().size())) bad(key, "alpha must be 1.." + std::to_string(v.alphas().size()));
     p.kind_ = Kind::Entry;
     p.first = v.alpha(k).first;
     p.second = v.alpha(k).second;
+    if (p.second < p.first) std::swap(p.first, p.second);
   } else if (head == "coupling") {
     const auto slash = tail.find('/');
     if (slash == std::string::npos) bad(key, "write coupling.i-j/k-l");
@@ -69,7 +69,7 @@ Parameter Parameter::parse(const std::string& key, const Scene& scene) {
     p.kind_ = head == "mass" ? Kind::Mass : Kind::Velocity;
     p.body = body_of(key, tail, n);
     if (p.kind_ == Kind::Mass && scene.bodies[static_cast<std::size_t>(p.body - 1)].infinite)
-      bad(key, "body " + tail + " is a fixed obstacle (infinite mass)");
+      bad(key, "body " + std::to_string(p.body) + " is a fixed obstacle (infinite mass)");
   } else if (key == "drop_height" || key == "fall_speed" || key == "g") {
     p.kind_ = key == "g" ? Kind::Gravity : key == "drop_height" ? Kind::DropHeight : Kind::FallSpeed;
     if (p.kind_ == Kind::DropHeight && scene.fall_speed) bad(key, "the scene gives fall_speed, not drop_height");
@@ -77,7 +77,30 @@ Parameter Parameter::parse(const std::string& key, const Scene& scene) {
   } else {
     bad(key, "unknown parameter (expected K.i-j, alpha.k, coupling.i-j/k-l, mass.i, velocity.i, drop_height, fall_speed or g)");
   }
+  p.key_ = p.canonical(n);
   return p;
+}
+
+std::string Parameter::canonical(int bodies) const {
+  switch (kind_) {
+    case Kind::Entry: {
+      if (first == second) return "K." + first.name();
+      const Vocabulary& v = Vocabulary::paper();
+      if (bodies == v.bodies())
+        if (const auto k = v.alpha_index(first, second)) return "alpha." + std::to_string(*k);
+      return "coupling." + first.name() + "/" + second.name();
+    }
+    case Kind::Mass: return "mass." + std::to_string(body);
+    case Kind::Velocity: return "velocity." + std::to_string(body);
+    case Kind::DropHeight: return "drop_height";
+    case Kind::FallSpeed: return "fall_speed";
+    case Kind::Gravity: return "g";
+  }
+  return "";
+}
+
+bool operator==(const Parameter& a, const Parameter& b) {
+  return a.kind_ == b.kind_ && a.first == b.first && a.second == b.second && a.body == b.body;
 }
 
 void Parameter::assign(Scene& s, const Number& value) const {

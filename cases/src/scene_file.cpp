@@ -425,7 +425,9 @@ Scene parse_scene(const std::string& file_text, const std::string& origin) {
 
 namespace {
 
-/// A Number as a TOML value: the user's spelling when TOML reads it as a number, else "p/q".
+/// A Number as a TOML value: the user's spelling when TOML reads it as this
+/// number, else the integer when TOML holds it (64 bits), else the string
+/// "p" or "p/q" (a scene accepts every exact number as a string).
 std::string toml_number(const Number& x) {
   const std::string& t = x.text;
   const bool plain = !t.empty() && t.find_first_not_of("+-0123456789.eE") == std::string::npos && t.find('/') == std::string::npos &&
@@ -437,7 +439,14 @@ std::string toml_number(const Number& x) {
     } catch (const std::exception&) {
     }
   }
-  return x.denominator == "1" ? x.numerator : "\"" + x.fraction() + "\"";
+  if (x.denominator == "1") {
+    try {
+      (void)toml::parse("x = " + x.numerator);
+      return x.numerator;
+    } catch (const std::exception&) {  // past 64 bits
+    }
+  }
+  return "\"" + (x.denominator == "1" ? x.numerator : x.fraction()) + "\"";
 }
 
 std::string quoted(const std::string& s) {

@@ -421,8 +421,9 @@ std::vector<MapBoundary> boundaries_from_text(const std::string& text) {
 }  // namespace detail
 
 void check_map(const Scene& scene, const Axis& x, const Axis& y) {
-  if (x.parameter.key() == y.parameter.key())
-    throw std::invalid_argument("map(): " + x.parameter.key() + " is on both axes; a map needs two different parameters");
+  if (x.parameter == y.parameter)
+    throw std::invalid_argument("map(): --x " + x.parameter.spelling() + " and --y " + y.parameter.spelling() + " name the same parameter (" +
+                                x.parameter.key() + "); a map needs two different parameters");
   for (const Axis* a : {&x, &y}) {
     if (a->steps < 2 || a->steps > map_max_steps)
       throw std::invalid_argument("map(): " + a->parameter.key() + ": " + std::to_string(a->steps) + " values; an axis takes 2 to " +

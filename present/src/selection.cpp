@@ -50,11 +50,12 @@ int width(const Pattern& p) {
 }  // namespace detail
 
 Selection resolve(const SelectionOptions& o) {
+  const Obstacle obstacle = o.obstacle == "finite" ? Obstacle::Finite : Obstacle::Infinite;
   Pattern pattern;
   if (!o.scene.empty()) {
     pattern = Pattern::from_scene(load_scene(o.scene));
   } else {
-    if (o.bodies < 2 || o.bodies > 64) throw std::invalid_argument("--bodies must be 2..64");
+    check_bodies(o.bodies, obstacle);
     if (!o.alphas.empty()) {
       if (o.bodies != Vocabulary::paper().bodies())
         throw std::invalid_argument("--alphas names the paper's couplings of 4 bodies; use --coupling for " + std::to_string(o.bodies));
@@ -77,7 +78,6 @@ Selection resolve(const SelectionOptions& o) {
                                   std::to_string(w) + " was measured to take over 10 s past " + std::to_string(limit) +
                                   " bodies (docs/SYMBOLIC.md, Limits); --no-limit derives anyway");
   }
-  const Obstacle obstacle = o.obstacle == "finite" ? Obstacle::Finite : Obstacle::Infinite;
   const Symbols symbols(pattern, obstacle);
   std::optional<Scaling> scaling;
   if (!o.scaling.empty()) scaling = Scaling::parse(o.scaling, symbols);

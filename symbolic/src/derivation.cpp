@@ -12,6 +12,7 @@
 
 #include "poly.hpp"
 #include "polynomial.hpp"
+#include "superball/cases/error.hpp"
 #include "superball/cases/vocabulary.hpp"
 
 namespace superball::symbolic {
@@ -141,8 +142,7 @@ Scaling Scaling::parse(const std::string& text, const Symbols& symbols) {
     try {
       symbols.by_name(name);
     } catch (const std::invalid_argument& e) {
-      const std::string why = e.what();
-      throw std::invalid_argument("Scaling::parse(): " + why.substr(why.find(':') + 2));
+      throw std::invalid_argument("Scaling::parse(): " + without_function_prefix(e.what()));
     }
     GiNaC::numeric order;
     try {
@@ -178,8 +178,19 @@ std::string Scaling::describe(const Symbols& symbols, Style style) const {
 
 // ---------------------------------------------------------------- Deriver
 
+int max_bodies(Obstacle obstacle) { return obstacle == Obstacle::Infinite ? max_moving_clusters + 1 : max_moving_clusters; }
+
+void check_bodies(int bodies, Obstacle obstacle) {
+  if (bodies < 2 || bodies > max_bodies(obstacle))
+    throw std::invalid_argument("check_bodies(): n = " + std::to_string(bodies) + ": the symbolic derivation takes 2 to " +
+                                std::to_string(max_bodies(Obstacle::Infinite)) + " bodies with a fixed obstacle, 2 to " +
+                                std::to_string(max_bodies(Obstacle::Finite)) + " with a finite one (at most " +
+                                std::to_string(max_moving_clusters) + " bodies moving apart: determinants of up to " +
+                                std::to_string(max_moving_clusters) + " x " + std::to_string(max_moving_clusters) + ")");
+}
+
 Deriver::Deriver(const Pattern& pattern, Obstacle obstacle, std::optional<Scaling> scaling, int order)
-    : symbols_(std::make_shared<const Symbols>(pattern, obstacle)), order_(order) {
+    : symbols_((check_bodies(pattern.bodies, obstacle), std::make_shared<const Symbols>(pattern, obstacle))), order_(order) {
   if (order < 0) throw std::invalid_argument("Deriver::Deriver(): the order must be >= 0 (got " + std::to_string(order) + ")");
   scaling_ = scaling ? *scaling : Scaling::paper(*symbols_);
   for (const SymbolInfo& info : symbols_->all()) {

@@ -145,10 +145,11 @@ void Pattern::check() {
   }
   std::sort(diagonal.begin(), diagonal.end());
   std::sort(couplings.begin(), couplings.end());
-  if (std::adjacent_find(diagonal.begin(), diagonal.end()) != diagonal.end())
-    throw std::invalid_argument("Pattern::check(): a diagonal entry K is declared twice");
-  if (std::adjacent_find(couplings.begin(), couplings.end()) != couplings.end())
-    throw std::invalid_argument("Pattern::check(): a coupling is declared twice");
+  if (const auto twice = std::adjacent_find(diagonal.begin(), diagonal.end()); twice != diagonal.end())
+    throw std::invalid_argument("Pattern::check(): the diagonal entry K " + twice->name() + " is declared twice");
+  if (const auto twice = std::adjacent_find(couplings.begin(), couplings.end()); twice != couplings.end())
+    throw std::invalid_argument("Pattern::check(): the coupling " + twice->first.name() + "/" + twice->second.name() +
+                                " is declared twice (the order of its pairs does not matter)");
 }
 
 std::vector<Pair> Pattern::pairs() const {

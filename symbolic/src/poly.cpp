@@ -7,6 +7,8 @@
 #include <string>
 #include <unordered_map>
 
+#include "superball/symbolic/derivation.hpp"
+
 namespace superball::symbolic::detail {
 namespace {
 
@@ -415,8 +417,8 @@ GiNaC::ex Poly::to_ex(const Symbols& symbols) const {
 }
 
 Poly determinant(const std::vector<Poly>& m, int n, int vars) {
-  if (n < 0 || n > 20 || m.size() != static_cast<std::size_t>(n) * static_cast<std::size_t>(n))
-    throw std::invalid_argument("determinant(): expected an n x n matrix, n <= 20");
+  if (n < 0 || n > max_moving_clusters || m.size() != static_cast<std::size_t>(n) * static_cast<std::size_t>(n))
+    throw std::invalid_argument("determinant(): expected an n x n matrix, n <= " + std::to_string(max_moving_clusters));
   if (n == 0) return Poly::constant(vars, 1);
   // minor(S): det of the last |S| rows on the columns of S.
   std::unordered_map<std::uint32_t, Poly> memo;

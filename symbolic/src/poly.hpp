@@ -121,7 +121,7 @@ std::uint64_t add(std::uint64_t a, std::uint64_t b);
 int gcd_degree(std::vector<std::uint64_t> a, std::vector<std::uint64_t> b);
 }  // namespace mod61
 
-/// det of the square matrix \p m of polynomials (row-major, \p n × \p n, n ≤ 20):
+/// det of the square matrix \p m of polynomials (row-major, \p n × \p n, n ≤ max_moving_clusters):
 /// Laplace expansion along the rows with every minor of the bottom rows
 /// memoised by its column set; zero entries (the band of a banded matrix)
 /// are skipped, so a banded matrix costs a few products per minor.

@@ -1,11 +1,15 @@
 // Parameter names (`--vary KEY`): parsing against a scene and setting values.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "superball/cases/parameter.hpp"
 #include "superball/cases/scene_file.hpp"
+#include "superball/cases/vocabulary.hpp"
 
 namespace superball {
 namespace {
@@ -161,6 +165,137 @@ TEST(Parameter, AlphaNeedsFourBodies) {
     EXPECT_NE(std::string(e.what()).find("4 bodies"), std::string::npos) << e.what();
   }
   EXPECT_THROW(Parameter::parse("fall_speed", three), std::invalid_argument);
+}
+
+/// A scene of \p n bodies of finite mass, falling at 1, with no entry of M.
+Scene falling(int n) {
+  std::string text = "fall_speed = 1\n";
+  for (int i = 0; i < n; ++i) text += "[[body]]\nmass = " + std::to_string(i + 1) + "\n";
+  return parse_scene(text, "n" + std::to_string(n));
+}
+
+/// Spellings of the index \p i: as is and with a leading zero.
+std::vector<std::string> index_spellings(int i) {
+  const std::string d = std::to_string(i);
+  return {d, "0" + d};
+}
+
+/// Every spelling of the pair p-q (each index as index_spellings()).
+std::vector<std::string> pair_spellings(const Pair& p) {
+  std::vector<std::string> out;
+  for (const std::string& i : index_spellings(p.i))
+    for (const std::string& j : index_spellings(p.j)) out.push_back(i + "-" + j);
+  return out;
+}
+
+/// The parameters of a scene of \p n bodies, each with every one of its
+/// spellings: K.i-j, coupling.i-j/k-l (both orders), alpha.k (n = 4),
+/// mass.i, velocity.i, with leading zeros on the indices; and the canonical
+/// key each must have.
+std::map<std::string, std::vector<std::string>> spellings(int n) {
+  std::vector<Pair> pairs;
+  for (int i = 1; i <= n; ++i)
+    for (int j = i + 1; j <= n; ++j) pairs.push_back({i, j});
+  std::map<std::string, std::vector<std::string>> out;
+  for (const Pair& p : pairs)
+    for (const std::string& s : pair_spellings(p)) out["K." + p.name()].push_back("K." + s);
+  const Vocabulary& v = Vocabulary::paper();
+  for (std::size_t a = 0; a < pairs.size(); ++a)
+    for (std::size_t b = a + 1; b < pairs.size(); ++b) {
+      const Pair &p = pairs[a], &q = pairs[b];
+      const auto alpha = n == v.bodies() ? v.alpha_index(p, q) : std::nullopt;
+      std::vector<std::string>& names = out[alpha ? "alpha." + std::to_string(*alpha) : "coupling." + p.name() + "/" + q.name()];
+      for (const std::string& x : pair_spellings(p))
+        for (const std::string& y : pair_spellings(q)) {
+          names.push_back("coupling." + x + "/" + y);
+          names.push_back("coupling." + y + "/" + x);
+        }
+      if (alpha)
+        for (const std::string& k : index_spellings(*alpha)) names.push_back("alpha." + k);
+    }
+  for (int i = 1; i <= n; ++i)
+    for (const std::string& k : index_spellings(i)) {
+      out["mass." + std::to_string(i)].push_back("mass." + k);
+      out["velocity." + std::to_string(i)].push_back("velocity." + k);
+    }
+  for (const char* name : {"fall_speed", "g"}) out[name].push_back(name);
+  return out;
+}
+
+// One parameter, one name: every spelling of an entry parses into the same
+// Parameter, with the canonical key and the spelling given (every pair of
+// spellings of every parameter compared), and two different entries never
+// compare equal (each entry's first and last spelling against every other
+// entry's).  n = 2..8, alpha.k at n = 4.
+TEST(Parameter, EverySpellingOfAnEntryIsOneParameter) {
+  for (int n = 2; n <= 8; ++n) {
+    const Scene scene = falling(n);
+    std::vector<std::vector<Parameter>> entries;
+    for (const auto& [key, spelled] : spellings(n)) {
+      std::vector<Parameter> parsed;
+      for (const std::string& s : spelled) {
+        parsed.push_back(Parameter::parse(s, scene));
+        EXPECT_EQ(parsed.back().key(), key) << "n = " << n << ", " << s;
+        EXPECT_EQ(parsed.back().spelling(), s);
+      }
+      for (const Parameter& a : parsed)
+        for (const Parameter& b : parsed)
+          if (a != b || !(a == b)) ADD_FAILURE() << "n = " << n << ": " << a.spelling() << " and " << b.spelling() << " differ";
+      entries.push_back(std::move(parsed));
+    }
+    for (std::size_t i = 0; i < entries.size(); ++i)
+      for (std::size_t j = 0; j < entries.size(); ++j)
+        for (const Parameter* a : {&entries[i].front(), &entries[i].back()})
+          for (const Parameter* b : {&entries[j].front(), &entries[j].back()})
+            if ((*a == *b) != (i == j)) ADD_FAILURE() << "n = " << n << ": " << a->spelling() << " and " << b->spelling();
+    // Every entry of M, body and fall parameter: n(n-1)/2 K's, C(n(n-1)/2, 2) couplings, 2n, fall_speed and g.
+    const std::size_t pairs = static_cast<std::size_t>(n * (n - 1) / 2);
+    EXPECT_EQ(entries.size(), pairs + pairs * (pairs - 1) / 2 + 2 * static_cast<std::size_t>(n) + 2) << "n = " << n;
+  }
+}
+
+// The issue's spellings of one entry at n = 4, and set() through each
+// reaching the one entry of the scene.
+TEST(Parameter, PaperSpellingsNameOneEntry) {
+  Scene s = parse_scene(kFourBodies, "four");
+  EXPECT_EQ(Parameter::parse("K.03-4", s), Parameter::parse("K.3-4", s));
+  EXPECT_EQ(Parameter::parse("K.03-4", s).key(), "K.3-4");
+  EXPECT_EQ(Parameter::parse("alpha.2", s), Parameter::parse("coupling.1-2/1-4", s));
+  EXPECT_EQ(Parameter::parse("coupling.1-4/1-2", s), Parameter::parse("coupling.1-2/1-4", s));
+  EXPECT_EQ(Parameter::parse("coupling.1-4/1-2", s).key(), "alpha.2");
+  EXPECT_EQ(Parameter::parse("mass.01", s), Parameter::parse("mass.1", s));
+  EXPECT_NE(Parameter::parse("mass.1", s), Parameter::parse("velocity.1", s));
+  EXPECT_NE(Parameter::parse("K.1-2", s), Parameter::parse("K.1-3", s));
+  EXPECT_NE(Parameter::parse("alpha.2", s), Parameter::parse("alpha.3", s));
+  const std::size_t entries = s.entries.size();
+  Parameter::parse("K.03-04", s).set(s, Number::parse("11"));
+  Parameter::parse("coupling.01-4/1-02", s).set(s, Number::parse("-70"));
+  EXPECT_EQ(s.entries.size(), entries);
+  EXPECT_EQ(s.find(Pair::parse("3-4"), Pair::parse("3-4"))->value.text, "11");
+  EXPECT_EQ(s.find(Pair::parse("1-2"), Pair::parse("1-4"))->value.text, "-70");
+  // A coupling the paper does not name keeps the coupling spelling, pairs in order.
+  EXPECT_EQ(Parameter::parse("coupling.2-3/1-2", s).key(), "coupling.1-2/2-3");
+}
+
+// A value past 64 bits is an exact number like any other: set() writes the
+// scene and reads it back (issue 25: 1e19 was "not representable in 64 bits").
+TEST(Parameter, SetsValuesPastSixtyFourBits) {
+  Scene s = parse_scene(kFourBodies, "four");
+  for (const char* big : {"10000000000000000000", "-10000000000000000000/3", "1" "000000000000000000000000000000000000000000"}) {
+    Parameter::parse(std::string(big).front() == '-' ? "alpha.2" : "K.1-4", s).set(s, Number::parse(big));
+    const Scene back = parse_scene(write_scene(s), "back");
+    EXPECT_EQ(write_scene(back), write_scene(s)) << big;
+  }
+  EXPECT_EQ(s.find(Pair::parse("1-4"), Pair::parse("1-4"))->value.fraction(), "1000000000000000000000000000000000000000000/1");
+  EXPECT_EQ(s.find(Pair::parse("1-2"), Pair::parse("1-4"))->value.fraction(), "-10000000000000000000/3");
+}
+
+// Spellings that are not indices stay refused (no sign, space or other digits).
+TEST(Parameter, IndicesAreDecimalDigitsOnly) {
+  const Scene four = parse_scene(kFourBodies, "four");
+  for (const char* key : {"mass.+1", "mass. 1", "mass.1 ", "mass.-1", "velocity.0x1", "alpha.+2", "alpha. 2", "alpha.2.0", "K.+3-4",
+                          "K. 3-4", "coupling.1-2/ 1-4", "mass.0000000001", "mass."})
+    EXPECT_THROW(Parameter::parse(key, four), std::invalid_argument) << key;
 }
 
 }  // namespace

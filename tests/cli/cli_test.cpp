@@ -488,12 +488,23 @@ TEST(Explore, SameSeedSameOutput) {
   EXPECT_EQ(a.out, b.out);
 }
 
+// Issue 25: a box to the ends of double is searched (it was refused as not
+// 0 < LOW < HIGH); the witness is confirmed exactly as in any box.
+TEST(Explore, TheBoxMayReachTheEndsOfDouble) {
+  const RunResult r = run({"explore", "--alphas", "2", "--case", "1", "--box", "1e-300:1e300", "--starts", "4"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_NE(r.out.find("box: every mass and K in [1e-300, 1e+300]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("verdict: yes"), std::string::npos) << r.out;
+}
+
 /// Bad options: exit 2, one line on stderr naming the option, nothing on stdout.
 TEST(Explore, BadOptionsAreOneLine) {
   const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
       {{"explore", "--alphas", "3"}, {"--case", "--all-patterns"}},
       {{"explore", "--all-patterns", "--case", "1"}, {"--all-patterns", "drop"}},
-      {{"explore", "--alphas", "3", "--case", "1", "--box", "5:1"}, {"--box", "LOW < HIGH"}},
+      {{"explore", "--alphas", "3", "--case", "1", "--box", "5:1"}, {"box 5:1: needs 0 < LOW < HIGH"}},
+      {{"explore", "--alphas", "3", "--case", "1", "--box", "1e-320:1"}, {"box ", ":1: needs 0 < LOW < HIGH with LOW >= 2.2250738585072014e-308"}},
+      {{"explore", "--alphas", "3", "--case", "1", "--box", "1:1e400"}, {"box 1:inf: needs", "HIGH finite"}},
       {{"explore", "--alphas", "3", "--case", "1", "--box", "wide"}, {"--box", "LOW:HIGH"}},
       {{"explore", "--alphas", "3", "--case", "1", "--starts", "0"}, {"--starts"}},
       {{"explore", "--alphas", "3", "--case", "1", "--obstacle", "finite"}, {"fixed obstacle"}},

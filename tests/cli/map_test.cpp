@@ -34,7 +34,11 @@ TEST(MapCli, BadInputIsOneLineAndWritesNothing) {
   const struct {
     std::string x, y, expected;
   } bad[] = {{"K.5-6=0:20:5", "alpha.2=-100:0:5", "K.5-6"},                                     // not in a scene of 4 bodies
-             {"K.3-4=0:20:5", "K.3-4=1:2:5", "K.3-4 is on both axes"},                            // the same key twice
+             {"K.3-4=0:20:5", "K.3-4=1:2:5", "--x K.3-4 and --y K.3-4 name the same parameter (K.3-4)"},  // the same key twice
+             // One entry under two spellings (issue 25).
+             {"K.3-4=0:20:3", "K.03-4=0:20:3", "--x K.3-4 and --y K.03-4 name the same parameter (K.3-4); a map needs two different parameters"},
+             {"alpha.2=-100:0:3", "coupling.1-2/1-4=-100:0:3", "--x alpha.2 and --y coupling.1-2/1-4 name the same parameter (alpha.2)"},
+             {"coupling.1-4/1-2=-100:0:3", "coupling.1-2/1-4=-100:0:3", "--x coupling.1-4/1-2 and --y coupling.1-2/1-4 name the same parameter"},
              {"K.3-4=0:20:1", "alpha.2=-100:0:5", "STEPS must be a whole number from 2 to 10000"},  // N < 2
              {"K.3-4=0:20:5", "alpha.2=-100:0:10001", "from 2 to 10000"},                          // N > 10⁴
              {"K.3-4=0:20:5", "alpha.2=-400:-200:5", "not positive semi-definite at any point"},   // M nowhere PSD
@@ -48,6 +52,13 @@ TEST(MapCli, BadInputIsOneLineAndWritesNothing) {
       expect_bad_input(run(args), {b.expected});
       for (const char* ext : {".png", ".svg", ".dat", ".gp"}) EXPECT_FALSE(exists(prefix + ext)) << prefix + ext;
     }
+}
+
+TEST(MapCli, AxisEndsAreEveryNumberASceneAccepts) {
+  // Issue 25: an end past 64 bits was refused ("not representable in 64 bits").
+  const RunResult r = run({"map", kPaper, "--x", "K.1-4=1e18:1e19:3", "--y", "K.3-4=0:20:3", "--csv", "--precision", "exact"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_EQ(lines_of(r.out).size(), 10u) << r.out;
 }
 
 TEST(MapCli, CsvRowsAreTheSweepsSolves) {

@@ -124,4 +124,31 @@ TEST(SweepCli, RowsAcrossChunksAreTheRowsOfOneSolve) {
   }
 }
 
+TEST(SweepCli, RangeEndsAreEveryNumberASceneAccepts) {
+  // Issue 25: range ends past 64 bits were refused ("not representable in 64
+  // bits") though a scene file takes them; they are exact numbers like any other.
+  for (const std::string vary : {"K.1-4=1e18:1e19:3", "K.1-4=10000000000000000000:1e18:3", "K.1-4=1e4000:1e3999:3"}) {
+    const RunResult r = run({"sweep", kPaper, "--vary", vary, "--csv", "--precision", "exact"});
+    ASSERT_EQ(r.exit_code, 0) << vary << ": " << describe(r);
+    const auto lines = lines_of(r.out);
+    ASSERT_EQ(lines.size(), 4u) << r.out;
+    for (std::size_t k = 1; k < lines.size(); ++k) EXPECT_EQ(csv_fields(lines[k]).back(), "success") << lines[k];
+  }
+  const RunResult s = run({"sweep", kPaper, "--vary", "K.1-4=1e18:1e19:3", "--switch-points"});
+  ASSERT_EQ(s.exit_code, 0) << describe(s);
+  EXPECT_EQ(s.out, "no change of evolution case for K.1-4 in the range\n");
+}
+
+TEST(SweepCli, OutputNamesTheParameterByItsCanonicalKey) {
+  // Any spelling of the entry; the output says K.3-4 (issue 25).
+  const RunResult a = run({"sweep", kPaper, "--vary", "K.3-4=0:20:3", "--csv"});
+  const RunResult b = run({"sweep", kPaper, "--vary", "K.03-04=0:20:3", "--csv"});
+  ASSERT_EQ(a.exit_code, 0) << describe(a);
+  ASSERT_EQ(b.exit_code, 0) << describe(b);
+  EXPECT_EQ(a.out, b.out);
+  const RunResult c = run({"sweep", kPaper, "--vary", "coupling.1-4/1-2=-100:-50:3", "--csv"});
+  ASSERT_EQ(c.exit_code, 0) << describe(c);
+  EXPECT_EQ(lines_of(c.out).at(0), "alpha.2,U1,U2,U3,U4,case,status");
+}
+
 }  // namespace

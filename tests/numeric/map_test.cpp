@@ -336,7 +336,11 @@ TEST(Map, BadAxesAreRefusedBeforeAnythingIsSolved) {
     }
   };
   const auto k34 = axis(scene, "K.3-4", 0, 20, 5);
-  refused(k34, axis(scene, "K.3-4", 1, 2, 5), "K.3-4 is on both axes");
+  refused(k34, axis(scene, "K.3-4", 1, 2, 5), "--x K.3-4 and --y K.3-4 name the same parameter (K.3-4)");
+  // One entry under two spellings is one parameter (issue 25).
+  refused(k34, axis(scene, "K.03-4", 1, 2, 5), "--x K.3-4 and --y K.03-4 name the same parameter (K.3-4); a map needs two different parameters");
+  refused(axis(scene, "coupling.1-4/1-2", -1, 0, 3), axis(scene, "alpha.2", -2, 0, 3),
+          "--x coupling.1-4/1-2 and --y alpha.2 name the same parameter (alpha.2)");
   refused(k34, axis(scene, "alpha.2", -1, 0, 1), "an axis takes 2 to 10000");
   refused(axis(scene, "alpha.2", -1, 0, 10001), k34, "an axis takes 2 to 10000");
   refused(k34, axis(scene, "g", -1, 10, 5), "g = -1");

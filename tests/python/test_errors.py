@@ -106,15 +106,43 @@ def test_derive_options():
         (dict(case="1", alphas=2, obstacle="soft"), "obstacle"),
         (dict(case="1", alphas=2, order=-1), "order"),
         (dict(alphas=2), "give a case"),
-        (dict(closed="2-3", bodies=1), "--bodies"),
+        (dict(closed="2-3", bodies=1), "n = 1: the symbolic derivation takes 2 to 21 bodies"),
         (dict(closed="1-3", bodies=3), "1-3"),
         (dict(case="1", alphas=2, scaling="zz=1"), "zz"),
-        (dict(closed="none", bodies=30, pairs="near"), "measured to take over 10 s"),
+        (dict(closed="none", bodies=15, pairs="near"), "measured to take over 10 s"),
     ]
     for kwargs, what in cases:
         with pytest.raises(ValueError, match=what) as e:
             superball.derive(**kwargs)
         one_line(e)
+
+
+def test_one_parameter_under_its_spellings(paper):
+    # Issue 25: K.03-4 is K.3-4, coupling.1-4/1-2 is alpha.2 (4 bodies), mass.01 is mass.1.
+    for a, b, value in (("K.03-4", "K.3-4", 12), ("coupling.1-4/1-2", "alpha.2", -90), ("coupling.1-2/1-4", "alpha.2", -90),
+                        ("mass.01", "mass.1", "1/100")):
+        assert paper.with_value(a, value).to_toml() == paper.with_value(b, value).to_toml()
+    one = superball.sweep(paper, "coupling.1-4/01-2", [-100, -50])
+    other = superball.sweep(paper, "alpha.2", [-100, -50])
+    assert (one.velocities == other.velocities).all() and list(one.cases) == list(other.cases)
+
+
+def test_range_ends_past_64_bits_as_a_scene_takes_them(paper):
+    r = superball.sweep(paper, "K.1-4", ["1e18", "10000000000000000000"], precision="exact")
+    assert list(r.status) == ["success", "success"]
+
+
+def test_body_count_and_box_are_refused_as_the_command_does():
+    with pytest.raises(ValueError) as e:
+        superball.derive(closed="none", bodies=64, pairs="near", no_limit=True)
+    code, _, err = run_cli("derive", "--bodies", "64", "--pairs", "near", "--closed", "none", "--no-limit", check=False)
+    assert code == 2 and err == f"superball: {one_line(e)}\n"
+    with pytest.raises(ValueError) as e:
+        superball.explore(case="1", alphas=3, box=(5, 1))
+    code, _, err = run_cli("explore", "--alphas", "3", "--case", "1", "--box", "5:1", check=False)
+    assert code == 2 and err == f"superball: {one_line(e)}\n"
+    # A box to the ends of double is searched.
+    assert superball.explore(case="1", alphas=2, box=(1e-300, 1e300), starts=4).reach == "yes"
 
 
 def test_error_is_the_base_of_input_error():

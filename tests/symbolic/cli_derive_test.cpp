@@ -141,6 +141,21 @@ TEST(CliDerive, BadInputIsOneLine) {
   }
 }
 
+// Issue 25: --bodies 64 --no-limit was taken and failed inside with "n <= 20".
+TEST(CliDerive, TheBodyCountIsTheEnginesInOneLine) {
+  for (const std::string n : {"64", "22"}) {
+    const RunResult r = run({"derive", "--bodies", n, "--pairs", "near", "--closed", "none", "--no-limit"});
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_EQ(r.err, "superball: n = " + n +
+                         ": the symbolic derivation takes 2 to 21 bodies with a fixed obstacle, 2 to 20 with a finite one (at most 20 bodies moving "
+                         "apart: determinants of up to 20 x 20)\n");
+  }
+  const RunResult finite = run({"derive", "--bodies", "21", "--pairs", "near", "--closed", "none", "--no-limit", "--obstacle", "finite"});
+  EXPECT_EQ(finite.exit_code, 2);
+  EXPECT_EQ(finite.err.rfind("superball: n = 21: the symbolic derivation takes", 0), 0u) << finite.err;
+}
+
 // Progress on standard error: the case derive is at ("derive: case k of N (...)").
 
 TEST(CliDerive, TheOutputDoesNotDependOnTheNumberOfWorkers) {

@@ -56,6 +56,43 @@ TEST(ExamApi, ErrorsNameTheFunction) {
   EXPECT_TRUE(starts_with(message_of([] { Deriver(Pattern::paper({2}), Obstacle::Infinite, std::nullopt, -1); }), "Deriver::Deriver(): "));
 }
 
+// The body count is what the determinants take (issue 25: --bodies allowed 64
+// and the derivation then failed with "n <= 20"): 20 bodies moving apart at
+// most, 21 with the fixed obstacle, and a case of 21 bodies derives.
+TEST(ExamApi, BodyCountIsWhatTheDeterminantsTake) {
+  EXPECT_EQ(max_bodies(Obstacle::Infinite), max_moving_clusters + 1);
+  EXPECT_EQ(max_bodies(Obstacle::Finite), max_moving_clusters);
+  EXPECT_NO_THROW(check_bodies(2, Obstacle::Finite));
+  EXPECT_NO_THROW(check_bodies(21, Obstacle::Infinite));
+  EXPECT_NO_THROW(check_bodies(20, Obstacle::Finite));
+  for (const auto& [n, obstacle] : {std::pair{1, Obstacle::Infinite}, {22, Obstacle::Infinite}, {21, Obstacle::Finite}, {64, Obstacle::Infinite}})
+    EXPECT_EQ(message_of([n = n, obstacle = obstacle] { check_bodies(n, obstacle); }),
+              "check_bodies(): n = " + std::to_string(n) +
+                  ": the symbolic derivation takes 2 to 21 bodies with a fixed obstacle, 2 to 20 with a finite one (at most 20 bodies moving "
+                  "apart: determinants of up to 20 x 20)");
+  EXPECT_TRUE(starts_with(message_of([] { Deriver(Pattern::near(22, 1), Obstacle::Infinite); }), "check_bodies(): n = 22: "));
+  EXPECT_TRUE(starts_with(message_of([] { Deriver(Pattern::near(21, 1), Obstacle::Finite); }), "check_bodies(): n = 21: "));
+  // 21 bodies, contacts 3-4 … 20-21 closed: two bodies move apart.
+  const Deriver d(Pattern::near(21, 1), Obstacle::Infinite);
+  ContactSet closed(21);
+  for (int c = 2; c < 20; ++c) closed.set_closed(c, true);
+  EXPECT_EQ(d.derive(closed).velocities.size(), 21u);
+}
+
+// One entry under two spellings is declared twice, and the message names it
+// (issue 25); a name --scaling does not know is refused without a stray prefix.
+TEST(ExamApi, OneEntryDeclaredTwiceIsNamed) {
+  Pattern p;
+  p.bodies = 4;
+  p.diagonal = Pattern::parse_pairs("1-2,01-2", 4);
+  EXPECT_EQ(message_of([&] { p.check(); }), "Pattern::check(): the diagonal entry K 1-2 is declared twice");
+  p.diagonal = Pattern::parse_pairs("1-2,1-4", 4);
+  p.couplings = Pattern::parse_couplings("1-2/1-4,1-4/01-2", 4);
+  EXPECT_EQ(message_of([&] { p.check(); }), "Pattern::check(): the coupling 1-2/1-4 is declared twice (the order of its pairs does not matter)");
+  const Symbols s(Pattern::paper({2}), Obstacle::Infinite);
+  EXPECT_TRUE(starts_with(message_of([&] { Scaling::parse("c_14_12=1", s); }), "Scaling::parse(): no parameter 'c_14_12' in this pattern"));
+}
+
 TEST(ExamApi, OrderOneKeepsTheNextCorrection) {
   const Deriver d(Pattern::paper({2}), Obstacle::Infinite, std::nullopt, 1);
   const Derivation r = d.derive(Vocabulary::paper().named_case("1").closed);

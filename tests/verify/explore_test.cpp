@@ -5,6 +5,7 @@
 // impossible and the proof is sound on sampled points; same seed, same result.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -200,6 +201,30 @@ TEST(Explore, exam_BadOptionsAreRejected) {
   EXPECT_THROW(explore_case(d, ContactSet::parse("2-3", 3), quick()), std::invalid_argument);
   ExploreResult none;
   EXPECT_THROW(witness_file(none, "x"), std::invalid_argument);
+}
+
+// Issue 25: the box's rule is ExploreOptions::check()'s, the same for the
+// command and Python: 0 < LOW < HIGH, both normal doubles; 1e-300:1e300 is a box.
+TEST(Explore, TheBoxIsAnyIntervalOfNormalDoubles) {
+  ExploreOptions o;
+  for (const auto& [low, high] : {std::pair{1e-300, 1e300}, {std::numeric_limits<double>::min(), std::numeric_limits<double>::max()}, {1.0, 2.0}}) {
+    o.box_low = low;
+    o.box_high = high;
+    EXPECT_NO_THROW(o.check()) << low << ":" << high;
+  }
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& [low, high] : {std::pair{5.0, 1.0}, {1.0, 1.0}, {0.0, 1.0}, {-1.0, 1.0}, {1e-320, 1.0}, {1.0, inf}, {nan, 1.0}, {1.0, nan}}) {
+    o.box_low = low;
+    o.box_high = high;
+    try {
+      o.check();
+      ADD_FAILURE() << low << ":" << high << " accepted";
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind("ExploreOptions::check(): box ", 0), 0u) << what;
+      EXPECT_NE(what.find(": needs 0 < LOW < HIGH with LOW >= 2.2250738585072014e-308 and HIGH finite (normal doubles)"), std::string::npos) << what;
+    }
+  }
 }
 
 }  // namespace

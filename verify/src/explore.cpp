@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <sstream>
@@ -630,6 +631,15 @@ std::string impossibility_certificate(const GiNaC::ex& s_poly, const symbolic::S
   return "";
 }
 
+void ExploreOptions::check() const {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("ExploreOptions::check(): " + what); };
+  if (starts < 1) fail("starts must be >= 1 (got " + std::to_string(starts) + ")");
+  if (evaluations < 10) fail("evaluations must be >= 10 (got " + std::to_string(evaluations) + ")");
+  if (!(box_low > 0) || !(box_high > box_low) || !std::isnormal(box_low) || !std::isnormal(box_high))
+    fail("box " + numeric::to_string(box_low, 6) + ":" + numeric::to_string(box_high, 6) + ": needs 0 < LOW < HIGH with LOW >= " +
+         numeric::to_string(std::numeric_limits<double>::min(), 17) + " and HIGH finite (normal doubles)");
+}
+
 std::string describe_box(const ExploreOptions& o) {
   return "every mass and K in [" + numeric::to_string(o.box_low, 6) + ", " + numeric::to_string(o.box_high, 6) +
          "] (log scale), each coupling t·√(K_p K_q) with t in [-1, 1], a = 1, bottom body fixed";
@@ -650,9 +660,7 @@ ExploreResult explore_case(const symbolic::Deriver& deriver, const ContactSet& c
   using cln::cl_RA;
   if (deriver.symbols().obstacle() != Obstacle::Infinite) detail::fail("the search needs a fixed obstacle (m_n = infinity)");
   if (closed.bodies() != deriver.symbols().bodies()) detail::fail("the case is for " + std::to_string(closed.bodies()) + " bodies");
-  if (o.starts < 1) detail::fail("starts must be >= 1");
-  if (o.evaluations < 10) detail::fail("evaluations must be >= 10");
-  if (!(o.box_low > 0) || !(o.box_high > o.box_low) || !std::isfinite(o.box_high)) detail::fail("the box needs 0 < low < high");
+  o.check();
   const Symbols& sy = deriver.symbols();
   const Derivation d = deriver.derive(closed);
   const ParameterSpace space(deriver);
@@ -742,6 +750,7 @@ ExploreResult explore_case(const symbolic::Deriver& deriver, const ContactSet& c
 std::vector<std::vector<int>> table_patterns() { return {{1}, {2}, {3}, {4}, {5}, {6}, {7}, {1, 6}}; }
 
 PatternTable explore_all_patterns(const ExploreOptions& options) {
+  options.check();
   PatternTable t;
   t.options = options;
   t.patterns = table_patterns();

@@ -12,11 +12,28 @@ namespace superball {
 /// `K.3-4` (diagonal of M), `alpha.2` (the paper's α₂, n = 4),
 /// `coupling.1-2/1-4` (off-diagonal entry of M), `mass.1`, `velocity.4`,
 /// `drop_height`, `fall_speed`, `g`.
+///
+/// One entry of the scene has several spellings, all parsed into the same
+/// Parameter: indices may have leading zeros (`K.03-4` is `K.3-4`,
+/// `mass.01` is `mass.1`), a coupling's two pairs come in either order
+/// (`coupling.1-4/1-2` is `coupling.1-2/1-4`), and for 4 bodies the paper's
+/// `alpha.k` is the coupling it names (`alpha.2` is `coupling.1-2/1-4`).
+/// Parameters compare equal when they name the same entry; key() is the one
+/// canonical spelling, spelling() the one given.
 class Parameter {
  public:
   /// Parse \p key for \p scene; throws std::invalid_argument("Parameter::parse(): ...").
   static Parameter parse(const std::string& key, const Scene& scene);
+  /// The canonical spelling, used in every output: `K.i-j` and
+  /// `coupling.i-j/k-l` with indices in decimal without leading zeros and
+  /// the pairs in increasing order, `alpha.k` for a coupling the paper names
+  /// (4 bodies), `mass.i`, `velocity.i`, `drop_height`, `fall_speed`, `g`.
   const std::string& key() const { return key_; }
+  /// The spelling parse() was given, for messages that quote the user.
+  const std::string& spelling() const { return spelling_; }
+  /// Whether \p a and \p b name the same entry of a scene (whatever their spellings).
+  friend bool operator==(const Parameter& a, const Parameter& b);
+  friend bool operator!=(const Parameter& a, const Parameter& b) { return !(a == b); }
   /// Set the parameter in \p scene to \p value (adds an entry of M if it was
   /// absent), through the scene loader's own checks: the scene with the new
   /// value is written as a scene file and read back (write_scene(),
@@ -35,9 +52,11 @@ class Parameter {
 
  private:
   enum class Kind { Entry, Mass, Velocity, DropHeight, FallSpeed, Gravity } kind_ = Kind::Entry;
-  std::string key_;
-  Pair first, second;
+  std::string key_, spelling_;
+  Pair first, second;  ///< Entry: first <= second
   int body = 0;
+  /// The canonical key for a scene of \p bodies bodies.
+  std::string canonical(int bodies) const;
 };
 
 }  // namespace superball

@@ -212,13 +212,30 @@ struct Derivation {
   std::string actual_reason;         ///< for Never: the "about" of the first condition that never holds
 };
 
+/// Most moving clusters (groups of bodies joined by closed contacts, the
+/// fixed obstacle's excluded) a case may have: the reduced system's
+/// determinants are expanded with every minor memoised by its set of columns,
+/// which takes at most this many.
+inline constexpr int max_moving_clusters = 20;
+
+/// Most bodies a derivation takes: every case of the pattern solvable, that
+/// is `--closed none` with max_moving_clusters moving bodies (21 with the
+/// fixed obstacle, 20 with a finite one).
+int max_bodies(Obstacle obstacle);
+
+/// Throws std::invalid_argument("check_bodies(): n = N: ...") when a
+/// pattern of \p bodies bodies cannot be derived with \p obstacle: fewer
+/// than 2, or more than max_bodies(), in one line that gives the rule.
+void check_bodies(int bodies, Obstacle obstacle);
+
 /// Solves evolution cases for one pattern and one obstacle, with the
 /// asymptotic regime and order used for the asymptotic forms.
 class Deriver {
  public:
   /// \p scaling defaults to Scaling::paper(); \p order >= 0 is the number of
   /// correction orders kept beyond the dominant balance.  Throws
-  /// std::invalid_argument("Deriver::Deriver(): ...") for order < 0.
+  /// std::invalid_argument("Deriver::Deriver(): ...") for order < 0 and
+  /// check_bodies()'s for a pattern of too many bodies.
   Deriver(const Pattern& pattern, Obstacle obstacle, std::optional<Scaling> scaling = std::nullopt, int order = 0);
 
   /// Solve the case \p closed (paper §4): reduced system (ZᵀAZ)V = Zᵀb by

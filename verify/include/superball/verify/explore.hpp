@@ -65,6 +65,14 @@ struct ExploreOptions {
   int evaluations = 1000;  ///< objective evaluations per local search (Nelder–Mead)
   double box_low = 1e-3;   ///< every mass and K in [box_low, box_high]
   double box_high = 1e3;
+
+  /// Throws std::invalid_argument("ExploreOptions::check(): ...") unless
+  /// starts >= 1, evaluations >= 10 and 0 < box_low < box_high with both
+  /// ends normal doubles (box_low >= 2.2250738585072014e-308, box_high
+  /// finite): any such box is searched; a point where a condition's terms
+  /// overflow or underflow in double counts as infeasible, and every witness
+  /// is confirmed exactly.
+  void check() const;
 };
 
 /// The box of \p options in words (for reports).
@@ -122,7 +130,7 @@ struct ExploreResult {
 /// search for a witness, confirm it exactly, and without one look for a
 /// clash (see the file comment).  Throws std::invalid_argument(
 /// "explore_case(): ...") for a finite obstacle, a case of another number of
-/// bodies or bad options (starts < 1, evaluations < 10, box not 0 < low < high).
+/// bodies, and ExploreOptions::check()'s for bad options.
 ExploreResult explore_case(const symbolic::Deriver& deriver, const ContactSet& closed, const ExploreOptions& options = {});
 
 /// The table of `--all-patterns`: each single α_k (k = 1..7) and the pair

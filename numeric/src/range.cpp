@@ -1,4 +1,4 @@
-#include "range.hpp"
+#include "superball/numeric/range.hpp"
 
 #include <stdexcept>
 
@@ -6,7 +6,7 @@
 #include "superball/cases/number.hpp"
 #include "superball/numeric/scalar.hpp"
 
-namespace superball::cli {
+namespace superball::numeric {
 
 Range parse_range(const std::string& option, const std::string& text, const Scene& scene, int max_steps) {
   const auto eq = text.find('=');
@@ -26,8 +26,8 @@ Range parse_range(const std::string& option, const std::string& text, const Scen
           }(),
           0, 0, 0};
   try {
-    r.from = numeric::parse_rational(Number::parse(rest.substr(0, c1)).fraction());
-    r.to = numeric::parse_rational(Number::parse(rest.substr(c1 + 1, c2 - c1 - 1)).fraction());
+    r.from = parse_rational(Number::parse(rest.substr(0, c1)).fraction());
+    r.to = parse_rational(Number::parse(rest.substr(c1 + 1, c2 - c1 - 1)).fraction());
   } catch (const std::invalid_argument& e) {
     throw bad(without_function_prefix(e.what()));
   }
@@ -45,4 +45,4 @@ Range parse_range(const std::string& option, const std::string& text, const Scen
   return r;
 }
 
-}  // namespace superball::cli
+}  // namespace superball::numeric
