@@ -37,6 +37,20 @@ S square_root(const S& x, int digits) {
   }
 }
 
+/// The smallest double >= x >= 0, or near it (a bound must stay a bound:
+/// an E of 1e-400 in long double or CLN floats is not 0).
+template <class S>
+double double_above(const S& x) {
+  const double d = ScalarTraits<S>::to_double(x);
+  if constexpr (std::is_same<S, double>::value) {
+    return d;
+  } else if constexpr (std::is_floating_point<S>::value) {
+    return static_cast<S>(d) < x ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d;
+  } else {  // rounded to nearest: one step up is above
+    return x > S(0) ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d;
+  }
+}
+
 /// certify() of a problem whose data lie in the safe window of S.
 template <class S>
 Certificate certify_in_range(const Problem<S>& p, const Solution<S>& s) {
@@ -122,8 +136,8 @@ Certificate certify_in_range(const Problem<S>& p, const Solution<S>& s) {
   S vmax = S(0);
   for (int i = 0; i < n; ++i) vmax = std::max(vmax, S(fabs(W[i])));
   cert.case_certain = certain;
-  cert.velocity_error = ScalarTraits<S>::to_double(E);
-  cert.relative_error = ScalarTraits<S>::to_double(vmax > S(0) ? S(E / vmax) : E);
+  cert.velocity_error = double_above(E);
+  cert.relative_error = double_above(vmax > S(0) ? S(E / vmax) : E);
   return cert;
 }
 
@@ -141,7 +155,7 @@ Certificate certify(const Problem<S>& p, const Solution<S>& s) {
   Solution<S> scaled = s;
   if (!detail::scale_solution(scaled, k, -1)) return Certificate{};
   Certificate cert = certify_in_range(p.scaled(k), scaled);
-  cert.velocity_error = ScalarTraits<S>::to_double(times_power_of_two(S(cert.velocity_error), k.velocity));
+  cert.velocity_error = double_above(times_power_of_two(S(cert.velocity_error), k.velocity));
   return cert;
 }
 

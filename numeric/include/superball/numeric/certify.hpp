@@ -29,7 +29,7 @@ namespace superball::numeric {
 /// What certify() proved about a floating-point solution.
 struct Certificate {
   bool case_certain = false;   ///< the evolution case is that of the exact solution
-  double velocity_error = 0;   ///< bound on max_i |U_i⁺ − exact U_i⁺| (solver units)
+  double velocity_error = 0;   ///< bound on max_i |U_i⁺ − exact U_i⁺| (solver units), rounded up to a double
   double relative_error = 0;   ///< velocity_error / max_i |U_i⁺|
 };
 
