@@ -1,9 +1,9 @@
 #include "superball/present/solution.hpp"
 
-#include <algorithm>
 #include <cln/float.h>
 #include <cln/real.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -43,10 +43,11 @@ Presented present(const Scene& scene, const numeric::ExactScene& exact, const nu
   // x·unit^power to \p significant digits from S, for the text: the
   // doubles above overflow where S holds the value (−1e400 in long double).
   auto shown = [&](const S& x, int power, int significant = 6) -> std::string {
-    const S v = power == 2 ? S(x * unit_s * unit_s) : S(x * unit_s);
+    const S v = power == 0 ? x : power == 2 ? S(x * unit_s * unit_s) : S(x * unit_s);
+    if (v == S(0)) return "0";  // not "-0"
     if constexpr (T::exact) {
       if (problem.unit_exact) return numeric::to_decimal(v, significant);
-      if (power == 2) return numeric::to_decimal(v * exact.unit_squared(), significant);
+      if (power != 1) return numeric::to_decimal(power == 2 ? cln::cl_RA(v * exact.unit_squared()) : v, significant);
       const auto f = numeric::digits_format(20);  // x·sqrt(a²), a irrational
       return numeric::to_string(cln::cl_R(cln::cl_float(v, f) * cln::sqrt(cln::cl_float(exact.unit_squared(), f))), significant);
     } else {
@@ -58,6 +59,7 @@ Presented present(const Scene& scene, const numeric::ExactScene& exact, const nu
     p.before.push_back(times_unit(T::to_double(problem.u[i]), unit));
     p.after.push_back(times_unit(T::to_double(S(sol.velocities_after[i] * unit_s)), problem.unit_exact ? 1.0 : unit));
     p.after_text.push_back(text(sol.velocities_after[i]));
+    p.shown.masses.push_back(problem.fixed_bottom && i == p.n - 1 ? "inf" : shown(problem.mass[i], 0));
     p.shown.before.push_back(shown(problem.u[i], 1));
     p.shown.after.push_back(shown(sol.velocities_after[i], 1));
   }
@@ -163,8 +165,8 @@ std::string to_text(const Presented& p) {
   os << "  body        mass (kg)      U- (m/s)      U+ (m/s)\n";
   for (int i = 0; i < p.n; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    os << "  " << std::setw(4) << i + 1 << "  " << std::setw(15) << (std::isinf(p.masses[k]) ? std::string("inf") : numeric::to_string(p.masses[k], 6))
-       << "  " << std::setw(12) << p.shown.before[k] << "  " << std::setw(12) << p.shown.after[k];
+    os << "  " << std::setw(4) << i + 1 << "  " << std::setw(15) << p.shown.masses[k] << "  " << std::setw(12) << p.shown.before[k] << "  "
+       << std::setw(12) << p.shown.after[k];
     if (p.exact || p.precision != "double") os << "   " << p.after_text[k];
     os << '\n';
   }

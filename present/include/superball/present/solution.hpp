@@ -22,11 +22,12 @@ struct Presented {
   bool fixed_bottom = false, superball = false;
   std::vector<double> masses, before, after, reactions;
   std::vector<std::string> after_text, reaction_text;  ///< full precision (exact: fractions)
-  /// Six significant digits of U⁻, U⁺, the reactions and the energies from
-  /// the solve's own arithmetic, for the text: their doubles above are ±inf
-  /// or 0 where S holds a value beyond double's range (−1e400 in long double).
+  /// The masses, U⁻, U⁺ and the reactions (six significant digits) and the
+  /// energies (eight) from the solve's own arithmetic, for the text: their
+  /// doubles are ±inf or 0 where S holds a value beyond double's range
+  /// (−1e400 in long double).
   struct Short {
-    std::vector<std::string> before, after, reactions;
+    std::vector<std::string> masses, before, after, reactions;
     std::string ke_before, ke_after, dissipation;
   } shown;
   std::vector<std::string> closed;
