@@ -1,4 +1,5 @@
 #include <cstdlib>
+#include <iostream>
 #include <memory>
 
 #include "commands.hpp"
@@ -52,6 +53,7 @@ void add_solve(CLI::App& app, Action& action) {
       const Presented p = automatic ? solve_scene_auto(scene, o->rtol) : solve_scene(scene, precision);
       if (!o->plot.empty()) draw_flight(p, o->plot);
       write_output("", o->json ? to_json(p).dump(2) + "\n" : to_text(p));
+      for (const std::string& w : p.warnings) std::cerr << "superball: warning: " << w << '\n';
       return p.status == "success" ? ok : numerical_failure;
     };
   });

@@ -7,21 +7,59 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace superball::numeric {
 
 namespace {
 
+/// |x| in S (CLN floats have no fabs).
+template <class S>
+S fabs(const S& x) {
+  if constexpr (std::is_floating_point<S>::value) {
+    return std::fabs(x);
+  } else {
+    return detail::abs_value<S>(x);
+  }
+}
+
+/// √x in S: CLN's sqrt of a cl_R holding an exact rational would give a
+/// float of CLN's default (single) format, so the CLN floats take it at the
+/// problem's digits.
+template <class S>
+S square_root(const S& x, int digits) {
+  if constexpr (std::is_floating_point<S>::value) {
+    (void)digits;
+    return std::sqrt(x);
+  } else {
+    return cln::sqrt(cln::cl_float(x, digits_format(digits)));
+  }
+}
+
+/// The smallest double >= x >= 0, or near it (a bound must stay a bound:
+/// an E of 1e-400 in long double or CLN floats is not 0).
+template <class S>
+double double_above(const S& x) {
+  const double d = ScalarTraits<S>::to_double(x);
+  if constexpr (std::is_same<S, double>::value) {
+    return d;
+  } else if constexpr (std::is_floating_point<S>::value) {
+    return static_cast<S>(d) < x ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d;
+  } else {  // rounded to nearest: one step up is above
+    return x > S(0) ? std::nextafter(d, std::numeric_limits<double>::infinity()) : d;
+  }
+}
+
 /// certify() of a problem whose data lie in the safe window of S.
 template <class S>
 Certificate certify_in_range(const Problem<S>& p, const Solution<S>& s) {
-  using std::fabs;
   const int n = p.n, nc = n - 1, nf = p.fixed_bottom ? n - 1 : n;
   const auto& W = s.velocities_after;
   Certificate cert;
   const int b = p.bandwidth();
-  const S gamma = S(4 * (b + 4)) * std::numeric_limits<S>::epsilon() / S(2);
+  const S unit_roundoff = ScalarTraits<S>::unit_roundoff(p.digits);
+  const S gamma = S(4 * (b + 4)) * unit_roundoff;
   // Row residuals rr_i = m_i (W_i − u_i) + (DᵀMD (W + u))_i, their sizes
   // (Σ|terms|) and the row sums Σ_j |A_ij|.
   // On the stack up to kStackBodies bodies (a certificate of a small stack
@@ -52,7 +90,8 @@ Certificate certify_in_range(const Problem<S>& p, const Solution<S>& s) {
   }
   // Cluster residuals (free clusters only) and the smallest free cluster mass.
   S rho2 = S(0), cluster_residual = S(0), cluster_size = S(0), cluster_mass = S(0);
-  S min_mass = std::numeric_limits<S>::infinity();
+  S min_mass = S(0);
+  bool free_cluster = false;
   const bool bottom_cluster_fixed = p.fixed_bottom;
   int top = 0;
   for (int i = 0; i < n; ++i) {
@@ -67,19 +106,22 @@ Certificate certify_in_range(const Problem<S>& p, const Solution<S>& s) {
     if (!fixed_cluster) {
       const S bound = fabs(cluster_residual) + gamma * cluster_size;
       rho2 += bound * bound;
-      min_mass = std::min(min_mass, cluster_mass * (1 - gamma));
+      const S mass = cluster_mass * (1 - gamma);
+      if (!free_cluster || mass < min_mass) min_mass = mass;
+      free_cluster = true;
     }
     cluster_residual = cluster_size = cluster_mass = S(0);
     top = i + 1;
   }
   (void)top;
-  S E = min_mass == std::numeric_limits<S>::infinity() ? S(0) : std::sqrt(rho2) / min_mass;
+  S E = free_cluster ? S(square_root(rho2, p.digits) / min_mass) : S(0);
   // The bodies of the fixed cluster move with the obstacle's velocity as
   // rounded to S: off the exact one by up to u·|u_n| (0 when it is a dyadic
   // number such as 39/4, not when it is 9.75e-126).
-  if (p.fixed_bottom) E = std::max(E, S(fabs(p.u[n - 1]) * std::numeric_limits<S>::epsilon() / S(2)));
+  if (p.fixed_bottom) E = std::max(E, S(fabs(p.u[n - 1]) * unit_roundoff));
   // The case: open gaps beyond 2E, closed reactions beyond their bounds.
-  bool certain = std::isfinite(static_cast<double>(E));
+  // (E must also be a finite double: Certificate holds it as one.)
+  bool certain = finite(E) && std::isfinite(ScalarTraits<S>::to_double(E));
   S lambda = S(0), lambda_bound = S(0);
   for (int c = 0; c < nc && certain; ++c) {
     if (!s.closed.closed(c)) {
@@ -94,8 +136,8 @@ Certificate certify_in_range(const Problem<S>& p, const Solution<S>& s) {
   S vmax = S(0);
   for (int i = 0; i < n; ++i) vmax = std::max(vmax, S(fabs(W[i])));
   cert.case_certain = certain;
-  cert.velocity_error = static_cast<double>(E);
-  cert.relative_error = vmax > 0 ? static_cast<double>(E / vmax) : static_cast<double>(E);
+  cert.velocity_error = double_above(E);
+  cert.relative_error = double_above(vmax > S(0) ? S(E / vmax) : E);
   return cert;
 }
 
@@ -113,12 +155,39 @@ Certificate certify(const Problem<S>& p, const Solution<S>& s) {
   Solution<S> scaled = s;
   if (!detail::scale_solution(scaled, k, -1)) return Certificate{};
   Certificate cert = certify_in_range(p.scaled(k), scaled);
-  cert.velocity_error = static_cast<double>(times_power_of_two(static_cast<S>(cert.velocity_error), k.velocity));
+  cert.velocity_error = double_above(times_power_of_two(S(cert.velocity_error), k.velocity));
   return cert;
 }
 
 template Certificate certify(const Problem<double>&, const Solution<double>&);
 template Certificate certify(const Problem<long double>&, const Solution<long double>&);
+template Certificate certify(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+
+template <class S>
+std::vector<std::string> trust_warnings(const Problem<S>& problem, const Solution<S>& solution) {
+  if constexpr (ScalarTraits<S>::exact) {
+    (void)problem, (void)solution;
+    return {};
+  } else {
+    if (solution.status != Status::Success) return {};
+    const Certificate c = certify(problem, solution);
+    // A relative bound of 1 allows every velocity to be off by its own size.
+    constexpr double vacuous = 1;
+    if (c.case_certain && c.relative_error < vacuous) return {};
+    const std::string name = problem.digits > 0 && !std::is_floating_point<S>::value ? "digits:" + std::to_string(problem.digits)
+                                                                                      : ScalarTraits<S>::name();
+    const std::string bound = "the velocity error bound is " + to_string(c.relative_error, 3) + " of the largest velocity";
+    const bool stated = c.relative_error > 0 && std::isfinite(c.relative_error);  // certify() gives 0 where it bounds nothing
+    const std::string what = c.case_certain ? bound + ", which says nothing"
+                                            : "the case " + solution.closed.to_string() + " is not certified" + (stated ? " (" + bound + ")" : "");
+    return {name + ": " + what + ": the answer may be wrong; use --precision auto or exact"};
+  }
+}
+
+template std::vector<std::string> trust_warnings(const Problem<double>&, const Solution<double>&);
+template std::vector<std::string> trust_warnings(const Problem<long double>&, const Solution<long double>&);
+template std::vector<std::string> trust_warnings(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+template std::vector<std::string> trust_warnings(const Problem<cln::cl_RA>&, const Solution<cln::cl_RA>&);
 
 namespace {
 

@@ -34,6 +34,20 @@ std::string float_text(const cln::cl_F& x) {
 
 }  // namespace
 
+cln::float_format_t digits_format(int digits) {
+  if (digits <= 0) throw std::invalid_argument("digits_format(): digits must be > 0, got " + std::to_string(digits));
+  // CLN's float_format(N) is a single-float format up to N = 6 and a
+  // double-float one up to N = 15: both have IEEE exponent ranges (a scene's
+  // 1e-200 squared raises floating_point_underflow, 1e-320 is not held), and
+  // N = 15 … 17 gives a long float of one 64-bit word, on which CLN's
+  // float_epsilon() writes past the number (LF_epsilon clears len − 2
+  // words: a crash).  So every N gets a long float of at least two words,
+  // whose exponent range (64 bits) no scene reaches.
+  const auto f = cln::float_format(static_cast<uintE>(digits));
+  const auto least = static_cast<cln::float_format_t>(cln::float_format_lfloat_min + 1);
+  return f < least ? least : f;
+}
+
 double ScalarTraits<double>::from(const cln::cl_RA& r, int) { return cln::double_approx(r); }
 
 bool ScalarTraits<double>::sqrt(const cln::cl_RA& square, int, double& out) {
@@ -53,13 +67,13 @@ bool ScalarTraits<long double>::sqrt(const cln::cl_RA& square, int, long double&
 
 cln::cl_R ScalarTraits<cln::cl_R>::from(const cln::cl_RA& r, int digits) {
   if (digits <= 0) throw std::invalid_argument("ScalarTraits<cl_R>::from(): digits must be > 0");
-  return cln::cl_float(r, cln::float_format(static_cast<uintE>(digits)));
+  return cln::cl_float(r, digits_format(digits));
 }
 
 double ScalarTraits<cln::cl_R>::to_double(const cln::cl_R& x) { return cln::double_approx(x); }
 
 cln::cl_R ScalarTraits<cln::cl_R>::unit_roundoff(int digits) {
-  return cln::float_epsilon(cln::float_format(static_cast<uintE>(digits > 0 ? digits : 20)));
+  return cln::float_epsilon(digits_format(digits > 0 ? digits : 20));
 }
 
 bool ScalarTraits<cln::cl_R>::sqrt(const cln::cl_RA& square, int digits, cln::cl_R& out) {
@@ -93,14 +107,15 @@ std::string to_string(long double x, int significant) {
 }
 
 std::string to_string(const cln::cl_R& x, int significant) {
+  // Rounded exactly: a float of `significant` digits would be a single or
+  // double float, whose range does not hold 1e400.
+  if (significant > 0) return to_decimal(cln::rational(x), significant);
   if (cln::instanceof(x, cln::cl_RA_ring)) {
     std::ostringstream os;
     cln::fprint(os, cln::the<cln::cl_RA>(x));
     return os.str();
   }
-  const cln::cl_F f = cln::the<cln::cl_F>(x);
-  if (significant <= 0) return float_text(f);
-  return float_text(cln::cl_float(f, cln::float_format(static_cast<uintE>(significant))));
+  return float_text(cln::the<cln::cl_F>(x));
 }
 
 std::string to_string(const cln::cl_RA& x, int) {

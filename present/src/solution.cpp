@@ -1,5 +1,8 @@
 #include "superball/present/solution.hpp"
 
+#include <cln/float.h>
+#include <cln/real.h>
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -37,16 +40,38 @@ Presented present(const Scene& scene, const numeric::ExactScene& exact, const nu
   auto text = [&](const S& x) { return x == S(0) ? std::string("0") : numeric::to_string(S(x * unit_s)) + sqrt_text; };
   // x times the irrational unit in double: 0 stays 0 when the unit overflows.
   auto times_unit = [&](double x, double power) { return x == 0 ? 0.0 : x * power; };
+  // x·unit^power to \p significant digits from S, for the text: the
+  // doubles above overflow where S holds the value (−1e400 in long double).
+  auto shown = [&](const S& x, int power, int significant = 6) -> std::string {
+    const S v = power == 0 ? x : power == 2 ? S(x * unit_s * unit_s) : S(x * unit_s);
+    if (v == S(0)) return "0";  // not "-0"
+    if constexpr (T::exact) {
+      if (problem.unit_exact) return numeric::to_decimal(v, significant);
+      if (power != 1) return numeric::to_decimal(power == 2 ? cln::cl_RA(v * exact.unit_squared()) : v, significant);
+      const auto f = numeric::digits_format(20);  // x·sqrt(a²), a irrational
+      return numeric::to_string(cln::cl_R(cln::cl_float(v, f) * cln::sqrt(cln::cl_float(exact.unit_squared(), f))), significant);
+    } else {
+      return numeric::to_string(v, significant);
+    }
+  };
   for (int i = 0; i < p.n; ++i) {
     p.masses.push_back(problem.fixed_bottom && i == p.n - 1 ? INFINITY : T::to_double(problem.mass[i]));
     p.before.push_back(times_unit(T::to_double(problem.u[i]), unit));
     p.after.push_back(times_unit(T::to_double(S(sol.velocities_after[i] * unit_s)), problem.unit_exact ? 1.0 : unit));
     p.after_text.push_back(text(sol.velocities_after[i]));
+    p.shown.masses.push_back(problem.fixed_bottom && i == p.n - 1 ? "inf" : shown(problem.mass[i], 0));
+    p.shown.before.push_back(shown(problem.u[i], 1));
+    p.shown.after.push_back(shown(sol.velocities_after[i], 1));
   }
   for (int c = 0; c + 1 < p.n; ++c) {
     p.reactions.push_back(times_unit(T::to_double(S(sol.reactions[c] * unit_s)), problem.unit_exact ? 1.0 : unit));
     p.reaction_text.push_back(text(sol.reactions[c]));
+    p.shown.reactions.push_back(shown(sol.reactions[c], 1));
   }
+  p.shown.ke_before = shown(sol.kinetic_energy_before, 2, 8);
+  p.shown.ke_after = shown(sol.kinetic_energy_after, 2, 8);
+  p.shown.dissipation = shown(sol.dissipation, 2, 8);
+  p.warnings = numeric::trust_warnings(problem, sol);
   const double unit2 = problem.unit_exact ? 1.0 : unit * unit;
   const S u2 = unit_s * unit_s;
   p.ke_before = times_unit(T::to_double(S(sol.kinetic_energy_before * u2)), unit2);
@@ -96,6 +121,7 @@ nlohmann::json to_json(const Presented& p) {
     j["error_bound"] = p.error_bound;
     j["escalation"] = p.escalation;
   }
+  j["warnings"] = p.warnings;
   j["status"] = p.status;
   j["bodies"] = p.n;
   j["fixed_obstacle"] = p.fixed_bottom;
@@ -139,8 +165,8 @@ std::string to_text(const Presented& p) {
   os << "  body        mass (kg)      U- (m/s)      U+ (m/s)\n";
   for (int i = 0; i < p.n; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    os << "  " << std::setw(4) << i + 1 << "  " << std::setw(15) << (std::isinf(p.masses[k]) ? std::string("inf") : numeric::to_string(p.masses[k], 6))
-       << "  " << std::setw(12) << numeric::to_string(p.before[k], 6) << "  " << std::setw(12) << numeric::to_string(p.after[k], 6);
+    os << "  " << std::setw(4) << i + 1 << "  " << std::setw(15) << p.shown.masses[k] << "  " << std::setw(12) << p.shown.before[k] << "  "
+       << std::setw(12) << p.shown.after[k];
     if (p.exact || p.precision != "double") os << "   " << p.after_text[k];
     os << '\n';
   }
@@ -153,11 +179,11 @@ std::string to_text(const Presented& p) {
   for (const auto& c : Vocabulary::paper().cases())
     if (c.name == p.case_name && p.n == Vocabulary::paper().bodies()) os << ": " << c.description;
   os << "\nreactions (N s):";
-  for (int c = 0; c + 1 < p.n; ++c) os << "  " << Pair{c + 1, c + 2}.name() << " = " << numeric::to_string(p.reactions[static_cast<std::size_t>(c)], 6);
-  os << "\nkinetic energy (J): before " << numeric::to_string(p.ke_before, 8) << ", after " << numeric::to_string(p.ke_after, 8)
-     << ", dissipated " << numeric::to_string(p.dissipation, 8) << '\n';
-  os << "superball: " << (p.superball ? "yes" : "no") << " (U1+ = " << numeric::to_string(p.after[0], 6) << ", |U1-| = "
-     << numeric::to_string(std::fabs(p.before[0]), 6) << ")\n";
+  for (int c = 0; c + 1 < p.n; ++c) os << "  " << Pair{c + 1, c + 2}.name() << " = " << p.shown.reactions[static_cast<std::size_t>(c)];
+  os << "\nkinetic energy (J): before " << p.shown.ke_before << ", after " << p.shown.ke_after << ", dissipated " << p.shown.dissipation << '\n';
+  const std::string& top_before = p.shown.before[0];
+  os << "superball: " << (p.superball ? "yes" : "no") << " (U1+ = " << p.shown.after[0]
+     << ", |U1-| = " << (top_before[0] == '-' ? top_before.substr(1) : top_before) << ")\n";
   if (!p.flight.empty()) {
     os << "\nflight after the collision (g = " << numeric::to_string(p.g, 6) << " m/s^2; bodies fly freely, later collisions not modelled):\n"
        << "  body    U+ (m/s)   apex height (m)   apex time (s)\n";

@@ -454,6 +454,7 @@ PYBIND11_MODULE(_superball, m) {
       .def_readonly("requested", &present::Presented::requested)
       .def_readonly("error_bound", &present::Presented::error_bound)
       .def_readonly("escalation", &present::Presented::escalation)
+      .def_readonly("warnings", &present::Presented::warnings)
       .def_property_readonly("masses", [](const present::Presented& p) { return py::array_t<double>(p.masses.size(), p.masses.data()); })
       .def_property_readonly("before", [](const present::Presented& p) { return py::array_t<double>(p.before.size(), p.before.data()); })
       .def_property_readonly("after", [](const present::Presented& p) { return py::array_t<double>(p.after.size(), p.after.data()); })

@@ -294,6 +294,9 @@ class Result:
     error_bound = property(lambda self: self._p.error_bound if self._p.requested else None,
                            doc="auto: certified bound on max|U⁺ − exact U⁺| / max|U⁺| (None otherwise).")
     escalation = property(lambda self: list(self._p.escalation), doc="auto: what was tried, e.g. ['double: case not certain', 'exact'].")
+    warnings = property(lambda self: list(self._p.warnings),
+                        doc="Why an answer of an explicit double, long-double or digits:N cannot be trusted (its case not "
+                            "certified, or its certified bound says nothing); [] when it can, and always for auto and exact.")
     status = property(lambda self: self._p.status, doc="'success', 'numerical-issue' or 'no-convergence'.")
     case = property(lambda self: self._p.case, doc="The evolution case: the paper's name for 4 bodies ('3.3'), else '{2-3,3-4}'.")
     closed_contacts = property(lambda self: tuple(self._p.closed_contacts), doc="The contacts that stay closed, e.g. ('2-3',).")

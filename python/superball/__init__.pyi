@@ -58,6 +58,7 @@ class Result:
     precision_requested: str
     error_bound: Optional[float]
     escalation: List[str]
+    warnings: List[str]
     status: str
     case: str
     closed_contacts: Tuple[str, ...]

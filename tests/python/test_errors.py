@@ -148,3 +148,17 @@ def test_body_count_and_box_are_refused_as_the_command_does():
 def test_error_is_the_base_of_input_error():
     assert issubclass(superball.InputError, superball.Error) and issubclass(superball.InputError, ValueError)
     assert not issubclass(superball.Error, ValueError)
+
+
+@pytest.mark.parametrize("scaling, message", [
+    ("m1=1000000000000,K14=-1000000000000", "sampling needs orders in epsilon from -4000 to 4000 (m1 has order 1000000000000)"),
+    ("m1=3000,K14=-1", "eps = 1/100 to the order 3000 of the scaling is below 1e-3998: the points would hold numbers no scene holds "
+                       "(use a larger eps or smaller orders)"),
+])
+def test_verify_refuses_scaling_orders_it_cannot_sample(scaling, message):
+    # an order of 10^12 ended in "internal error: Not a 32-bit integer" (a CLN conversion)
+    with pytest.raises(ValueError) as e:
+        superball.verify(case="1", alphas=2, scaling=scaling, samples=10)
+    assert one_line(e) == message
+    code, _, err = run_cli("verify", "--case", "1", "--alphas", "2", "--scaling", scaling, "--samples", "10", check=False)
+    assert code == 2 and err == f"superball: {message}\n"

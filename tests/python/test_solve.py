@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import superball
-from conftest import PAPER, SCENES, cli_json
+from conftest import PAPER, SCENES, cli_json, run_cli
 
 
 def exact_before(scene_kw):
@@ -121,3 +121,69 @@ def test_html_and_text(paper):
 def test_flight_scene_matches_command():
     path = SCENES / "paper-4.4-flight.toml"
     assert superball.solve(superball.Scene.load(path), "double").to_dict() == cli_json("solve", path, "--precision", "double", "--json")
+
+
+# The scene of issue 25 where double said success with the wrong case and
+# velocities 200 % off (exact: every body at -0.008167, case {1-2, 2-3}).
+UNTRUSTED = """title = "double cannot be trusted"
+fall_speed = 8.167e-3
+[[body]]
+mass = 6.421e-9
+[[body]]
+mass = 1.239e-23
+[[body]]
+mass = 2.367e17
+[dissipation]
+K = { "1-2" = 6.929e20, "2-3" = 7.628e-4 }
+coupling = [ { pairs = ["1-2", "2-3"], value = 2.246e8 } ]
+"""
+
+
+def test_an_untrusted_double_answer_warns_in_python_json_and_on_stderr(tmp_path):
+    path = tmp_path / "untrusted.toml"
+    path.write_text(UNTRUSTED)
+    r = superball.solve(superball.Scene.load(path), "double")
+    assert r.status == "success" and r.case == "{1-2}"  # wrong: exact says {1-2,2-3}
+    assert len(r.warnings) == 1 and r.warnings[0].startswith("double: the case {1-2} is not certified")
+    assert "--precision auto or exact" in r.warnings[0]
+    assert r.to_dict()["warnings"] == r.warnings
+    code, out, err = run_cli("solve", path, "--precision", "double", "--json")
+    assert code == 0 and json.loads(out)["warnings"] == r.warnings
+    assert err == f"superball: warning: {r.warnings[0]}\n"
+    code, out, err = run_cli("solve", path, "--precision", "double")
+    assert err.count("\n") == 1 and err.startswith("superball: warning: double: ")
+    # auto escalates on the same certificate and needs no warning
+    a = superball.solve(superball.Scene.load(path))
+    assert a.precision == "exact" and a.case == "{1-2,2-3}" and a.warnings == []
+
+
+@pytest.mark.parametrize("precision", ["auto", "double", "long-double", "digits:16", "exact"])
+def test_the_paper_scene_does_not_warn(precision):
+    r = superball.solve(superball.Scene.load(PAPER), precision)
+    assert r.warnings == [] and r.to_dict()["warnings"] == []
+    code, _, err = run_cli("solve", PAPER, "--precision", precision)
+    assert code == 0 and err == ""
+
+
+def test_text_prints_values_beyond_double_s_range(tmp_path):
+    path = tmp_path / "huge.toml"
+    path.write_text('fall_speed = "1e400"\n[[body]]\nmass = 1\n[[body]]\nmass = 2\n[dissipation]\nK = { "1-2" = 1 }\n')
+    for precision in ("long-double", "digits:20", "exact"):
+        code, out, _ = run_cli("solve", path, "--precision", precision)
+        assert code == 0 and "inf" not in out, out
+        assert "-1e+400" in out.splitlines()[4], out
+
+
+@pytest.mark.parametrize("digits", [10, 14, 15, 16, 17, 18])
+def test_digits_n_answers_tiny_and_huge_exponents(tmp_path, digits):
+    # digits:15-17 crashed inside CLN's float_epsilon; digits:10-14 ended in
+    # "floating point underflow" on a fall speed of 1e-200 or a mass of 1e-320.
+    for name, text in (("slow", 'fall_speed = "1e-200"\n[[body]]\nmass = 1\n[[body]]\nmass = 1\n[[body]]\nmass = 2\n'),
+                       ("light", 'fall_speed = 1\n[[body]]\nmass = "1e-320"\n[[body]]\nmass = 1\n[[body]]\nmass = 2\n')):
+        path = tmp_path / f"{name}.toml"
+        path.write_text(text + '[dissipation]\nK = { "1-2" = 1, "2-3" = 1 }\n')
+        r = superball.solve(superball.Scene.load(path), f"digits:{digits}")
+        assert r.status == "success"
+        code, out, err = run_cli("solve", path, "--precision", f"digits:{digits}", "--json")
+        assert code == 0 and json.loads(out)["status"] == "success"
+        assert "internal error" not in err

@@ -138,6 +138,13 @@ ParameterSpace::ParameterSpace(const symbolic::Deriver& deriver) {
     const GiNaC::numeric k = deriver.scaling().order(sy, s.symbol);
     if (!k.is_integer())
       throw std::invalid_argument("ParameterSpace::ParameterSpace(): sampling needs integer orders in epsilon (" + s.ascii + ")");
+    if (GiNaC::abs(k) > max_sampling_order) {
+      std::ostringstream order;
+      order << k;
+      throw std::invalid_argument("ParameterSpace::ParameterSpace(): sampling needs orders in epsilon from " +
+                                  std::to_string(-max_sampling_order) + " to " + std::to_string(max_sampling_order) + " (" + s.ascii +
+                                  " has order " + order.str() + ")");
+    }
     c.order = k.to_int();
     const int at = static_cast<int>(coordinates_.size());
     if (s.kind == symbolic::SymbolKind::Diagonal) diagonal[s.first.name()] = at;
@@ -235,6 +242,16 @@ ParameterSpace ParameterSpace::clone() const {
 RegimeSampler::RegimeSampler(const ParameterSpace& space, const cln::cl_RA& epsilon, std::uint64_t seed)
     : space_(space), epsilon_(deep_copy(epsilon)), rng_(seed) {
   if (!(epsilon_ > 0) || !(epsilon_ < 1)) throw std::invalid_argument("RegimeSampler::RegimeSampler(): epsilon must be in (0, 1)");
+  // A point's values are O(1)·eps^order; they must stay numbers a scene
+  // holds (decimal exponents within ±max_decimal_exponent), since a point
+  // that disagrees is written as one.
+  int largest = 0;
+  for (const Coordinate& c : space_.coordinates()) largest = std::max(largest, std::abs(c.order));
+  const cln::cl_RA limit = cln::expt(cln::cl_RA(10), -(max_decimal_exponent - 2));
+  if (largest > 0 && cln::expt(epsilon_, largest) < limit)
+    throw std::invalid_argument("RegimeSampler::RegimeSampler(): eps = " + to_string(epsilon_) + " to the order " + std::to_string(largest) +
+                                " of the scaling is below 1e-" + std::to_string(max_decimal_exponent - 2) +
+                                ": the points would hold numbers no scene holds (use a larger eps or smaller orders)");
 }
 
 std::optional<Point> RegimeSampler::draw() {

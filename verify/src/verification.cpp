@@ -426,6 +426,13 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
       detail::fail(without_function_prefix(e.what()));
     }
   }();
+  for (const cl_RA& e : options.epsilons) {  // every eps samplable, before any work
+    try {
+      const RegimeSampler sampler(space, e, options.seed);
+    } catch (const std::invalid_argument& x) {
+      detail::fail(without_function_prefix(x.what()));
+    }
+  }
   std::vector<CompiledCondition> exact, asymptotic;
   for (const symbolic::Condition& c : d.conditions) {
     if (c.kind == symbolic::ConditionKind::Psd) continue;

@@ -29,18 +29,30 @@ namespace superball::numeric {
 /// What certify() proved about a floating-point solution.
 struct Certificate {
   bool case_certain = false;   ///< the evolution case is that of the exact solution
-  double velocity_error = 0;   ///< bound on max_i |U_i⁺ − exact U_i⁺| (solver units)
+  double velocity_error = 0;   ///< bound on max_i |U_i⁺ − exact U_i⁺| (solver units), rounded up to a double
   double relative_error = 0;   ///< velocity_error / max_i |U_i⁺|
 };
 
 /// Bound the error of \p solution of \p problem (see the file comment).
-/// Defined for double and long double.  Nothing is certain (case_certain
+/// Defined for double, long double and CLN floats (digits:N, with u their
+/// unit roundoff at Problem::digits).  Nothing is certain (case_certain
 /// false) when the status is not Success, a value of the solution is not
 /// finite, or the data are not held by S or fit no scaling (Problem::in_range,
 /// Scaling::fits); data outside the safe window are certified in the units
 /// of the scaled problem that solve() solves.
 template <class S>
 Certificate certify(const Problem<S>& problem, const Solution<S>& solution);
+
+/// Why an answer of an explicitly chosen arithmetic (`--precision double`,
+/// `long-double`, `digits:N`) cannot be trusted, by the certificate `auto`
+/// certifies with: one line when \p solution has status Success and certify()
+/// does not prove its evolution case, or proves it only with a velocity bound
+/// at least as large as the velocities (relative error >= 1); none otherwise,
+/// and none in exact arithmetic.  An answer with another status is declined
+/// by its status already.  Each line names the arithmetic and suggests
+/// `--precision auto` or `exact`.
+template <class S>
+std::vector<std::string> trust_warnings(const Problem<S>& problem, const Solution<S>& solution);
 
 /// The outcome of `--precision auto`.
 struct AutoChoice {
@@ -61,5 +73,10 @@ inline constexpr double default_rtol = 1e-6;
 
 extern template Certificate certify(const Problem<double>&, const Solution<double>&);
 extern template Certificate certify(const Problem<long double>&, const Solution<long double>&);
+extern template Certificate certify(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+extern template std::vector<std::string> trust_warnings(const Problem<double>&, const Solution<double>&);
+extern template std::vector<std::string> trust_warnings(const Problem<long double>&, const Solution<long double>&);
+extern template std::vector<std::string> trust_warnings(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+extern template std::vector<std::string> trust_warnings(const Problem<cln::cl_RA>&, const Solution<cln::cl_RA>&);
 
 }  // namespace superball::numeric

@@ -5,6 +5,7 @@
 /// (cln::cl_R holding floats of one precision) and CLN exact rationals
 /// (cln::cl_RA).  Eigen needs NumTraits for the CLN types; they are here.
 
+#include <cln/floatformat.h>
 #include <cln/rational.h>
 #include <cln/real.h>
 
@@ -60,8 +61,16 @@ struct ScalarTraits<long double> {
   static bool sqrt(const cln::cl_RA& square, int digits, long double& out);
 };
 
-/// CLN floats of \p digits decimal digits, held as cln::cl_R so that the
-/// integer constants Eigen creates stay exact and never lower the precision.
+/// The CLN float format of `digits:N`: at least N decimal digits, always a
+/// long float of two or more 64-bit words (CLN's own float_format(N) gives
+/// single and double floats, with IEEE exponent ranges, below N = 16, and a
+/// one-word long float, which CLN's float_epsilon() mishandles, at N = 15 … 17).
+/// Throws std::invalid_argument("digits_format(): ...") unless \p digits > 0.
+cln::float_format_t digits_format(int digits);
+
+/// CLN floats of \p digits decimal digits (digits_format()), held as
+/// cln::cl_R so that the integer constants Eigen creates stay exact and
+/// never lower the precision.
 template <>
 struct ScalarTraits<cln::cl_R> {
   static constexpr bool exact = false;
@@ -105,7 +114,9 @@ bool finite(const S& x) {
   }
 }
 
-/// Decimal text of \p x with \p significant digits (exact rationals as "p/q").
+/// Decimal text of \p x with \p significant digits (exact rationals as "p/q";
+/// CLN floats with all their digits when \p significant is 0, else rounded
+/// exactly as to_decimal() does).
 std::string to_string(double x, int significant = 17);
 std::string to_string(long double x, int significant = 21);
 std::string to_string(const cln::cl_R& x, int significant = 0);

@@ -22,6 +22,14 @@ struct Presented {
   bool fixed_bottom = false, superball = false;
   std::vector<double> masses, before, after, reactions;
   std::vector<std::string> after_text, reaction_text;  ///< full precision (exact: fractions)
+  /// The masses, U⁻, U⁺ and the reactions (six significant digits) and the
+  /// energies (eight) from the solve's own arithmetic, for the text: their
+  /// doubles are ±inf or 0 where S holds a value beyond double's range
+  /// (−1e400 in long double).
+  struct Short {
+    std::vector<std::string> masses, before, after, reactions;
+    std::string ke_before, ke_after, dissipation;
+  } shown;
   std::vector<std::string> closed;
   double ke_before = 0, ke_after = 0, dissipation = 0, momentum_before = 0, momentum_after = 0;
   double residual_motion = 0, residual_complementarity = 0;
@@ -30,6 +38,10 @@ struct Presented {
   std::string requested;                    ///< "auto" when the precision was chosen by certification
   double error_bound = -1;                  ///< certified relative velocity error (auto only)
   std::vector<std::string> escalation;      ///< what auto tried
+  /// Why an explicitly chosen arithmetic's answer cannot be trusted
+  /// (numeric::trust_warnings(): its case is not certified, or its certified
+  /// bound is vacuous); empty when it can, and always for exact and auto.
+  std::vector<std::string> warnings;
   double g = 9.81, flight_duration = 0;
 };
 

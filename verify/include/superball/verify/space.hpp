@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "superball/cases/model.hpp"
+#include "superball/cases/number.hpp"
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/problem.hpp"
 #include "superball/symbolic/derivation.hpp"
@@ -90,6 +91,11 @@ struct Coordinate {
   int second_diagonal = -1;  ///< Coupling: the coordinate of K_second
 };
 
+/// Largest |order| in ε of a coordinate that sampling takes (ParameterSpace
+/// refuses a scaling beyond it; RegimeSampler refuses an ε whose power
+/// leaves the numbers a scene holds).
+inline constexpr int max_sampling_order = max_decimal_exponent;
+
 /// The parameters of a pattern (symbolic::Symbols, in the same order) and
 /// the positive semi-definiteness of M on them (paper §3).
 class ParameterSpace {
@@ -97,7 +103,7 @@ class ParameterSpace {
   /// The coordinates of \p deriver's symbols, their orders in ε from its
   /// scaling (integers), the PSD minors from Deriver::psd().  Throws
   /// std::invalid_argument("ParameterSpace::ParameterSpace(): ...") for a
-  /// non-integer order.
+  /// non-integer order or one beyond ±max_sampling_order.
   explicit ParameterSpace(const symbolic::Deriver& deriver);
 
   const std::vector<Coordinate>& coordinates() const { return coordinates_; }
@@ -139,6 +145,9 @@ class ParameterSpace {
 class RegimeSampler {
  public:
   /// \p epsilon in (0, 1); the points are a function of \p seed only.
+  /// Throws std::invalid_argument("RegimeSampler::RegimeSampler(): ...")
+  /// otherwise, or when \p epsilon to the largest |order| of the space is
+  /// below 10^-(max_decimal_exponent − 2) (values no scene holds).
   RegimeSampler(const ParameterSpace& space, const cln::cl_RA& epsilon, std::uint64_t seed);
   /// An admissible point, or nullopt when 1000 draws in a row were not.
   std::optional<Point> draw();
