@@ -17,8 +17,15 @@
 //     unchanged, nothing left beside it; on a command that succeeds into a
 //     symlink or a FIFO: the link or FIFO kept, the text as on standard output;
 //   - equivalent command lines (--threads 1 and 2, a byte-order mark or not,
-//     `inf` or `+inf`) give the same exit code and the same output;
-//   - what a class must give (refused with exit 2, success, exit 3).
+//     `inf` or `+inf`, one parameter spelt two ways) give the same exit code
+//     and the same output;
+//   - what a class must give (refused with exit 2, success, exit 3);
+//   - no raw C++ exception text in a message;
+//   - issue 25: tampered job-array parts are refused by merge, which writes
+//     nowhere else; a tampered checkpoint gives the untampered bytes or one
+//     line; digits:N agrees with exact unless it warns; outputs never replace
+//     inputs; a map under `ulimit -v` ends in time without bad_alloc; a build
+//     without MPI under a launcher refuses.
 //
 // Each class is one test (RedTeam/Hostile.Holds/<class>).  A class runs its
 // enumerated cases, then random ones until its share of the time budget is
