@@ -779,8 +779,8 @@ struct PartText {
 };
 
 /// Edits a number or a word of \p text (a task's result): a digit changed, a
-/// value replaced by 99.41, a verdict or a case name swapped.  False when
-/// \p text has none to edit.
+/// number replaced by 99, a verdict or a case name swapped (everywhere in
+/// the text).  False when \p text has none to edit.
 bool edit_text(std::string& text, Rng& rng, bool word) {
   if (word) {
     static const std::vector<std::pair<std::string, std::string>> swaps = {
@@ -790,10 +790,8 @@ bool edit_text(std::string& text, Rng& rng, bool word) {
     for (const auto& s : swaps)
       if (text.find(s.first) != std::string::npos) found.push_back(s);
     if (!found.empty()) {
-      const auto& [from, to] = pick(rng, found);
-      std::vector<std::size_t> at;
-      for (std::size_t k = text.find(from); k != std::string::npos; k = text.find(from, k + 1)) at.push_back(k);
-      text.replace(pick(rng, at), from.size(), to);
+      const auto& [from, to] = pick(rng, found);  // everywhere: a result may say it twice (its text and its JSON)
+      for (std::size_t k = text.find(from); k != std::string::npos; k = text.find(from, k + to.size())) text.replace(k, from.size(), to);
       return true;
     }
   }
@@ -907,11 +905,16 @@ std::vector<std::string> task_files(const std::string& folder) {
 /// standard output, never a value the unsharded run does not print.
 Case make_part(Rng& rng, int index) {
   Case c;
-  // Enumerated: untampered, then each way of tampering once (sweep, explore
-  // and verify in turn), the two injections into explore's parts.
-  const Tamper how = index == 0 ? Tamper::None : index <= static_cast<int>(kTampers.size()) ? kTampers[static_cast<std::size_t>(index - 1)] : pick(rng, kTampers);
-  std::size_t list = index <= static_cast<int>(kTampers.size()) ? static_cast<std::size_t>(index) % 3 : static_cast<std::size_t>(between(rng, 0, 2));
-  if (how == Tamper::Argument || how == Tamper::ArgumentShard) list = 1;
+  // Enumerated: the parts as written, the two injections into both
+  // parts, a huge length, a tail after `end`, an edited word, a FIFO, a
+  // flipped byte (the checkpoint class enumerates the other ways); then any
+  // way, on any of sweep (0), explore (1) and verify (2).
+  static const std::vector<std::pair<Tamper, std::size_t>> enumerated = {
+      {Tamper::None, 0},     {Tamper::Argument, 1}, {Tamper::ArgumentShard, 1}, {Tamper::Huge, 0},
+      {Tamper::Trailing, 2}, {Tamper::Word, 0},     {Tamper::Fifo, 1},          {Tamper::Flip, 2}};
+  const bool listed = index < static_cast<int>(enumerated.size());
+  const Tamper how = listed ? enumerated[static_cast<std::size_t>(index)].first : pick(rng, kTampers);
+  const std::size_t list = listed ? enumerated[static_cast<std::size_t>(index)].second : static_cast<std::size_t>(between(rng, 0, 2));
   const std::vector<std::string> args = kTaskLists[list];
   c.files["scene.toml"] = kPaperScene;
   c.files["victim"] = kSentinel;
@@ -953,16 +956,22 @@ Case make_part(Rng& rng, int index) {
 /// (exit 2); never a tampered value with exit 0.
 Case make_checkpoint(Rng& rng, int index) {
   Case c;
-  const Tamper how = index < static_cast<int>(kTampers.size()) ? kTampers[static_cast<std::size_t>(index)] : index == static_cast<int>(kTampers.size()) ? Tamper::None : pick(rng, kTampers);
-  const std::size_t list = index <= static_cast<int>(kTampers.size()) ? static_cast<std::size_t>(index) % 4 == 2 ? 3 : static_cast<std::size_t>(index) % 4
-                                                                     : pick(rng, std::vector<std::size_t>{0, 1, 3});
+  // Enumerated: a run cut short resumed as it is, then the ways of tampering
+  // the part class does not enumerate; then any way, on any of sweep (0),
+  // explore (1) and map (3) (not verify: one task, nothing to resume).
+  static const std::vector<std::pair<Tamper, std::size_t>> enumerated = {
+      {Tamper::None, 3},    {Tamper::Number, 0},   {Tamper::Truncate, 1}, {Tamper::Symlink, 0},
+      {Tamper::Folder, 3},  {Tamper::Huge, 0},     {Tamper::Trailing, 3}, {Tamper::Word, 1}};
+  const bool listed = index < static_cast<int>(enumerated.size());
+  const Tamper how = listed ? enumerated[static_cast<std::size_t>(index)].first : pick(rng, kTampers);
+  const std::size_t list = listed ? enumerated[static_cast<std::size_t>(index)].second : pick(rng, std::vector<std::size_t>{0, 1, 3});
   const std::vector<std::string> args = kTaskLists[list];  // not verify: one task, nothing left to resume
   c.files["scene.toml"] = kPaperScene;
   c.files["victim"] = kSentinel;
   Command first{args}, again{args};
   for (Command* r : {&first, &again}) r->args.insert(r->args.end(), {"--checkpoint", "@/ck"});
   first.setup = true;
-  if (index == static_cast<int>(kTampers.size()) || coin(rng, 0.4)) first.env["SUPERBALL_TEST_FAIL_TASK"] = std::to_string(between(rng, 2, 6));
+  if (index == 0 || coin(rng, 0.4)) first.env["SUPERBALL_TEST_FAIL_TASK"] = std::to_string(between(rng, 2, 6));
   again.address_space = kTamperedAddressSpace;
   c.runs = {Command{args}, first, again};
   const std::uint64_t seed = rng();
@@ -1212,7 +1221,7 @@ const std::vector<Class> kClasses = {
     {"nesting", 4, make_nesting},     {"control", 8, make_control},    {"underscore", 8, make_underscore},
     {"special", 8, make_special},     {"path", 6, make_path},          {"sweep", 8, make_sweep},
     {"conflict", 21, make_conflict},  {"output", 14, make_output},     {"stdout", 8, make_stdout},
-    {"part", 12, make_part},          {"checkpoint", 12, make_checkpoint}, {"digits", 12, make_digits},
+    {"part", 8, make_part},           {"checkpoint", 8, make_checkpoint}, {"digits", 12, make_digits},
     {"spelling", 4, make_spelling},   {"memory", 4, make_memory},      {"inout", 8, make_inout},
     {"mpi", 6, make_mpi, kWithMpi ? "superball is built with MPI: a launcher's environment without mpirun has nothing to check" : nullptr},
 };
