@@ -1546,8 +1546,13 @@ std::vector<std::string> check_case(const Case& c, const std::string& dir) {
   return v;
 }
 
-/// Write what a case needs to be run again by hand.
-void keep(const Case& c, const std::string& dir, const std::string& header) {
+/// Write what a case needs to be run again by hand, and what it violated.
+void keep(const Case& c, const std::string& dir, const std::string& header, const std::vector<std::string>& violations) {
+  std::ofstream(dir + "/violations") << [&] {
+    std::string all;
+    for (const auto& x : violations) all += x + "\n";
+    return all;
+  }();
   std::ofstream cmd(dir + "/command");
   cmd << header << '\n';
   if (!c.what.empty()) cmd << c.what << '\n';
@@ -1601,7 +1606,7 @@ TEST_P(Hostile, Holds) {
     }
     ++failing;
     const std::string header = std::string("class ") + cls.name + ", case " + std::to_string(index) + ", seed " + std::to_string(seed);
-    keep(c, dir, header);
+    keep(c, dir, header, v);
     if (failing <= 10) {
       report << "-- " << header << (known ? "" : " (files in " + dir + ")") << '\n';
       if (!c.what.empty()) report << "   " << c.what << '\n';
