@@ -996,6 +996,53 @@ Case make_checkpoint(Rng& rng, int index) {
   return c;
 }
 
+/// `solve --json -p digits:N` against `-p exact` on one scene, both exited:
+/// where both succeed and the first gives no warning, the same velocities
+/// (kDigitsRtol of the largest) and the same case but for ties.
+void check_digits(const std::string& digits, const Outcome& digits_run, const Outcome& exact_run, std::vector<std::string>& v) {
+  if (digits_run.exit_code != 0 || exact_run.exit_code != 0) return;
+  nlohmann::json d, e;
+  try {
+    d = nlohmann::json::parse(digits_run.out), e = nlohmann::json::parse(exact_run.out);
+  } catch (const std::exception&) {
+    return;  // check_solution has said it
+  }
+  if (d.value("status", "") != "success" || e.value("status", "") != "success") return;
+  if (d.contains("warnings") && !d["warnings"].empty()) return;  // it says it cannot be trusted
+  const std::string who = "solve -p " + digits + " against -p exact: ";
+  const auto& dt = d["velocities_after_text"];
+  const auto& et = e["velocities_after_exact"];
+  if (!dt.is_array() || !et.is_array() || dt.size() != et.size()) return;
+  std::vector<long double> dv, ev;
+  long double scale = 0;
+  for (std::size_t i = 0; i < dt.size(); ++i) {
+    const auto x = dt[i].is_string() ? value_of(dt[i].get<std::string>()) : std::nullopt;
+    const auto y = et[i].is_string() ? value_of(et[i].get<std::string>()) : std::nullopt;
+    if (!x || !y || !std::isfinite(*x) || !std::isfinite(*y)) return;  // symbolic, or beyond long double: no verdict
+    dv.push_back(*x), ev.push_back(*y), scale = std::max(scale, std::fabs(*y));
+  }
+  // The cases differ only by a tie: a contact closed in one, open in the
+  // other, with its two bodies at the same velocity (both solve the law).
+  std::set<std::string> closed_d, closed_e, either;
+  for (const auto& x : d.value("closed_contacts", nlohmann::json::array())) closed_d.insert(x.get<std::string>());
+  for (const auto& x : e.value("closed_contacts", nlohmann::json::array())) closed_e.insert(x.get<std::string>());
+  std::set_symmetric_difference(closed_d.begin(), closed_d.end(), closed_e.begin(), closed_e.end(), std::inserter(either, either.end()));
+  for (const auto& pair : either) {
+    unsigned i = 0, j = 0;
+    if (std::sscanf(pair.c_str(), "%u-%u", &i, &j) == 2 && i >= 1 && j >= 1 && i <= ev.size() && j <= ev.size() && ev[i - 1] == ev[j - 1]) continue;
+    v.push_back(who + "case " + d.value("case", "?") + " against " + e.value("case", "?") + " (contact " + pair + "), with no warning");
+    break;
+  }
+  for (std::size_t i = 0; i < dv.size(); ++i)
+    if (std::fabs(dv[i] - ev[i]) > kDigitsRtol * scale) {
+      std::ostringstream os;
+      os.precision(12);
+      os << who << "U" << i + 1 << " = " << dv[i] << " against " << ev[i] << ", with no warning";
+      v.push_back(os.str());
+      return;
+    }
+}
+
 /// `solve --json -p digits:N` for every N accepted, on scenes with tiny and
 /// huge exponents: an answer with the physics or one line; compared with
 /// exact where both succeed and the answer carries no warning.
@@ -1024,49 +1071,7 @@ Case make_digits(Rng& rng, int index) {
   const std::string digits = "digits:" + std::to_string(n);
   c.runs = {Command{{"solve", "@/scene.toml", "--json", "-p", digits}}, Command{{"solve", "@/scene.toml", "--json", "-p", "exact"}}};
   c.compare = Compare::None;
-  c.check = [digits](const std::vector<Outcome>& o, std::vector<std::string>& v) {
-    if (o[0].exit_code != 0 || o[1].exit_code != 0) return;
-    nlohmann::json d, e;
-    try {
-      d = nlohmann::json::parse(o[0].out), e = nlohmann::json::parse(o[1].out);
-    } catch (const std::exception&) {
-      return;  // check_solution has said it
-    }
-    if (d.value("status", "") != "success" || e.value("status", "") != "success") return;
-    if (d.contains("warnings") && !d["warnings"].empty()) return;  // it says it cannot be trusted
-    const std::string who = "solve -p " + digits + " against -p exact: ";
-    const auto& dt = d["velocities_after_text"];
-    const auto& et = e["velocities_after_exact"];
-    if (!dt.is_array() || !et.is_array() || dt.size() != et.size()) return;
-    std::vector<long double> dv, ev;
-    long double scale = 0;
-    for (std::size_t i = 0; i < dt.size(); ++i) {
-      const auto x = dt[i].is_string() ? value_of(dt[i].get<std::string>()) : std::nullopt;
-      const auto y = et[i].is_string() ? value_of(et[i].get<std::string>()) : std::nullopt;
-      if (!x || !y || !std::isfinite(*x) || !std::isfinite(*y)) return;  // symbolic, or beyond long double: no verdict
-      dv.push_back(*x), ev.push_back(*y), scale = std::max(scale, std::fabs(*y));
-    }
-    // The cases differ only by a tie: a contact closed in one, open in the
-    // other, with its two bodies at the same velocity (both solve the law).
-    std::set<std::string> closed_d, closed_e, either;
-    for (const auto& x : d.value("closed_contacts", nlohmann::json::array())) closed_d.insert(x.get<std::string>());
-    for (const auto& x : e.value("closed_contacts", nlohmann::json::array())) closed_e.insert(x.get<std::string>());
-    std::set_symmetric_difference(closed_d.begin(), closed_d.end(), closed_e.begin(), closed_e.end(), std::inserter(either, either.end()));
-    for (const auto& pair : either) {
-      unsigned i = 0, j = 0;
-      if (std::sscanf(pair.c_str(), "%u-%u", &i, &j) == 2 && i >= 1 && j >= 1 && i <= ev.size() && j <= ev.size() && ev[i - 1] == ev[j - 1]) continue;
-      v.push_back(who + "case " + d.value("case", "?") + " against " + e.value("case", "?") + " (contact " + pair + "), with no warning");
-      break;
-    }
-    for (std::size_t i = 0; i < dv.size(); ++i)
-      if (std::fabs(dv[i] - ev[i]) > kDigitsRtol * scale) {
-        std::ostringstream os;
-        os.precision(12);
-        os << who << "U" << i + 1 << " = " << dv[i] << " against " << ev[i] << ", with no warning";
-        v.push_back(os.str());
-        return;
-      }
-  };
+  c.check = [digits](const std::vector<Outcome>& o, std::vector<std::string>& v) { check_digits(digits, o[0], o[1], v); };
   return c;
 }
 
@@ -1700,6 +1705,27 @@ TEST(RedTeamChecks, SolutionInvariants) {
   v.clear();
   check_solution(r, made_up(0, faster, ""), &spec, v);
   EXPECT_GT(v.size(), 0u);  // momentum -1 kept, energy 0.5 -> 2.5
+}
+
+TEST(RedTeamChecks, DigitsAgainstExact) {
+  auto answer = [](const std::string& closed, const std::string& u1, const std::string& u2, const std::string& extra = "") {
+    const bool exact = u1.find('/') != std::string::npos;
+    return made_up(0, R"({"status": "success", "case": "{)" + closed + R"(}", "closed_contacts": [)" + (closed.empty() ? "" : "\"" + closed + "\"") +
+                          R"(], ")" + (exact ? "velocities_after_exact" : "velocities_after_text") + R"(": [")" + u1 + R"(", ")" + u2 + R"("])" + extra + "}",
+                   "");
+  };
+  auto count = [](const Outcome& d, const Outcome& e) {
+    std::vector<std::string> v;
+    check_digits("digits:20", d, e, v);
+    return v.size();
+  };
+  EXPECT_EQ(count(answer("", "0.5", "-0.25"), answer("", "1/2", "-1/4")), 0u);
+  EXPECT_GT(count(answer("", "0.5", "-0.26"), answer("", "1/2", "-1/4")), 0u);
+  // A contact open in one and closed in the other: a tie when its bodies move together.
+  EXPECT_EQ(count(answer("", "-0.5", "-0.5"), answer("1-2", "-1/2", "-1/2")), 0u);
+  EXPECT_GT(count(answer("", "0.5", "-0.25"), answer("1-2", "1/2", "-1/4")), 0u);
+  // An answer that warns is not held to exact.
+  EXPECT_EQ(count(answer("", "0.5", "-0.26", R"(, "warnings": ["the bound is vacuous"])"), answer("", "1/2", "-1/4")), 0u);
 }
 
 // Each way of tampering changes the part (a tampered part that came out
