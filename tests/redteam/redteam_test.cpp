@@ -149,6 +149,7 @@ Outcome execute(const Command& r, const std::string& dir) {
   const pid_t pid = ::fork();
   if (pid == 0) {
     ::setpgid(0, 0);
+    ::signal(SIGPIPE, SIG_DFL);  // the test ignores it (FifoWriter), the command must not inherit that
     if (r.address_space && ::setrlimit(RLIMIT_AS, &limit) != 0) ::_exit(126);
     ::dup2(in_fd, 0);
     if (out_fd < 0)
@@ -226,6 +227,9 @@ class FifoWriter {
   static constexpr std::chrono::seconds kFifoWriterPatience{15};
   FifoWriter(const std::string& path, std::string text)
       : thread_([this, path, text = std::move(text)] {
+          // A reader that closes the FIFO before reading it all (a command
+          // that looks at it and refuses) must not kill the test with SIGPIPE.
+          ::signal(SIGPIPE, SIG_IGN);
           const auto deadline = std::chrono::steady_clock::now() + kFifoWriterPatience;
           while (!stop_.load() && std::chrono::steady_clock::now() < deadline) {
             const int fd = ::open(path.c_str(), O_WRONLY | O_NONBLOCK);
