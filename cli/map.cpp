@@ -29,6 +29,9 @@ void draw_map(const std::string& prefix, const numeric::Map& m, const std::strin
 
 namespace {
 
+/// The grid points computed and written at a time when a map's CSV is streamed.
+constexpr std::size_t stream_block = std::size_t{1} << 14;
+
 /// The zeros of the derived conditions next to a point of their case (those
 /// that can bound its region), as points of the plane.
 std::vector<std::pair<double, double>> derived_points(const verify::Overlay& o, const numeric::Map& m) {
@@ -136,7 +139,22 @@ void add_map(CLI::App& app, Action& action) {
           Distribution run(*cmd, options, count);
           return run.run_everywhere(task);
         };
-      const numeric::Map m = numeric::map(scene, {rx.parameter, rx.from, rx.to, rx.steps}, {ry.parameter, ry.from, ry.to, ry.steps}, settings);
+      const numeric::Axis ax{rx.parameter, rx.from, rx.to, rx.steps}, ay{ry.parameter, ry.from, ry.to, ry.steps};
+      // What the output holds beside the map, in the estimate of map(), which refuses a map that would not fit.
+      using present::MapOutput;
+      settings.output_bytes_per_point =
+          present::map_output_bytes_per_point(o->json ? MapOutput::Json : o->csv && !o->boundary_points ? MapOutput::Csv : MapOutput::Summary) +
+          (o->plot.empty() ? 0 : present::map_output_bytes_per_point(MapOutput::Figure));
+      // The grid alone as CSV needs no boundaries: when it is too large to hold, its rows are written as they are computed.
+      if (o->csv && !o->boundary_points && o->plot.empty() && !o->overlay && !settings.runner && !settings.fits(ax, ay)) {
+        Output out("");
+        out.write(present::map_csv_header(ax, ay));
+        numeric::map_points(scene, ax, ay, settings, stream_block,
+                            [&](std::size_t first, const std::vector<numeric::MapPoint>& points) { out.write(present::map_csv_rows(ax, ay, first, points)); });
+        out.commit();
+        return ok;
+      }
+      const numeric::Map m = numeric::map(scene, ax, ay, settings);
       if (mpi_rank() != 0) return ok;
       std::optional<verify::Overlay> overlay;
       if (o->overlay) overlay = verify::overlay(scene, m, settings.bits);
