@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <algorithm>
 #include <filesystem>
@@ -272,6 +273,27 @@ TEST(OutputOverInput, AnOutputBesideTheInputIsWritten) {
   const RunResult r = run({"derive", "--scene", scene, "--case", "1", "-o", dir / "s.txt"});
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_FALSE(slurp(dir / "s.txt").empty());
+}
+
+TEST(Output, FifoWithNoReaderWaitsForOne) {
+  // As cat and tee do (README, Output): the command waits at the FIFO until a reader opens it, then writes everything.
+  Folder dir;
+  const std::string fifo = dir / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::vector<std::string> args = with(kDerive, {"-o", fifo});
+  args.insert(args.begin(), SUPERBALL_EXE);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(::posix_spawn(&pid, SUPERBALL_EXE, nullptr, nullptr, argv.data(), environ), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  int status = 0;
+  EXPECT_EQ(::waitpid(pid, &status, WNOHANG), 0) << "ended without a reader, status " << status;
+  const std::string received = slurp(fifo);
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_EQ(received, run(kDerive).out);
 }
 
 TEST(Output, FullDeviceIsWrittenIntoNotReplaced) {

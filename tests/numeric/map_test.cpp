@@ -375,6 +375,22 @@ TEST(Map, AGridLargerThanTheMemoryIsRefusedAtOnce) {
   EXPECT_TRUE(settings.fits(axis(scene, "K.3-4", 0, 20, 5), axis(scene, "alpha.2", -110, 0, 5)));
 }
 
+TEST(Memory, TheProbeAndTheRefusalSayHowMuchAndWhy) {
+  const numeric::Memory here = numeric::available_memory();
+  EXPECT_GT(here.bytes, 0);
+  EXPECT_FALSE(here.source.empty());
+  EXPECT_EQ(numeric::bytes_text(512), "512 B");
+  EXPECT_EQ(numeric::bytes_text(9.6e9), "9.6 GB");
+  EXPECT_EQ(numeric::bytes_text(11e6), "11.0 MB");
+  EXPECT_NO_THROW(numeric::check_memory("f()", "it", 1e9, "1 byte each", {1e9, "test"}, "ask less"));
+  try {
+    numeric::check_memory("f()", "a list of 10⁹", 2e9, "2 bytes each", {1e9, "ulimit -v"}, "ask less");
+    ADD_FAILURE() << "not refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "f(): a list of 10⁹ holds about 2.0 GB (2 bytes each); this machine has 1.0 GB available (ulimit -v); ask less");
+  }
+}
+
 TEST(Map, StreamedPointsAreTheMapsPoints) {
   // map_points() block by block (blocks that end inside a row) gives map()'s points, bit for bit, in order.
   const Scene scene = load_scene(kPaper);
