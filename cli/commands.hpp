@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace superball::cli {
 
@@ -49,7 +50,8 @@ class OutputError : public std::runtime_error {
 /// commands write anything (model: coreutils' install/mv, moreutils' sponge).
 ///  - "", "-", /dev/stdout: standard output, written directly;
 ///  - an existing device, FIFO or socket: opened and written directly, never
-///    replaced;
+///    replaced (a FIFO with no reader: open() waits for one, as cat and tee do);
+///  - a file the command reads (note_input()): refused, std::invalid_argument;
 ///  - a regular file or a new path: a temporary (mkstemp) beside it, with the
 ///    existing file's permissions (and owner, when run as root) or 0666 & ~umask,
 ///    replaced by rename() in commit() after fsync() of the file, then fsync()
@@ -76,6 +78,27 @@ class Output {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Record \p path, the value of \p option ("--scene", "part", or "" for a
+/// positional scene), as a regular file the running command reads (when it
+/// is one): no Output may then replace it.  Called by check_outputs() for
+/// the scenes, by merge for its parts.
+void note_input(const std::string& option, const std::string& path);
+
+/// Throws std::invalid_argument("WHAT: is the file of --scene t.toml, which
+/// this command reads; write the output elsewhere") when \p path is a noted
+/// input, whatever its spelling: the same name, ./name, a symbolic or a hard
+/// link to it (the same st_dev and st_ino).  A path that does not exist yet
+/// is no input.  Output's constructor calls it, so nothing is written over
+/// an input.
+void check_not_input(const std::string& what, const std::string& path);
+
+/// Before a parsed command runs: its inputs noted (the positional scene,
+/// --scene) and every output it names checked against them with
+/// check_not_input(), before anything is written: -o/--output, --out,
+/// --part, --checkpoint, --plot (and for map the files PREFIX.dat, .gp,
+/// .png and .svg it makes).  Called by main() for every command.
+void check_outputs(const CLI::App& command);
 
 /// A command's whole result at once: Output(path), write(text), commit().
 void write_output(const std::string& path, std::string_view text);

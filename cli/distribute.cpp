@@ -709,6 +709,7 @@ std::vector<std::string> merge_arguments(const std::vector<std::string>& args) {
   std::map<std::size_t, std::string> which;  // part number -> its file
   std::size_t shards = 0;
   for (const std::string& path : parts) {
+    note_input("part", path);  // merge's -o and --out never name a part it reads
     DataFile in(path, "merge: " + path, true, std::numeric_limits<std::uint64_t>::max());
     const Header h = read_header(in, kPartKind);
     const Mergeable& m = check_part_arguments(h.arguments, in);

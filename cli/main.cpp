@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstring>
 #include <iostream>
+#include <new>
 
 #include <string>
 #include <vector>
@@ -37,12 +38,14 @@ int run(int argc, char** argv) {
       "  0  success\n"
       "  1  a numerical outcome you asked to be told about: a solve or sweep value whose status is not success,\n"
       "     derived conditions that disagree with exact solutions (verify)\n"
-      "  2  bad input or usage: a scene file, an option, a command line (one line on stderr says what and where)\n"
+      "  2  bad input or usage: a scene file, an option, a command line (one line on stderr says what and where),\n"
+      "     an output naming a file the command reads, a size this machine has no memory for\n"
       "  3  an output that cannot be written: a full disk, a closed pipe, no permission (one line: the path and why)\n"
       "  4  internal error: a bug of the tool, to be reported\n"
       "Output (-o, --out, --plot, standard output): a file is replaced whole, atomically, only at the end (its\n"
       "permissions kept; through a symbolic link, the link's target); a device, FIFO or standard output is written\n"
-      "directly.");
+      "directly (a FIFO with no reader: the command waits for one, as cat and tee do).  An output that names a file the\n"
+      "command reads (its scene, through any name or link) is refused before anything is written.");
   app.require_subcommand(1);
   guard_standard_descriptors();
   app.set_version_flag("--version", "superball " SUPERBALL_VERSION);
@@ -113,6 +116,7 @@ int run(int argc, char** argv) {
     }
   }
   try {
+    check_outputs(*app.get_subcommands().front());
     return action();
   } catch (...) {
     abandon_ranks();  // under MPI, ranks waiting for rank 0 are not left hanging
@@ -126,6 +130,10 @@ int run(int argc, char** argv) {
       return output_error;
     } catch (const std::invalid_argument& e) {
       err << "superball: " << printable(superball::without_function_prefix(e.what())) << '\n';
+      return bad_input;
+    } catch (const std::bad_alloc&) {
+      err << "superball: out of memory: the command needs more than this machine allows (MemAvailable, ulimit -v); ask for less "
+             "(a coarser grid, fewer samples)\n";
       return bad_input;
     } catch (const std::exception& e) {
       err << "superball: internal error: " << printable(e.what()) << '\n';

@@ -29,6 +29,9 @@ void draw_map(const std::string& prefix, const numeric::Map& m, const std::strin
 
 namespace {
 
+/// The grid points computed and written at a time when a map's CSV is streamed.
+constexpr std::size_t stream_block = std::size_t{1} << 14;
+
 /// The zeros of the derived conditions next to a point of their case (those
 /// that can bound its region), as points of the plane.
 std::vector<std::pair<double, double>> derived_points(const verify::Overlay& o, const numeric::Map& m) {
@@ -83,6 +86,9 @@ void add_map(CLI::App& app, Action& action) {
       "collision), one parameter on both axes (in any spelling: K.03-4 is K.3-4, alpha.2 is coupling.1-2/1-4), or a\n"
       "grid where M is nowhere positive semi-definite is refused\n"
       "before anything is written.  The output does not depend on --threads.\n"
+      "Memory: a grid whose points and output would not fit in what this process may still allocate (MemAvailable,\n"
+      "ulimit -v) is refused at once with the estimate (docs/MAPS.md), except the grid alone as --csv, which is then\n"
+      "written as it is computed.\n"
       "Over MPI (`mpirun -n P superball map ...`, built with -DSUPERBALL_WITH_MPI=ON) the grid points, then the\n"
       "bisections, are handed out to the ranks as tasks (each on --threads threads); rank 0 writes the same bytes\n"
       "as one process (and draws --plot, runs --overlay).  --checkpoint DIR keeps each finished task (DIR/points,\n"
@@ -137,7 +143,22 @@ void add_map(CLI::App& app, Action& action) {
           Distribution run(*cmd, options, count);
           return run.run_everywhere(task);
         };
-      const numeric::Map m = numeric::map(scene, {rx.parameter, rx.from, rx.to, rx.steps}, {ry.parameter, ry.from, ry.to, ry.steps}, settings);
+      const numeric::Axis ax{rx.parameter, rx.from, rx.to, rx.steps}, ay{ry.parameter, ry.from, ry.to, ry.steps};
+      // What the output holds beside the map, in the estimate of map(), which refuses a map that would not fit.
+      using present::MapOutput;
+      settings.output_bytes_per_point =
+          present::map_output_bytes_per_point(o->json ? MapOutput::Json : o->csv && !o->boundary_points ? MapOutput::Csv : MapOutput::Summary) +
+          (o->plot.empty() ? 0 : present::map_output_bytes_per_point(MapOutput::Figure));
+      // The grid alone as CSV needs no boundaries: when it is too large to hold, its rows are written as they are computed.
+      if (o->csv && !o->boundary_points && o->plot.empty() && !o->overlay && !settings.runner && !settings.fits(ax, ay)) {
+        Output out("");
+        out.write(present::map_csv_header(ax, ay));
+        numeric::map_points(scene, ax, ay, settings, stream_block,
+                            [&](std::size_t first, const std::vector<numeric::MapPoint>& points) { out.write(present::map_csv_rows(ax, ay, first, points)); });
+        out.commit();
+        return ok;
+      }
+      const numeric::Map m = numeric::map(scene, ax, ay, settings);
       if (mpi_rank() != 0) return ok;
       std::optional<verify::Overlay> overlay;
       if (o->overlay) overlay = verify::overlay(scene, m, settings.bits);

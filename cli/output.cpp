@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <vector>
 
 #include "commands.hpp"
 
@@ -86,8 +87,53 @@ mode_t current_umask() {
   return mask;
 }
 
+/// A file the running command reads: no output may name it.
+struct Input {
+  std::string name;  ///< "--scene t.toml", for messages
+  dev_t device;
+  ino_t inode;
+};
+
+std::vector<Input>& inputs() {
+  static std::vector<Input> all;
+  return all;
+}
+
 }  // namespace
 }  // namespace detail
+
+void note_input(const std::string& option, const std::string& path) {
+  struct stat st {};
+  // Only a regular file can be replaced by an output; a folder (reproduce --scenes) or a device is left to the writes.
+  if (detail::standard_descriptor(path) >= 0 || ::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return;
+  detail::inputs().push_back({(option.empty() ? "" : option + " ") + path, st.st_dev, st.st_ino});
+}
+
+void check_not_input(const std::string& what, const std::string& path) {
+  // An output that does not exist yet is no file that is read: the inputs exist (they are noted as they are read).
+  struct stat st {};
+  if (detail::standard_descriptor(path) >= 0 || ::stat(path.c_str(), &st) != 0) return;
+  for (const detail::Input& in : detail::inputs())
+    if (in.device == st.st_dev && in.inode == st.st_ino)
+      throw std::invalid_argument(what + ": is the file of " + in.name + ", which this command reads; write the output elsewhere");
+}
+
+void check_outputs(const CLI::App& command) {
+  auto values = [&](const char* option) {
+    const CLI::Option* o = command.get_option_no_throw(option);
+    return o ? o->results() : std::vector<std::string>{};
+  };
+  for (const char* option : {"scene", "--scene"})
+    for (const std::string& path : values(option)) note_input(option[0] == '-' ? option : "the scene", path);
+  for (const char* option : {"--output", "--out", "--part", "--checkpoint", "--plot"})
+    for (const std::string& path : values(option)) {
+      const std::string named = std::string(std::strcmp(option, "--output") == 0 ? "-o" : option) + " " + path;
+      check_not_input(named, path);
+      // map --plot PREFIX writes the figure's four files beside it.
+      if (std::strcmp(option, "--plot") == 0 && command.get_name() == "map")
+        for (const char* ext : {".dat", ".gp", ".png", ".svg"}) check_not_input(named + " (" + path + ext + ")", path + ext);
+    }
+}
 
 struct Output::Impl {
   std::string name;    ///< the path as given, or "standard output": what messages say
@@ -119,6 +165,7 @@ Output::Output(std::string path) : impl_(std::make_unique<Impl>()) {
     return;
   }
   o.name = path;
+  check_not_input(path, path);
   struct stat st {};
   const bool exists = ::stat(path.c_str(), &st) == 0;
   if (!exists && errno != ENOENT) o.fail(errno);

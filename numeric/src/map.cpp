@@ -448,37 +448,115 @@ void check_map(const Scene& scene, const Axis& x, const Axis& y) {
     }
 }
 
+namespace {
+
+/// The grid points of a map, solved a range at a time.
+class GridSolver {
+ public:
+  /// The values of \p x and \p y and the corner scene, for points of \p scene in \p settings (all kept by reference).
+  GridSolver(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings)
+      : tx(texts(x)), ty(texts(y)), scene_(scene), x_(x), y_(y), settings_(settings),
+        // Two entries of M on the axes, in double or long double: only they change over the grid.
+        corner_(with_value(with_value(scene, x.parameter, x.from), y.parameter, y.from)),
+        kx_(detail::entry_changed(corner_, with_value(corner_, x.parameter, x.to))),
+        ky_(detail::entry_changed(corner_, with_value(corner_, y.parameter, y.to))) {}
+
+  /// The grid points first … first + size − 1 (k = j·nx + i), on settings.threads.
+  std::vector<MapPoint> operator()(std::size_t first, std::size_t size) const {
+    if (kx_ && ky_ && settings_.precision.kind == Precision::Kind::Double)
+      return detail::entry_points<double>(corner_, *kx_, *ky_, x_, y_, settings_, first, size);
+    if (kx_ && ky_ && settings_.precision.kind == Precision::Kind::LongDouble)
+      return detail::entry_points<long double>(corner_, *kx_, *ky_, x_, y_, settings_, first, size);
+    const std::size_t nx = tx.size();
+    return parallel_map(size, settings_.threads, [this] { return scene_; }, [&](Scene& s, std::size_t at) {
+      const std::size_t k = first + at;
+      x_.parameter.assign(s, Number::parse(tx[k % nx]));
+      y_.parameter.assign(s, Number::parse(ty[k / nx]));
+      return with_scalar(settings_.precision, [&](auto tag) { return solve_point<decltype(tag)>(s, settings_.precision); });
+    });
+  }
+
+  /// InputError: M is not positive semi-definite at any point.
+  [[noreturn]] void nowhere_psd() const {
+    throw InputError(scene_.origin + ": M is not positive semi-definite at any point of the map (" + x_.parameter.key() + " from " +
+                     to_string(x_.from) + " to " + to_string(x_.to) + ", " + y_.parameter.key() + " from " + to_string(y_.from) + " to " +
+                     to_string(y_.to) + "): nothing to solve");
+  }
+
+ const std::vector<std::string> tx, ty;  ///< the grid's exact values as text
+
+ private:
+  const Scene& scene_;
+  const Axis &x_, &y_;
+  const MapSettings& settings_;
+  const Scene corner_;
+  const std::optional<std::size_t> kx_, ky_;
+};
+
+/// The heap block of a contact set of a few contacts: glibc's malloc gives
+/// at least 32 bytes (its smallest chunk) to the std::vector<bool> in it.
+constexpr double contact_set_block = 32;
+/// The address space of a thread's stack (glibc's default, `ulimit -s`
+/// 8192), which `ulimit -v` counts.
+constexpr double thread_stack_bytes = 8 << 20;
+/// A point's line in detail::points_to_text(): "1 0 1 0x1.91eb851eb851fp+0 011\n".
+constexpr double point_text_bytes = 32;
+
+}  // namespace
+
+double MapSettings::bytes_per_point() const {
+  // Each point in the map with its contact set's block; while solved, also
+  // its slot in parallel_map(); with a runner, which solves a task at a time,
+  // the text of all the tasks instead, read back into the map.
+  const double held = sizeof(MapPoint) + contact_set_block;
+  return held + (runner ? point_text_bytes : sizeof(std::optional<MapPoint>)) + output_bytes_per_point;
+}
+
+bool MapSettings::fits(const Axis& x, const Axis& y, std::string* why) const {
+  const double points = static_cast<double>(x.steps) * static_cast<double>(y.steps), per = bytes_per_point();
+  const int workers = thread_count(threads);
+  try {
+    check_memory("map()", "a " + std::to_string(x.steps) + " x " + std::to_string(y.steps) + " grid",
+                 points * per + workers * thread_stack_bytes,
+                 std::to_string(static_cast<long long>(std::ceil(per))) + " bytes per point, " + std::to_string(workers) + " threads",
+                 memory ? *memory : available_memory(),
+                 "use a coarser grid (the grid alone as CSV, superball map --csv without --checkpoint, is written as it is computed)");
+  } catch (const std::invalid_argument& e) {
+    if (why) *why = e.what();
+    return false;
+  }
+  return true;
+}
+
+void map_points(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings, std::size_t block,
+                const std::function<void(std::size_t first, const std::vector<MapPoint>& points)>& sink) {
+  check_map(scene, x, y);
+  const GridSolver solve_range(scene, x, y, settings);
+  const std::size_t count = static_cast<std::size_t>(x.steps) * static_cast<std::size_t>(y.steps);
+  block = std::max<std::size_t>(block, 1);
+  bool any = false;
+  for (std::size_t first = 0; first < count; first += block) {
+    const std::vector<MapPoint> points = solve_range(first, std::min(block, count - first));
+    any = any || std::any_of(points.begin(), points.end(), [](const MapPoint& p) { return p.admissible; });
+    sink(first, points);
+  }
+  if (!any) solve_range.nowhere_psd();
+}
+
 Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings) {
   check_map(scene, x, y);
+  if (std::string why; !settings.fits(x, y, &why)) throw std::invalid_argument(why);
   Map m{x, y, {}, {}, {}};
-  const std::vector<std::string> tx = texts(x), ty = texts(y);
-  const std::size_t nx = tx.size(), count = nx * ty.size();
-  // Two entries of M on the axes, in double or long double: only they change over the grid.
-  const Scene corner = with_value(with_value(scene, x.parameter, x.from), y.parameter, y.from);
-  const auto kx = detail::entry_changed(corner, with_value(corner, x.parameter, x.to));
-  const auto ky = detail::entry_changed(corner, with_value(corner, y.parameter, y.to));
-  // The grid points first … first + size − 1 (k = j·nx + i), on settings.threads.
-  auto points = [&](std::size_t first, std::size_t size) -> std::vector<MapPoint> {
-    if (kx && ky && settings.precision.kind == Precision::Kind::Double)
-      return detail::entry_points<double>(corner, *kx, *ky, x, y, settings, first, size);
-    if (kx && ky && settings.precision.kind == Precision::Kind::LongDouble)
-      return detail::entry_points<long double>(corner, *kx, *ky, x, y, settings, first, size);
-    return parallel_map(size, settings.threads, [&scene] { return scene; }, [&](Scene& s, std::size_t at) {
-      const std::size_t k = first + at;
-      x.parameter.assign(s, Number::parse(tx[k % nx]));
-      y.parameter.assign(s, Number::parse(ty[k / nx]));
-      return with_scalar(settings.precision, [&](auto tag) { return solve_point<decltype(tag)>(s, settings.precision); });
-    });
-  };
+  const GridSolver points(scene, x, y, settings);
+  const std::vector<std::string>& tx = points.tx;
+  const std::vector<std::string>& ty = points.ty;
+  const std::size_t count = tx.size() * ty.size();
   // At most map_tasks tasks of consecutive points when a runner spreads them.
   auto per_task = [](std::size_t n) { return (n + map_tasks - 1) / map_tasks; };
   m.points = in_tasks<MapPoint>(settings.runner, count, per_task(count), "map()", points, detail::points_to_text, detail::points_from_text);
   if (m.points.size() != count)
     throw std::logic_error("map(): the runner's results hold " + std::to_string(m.points.size()) + " of " + std::to_string(count) + " points");
-  if (std::none_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return p.admissible; }))
-    throw InputError(scene.origin + ": M is not positive semi-definite at any point of the map (" + x.parameter.key() + " from " +
-                     to_string(x.from) + " to " + to_string(x.to) + ", " + y.parameter.key() + " from " + to_string(y.from) + " to " +
-                     to_string(y.to) + "): nothing to solve");
+  if (std::none_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return p.admissible; })) points.nowhere_psd();
   if (!settings.boundaries) return m;
   // The neighbours to bisect: along x row by row, then along y column by column.
   struct Pending {

@@ -17,6 +17,12 @@ using numeric::MapBoundary;
 using numeric::MapPoint;
 using numeric::Region;
 
+/// Bytes per grid point of each output beside the map at its peak
+/// (map_output_bytes_per_point()): the peak resident size of 1000 x 1000
+/// maps of the paper's plane less that of its summary (161 bytes per
+/// point), rounded up (docs/MAPS.md).
+constexpr double csv_bytes_per_point = 60, json_bytes_per_point = 1300, figure_bytes_per_point = 240;
+
 /// The grid value k of axis \p a, exactly.
 cln::cl_RA value(const numeric::Axis& a, int k) { return a.from + (a.to - a.from) * k / (a.steps - 1); }
 
@@ -103,22 +109,39 @@ std::string axis_label(const std::string& key) {
   return out;
 }
 
-std::string map_csv(const Map& m) {
+std::string map_csv_header(const numeric::Axis& x, const numeric::Axis& y) {
+  return x.parameter.key() + ',' + y.parameter.key() + ",psd,case,closed,U1_over_a,superball,status\n";
+}
+
+std::string map_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t first, const std::vector<MapPoint>& points) {
   std::ostringstream os;
-  os << m.x.parameter.key() << ',' << m.y.parameter.key() << ",psd,case,closed,U1_over_a,superball,status\n";
-  for (int j = 0; j < m.y.steps; ++j) {
-    const std::string y = decimal(value(m.y, j), 10);
-    for (int i = 0; i < m.x.steps; ++i) {
-      const MapPoint& p = m.at(i, j);
-      os << decimal(value(m.x, i), 10) << ',' << y << ',';
-      if (p.admissible)
-        os << "1," << csv_field(case_name(p.region)) << ',' << csv_field(p.region.closed.to_string()) << ',' << number(p.ratio) << ','
-           << p.region.superball << ',' << numeric::to_string(p.status) << '\n';
-      else
-        os << "0,,,,,\n";
-    }
+  const auto nx = static_cast<std::size_t>(x.steps);
+  std::string y_text;
+  for (std::size_t at = 0; at < points.size(); ++at) {
+    const std::size_t k = first + at;
+    const int i = static_cast<int>(k % nx), j = static_cast<int>(k / nx);
+    if (at == 0 || i == 0) y_text = decimal(value(y, j), 10);
+    const MapPoint& p = points[at];
+    os << decimal(value(x, i), 10) << ',' << y_text << ',';
+    if (p.admissible)
+      os << "1," << csv_field(case_name(p.region)) << ',' << csv_field(p.region.closed.to_string()) << ',' << number(p.ratio) << ','
+         << p.region.superball << ',' << numeric::to_string(p.status) << '\n';
+    else
+      os << "0,,,,,\n";
   }
   return os.str();
+}
+
+std::string map_csv(const Map& m) { return map_csv_header(m.x, m.y) + map_csv_rows(m.x, m.y, 0, m.points); }
+
+double map_output_bytes_per_point(MapOutput output) {
+  switch (output) {
+    case MapOutput::Summary: return 0;
+    case MapOutput::Csv: return csv_bytes_per_point;
+    case MapOutput::Json: return json_bytes_per_point;
+    case MapOutput::Figure: return figure_bytes_per_point;
+  }
+  return 0;
 }
 
 std::string boundaries_csv(const Map& m) {

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -59,6 +60,59 @@ TEST(MapCli, AxisEndsAreEveryNumberASceneAccepts) {
   const RunResult r = run({"map", kPaper, "--x", "K.1-4=1e18:1e19:3", "--y", "K.3-4=0:20:3", "--csv", "--precision", "exact"});
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_EQ(lines_of(r.out).size(), 10u) << r.out;
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;  // its shadow memory does not fit under ulimit -v
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
+/// superball \p args under `ulimit -v KB` (address space), through /bin/sh.
+RunResult run_limited(long kb, const std::vector<std::string>& args) {
+  std::vector<std::string> sh = {"-c", "ulimit -v " + std::to_string(kb) + " && exec \"$0\" \"$@\"", SUPERBALL_EXE};
+  sh.insert(sh.end(), args.begin(), args.end());
+  return superball::test::run_program("/bin/sh", sh);
+}
+
+TEST(MapCli, AGridTooLargeForTheMemoryIsRefusedAtOnce) {
+  // The reproducer: 10⁴ × 10⁴ points under 4 GB grew to bad_alloc (exit 4).  Every output that holds the
+  // whole grid is refused with the estimate in under a second, before anything is written.
+  if (kAddressSanitizer) GTEST_SKIP() << "AddressSanitizer's shadow memory does not fit under ulimit -v";
+  const std::string prefix = ::testing::TempDir() + "map-memory-" + std::to_string(::getpid());
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{}, {"--json"}, {"--plot", prefix}, {"--boundary-points", "--csv"}, {"--csv", "--checkpoint", prefix}}) {
+    std::vector<std::string> args = {"map", kPaper, "--x", "K.3-4=0:20:10000", "--y", "alpha.2=-110:0:10000"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    SCOPED_TRACE(extra.empty() ? "summary" : extra[0]);
+    const auto start = std::chrono::steady_clock::now();
+    const RunResult r = run_limited(4000000, args);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+    expect_bad_input(r, {"a 10000 x 10000 grid holds about ", " GB available (", "use a coarser grid"});
+    for (const char* ext : {".png", ".svg", ".dat", ".gp", ""}) EXPECT_FALSE(exists(prefix + ext)) << prefix + ext;
+  }
+}
+
+TEST(MapCli, ACsvGridTooLargeToHoldIsStreamed) {
+  // 600 × 400 points held whole (about 228 bytes each) do not fit in the 40 MB that `ulimit -v 60000` leaves
+  // beside the program: the summary is refused, the grid as CSV is written as it is computed, the same bytes.
+  if (kAddressSanitizer) GTEST_SKIP() << "AddressSanitizer's shadow memory does not fit under ulimit -v";
+  const std::vector<std::string> args = {"map", kPaper, "--x", "K.3-4=0:20:600", "--y", "alpha.2=-110:0:400", "--threads", "2"};
+  std::vector<std::string> csv = args;
+  csv.push_back("--csv");
+  const RunResult whole = run(csv), streamed = run_limited(60000, csv);
+  ASSERT_EQ(whole.exit_code, 0) << describe(whole);
+  ASSERT_EQ(streamed.exit_code, 0) << describe(streamed);
+  EXPECT_EQ(streamed.err, "");
+  EXPECT_EQ(lines_of(streamed.out).size(), 1u + 600 * 400);
+  EXPECT_TRUE(streamed.out == whole.out) << "the streamed CSV differs from the CSV held whole";
+  expect_bad_input(run_limited(60000, args), {"a 600 x 400 grid holds about", "(ulimit -v)"});
 }
 
 TEST(MapCli, CsvRowsAreTheSweepsSolves) {

@@ -11,8 +11,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -169,6 +172,128 @@ TEST(Output, FifoIsWrittenIntoNotReplaced) {
   ASSERT_EQ(::lstat(fifo.c_str(), &st), 0);
   EXPECT_TRUE(S_ISFIFO(st.st_mode));
   EXPECT_EQ(dir.names(), std::vector<std::string>{"pipe"});
+}
+
+// ---------------------------------------------------------------------------
+// An output is never an input (issue 25): every output option that names the
+// command's scene, under every spelling of it, is refused with one line
+// before anything is written, and the scene is left as it was.
+
+/// The spellings of \p dir's file \p name: itself, DIR/./NAME,
+/// DIR/sub/../NAME, a symbolic link and a hard link to it (made in \p dir,
+/// named from \p stem and \p ext so that a prefix can name them too).
+std::vector<std::pair<std::string, std::string>> spellings(const Folder& dir, const std::string& stem, const std::string& ext) {
+  const std::string file = dir / (stem + ext);
+  fs::create_directories(dir / "sub");
+  EXPECT_EQ(::symlink((stem + ext).c_str(), (dir / ("soft-" + stem + ext)).c_str()), 0);
+  EXPECT_EQ(::link(file.c_str(), (dir / ("hard-" + stem + ext)).c_str()), 0);
+  // (what, the path without ext)
+  return {{"the same name", dir / stem},
+          {"./name", dir.path() + "/./" + stem},
+          {"sub/../name", dir.path() + "/sub/../" + stem},
+          {"a symbolic link", dir / ("soft-" + stem)},
+          {"a hard link", dir / ("hard-" + stem)}};
+}
+
+/// Refused: exit 2, one line saying which input, the scene unchanged, nothing new in \p dir.
+void expect_refused_over_input(const RunResult& r, const Folder& dir, const std::string& scene, const std::string& before) {
+  expect_bad_input(r, {"which this command reads; write the output elsewhere"});
+  EXPECT_EQ(slurp(scene), before);
+  std::vector<std::string> names = dir.names();
+  names.erase(std::remove_if(names.begin(), names.end(), [](const std::string& n) { return n.find(".toml") != std::string::npos || n.find(".dat") != std::string::npos || n == "sub"; }),
+              names.end());
+  EXPECT_TRUE(names.empty()) << names.front();
+}
+
+TEST(OutputOverInput, EveryOptionUnderEverySpellingIsRefused) {
+  Folder dir;
+  const std::string scene = dir / "s.toml", before = slurp(kPaper);
+  { std::ofstream(scene) << before; }
+  for (const auto& [what, stem] : spellings(dir, "s", ".toml")) {
+    const std::string path = stem + ".toml";
+    SCOPED_TRACE(what + ": " + path);
+    const std::vector<std::vector<std::string>> commands = {
+        {"explore", "--scene", scene, "--case", "1", "-o", path},  // the issue's reproducer, -o
+        {"explore", "--scene", scene, "--case", "1", "--output", path},
+        {"derive", "--scene", scene, "--case", "1", "-o", path},
+        {"verify", "--scene", scene, "--case", "1", "--out", path},
+        {"explore", "--scene", scene, "--case", "1", "--out", path},
+        {"sweep", scene, "--vary", "K.3-4=0:20:5", "--shard", "1/2", "--part", path},
+        {"sweep", scene, "--vary", "K.3-4=0:20:5", "--checkpoint", path},
+        {"map", scene, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-110:0:5", "--checkpoint", path},
+        {"map", scene, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-110:0:5", "--overlay", "--out", path},
+        {"solve", scene, "--plot", path},
+        {"solve", path, "--plot", scene}};  // the input under the other spelling
+    for (const auto& args : commands) {
+      SCOPED_TRACE(args[0] + " " + args[args.size() - 2]);
+      expect_refused_over_input(run(args), dir, scene, before);
+    }
+  }
+}
+
+TEST(OutputOverInput, MapPlotPrefixNamingTheSceneIsRefused) {
+  // The issue's reproducer: `map s.dat … --plot s` replaced the scene s.dat with the figure's data.
+  Folder dir;
+  const std::string scene = dir / "s.dat", before = slurp(kPaper);
+  { std::ofstream(scene) << before; }
+  for (const auto& [what, prefix] : spellings(dir, "s", ".dat")) {
+    SCOPED_TRACE(what + ": " + prefix);
+    expect_refused_over_input(run({"map", scene, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-110:0:5", "--plot", prefix}), dir, scene, before);
+  }
+}
+
+TEST(OutputOverInput, OutputClassRefusesANotedInput) {
+  // The one place every write goes through: a file noted as read is never replaced, through any name.
+  Folder dir;
+  const std::string input = dir / "input.toml";
+  { std::ofstream(input) << "kept\n"; }
+  ASSERT_EQ(::symlink("input.toml", (dir / "link.toml").c_str()), 0);
+  superball::cli::note_input("--scene", input);
+  // The note lasts as long as this process: the file stays open, so that its inode is not reused by a later test's file.
+  ASSERT_GE(::open(input.c_str(), O_RDONLY | O_CLOEXEC), 0);
+  for (const std::string& path : {input, dir.path() + "/./input.toml", dir / "link.toml"}) {
+    try {
+      superball::cli::Output out(path);
+      ADD_FAILURE() << "not refused: " << path;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()), path + ": is the file of --scene " + input + ", which this command reads; write the output elsewhere");
+    }
+  }
+  EXPECT_EQ(slurp(input), "kept\n");
+  // A file beside it is written as always.
+  superball::cli::write_output(dir / "other.toml", "new\n");
+  EXPECT_EQ(slurp(dir / "other.toml"), "new\n");
+}
+
+TEST(OutputOverInput, AnOutputBesideTheInputIsWritten) {
+  // Not every output near an input is refused: a plot prefix whose files differ from the scene's name.
+  Folder dir;
+  const std::string scene = dir / "s.toml";
+  { std::ofstream(scene) << slurp(kPaper); }
+  const RunResult r = run({"derive", "--scene", scene, "--case", "1", "-o", dir / "s.txt"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_FALSE(slurp(dir / "s.txt").empty());
+}
+
+TEST(Output, FifoWithNoReaderWaitsForOne) {
+  // As cat and tee do (README, Output): the command waits at the FIFO until a reader opens it, then writes everything.
+  Folder dir;
+  const std::string fifo = dir / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::vector<std::string> args = with(kDerive, {"-o", fifo});
+  args.insert(args.begin(), SUPERBALL_EXE);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(::posix_spawn(&pid, SUPERBALL_EXE, nullptr, nullptr, argv.data(), environ), 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  int status = 0;
+  EXPECT_EQ(::waitpid(pid, &status, WNOHANG), 0) << "ended without a reader, status " << status;
+  const std::string received = slurp(fifo);
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_EQ(received, run(kDerive).out);
 }
 
 TEST(Output, FullDeviceIsWrittenIntoNotReplaced) {

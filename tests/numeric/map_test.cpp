@@ -5,11 +5,13 @@
 // the number of threads, and bad axes are refused before anything is solved.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 #include <string>
 
@@ -347,6 +349,74 @@ TEST(Map, BadAxesAreRefusedBeforeAnythingIsSolved) {
   refused(k34, axis(scene, "velocity.3", 0, -5, 5), "opens before the collision");
   // M is PSD nowhere on the grid: α₂ <= −200 is far beyond the edge at −102.5.
   refused(k34, axis(scene, "alpha.2", -400, -200, 5), "not positive semi-definite at any point of the map");
+}
+
+TEST(Map, AGridLargerThanTheMemoryIsRefusedAtOnce) {
+  // The documented maximum, 10⁴ × 10⁴ points, against 1 GB: refused with the
+  // estimate in well under a second, before anything is solved.
+  const Scene scene = load_scene(kPaper);
+  numeric::MapSettings settings;
+  settings.memory = numeric::Memory{1e9, "a test's limit"};
+  const auto x = axis(scene, "K.3-4", 0, 20, numeric::map_max_steps), y = axis(scene, "alpha.2", -110, 0, numeric::map_max_steps);
+  std::string why;
+  EXPECT_FALSE(settings.fits(x, y, &why));
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    (void)numeric::map(scene, x, y, settings);
+    ADD_FAILURE() << "not refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(e.what(), why);
+    EXPECT_EQ(why.rfind("map(): a 10000 x 10000 grid holds about ", 0), 0u) << why;
+    EXPECT_NE(why.find("this machine has 1.0 GB available (a test's limit); use a coarser grid"), std::string::npos) << why;
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  // The estimate counts at least the points themselves, and what the output holds beside them.
+  EXPECT_GE(settings.bytes_per_point(), static_cast<double>(sizeof(numeric::MapPoint)));
+  const double alone = settings.bytes_per_point();
+  settings.output_bytes_per_point = 100;
+  EXPECT_EQ(settings.bytes_per_point(), alone + 100);
+  // A grid that fits is solved.
+  EXPECT_TRUE(settings.fits(axis(scene, "K.3-4", 0, 20, 5), axis(scene, "alpha.2", -110, 0, 5)));
+}
+
+TEST(Memory, TheProbeAndTheRefusalSayHowMuchAndWhy) {
+  const numeric::Memory here = numeric::available_memory();
+  EXPECT_GT(here.bytes, 0);
+  EXPECT_FALSE(here.source.empty());
+  EXPECT_EQ(numeric::bytes_text(512), "512 B");
+  EXPECT_EQ(numeric::bytes_text(9.6e9), "9.6 GB");
+  EXPECT_EQ(numeric::bytes_text(11e6), "11.0 MB");
+  EXPECT_NO_THROW(numeric::check_memory("f()", "it", 1e9, "1 byte each", {1e9, "test"}, "ask less"));
+  try {
+    numeric::check_memory("f()", "a list of 10⁹", 2e9, "2 bytes each", {1e9, "ulimit -v"}, "ask less");
+    ADD_FAILURE() << "not refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "f(): a list of 10⁹ holds about 2.0 GB (2 bytes each); this machine has 1.0 GB available (ulimit -v); ask less");
+  }
+}
+
+TEST(Map, StreamedPointsAreTheMapsPoints) {
+  // map_points() block by block (blocks that end inside a row) gives map()'s points, bit for bit, in order.
+  const Scene scene = load_scene(kPaper);
+  const auto x = axis(scene, "K.3-4", 0, 20, 13), y = axis(scene, "alpha.2", -150, 0, 11);
+  numeric::MapSettings settings;
+  const numeric::Map m = numeric::map(scene, x, y, settings);
+  std::vector<numeric::MapPoint> streamed;
+  std::vector<std::size_t> firsts;
+  numeric::map_points(scene, x, y, settings, 7, [&](std::size_t first, const std::vector<numeric::MapPoint>& points) {
+    EXPECT_LE(points.size(), 7u);
+    firsts.push_back(first);
+    streamed.insert(streamed.end(), points.begin(), points.end());
+  });
+  expect_same_points(m.points, streamed);
+  ASSERT_EQ(firsts.size(), (13u * 11 + 6) / 7);
+  for (std::size_t b = 0; b < firsts.size(); ++b) EXPECT_EQ(firsts[b], 7 * b);
+  // As map(): bad axes, and a grid with no admissible point (after its last block).
+  EXPECT_THROW(numeric::map_points(scene, x, x, settings, 7, [](std::size_t, const std::vector<numeric::MapPoint>&) {}),
+               std::invalid_argument);
+  EXPECT_THROW(numeric::map_points(scene, x, axis(scene, "alpha.2", -400, -200, 5), settings, 7,
+                                   [](std::size_t, const std::vector<numeric::MapPoint>&) {}),
+               InputError);
 }
 
 }  // namespace

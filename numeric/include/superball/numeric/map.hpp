@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "superball/cases/parameter.hpp"
+#include "superball/numeric/memory.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/precision.hpp"
 #include "superball/numeric/sweep.hpp"
@@ -120,6 +121,29 @@ struct MapSettings {
   /// bisect and chains the curves: the map is the same, bit for bit, whoever
   /// runs the tasks.
   TaskRunner runner;
+  /// The memory the map may take; nullopt: available_memory() when map()
+  /// starts (a test sets a small one).
+  std::optional<Memory> memory;
+  /// Bytes per grid point that the caller's output of the map holds beside
+  /// it at its peak (its CSV text, JSON or figure data:
+  /// present::map_output_bytes_per_point()), counted in the estimate.
+  double output_bytes_per_point = 0;
+  /// The bytes map() holds per grid point at its peak, with
+  /// output_bytes_per_point: each point in the map and the heap block of its
+  /// contact set, and while the points are solved their slots in
+  /// parallel_map() or, with a runner (which solves a task at a time), all
+  /// the tasks' text (detail::points_to_text()).  The boundaries, a few per cell that a region
+  /// edge crosses, are not counted: they grow with the length of the
+  /// curves, not with the area of the grid.  Measured against the peak
+  /// resident size of 1000 x 1000 maps in docs/MAPS.md.
+  double bytes_per_point() const;
+  /// Whether a map of \p x by \p y (bytes_per_point() for each point, and
+  /// the stack of each of the threads) fits in #memory (like Ceres's
+  /// Solver::Options::IsValid()): true, or false with one line saying why in
+  /// \p why ("map(): a 10000 x 10000 grid holds about 16.8 GB (168 bytes
+  /// per point, 2 threads); this machine has 5.1 GB available
+  /// (MemAvailable); use a coarser grid …").
+  bool fits(const Axis& x, const Axis& y, std::string* why = nullptr) const;
 };
 
 /// The most tasks of each phase of a map given to MapSettings::runner:
@@ -152,7 +176,8 @@ struct Map {
 void check_map(const Scene& scene, const Axis& x, const Axis& y);
 
 /// Solve \p scene at every point (x_i, y_j) of the grid in \p settings.precision,
-/// after check_map().  A point where M is not positive semi-definite (decided
+/// after check_map() and settings.fits() (std::invalid_argument with its
+/// reason when the map would not fit in memory).  A point where M is not positive semi-definite (decided
 /// exactly) is marked and not solved; if no point is left, throws
 /// InputError("ORIGIN: M is not positive semi-definite at any point of the
 /// map …").  Then, when settings.boundaries, every pair of neighbours (along
@@ -165,6 +190,17 @@ void check_map(const Scene& scene, const Axis& x, const Axis& y);
 /// from the scene on its own and the bisections are independent, so the map
 /// does not depend on settings.threads, bit for bit.
 Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings = {});
+
+/// The grid points of map() (without its boundaries) in order, a block of
+/// at most \p block points at a time given to \p sink with the index of its
+/// first point (k = j·x.steps + i), so that the memory held stays that of
+/// one block whatever the size of the grid: for a grid too large to hold
+/// (MapSettings::fits()), written out as it is computed.  Checks as map()
+/// (check_map(), not the memory), solves the points as map() does (bit for
+/// bit) on settings.threads, ignores settings.runner and throws
+/// InputError as map() when no point is admissible, after the last block.
+void map_points(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings, std::size_t block,
+                const std::function<void(std::size_t first, const std::vector<MapPoint>& points)>& sink);
 
 /// The margin of the floating-point filter of M's positive
 /// semi-definiteness at a map point (detail::psd_by_floating_point()),

@@ -22,6 +22,24 @@ std::string case_name(const numeric::Region& r);
 /// psd (M positive semi-definite: 1, else 0 and the point is not solved),
 /// case, closed, U1_over_a (U₁⁺/|U₁⁻|), superball (1/0), status.
 std::string map_csv(const numeric::Map& m);
+/// The first line of map_csv().
+std::string map_csv_header(const numeric::Axis& x, const numeric::Axis& y);
+/// The rows of map_csv() of \p points, the grid points first,
+/// first + 1, … (k = j·x.steps + i): map_csv() a block at a time, for a grid
+/// written as it is computed (numeric::map_points()).
+std::string map_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t first, const std::vector<numeric::MapPoint>& points);
+
+/// The forms of a map's output, for map_output_bytes_per_point().
+enum class MapOutput {
+  Summary,  ///< map_summary() (and the boundary points): nothing per grid point
+  Csv,      ///< map_csv() whole
+  Json,     ///< map_json() and its text
+  Figure    ///< map_figure_data() and the scripts
+};
+/// The bytes per grid point that \p output holds beside the map at its
+/// peak (for numeric::MapSettings::output_bytes_per_point), measured as
+/// the peak resident size of 1000 x 1000 maps less the map's own (docs/MAPS.md).
+double map_output_bytes_per_point(MapOutput output);
 
 /// The boundary points as CSV, one row per point: along (the axis whose
 /// parameter varies in the bracket), KEYX, KEYY (the bracket's middle on
