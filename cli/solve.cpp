@@ -20,7 +20,9 @@ void add_solve(CLI::App& app, Action& action) {
   cmd->footer(
       "The scene is a TOML file (see cases/scenes/ and docs/SCENES.md).  The solver finds the unique\n"
       "solution of the equations of motion and the constitutive laws with impenetrability (paper §2-§3),\n"
-      "the evolution case (which contacts stay closed) and checks the result against the equations.\n\n"
+      "the evolution case (which contacts stay closed) and checks the result against the equations.\n"
+      "An explicit double, long-double or digits:N answer whose case the certificate of auto does not prove\n"
+      "comes with one line 'superball: warning: ...' on standard error (and in the JSON's \"warnings\").\n\n"
       "Examples:\n"
       "  superball solve cases/scenes/paper-4.4-alpha2.toml\n"
       "  superball solve cases/scenes/paper-4.4-alpha2.toml --precision exact --json\n"

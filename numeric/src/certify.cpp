@@ -179,7 +179,8 @@ std::vector<std::string> trust_warnings(const Problem<S>& problem, const Solutio
     const std::string bound = "the velocity error bound is " + to_string(c.relative_error, 3) + " of the largest velocity";
     const bool stated = c.relative_error > 0 && std::isfinite(c.relative_error);  // certify() gives 0 where it bounds nothing
     const std::string what = c.case_certain ? bound + ", which says nothing"
-                                            : "the case " + solution.closed.to_string() + " is not certified" + (stated ? " (" + bound + ")" : "");
+                                            : "the case " + solution.closed.to_string() + " is not certified" +
+                                                  (stated ? " (" + bound + ")" : "");
     return {name + ": " + what + ": the answer may be wrong; use --precision auto or exact"};
   }
 }
