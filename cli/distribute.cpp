@@ -445,8 +445,11 @@ void Distribution::Impl::read_checkpoint() {
       done.emplace(static_cast<std::size_t>(*k), std::move(text));
       kept.insert(static_cast<std::size_t>(*k));
     } catch (const std::invalid_argument& e) {
+      // Removed first: what cannot be removed (a folder that is not empty) would stop the task's result being kept.
+      if (!fs::remove(entry, error) || error)
+        throw std::invalid_argument(std::string(e.what()) + "; it cannot be removed to compute task " + std::to_string(*k) + " again" +
+                                    (error ? " (" + error.message() + ")" : "") + ": remove it, or give another folder");
       std::cerr << "superball: " << printable(e.what()) << "; task " << *k << " computed again\n";
-      fs::remove(entry, error);
     }
   }
 }

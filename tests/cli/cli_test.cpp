@@ -439,6 +439,9 @@ TEST(Verify, BadOptionsGiveOneLineAndExitTwo) {
                                     {{"--case", "1", "--epsilons", "0"}, {"--epsilons", "'0'"}},
                                     {{"--case", "1", "--threads", "0"}, {"--threads"}},
                                     {{"--case", "1", "--samples", "0"}, {"--samples"}},
+                                    // Every drawn point is held until the boundaries are bisected: 5 x 10^8 of them do not fit.
+                                    {{"--case", "1", "--samples", "100000000"},
+                                     {"drawing 100000000 points at each of 5 values of epsilon holds about ", "available (", "draw fewer points (--samples)"}},
                                     {{"--case", "9"}, {"9"}},
                                     {{"--case", "1", "--closed", "2-3"}, {"case"}},
                                     {{}, {"case"}}};

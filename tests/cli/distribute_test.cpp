@@ -185,21 +185,23 @@ TEST(Distribute, ACheckpointResumesWithTheSameBytesAndRefusesAnotherRun) {
   EXPECT_NE(other.err.find("--vary=K.3-4=0:20:20001"), std::string::npos) << other.err;
 }
 
-/// A checkpoint whose task 2 cannot be written (a folder holds its name).
+/// A checkpoint whose task 2 cannot be kept: a folder that is not empty holds its name.
 std::string unwritable_checkpoint(const std::string& name) {
   const std::string dir = folder(name);
   fs::create_directories(dir + "/ck/task-00000001/x");
   return dir;
 }
 
-TEST(Distribute, ACheckpointThatCannotBeWrittenEndsTheRunWithExitThreeAndNoOutput) {
+TEST(Distribute, ACheckpointWhoseTaskCannotBeKeptIsRefusedBeforeAnyWork) {
+  // The folder cannot be removed to compute its task again (nothing of the user's is deleted):
+  // refused in one line when the checkpoint is read, before any task runs, and nothing written.
   const std::string dir = unwritable_checkpoint("unwritable");
   const RunResult r = run(with(runs()[0], {"--checkpoint", dir + "/ck", "-o", dir + "/out.json"}));
-  EXPECT_EQ(r.exit_code, 3) << describe(r);
-  // The folder is said once when the checkpoint is read (a task file that is not one is computed again), then its write fails.
-  EXPECT_EQ(r.err, "superball: --checkpoint " + dir + "/ck: task-00000001: a folder, not a file: not read; task 1 computed again\n" + "superball: " + dir +
-                       "/ck/task-00000001: Is a directory\n");
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  EXPECT_EQ(r.err, "superball: --checkpoint " + dir + "/ck: task-00000001: a folder, not a file: not read; it cannot be removed to compute task 1 " +
+                       "again (Directory not empty): remove it, or give another folder\n");
   EXPECT_FALSE(fs::exists(dir + "/out.json"));
+  EXPECT_TRUE(fs::exists(dir + "/ck/task-00000001/x"));
 }
 
 TEST(Distribute, KilledAndResumedGivesTheUninterruptedOutput) {
@@ -357,14 +359,13 @@ TEST(DistributeMpi, RanksWithACheckpointResume) {
   EXPECT_EQ(again.err, "superball: --checkpoint " + dir + ": 13 of 16 tasks done already, 3 to compute\n");
 }
 
-TEST(DistributeMpi, ACheckpointThatCannotBeWrittenEndsTheJob) {
-  // Rank 0 writes the checkpoint, from its main thread (a task it computed) or
-  // from the thread that serves the ranks (then the job is aborted: the ranks
-  // waiting for it cannot be told to stop); exit 3 either way, no output.
+TEST(DistributeMpi, ACheckpointWhoseTaskCannotBeKeptIsRefusedBeforeAnyWork) {
+  // Rank 0 reads the checkpoint before any task is handed out: one line, exit 2, no output.
   const std::string dir = unwritable_checkpoint("mpi-unwritable");
   const RunResult r = mpirun(3, with(runs()[0], {"--checkpoint", dir + "/ck", "-o", dir + "/out.json"}));
-  EXPECT_EQ(r.exit_code, 3) << describe(r);
-  EXPECT_NE(r.err.find("superball: " + dir + "/ck/task-00000001: Is a directory\n"), std::string::npos) << r.err;
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  EXPECT_NE(r.err.find("superball: --checkpoint " + dir + "/ck: task-00000001: a folder, not a file: not read; it cannot be removed"), std::string::npos)
+      << r.err;
   EXPECT_FALSE(fs::exists(dir + "/out.json"));
 }
 

@@ -255,19 +255,24 @@ TEST(Map, TheMapDoesNotDependOnTheThreads) {
 
 TEST(Map, PointsAndBoundariesAsTextReadBackExactly) {
   // Hand-made fields at the edges of what the text must carry: ratios that
-  // 17 digits of %g would not all keep, NaN, −0, subnormal; no contact set and
-  // sets of 4 contacts; every status; brackets of fractions 2^-70 wide.
+  // 17 digits of %g would not all keep, NaN, −0, subnormal, the largest
+  // double; sets of 4 contacts (the empty one too); every status; points not
+  // solved (every field at its default, as the decoder demands) between
+  // solved ones whose verdict agrees with their ratio; brackets of fractions
+  // 2^-70 wide.
   std::vector<numeric::MapPoint> points;
   const double ratios[] = {1.0 / 3, std::nan(""), -0.0, std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::max(),
-                           std::nextafter(1.0, 0.0), 0.1 + 0.2};
+                           std::nextafter(1.0, 0.0), 0.1 + 0.2, std::nextafter(1.0, 2.0)};
   int k = 0;
   for (double r : ratios) {
     numeric::MapPoint p;
-    p.admissible = k % 2 == 0;
-    p.status = static_cast<numeric::Status>(k % 3);
-    p.region.superball = k % 3 == 1;
-    if (k % 4 != 3) p.region.closed = ContactSet::from_mask(static_cast<std::uint64_t>(k), 5);
-    p.ratio = r;
+    p.admissible = k % 3 != 2;
+    if (p.admissible) {
+      p.status = static_cast<numeric::Status>(k % 3);
+      p.region.superball = r > 1;
+      p.region.closed = ContactSet::from_mask(static_cast<std::uint64_t>(k), 5);
+      p.ratio = r;
+    }
     points.push_back(p);
     ++k;
   }

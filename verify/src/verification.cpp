@@ -17,6 +17,7 @@
 #include "superball/cases/error.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/collision.hpp"
+#include "superball/numeric/memory.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/symbolic/format.hpp"
 #include "superball/verify/space.hpp"
@@ -433,6 +434,12 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
       detail::fail(without_function_prefix(x.what()));
     }
   }
+  // Stage 2 pairs the points drawn at each eps, so every drawn point is held until then: estimated
+  // before any work, and refused in one line when it would not fit.
+  const double drawn = static_cast<double>(options.epsilons.size()) * options.samples, per_point = verify_point_bytes(space.size());
+  numeric::check_memory("verify_case()",
+                        "drawing " + std::to_string(options.samples) + " points at each of " + std::to_string(options.epsilons.size()) + " values of epsilon",
+                        drawn * per_point, numeric::bytes_text(per_point) + " per point", numeric::available_memory(), "draw fewer points (--samples)");
   std::vector<CompiledCondition> exact, asymptotic;
   for (const symbolic::Condition& c : d.conditions) {
     if (c.kind == symbolic::ConditionKind::Psd) continue;
