@@ -34,12 +34,7 @@ using superball::test::slurp;
 const std::string kPaper = std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml";
 
 /// A fresh folder for one test.
-std::string folder(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "superball-data-" + std::to_string(::getpid()) + "-" + name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+std::string folder(const std::string& name) { return superball::test::fresh_folder("data", name); }
 
 void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 

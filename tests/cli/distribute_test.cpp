@@ -30,12 +30,7 @@ using superball::test::slurp;
 const std::string kPaper = std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml";
 
 /// A fresh folder for one test.
-std::string folder(const std::string& name) {
-  const std::string dir = ::testing::TempDir() + "superball-distribute-" + std::to_string(::getpid()) + "-" + name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+std::string folder(const std::string& name) { return superball::test::fresh_folder("distribute", name); }
 
 std::vector<std::string> with(std::vector<std::string> args, const std::vector<std::string>& more) {
   args.insert(args.end(), more.begin(), more.end());

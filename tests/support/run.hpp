@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -64,6 +65,14 @@ inline std::vector<std::string> csv_fields(const std::string& line) {
     }
   }
   return fields;
+}
+
+/// A new, empty folder for one test: TempDir()/superball-PREFIX-PID-NAME.
+inline std::string fresh_folder(const std::string& prefix, const std::string& name) {
+  const std::string dir = ::testing::TempDir() + "superball-" + prefix + "-" + std::to_string(::getpid()) + "-" + name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 /// The whole content of the file \p path ("" when it cannot be read).
