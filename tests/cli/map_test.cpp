@@ -18,6 +18,7 @@
 
 namespace {
 
+using superball::test::kAddressSanitizer;
 using superball::test::describe;
 using superball::test::expect_bad_input;
 using superball::test::run;
@@ -61,18 +62,6 @@ TEST(MapCli, AxisEndsAreEveryNumberASceneAccepts) {
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_EQ(lines_of(r.out).size(), 10u) << r.out;
 }
-
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSanitizer = true;  // its shadow memory does not fit under ulimit -v
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
 
 /// superball \p args under `ulimit -v KB` (address space), through /bin/sh.
 RunResult run_limited(long kb, const std::vector<std::string>& args) {

@@ -27,6 +27,20 @@ extern char** environ;
 
 namespace superball::test {
 
+/// Built with AddressSanitizer: a process starts far slower, and its shadow
+/// memory does not fit under `ulimit -v`.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+
 /// What a run of the binary gave.
 struct RunResult {
   int exit_code = -1;  ///< 128 + signal when killed by a signal
