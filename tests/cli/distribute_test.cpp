@@ -77,7 +77,11 @@ std::vector<std::string> shards(const std::vector<std::string>& args, const std:
 
 TEST(Distribute, ThreeShardsMergedAreTheSingleRunByteForByte) {
   const std::string dir = folder("shards");
-  for (const auto& args : runs()) {
+  for (std::size_t k = 0; k < runs().size(); ++k) {
+    // Under AddressSanitizer (every process starts far slower) one run of
+    // each command: derive, sweep, verify and explore as JSON or CSV.
+    if (superball::test::kAddressSanitizer && k % 2 == 1) continue;
+    const std::vector<std::string>& args = runs()[k];
     const RunResult whole = run(args);
     ASSERT_EQ(whole.exit_code, 0) << describe(whole);
     std::vector<std::string> parts = shards(args, dir, 3);
