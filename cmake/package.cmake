@@ -4,10 +4,11 @@
 #
 # gives build/superball_VERSION_ARCH.deb.  Its run-time dependencies come from
 # dpkg-shlibdeps (the shared libraries the command, the libraries and the
-# Python module load); what a program built against the headers also needs
-# (GiNaC's, CLN's, Eigen's and nlohmann-json's headers, pkg-config) is
-# Recommends, so that installing the command does not pull in a compiler's
-# worth of -dev packages.  docs/LIBRARY.md, "The Debian package".
+# Python module load: GiNaC, CLN, toml++, and Open MPI with the MPI runner),
+# plus python3 and python3-numpy with the Python module; what a program built
+# against the headers also needs (GiNaC's, CLN's, Eigen's and nlohmann-json's
+# headers, pkg-config) is Recommends, so that installing the command does not
+# pull in a compiler's worth of -dev packages.  docs/LIBRARY.md, "The Debian package".
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME superball)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
@@ -38,4 +39,11 @@ if(SUPERBALL_BUILD_PYTHON)
   set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3, python3-numpy")
 endif()
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "${SUPERBALL_DEB_RECOMMENDS}")
+# With the MPI runner the command loads Open MPI's library (libopenmpi3, found
+# by dpkg-shlibdeps); launching it on several ranks needs mpirun besides.
+# Built with -DSUPERBALL_WITH_MPI=OFF the package neither depends on nor
+# suggests MPI (docs/LIBRARY.md, "The Debian package").
+if(SUPERBALL_WITH_MPI)
+  set(CPACK_DEBIAN_PACKAGE_SUGGESTS "openmpi-bin")
+endif()
 include(CPack)

@@ -10,6 +10,7 @@ PACKAGES=(
   libtomlplusplus-dev nlohmann-json3-dev libcli11-dev   # scene files, JSON, command line
   libgtest-dev libbenchmark-dev                         # tests and benchmarks
   texlive-latex-base gnuplot-nox python3-sympy          # LaTeX check, plots, the SymPy reference
+  doxygen                                               # the API reference (docs/CMakeLists.txt)
   clang libclang-rt-14-dev                              # libFuzzer (scripts/test.sh stage 3)
   libopenmpi-dev openmpi-bin                            # the MPI runner (scripts/test.sh stage 1)
   pybind11-dev python3-dev python3-numpy                # the Python module (python/), for /usr/bin/python3

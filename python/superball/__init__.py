@@ -238,6 +238,7 @@ class Scene:
 
     @property
     def title(self) -> str:
+        """The scene's title (its ``title`` key; empty when it has none)."""
         return self._scene.title
 
     @property
@@ -488,6 +489,7 @@ class SweepResult:
 
     @property
     def status(self) -> np.ndarray:
+        """Each value's solve status as a name (one of ``STATUSES``)."""
         return np.asarray(STATUSES, dtype=object)[self.status_codes].astype(str)
 
     @property

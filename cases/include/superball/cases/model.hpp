@@ -17,15 +17,21 @@ namespace superball {
 
 /// A pair of bodies i < j (1-based), written "i-j".
 struct Pair {
+  /// The upper body (1-based), i < j.
   int i = 1;
+  /// The lower body (1-based).
   int j = 2;
 
   /// Parse "i-j" with 1 <= i < j; throws std::invalid_argument("Pair::parse(): ...").
   static Pair parse(std::string_view text);
   std::string name() const;  ///< "i-j"
+  /// True for a contact: the adjacent pair (i, i+1).
   bool adjacent() const { return j == i + 1; }
+  ///@{
+  /// Equality of both bodies (and its negation).
   friend bool operator==(const Pair& a, const Pair& b) { return a.i == b.i && a.j == b.j; }
   friend bool operator!=(const Pair& a, const Pair& b) { return !(a == b); }
+  ///@}
   /// Lexicographic order (i, then j): the paper's order 1-2, 1-3, 1-4, 2-3, …
   friend bool operator<(const Pair& a, const Pair& b) { return a.i != b.i ? a.i < b.i : a.j < b.j; }
 };
@@ -34,9 +40,13 @@ struct Pair {
 /// coefficient K_p when first == second, else the coupling between two pairs
 /// (the paper's α's for n = 4).  Stored once, with first < second.
 struct MatrixEntry {
+  /// The row's pair (first < second, or first == second for a diagonal entry).
   Pair first;
+  /// The column's pair.
   Pair second;
+  /// The coefficient, exact as written in the scene.
   Number value;
+  /// True for a diagonal coefficient K_p (first == second).
   bool diagonal() const { return first == second; }
 };
 
@@ -44,7 +54,9 @@ struct MatrixEntry {
 /// evolution case (paper §4).  Contact c (0-based) is the pair (c+1, c+2).
 class ContactSet {
  public:
+  /// A set of no contacts (for no bodies); assign one of the others.
   ContactSet() = default;
+  /// The set of no closed contact for \p bodies bodies (bodies − 1 contacts).
   explicit ContactSet(int bodies) : closed_(static_cast<std::size_t>(bodies > 1 ? bodies - 1 : 0), false) {}
   /// Parse "2-3,3-4" (or "" / "none" for no closed contact) for n bodies;
   /// throws std::invalid_argument("ContactSet::parse(): ...").
@@ -52,14 +64,21 @@ class ContactSet {
   /// The set whose bit c is bit c of \p mask (n <= 64).
   static ContactSet from_mask(std::uint64_t mask, int bodies);
 
+  /// The number of bodies n.
   int bodies() const { return static_cast<int>(closed_.size()) + 1; }
+  /// The number of adjacent contacts, n − 1.
   int contacts() const { return static_cast<int>(closed_.size()); }
+  /// Whether contact \p c (0-based; the pair (c+1, c+2)) stays closed.
   bool closed(int c) const { return closed_[static_cast<std::size_t>(c)]; }
+  /// Close (\p value true) or open contact \p c (0-based).
   void set_closed(int c, bool value) { closed_[static_cast<std::size_t>(c)] = value; }
   std::vector<std::string> closed_names() const;  ///< {"2-3", "3-4"}
   std::string to_string() const;                  ///< "{2-3,3-4}"
+  ///@{
+  /// Equality of the closed contacts (and its negation); sets for different n differ.
   friend bool operator==(const ContactSet& a, const ContactSet& b) { return a.closed_ == b.closed_; }
   friend bool operator!=(const ContactSet& a, const ContactSet& b) { return !(a == b); }
+  ///@}
 
  private:
   std::vector<bool> closed_;
@@ -75,21 +94,27 @@ struct Body {
 /// The flight after the collision, computed only when a scene asks for it
 /// with a [flight] table: each body's free flight under gravity g.
 struct Flight {
+  /// True when the scene has a [flight] table (even an empty one).
   bool requested = false;
   std::optional<Number> duration;  ///< seconds to draw; default: until the highest apex is passed twice over
 };
 
 /// A scene: the bodies and only the effects that are in play.
 struct Scene {
+  /// The scene's title (its `title` key), for reports.
   std::string title;
   std::string origin;  ///< the file it came from (for messages), or a label
+  /// The bodies, top (body 1) to bottom (body n).
   std::vector<Body> bodies;
   std::optional<Number> drop_height;  ///< h: falling bodies move at -sqrt(2 g h)
   std::optional<Number> fall_speed;   ///< a directly: falling bodies move at -a
+  /// Gravity g (m/s²; the `g` key, default 9.81), for the drop height and the flight.
   Number g = Number::parse("9.81");
   std::vector<MatrixEntry> entries;   ///< declared entries of M only
+  /// The flight after the collision, when asked for ([flight]).
   Flight flight;
 
+  /// The number of bodies n.
   int size() const { return static_cast<int>(bodies.size()); }
   /// The declared entry for (p, q) in either order, if any.
   const MatrixEntry* find(const Pair& p, const Pair& q) const;

@@ -33,6 +33,7 @@ class Parameter {
   const std::string& spelling() const { return spelling_; }
   /// Whether \p a and \p b name the same entry of a scene (whatever their spellings).
   friend bool operator==(const Parameter& a, const Parameter& b);
+  /// Whether \p a and \p b name different entries.
   friend bool operator!=(const Parameter& a, const Parameter& b) { return !(a == b); }
   /// Set the parameter in \p scene to \p value (adds an entry of M if it was
   /// absent), through the scene loader's own checks: the scene with the new

@@ -18,14 +18,20 @@ struct PrintedCondition {
   std::string kind;       ///< superball | evolution | contact | psd | velocity
   std::string about;      ///< "U1 > a", a contact "2-3", or "U1" for a velocity
   std::string printed;    ///< the paper's LaTeX, verbatim
+  ///@{
+  /// The condition as ASCII expressions: left-hand side, relation, right-hand side.
   std::string lhs, relation, rhs;  ///< ASCII expressions (m1, K12, alpha2, a); relation > >= < <= =
+  ///@}
   std::string words;      ///< the paper's words for it
   std::string note;       ///< transcription remarks, may be empty
 };
 
 /// A claim of the paper in words about a pattern and a case.
 struct PaperClaim {
+  ///@{
+  /// The claim's identifier, the paper's section, and the paper's name of the case.
   std::string id, section, case_name;
+  ///@}
   std::vector<int> alphas;  ///< the claim's pattern
   std::vector<int> like;    ///< the pattern it is compared with (may be empty)
   std::string claim;        ///< "superball possible" or "superball impossible"
@@ -34,7 +40,9 @@ struct PaperClaim {
 
 /// The transcription.
 struct PrintedConditions {
+  /// The printed conditions, in the file's order.
   std::vector<PrintedCondition> conditions;
+  /// The claims in words, in the file's order.
   std::vector<PaperClaim> claims;
 
   /// Parse the text of a printed-conditions file; \p origin names it in

@@ -23,7 +23,9 @@ struct NamedCase {
 /// A named coupling of M (paper §3, n = 4): α_k couples two pairs.
 struct NamedCoupling {
   int index = 0;  ///< k in α_k
+  /// The first pair coupled (first < second).
   Pair first;
+  /// The second pair coupled.
   Pair second;
 };
 
@@ -35,8 +37,11 @@ class Vocabulary {
   /// Parse a vocabulary file's text; throws std::runtime_error("Vocabulary: ...").
   static Vocabulary parse(const std::string& text, const std::string& origin);
 
+  /// The paper's named evolution cases, in the paper's order.
   const std::vector<NamedCase>& cases() const { return cases_; }
+  /// The couplings α₁…α₇, by index.
   const std::vector<NamedCoupling>& alphas() const { return alphas_; }
+  /// The number of bodies the vocabulary is for (4).
   int bodies() const { return bodies_; }
 
   /// The paper's name of \p set (n = 4), else the set itself, "{2-3,3-4}".

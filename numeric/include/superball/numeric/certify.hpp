@@ -71,6 +71,10 @@ AutoChoice choose_precision(const ExactScene& scene, double rtol);
 /// Default `--rtol`: six significant digits of every velocity, certified.
 inline constexpr double default_rtol = 1e-6;
 
+///@{
+/// The explicit instantiations of certify() and trust_warnings() compiled into
+/// the library, one per scalar type (certify() has none for exact rationals:
+/// an exact solution needs no certificate).
 extern template Certificate certify(const Problem<double>&, const Solution<double>&);
 extern template Certificate certify(const Problem<long double>&, const Solution<long double>&);
 extern template Certificate certify(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
@@ -78,5 +82,6 @@ extern template std::vector<std::string> trust_warnings(const Problem<double>&, 
 extern template std::vector<std::string> trust_warnings(const Problem<long double>&, const Solution<long double>&);
 extern template std::vector<std::string> trust_warnings(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
 extern template std::vector<std::string> trust_warnings(const Problem<cln::cl_RA>&, const Solution<cln::cl_RA>&);
+///@}
 
 }  // namespace superball::numeric

@@ -30,12 +30,14 @@ template <class S>
 class ChainSolver {
  public:
   ChainSolver() = default;
+  /// A solver with \p settings (tolerances, iteration limit).
   explicit ChainSolver(const Settings<S>& settings) : settings_(settings) {}
 
   /// Solve \p problem into \p out; out.pivots counts the active-set
   /// iterations.  Throws std::invalid_argument("ChainSolver::compute(): ...")
   /// on misuse; the numerical outcome is out.status.
   void compute(const Problem<S>& problem, Solution<S>& out);
+  /// compute() into a new Solution.
   Solution<S> compute(const Problem<S>& problem) {
     Solution<S> out;
     compute(problem, out);

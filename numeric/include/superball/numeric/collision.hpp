@@ -79,6 +79,7 @@ enum class Status {
   NumericalIssue,  ///< A not positive definite once rounded, or the residual check failed at the stated tolerances
   NoConvergence,   ///< the pivoting did not terminate within Settings::max_pivots
 };
+/// The status's name: "success", "numerical-issue", "no-convergence".
 const char* to_string(Status s);
 
 /// Named tolerances of a solve, in units of the scalar's unit roundoff u.
@@ -111,18 +112,22 @@ struct Settings {
 /// The outcome of one collision (velocities in units of Problem::unit).
 template <class S>
 struct Solution {
+  /// Whether the solve succeeded; the fields below are meaningful only on Status::Success.
   Status status = Status::Success;
   std::vector<S> velocities_after;   ///< U⁺, size n, top to bottom
   std::vector<S> reactions;          ///< R on contact c = (c+1, c+2), ≤ 0; 0 where open
   std::vector<S> gaps;               ///< D_{c,c+1}(U⁺) ≥ 0
   ContactSet closed;                 ///< the evolution case
   S kinetic_energy_before = S(0);    ///< finite bodies only
+  /// ½ Σ m (U⁺)² over finite bodies.
   S kinetic_energy_after = S(0);
   S dissipation = S(0);              ///< P·X = 2XᵀMX + R·X
   S momentum_before = S(0);          ///< Σ m U⁻ over finite bodies
+  /// Σ m U⁺ over finite bodies.
   S momentum_after = S(0);
   double residual_motion = 0;        ///< max relative residual of the equations of motion
   double residual_complementarity = 0;  ///< max relative violation of w ≥ 0, λ ≥ 0, wλ = 0
+  /// The active-set pivots taken.
   int pivots = 0;
 };
 
@@ -140,16 +145,20 @@ using SmallSolve = bool (*)(const Problem<S>&, int, const Settings<S>&, Solution
 template <class S>
 class CollisionSolver {
  public:
+  /// A dense matrix of S.
   using Matrix = Eigen::Matrix<S, Eigen::Dynamic, Eigen::Dynamic>;
+  /// A dense column vector of S.
   using Vector = Eigen::Matrix<S, Eigen::Dynamic, 1>;
 
   CollisionSolver() = default;
+  /// A solver with \p settings (tolerances, iteration limit).
   explicit CollisionSolver(const Settings<S>& settings) : settings_(settings) {}
 
   /// Solve \p problem into \p out (reusing out's storage).  Throws
   /// std::invalid_argument("CollisionSolver::compute(): ...") on misuse
   /// (sizes inconsistent); the numerical outcome is out.status.
   void compute(const Problem<S>& problem, Solution<S>& out);
+  /// compute() into a new Solution.
   Solution<S> compute(const Problem<S>& problem) {
     Solution<S> out;
     compute(problem, out);
@@ -162,6 +171,7 @@ class CollisionSolver {
   /// evolution case" (§4.1); out.closed is \p closed, and the residual check
   /// covers the equations of motion and the imposed gaps only.
   void compute_case(const Problem<S>& problem, const ContactSet& closed, Solution<S>& out);
+  /// The settings the solver was made with.
   const Settings<S>& settings() const { return settings_; }
 
   /// The linear complementarity problem w = q + Nλ of \p problem exactly
@@ -171,11 +181,16 @@ class CollisionSolver {
   /// the free bodies, W = W0 + Gλ with G = A⁻¹ C_Fᵀ, W0 = A⁻¹ b̃.  For
   /// comparing other LCP solvers on the same instance.
   struct Lcp {
+    /// The matrix N = C A⁻¹ Cᵀ of w = q + Nλ.
     Matrix N;
+    /// The vector q = C A⁻¹ b̃ of w = q + Nλ.
     Vector q;
+    /// G = A⁻¹ C_Fᵀ: the velocities of the free bodies are W = W0 + Gλ.
     Matrix G;
+    /// W0 = A⁻¹ b̃, the velocities of the free bodies at λ = 0.
     Vector W0;
   };
+  /// The LCP of \p problem (see Lcp).
   Lcp lcp(const Problem<S>& problem);
 
  private:
@@ -226,9 +241,12 @@ extern template class CollisionSolver<double>;
 extern template class CollisionSolver<long double>;
 extern template class CollisionSolver<cln::cl_R>;
 extern template class CollisionSolver<cln::cl_RA>;
+///@{
+/// The explicit instantiations of solve() compiled into the library, one per scalar type.
 extern template Solution<double> solve(const Problem<double>&);
 extern template Solution<long double> solve(const Problem<long double>&);
 extern template Solution<cln::cl_R> solve(const Problem<cln::cl_R>&);
 extern template Solution<cln::cl_RA> solve(const Problem<cln::cl_RA>&);
+///@}
 
 }  // namespace superball::numeric

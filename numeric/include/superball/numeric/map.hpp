@@ -32,8 +32,13 @@ inline constexpr int map_max_steps = 10000;
 /// One axis of a map: \p steps equally spaced exact values of \p parameter
 /// from \p from to \p to, ends included (linspace()).
 struct Axis {
+  /// The parameter along the axis.
   Parameter parameter;
+  ///@{
+  /// The first and the last value (exact).
   cln::cl_RA from, to;
+  ///@}
+  /// The number of values, ends included (2 … map_max_steps).
   int steps = 2;
   /// x_k = from + (to − from)·k/(steps − 1), k = 0 … steps − 1.
   std::vector<cln::cl_RA> values() const { return linspace(from, to, steps); }
@@ -42,10 +47,16 @@ struct Axis {
 /// What decides a region of a map: the evolution case (the contacts that
 /// stay closed) and the superball verdict U₁⁺ > |U₁⁻|.
 struct Region {
+  /// The evolution case: the contacts that stay closed.
   ContactSet closed;
+  /// The superball verdict U₁⁺ > |U₁⁻|.
   bool superball = false;
+  ///@{
+  /// Same case and same verdict (and its negation).
   friend bool operator==(const Region& a, const Region& b) { return a.closed == b.closed && a.superball == b.superball; }
   friend bool operator!=(const Region& a, const Region& b) { return !(a == b); }
+  ///@}
+  /// Order by label(), for sorted outputs.
   friend bool operator<(const Region& a, const Region& b) { return a.label() < b.label(); }
   /// "{2-3,3-4}" or "{2-3,3-4} superball": the Label of a bisection.
   std::string label() const;
@@ -62,7 +73,9 @@ struct MapPoint {
   /// the collision law does not apply; the point is marked, not solved, and
   /// the other fields keep their defaults.
   bool admissible = false;
+  /// The solve's status (Status::Success unless the solve failed).
   Status status = Status::Success;
+  /// The point's case and verdict.
   Region region;
   /// U₁⁺/|U₁⁻| in the map's precision (NaN when U₁⁻ = 0): the superball is U₁⁺/|U₁⁻| > 1.
   double ratio = 0;
@@ -79,11 +92,24 @@ struct MapPoint {
 /// not PSD has psd false and no region, the other the region of the exact
 /// solution at its end of the bracket.
 struct MapBoundary {
+  /// The two points are neighbours along x (else along y).
   bool along_x = true;
+  ///@{
+  /// The grid indices (x_i, y_j) of the first point.
   int i = 0, j = 0;
+  ///@}
+  ///@{
+  /// The bracket of the change on the varying parameter, low < high.
   cln::cl_RA low, high;
+  ///@}
+  ///@{
+  /// The region at low and at high (the default Region on a side where M is not PSD).
   Region below, above;
+  ///@}
+  ///@{
+  /// M is positive semi-definite at low, at high.
   bool below_psd = true, above_psd = true;
+  ///@}
 };
 
 /// A boundary curve: the boundary points where the case changes between two
@@ -94,11 +120,16 @@ struct MapBoundary {
 /// on its edges are joined (marching squares).  A point where both the case
 /// and the verdict change is on a curve of each kind.
 struct MapCurve {
+  /// What changes along the curve.
   enum class Kind {
     Case,       ///< the case changes from first to second
     Superball,  ///< the superball verdict changes
     Psd         ///< M stops being positive semi-definite
   } kind = Kind::Case;
+  /// \var superball::numeric::MapCurve::kind
+  /// The kind of the curve.
+
+  /// Kind::Case: the two cases, first.to_string() < second.to_string().
   ContactSet first, second;     ///< Kind::Case: the two cases, first.to_string() < second.to_string()
   std::vector<std::size_t> points;  ///< indices into Map::boundaries
   bool closed = false;              ///< the last point joins the first
@@ -109,6 +140,7 @@ struct MapSettings {
   Precision precision;  ///< arithmetic of the grid points (default: double)
   int bits = 64;     ///< bisection to 2^-bits of the grid step (as switch_points())
   int threads = 1;   ///< 0: all cores; the result does not depend on it
+  /// Locate the boundaries and chain them into curves (false: grid points only).
   bool boundaries = true;
   /// Where the work runs, to spread one map over several processes (`mpirun
   /// -n P superball map …`); empty: here, on `threads`.  Called once for the
@@ -154,10 +186,16 @@ inline constexpr std::size_t map_tasks = 64;
 /// A map: every grid point, the boundaries between neighbours of different
 /// region, and the curves they chain into.
 struct Map {
+  ///@{
+  /// The two axes: x varies along a row, y from row to row.
   Axis x, y;
+  ///@}
   std::vector<MapPoint> points;  ///< row by row: points[j·x.steps + i] is at (x_i, y_j)
+  /// Every change of region between neighbouring grid points.
   std::vector<MapBoundary> boundaries;
+  /// The boundary points chained into curves.
   std::vector<MapCurve> curves;
+  /// The point at (x_i, y_j).
   const MapPoint& at(int i, int j) const { return points[static_cast<std::size_t>(j) * static_cast<std::size_t>(x.steps) + static_cast<std::size_t>(i)]; }
 };
 

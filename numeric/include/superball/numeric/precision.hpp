@@ -12,7 +12,9 @@ namespace superball::numeric {
 
 /// `double`, `long-double`, `digits:N` (CLN floats, N decimal digits) or `exact` (CLN rationals).
 struct Precision {
+  /// The arithmetic: double, long double, CLN floats of #digits digits, exact rationals.
   enum class Kind { Double, LongDouble, Digits, Exact };
+  /// The arithmetic chosen.
   Kind kind = Kind::Double;
   int digits = 0;  ///< decimal digits for Kind::Digits
 
@@ -23,6 +25,7 @@ struct Precision {
 
 /// Smallest and largest digits:N accepted.
 inline constexpr int min_digits = 10;
+/// Largest digits:N accepted.
 inline constexpr int max_digits = 10000;
 
 /// Call \p f with a value-initialised scalar of the type for \p p (a tag).

@@ -2,7 +2,7 @@
 /// \file problem.hpp
 /// The entry point of the numeric backend: a Scene checked and turned into
 /// exact rationals (ExactScene), then into the scalar type of a solve
-/// (Problem<S>).
+/// (`Problem<S>`).
 
 #include <cln/rational.h>
 
@@ -22,8 +22,13 @@ namespace superball::numeric {
 /// One declared entry of M: pairs (i, j) and (k, l), 0-based bodies.
 template <class S>
 struct Entry {
+  ///@{
+  /// The two pairs (i, j) and (k, l), 0-based bodies, i < j and k < l.
   int i, j, k, l;
+  ///@}
+  /// The coefficient.
   S value;
+  /// True for a diagonal coefficient K_ij ((i, j) == (k, l)).
   bool diagonal() const { return i == k && j == l; }
   /// How far apart the bodies it couples are: max(j, l) − min(i, k).
   int span() const { return std::max(j, l) - std::min(i, k); }
@@ -37,10 +42,13 @@ struct Entry {
 /// The collision is homogeneous of degree one in U⁻, so the solve runs on u
 /// and the results scale by a.  Otherwise the unit is 1 and u = U⁻.
 struct ExactScene {
+  /// Where the scene came from (for messages).
   std::string origin;
+  /// The number of bodies.
   int n = 0;
   bool fixed_bottom = false;             ///< body n has infinite mass
   std::vector<cln::cl_RA> mass;          ///< size n (the fixed body's entry is unused)
+  /// The declared entries of M (0-based pairs).
   std::vector<Entry<cln::cl_RA>> entries;
   std::vector<cln::cl_RA> fall;          ///< coefficient of a in U⁻_i (−1 falls, 0 not)
   std::vector<cln::cl_RA> velocity;      ///< the constant part of U⁻_i
@@ -86,16 +94,22 @@ struct Scaling {
   /// safe_exponent()): otherwise no scaling fits them and products of the
   /// solve can overflow or underflow.
   bool fits = true;
+  /// True when no scaling is applied (both exponents 0).
   bool identity() const { return mass == 0 && velocity == 0; }
 };
 
 /// A collision problem in scalar type S (velocities in units of the unit).
 template <class S>
 struct Problem {
+  /// The number of bodies.
   int n = 0;
+  /// Body n has infinite mass (a fixed obstacle).
   bool fixed_bottom = false;
+  /// The masses, size n (the fixed body's entry is unused).
   std::vector<S> mass;
+  /// The declared entries of M (0-based pairs).
   std::vector<Entry<S>> entries;
+  /// The velocities before the collision in units of #unit, size n.
   std::vector<S> u;
   S unit = S(1);            ///< multiply velocities by this (a, or 1)
   bool unit_exact = true;   ///< false when the unit is irrational and S is exact (unit is then 1 here)
@@ -163,7 +177,9 @@ inline constexpr int dense_solver_max_bodies = 1536;
 /// \p M (size m) is positive semi-definite, else the indices of a principal
 /// submatrix with a negative determinant and that determinant.
 struct NegativeMinor {
+  /// The 0-based indices of the principal submatrix.
   std::vector<int> indices;
+  /// Its determinant (< 0).
   cln::cl_RA determinant;
 };
 /// A symmetric matrix by rows of its nonzero entries: row i maps column j to
@@ -176,10 +192,13 @@ std::optional<NegativeMinor> find_negative_minor(SymmetricRows M);
 /// finds no negative principal minor.
 bool positive_semidefinite(const ExactScene& scene);
 
+///@{
+/// The explicit instantiations of scaling_of() compiled into the library, one per scalar type.
 extern template Scaling scaling_of(const Problem<double>&);
 extern template Scaling scaling_of(const Problem<long double>&);
 extern template Scaling scaling_of(const Problem<cln::cl_R>&);
 extern template Scaling scaling_of(const Problem<cln::cl_RA>&);
+///@}
 extern template struct Problem<double>;
 extern template struct Problem<long double>;
 extern template struct Problem<cln::cl_R>;

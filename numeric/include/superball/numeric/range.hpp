@@ -13,8 +13,13 @@ namespace superball::numeric {
 
 /// A parameter and \p steps exact values from \p from to \p to, ends included.
 struct Range {
+  /// The parameter varied.
   Parameter parameter;
+  ///@{
+  /// The first and the last value (exact).
   cln::cl_RA from, to;
+  ///@}
+  /// The number of values, ends included (>= 2).
   int steps;
 };
 

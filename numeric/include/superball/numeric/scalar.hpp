@@ -41,23 +41,36 @@ template <class S>
 struct ScalarTraits;
 
 template <>
+/// double: IEEE binary64, rounded.
 struct ScalarTraits<double> {
+  /// Whether S holds exact values (no rounding).
   static constexpr bool exact = false;
+  /// The precision's name, as `--precision` spells it.
   static std::string name() { return "double"; }
   /// The value of the exact rational \p r in this type (\p digits is ignored).
   static double from(const cln::cl_RA& r, int digits);
+  /// \p x as a double.
   static double to_double(double x) { return x; }
+  /// The unit roundoff u of S (\p digits: the decimal digits of a CLN float).
   static double unit_roundoff(int) { return std::numeric_limits<double>::epsilon() / 2; }
+  /// The square root of the exact \p square, rounded, into \p out; false when it does not fit in S.
   static bool sqrt(const cln::cl_RA& square, int digits, double& out);
 };
 
 template <>
+/// long double: x87 extended precision, rounded.
 struct ScalarTraits<long double> {
+  /// Whether S holds exact values (no rounding).
   static constexpr bool exact = false;
+  /// The precision's name, as `--precision` spells it.
   static std::string name() { return "long-double"; }
+  /// The value of the exact rational \p r in this type (\p digits is ignored).
   static long double from(const cln::cl_RA& r, int digits);
+  /// \p x as a double.
   static double to_double(long double x) { return static_cast<double>(x); }
+  /// The unit roundoff u of S.
   static long double unit_roundoff(int) { return std::numeric_limits<long double>::epsilon() / 2; }
+  /// The square root of the exact \p square, rounded, into \p out; false when it does not fit in S.
   static bool sqrt(const cln::cl_RA& square, int digits, long double& out);
 };
 
@@ -73,20 +86,32 @@ cln::float_format_t digits_format(int digits);
 /// never lower the precision.
 template <>
 struct ScalarTraits<cln::cl_R> {
+  /// Whether S holds exact values (no rounding).
   static constexpr bool exact = false;
+  /// The precision's name, as `--precision` spells it ("digits", the N apart).
   static std::string name() { return "digits"; }
+  /// The value of the exact rational \p r as a CLN float of \p digits decimal digits.
   static cln::cl_R from(const cln::cl_RA& r, int digits);
+  /// \p x as a double.
   static double to_double(const cln::cl_R& x);
+  /// The unit roundoff u of a CLN float of \p digits decimal digits.
   static cln::cl_R unit_roundoff(int digits);
+  /// The square root of the exact \p square at \p digits digits into \p out; false when it cannot be taken.
   static bool sqrt(const cln::cl_RA& square, int digits, cln::cl_R& out);
 };
 
 template <>
+/// Exact CLN rationals: no rounding at all.
 struct ScalarTraits<cln::cl_RA> {
+  /// Whether S holds exact values (no rounding).
   static constexpr bool exact = true;
+  /// The precision's name, as `--precision` spells it.
   static std::string name() { return "exact"; }
+  /// \p r itself.
   static cln::cl_RA from(const cln::cl_RA& r, int) { return r; }
+  /// \p x as a double (rounded).
   static double to_double(const cln::cl_RA& x);
+  /// 0: exact arithmetic does not round.
   static cln::cl_RA unit_roundoff(int) { return 0; }
   /// True only when \p square is the square of a rational.
   static bool sqrt(const cln::cl_RA& square, int digits, cln::cl_RA& out);
@@ -118,9 +143,12 @@ bool finite(const S& x) {
 /// CLN floats with all their digits when \p significant is 0, else rounded
 /// exactly as to_decimal() does).
 std::string to_string(double x, int significant = 17);
+///@{
+/// The same for long double, CLN floats and exact rationals.
 std::string to_string(long double x, int significant = 21);
 std::string to_string(const cln::cl_R& x, int significant = 0);
 std::string to_string(const cln::cl_RA& x, int significant = 0);
+///@}
 
 /// \p x rounded to \p significant decimal digits, exactly (round half away
 /// from zero), without trailing zeros, in scientific notation when the

@@ -45,9 +45,13 @@ void check_range(const Scene& scene, const Parameter& parameter, const cln::cl_R
 /// arithmetic, with velocities already multiplied by the velocity unit and
 /// converted to double, and the case.
 struct SweepPoint {
+  /// The parameter value (exact).
   cln::cl_RA value;
+  /// U⁺, multiplied by the velocity unit, in double.
   std::vector<double> velocities_after;
+  /// The evolution case.
   ContactSet closed;
+  /// The solve's status.
   Status status = Status::Success;
 };
 
@@ -64,7 +68,9 @@ std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, co
 
 /// The exact solution (CLN rationals) of a scene at one parameter value.
 struct ExactPoint {
+  /// The scene at the value, as an exact problem.
   Problem<cln::cl_RA> problem;
+  /// Its exact solution.
   Solution<cln::cl_RA> solution;
 };
 /// The exact solution of \p scene with \p parameter = \p value.
@@ -79,6 +85,7 @@ using Label = std::function<std::string(const ExactPoint&)>;
 /// evolution case, and the superball verdict U₁⁺ > |U₁⁻| when the certified
 /// bound on U₁⁺ decides it.
 struct ProvenPoint {
+  /// The evolution case, certified.
   ContactSet closed;
   std::optional<bool> superball;  ///< nothing when |U₁⁺ − |U₁⁻|| is within the bound
 };
@@ -97,13 +104,22 @@ using ProvenLabel = std::function<std::optional<std::string>(const ProvenPoint&)
 /// How the labels of label_changes() were found: proven by a certified
 /// double solve, by the exact check of a case met last, or by an exact solve.
 struct LabelCounts {
+  ///@{
+  /// Labels found by a certified double solve, by the exact check of a case met last, by an exact solve.
   std::size_t in_double = 0, by_case = 0, solved = 0;
+  ///@}
 };
 
 /// A change of label between two parameter values, bracketed by [low, high].
 struct LabelChange {
+  ///@{
+  /// The bracket of the change, low < high.
   cln::cl_RA low, high;
+  ///@}
+  ///@{
+  /// The label at low and at high.
   std::string below, above;
+  ///@}
 };
 
 /// Locate every change of \p label between consecutive \p values (monotone,
@@ -145,8 +161,14 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
 /// `below` for values in [low, …) up to the switch and `above` after it;
 /// high − low is the width left by the bisection.
 struct SwitchPoint {
+  ///@{
+  /// The bracket of the switch, low < high.
   cln::cl_RA low, high;
+  ///@}
+  ///@{
+  /// The case at low and at high.
   ContactSet below, above;
+  ///@}
 };
 
 /// Locate every case change between consecutive \p values by bisection on

@@ -68,6 +68,7 @@ enum class ConditionKind {
   Contact,    ///< a closed contact does not interpenetrate: R ≤ 0
   Psd         ///< a principal minor of M is >= 0 (K > 0 for a single pair)
 };
+/// The kind's name: "superball", "evolution", "contact", "psd".
 const char* to_string(ConditionKind kind);
 
 /// The relation of a condition "P REL 0".
@@ -76,6 +77,7 @@ enum class Relation { Greater, GreaterEqual };
 /// Whether a condition can hold: it depends on the parameters, or it holds
 /// (fails) for every admissible parameter (positive masses, K's and a).
 enum class Verdict { Depends, Always, Never };
+/// The verdict's name: "depends", "always", "never".
 const char* to_string(Verdict v);
 
 /// A polynomial of a case named once (S₁, S₂, … in the order the readable
@@ -157,6 +159,7 @@ struct EliminatedForm {
 struct ConditionForm {
   GiNaC::ex numerator = 0;    ///< an expanded polynomial
   GiNaC::ex denominator = 1;  ///< 1, or a polynomial whose sign was not proved
+  /// Whether the condition holds for every admissible parameter, for none, or depends on them.
   Verdict verdict = Verdict::Depends;
   std::optional<Readable> readable;  ///< the isolated form, when a coupling can be isolated (sign proved, depends)
   /// The form through the case's elimination, when the polynomial (and its
@@ -168,8 +171,10 @@ struct ConditionForm {
 
 /// A condition on the parameters, in its exact and asymptotic forms.
 struct Condition {
+  /// What the condition is about: the superball, a case's evolution, a contact, M's positive semi-definiteness.
   ConditionKind kind = ConditionKind::Superball;
   std::string about;  ///< "U1 > a", "2-3" (the contact), or "1-2,1-4" (the pairs of a minor)
+  /// The relation to 0: numerator/denominator REL 0.
   Relation relation = Relation::Greater;
   ConditionForm exact;                 ///< m_n = ∞ (for a finite obstacle: the limit m_n → ∞)
   std::optional<ConditionForm> finite; ///< finite obstacle: the condition with m_n
@@ -184,13 +189,19 @@ struct Condition {
 /// A rational function numerator/denominator, normalised (gcd cancelled),
 /// the denominator positive on the admissible parameters when proved.
 struct Fraction {
+  ///@{
+  /// The numerator and the denominator.
   GiNaC::ex numerator = 0, denominator = 1;
+  ///@}
+  /// numerator / denominator as one GiNaC expression.
   GiNaC::ex value() const { return numerator / denominator; }
 };
 
 /// One evolution case solved, checked and turned into conditions.
 struct Derivation {
+  /// The symbols of the pattern the case was derived for.
   std::shared_ptr<const Symbols> symbols;
+  /// The evolution case: the contacts that stay closed.
   ContactSet closed;
   std::string case_name;             ///< the paper's name (n = 4) or "{2-3,3-4}"
   std::vector<Fraction> velocities;  ///< U₁⁺ … U_n⁺

@@ -47,7 +47,10 @@ std::string format_condition(const ConditionForm& form, Relation relation, const
 
 /// One formula in the three notations.
 struct StyledText {
+  ///@{
+  /// The formula in ASCII (JSON, any CAS), in text (Unicode) and in LaTeX.
   std::string ascii, text, latex;
+  ///@}
 };
 
 /// format_condition() of \p form in the three styles at once (the terms

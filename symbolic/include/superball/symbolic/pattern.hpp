@@ -24,6 +24,7 @@ enum class Obstacle { Infinite, Finite };
 /// coefficient K_p and the couplings between pairs.  Values are never part
 /// of a pattern.
 struct Pattern {
+  /// The number of bodies n.
   int bodies = 4;
   std::vector<Pair> diagonal;           ///< pairs p with a symbol K_p, sorted
   std::vector<PairCoupling> couplings;  ///< coupled pairs (p, q), p < q, sorted

@@ -2,7 +2,7 @@
 /// \file symbols.hpp
 /// The GiNaC symbols of one pattern and their names in the three notations
 /// the tool writes: ASCII (JSON, any CAS: m1, K12, K1_10, alpha2, c_12_14, a),
-/// text (m₁, K₁₂, α₂, c₁₂,₁₄) and LaTeX (m_{1}, K_{12}, \alpha_{2}, c_{12,14}).
+/// text (m₁, K₁₂, α₂, c₁₂,₁₄) and LaTeX (`m_{1}`, `K_{12}`, `\alpha_{2}`, `c_{12,14}`).
 ///
 /// Masses, diagonal coefficients K and the fall speed a are GiNaC
 /// possymbols (positive); couplings are plain symbols (any sign, real).
@@ -26,13 +26,20 @@ enum class SymbolKind { Mass, Diagonal, Coupling, FallSpeed };
 
 /// One symbol of a pattern and its names.
 struct SymbolInfo {
+  /// What the symbol stands for: a mass, a diagonal K, a coupling, the fall speed.
   SymbolKind kind = SymbolKind::Mass;
   GiNaC::ex symbol;       ///< the GiNaC symbol
   int body = 0;           ///< Mass: the body (1-based)
+  ///@{
+  /// Diagonal: first == second; Coupling: the two pairs.
   Pair first, second;     ///< Diagonal: first == second; Coupling: the two pairs
+  ///@}
   int alpha = 0;          ///< Coupling, n = 4: the paper's k of α_k, else 0
   int rank = 0;           ///< printing order: masses, K's, couplings, a
+  ///@{
+  /// The symbol's name in ASCII (m1, K12, alpha2, a), in text (m₁, K₁₂, α₂) and in LaTeX.
   std::string ascii, text, latex;
+  ///@}
   /// The name in \p style.
   const std::string& name(Style style) const { return style == Style::Ascii ? ascii : style == Style::Text ? text : latex; }
 };

@@ -41,19 +41,24 @@ struct Witness {
 
 /// How a printed condition compares with the derivation.
 enum class Agreement { IdenticalExact, IdenticalAsymptotic, Different };
+/// The agreement in words: "identical to the exact condition", "identical at the asymptotic order", "different".
 const char* to_string(Agreement a);
 
 /// A formula in text notation (Unicode) and in LaTeX (math mode without `$`,
 /// or text mode with its formula in $…$ for a title), both printed from the
 /// same expression (symbolic/format.hpp).
 struct Formula {
+  /// The formula in text (Unicode).
   std::string text;
+  /// The same formula in LaTeX.
   std::string latex;
 };
 
 /// The audit of one printed condition.
 struct ConditionAudit {
+  /// The printed condition, as transcribed.
   PrintedCondition printed;
+  /// How it compares with the derived condition.
   Agreement agreement = Agreement::Different;
   Formula title;                  ///< what the condition ensures, in words: "superball (U₁⁺ > a)", "velocity U₁⁺"
   Formula as_printed;             ///< the printed condition re-written in our notation
@@ -67,21 +72,27 @@ struct ConditionAudit {
 
 /// The audit of one claim in words.
 struct ClaimAudit {
+  /// The claim, as transcribed.
   PaperClaim claim;
+  /// Whether the derivation supports the claim.
   bool supported = false;
   std::string verdict;                    ///< one line: what was shown
   std::vector<std::string> comparisons;   ///< per condition: same as the `like` pattern after renaming, or not
   Formula superball;                      ///< the derived exact superball condition of the claim's pattern
   std::string certificate;                ///< "impossible" claims: the proof, when found
   std::optional<Witness> example;         ///< a point with the case actual and U₁⁺ > a, when found
+  /// The points drawn in search of an example.
   int tried = 0;
   int hits = 0;                           ///< points where the case was actual and U₁⁺ > a
 };
 
 /// The whole audit.
 struct Audit {
+  /// The options the audit ran with.
   AuditOptions options;
+  /// Each printed condition's audit, in the transcription's order.
   std::vector<ConditionAudit> conditions;
+  /// Each claim's audit, in the transcription's order.
   std::vector<ClaimAudit> claims;
 };
 

@@ -64,6 +64,7 @@ struct ExploreOptions {
   int starts = 24;         ///< local searches: half from the paper's regime, half uniform in the box
   int evaluations = 1000;  ///< objective evaluations per local search (Nelder–Mead)
   double box_low = 1e-3;   ///< every mass and K in [box_low, box_high]
+  /// The upper end of the box (see box_low).
   double box_high = 1e3;
 
   /// Throws std::invalid_argument("ExploreOptions::check(): ...") unless
@@ -85,6 +86,7 @@ enum class Reach {
   CaseImpossible,  ///< proved: the case itself is never the actual evolution
   NotFound         ///< neither a witness nor a proof
 };
+/// The reach in words: "yes", "no (proved)", "case impossible", "not found".
 const char* to_string(Reach r);
 
 /// Conditions that cannot hold together, and the identity that shows it.
@@ -111,9 +113,12 @@ struct ExploreResult {
   std::string pattern;        ///< the couplings in play, e.g. "α₁, α₆" ("no coupling" when none)
   std::string pattern_ascii;  ///< the same in ASCII, e.g. "alpha1,alpha6" ("none")
   std::string case_name; ///< the paper's name, or "{2-3,3-4}"
+  /// The case explored.
   ContactSet closed;
+  /// What the exploration established.
   Reach reach = Reach::NotFound;
   std::string box;       ///< describe_box() of the options used
+  /// The seed of the random starts.
   std::uint64_t seed = 0;
   /// The best point confirmed exactly (the case actual there), whether or
   /// not U₁⁺ > a: ASCII name → exact value (a included).
@@ -121,6 +126,7 @@ struct ExploreResult {
   std::optional<Scene> scene;   ///< the witness as a scene (ParameterSpace::scene)
   cln::cl_RA ratio = 0;         ///< U₁⁺/a at the witness, exact
   cln::cl_RA u1 = 0;            ///< U₁⁺ at the witness, exact
+  /// What the search did (starts, evaluations, …).
   ExploreStats stats;
   std::optional<Clash> clash;             ///< the exact conditions, when proved
   std::optional<Clash> asymptotic_clash;  ///< the leading-order forms, when they clash (searched when no witness)
@@ -136,6 +142,7 @@ ExploreResult explore_case(const symbolic::Deriver& deriver, const ContactSet& c
 /// The table of `--all-patterns`: each single α_k (k = 1..7) and the pair
 /// {α₁, α₆} of §4.1's remark against every case of n = 4 (fixed obstacle).
 struct PatternTable {
+  /// The options every cell was explored with.
   ExploreOptions options;
   std::vector<std::vector<int>> patterns;       ///< rows
   std::vector<std::string> cases;               ///< columns: the paper's case names
@@ -150,12 +157,14 @@ struct RenderedCell {
   std::string text;             ///< cell_text()
   nlohmann::ordered_json json;  ///< to_json() of the result
 };
+/// The text and JSON of one cell of a PatternTable, rendered where it was explored.
 RenderedCell render(const ExploreResult& r);
 
 /// to_text() and to_json() of a table from its options, patterns and cases
 /// (its cells left empty) and its cells rendered: \p cells[row][column].
 /// The same text as from the table with its cells filled.
 std::string to_text(const PatternTable& t, const std::vector<std::vector<RenderedCell>>& cells);
+/// The same JSON as to_json(const PatternTable&) of the table with its cells filled.
 nlohmann::ordered_json to_json(const PatternTable& t, const std::vector<std::vector<RenderedCell>>& cells);
 
 /// The patterns of the table (rows).
@@ -176,6 +185,7 @@ std::string to_text(const ExploreResult& r);
 std::string to_text(const PatternTable& t);
 /// Every field, for programs (exact values as "p/q" strings).
 nlohmann::ordered_json to_json(const ExploreResult& r);
+/// Every field of a table, for programs (exact values as "p/q" strings).
 nlohmann::ordered_json to_json(const PatternTable& t);
 
 /// The TOML text of the witness scene of \p r (write_scene) with a comment

@@ -32,12 +32,21 @@ namespace superball::verify {
 /// numeric::MapBoundary: along x from (x_i, y_j), else along y), bracketed by
 /// [low, high] in the varying parameter; the condition holds at `holds_low`'s end.
 struct DerivedZero {
+  /// The two grid points are neighbours along x (else along y).
   bool along_x = true;
+  ///@{
+  /// The grid indices (x_i, y_j) of the first grid point.
   int i = 0, j = 0;
+  ///@}
+  ///@{
+  /// The bracket of the zero on the varying parameter, low < high.
   cln::cl_RA low, high;
+  ///@}
   ContactSet closed;       ///< the case whose condition it is
+  /// The kind of the condition.
   symbolic::ConditionKind kind = symbolic::ConditionKind::Superball;
   std::string about;       ///< as in symbolic::Condition ("1-2", …)
+  /// The condition holds at low (else at high).
   bool holds_low = false;
   /// Whether one end of its segment is a grid point of this case (the zero
   /// can bound the case's region there; the others lie where the case is not
@@ -52,6 +61,7 @@ struct OverlayMatch {
   std::size_t zero = 0;      ///< the nearest such zero (index into Overlay::zeros)
   cln::cl_RA distance;       ///< |middle of the boundary's bracket − middle of the zero's|
   cln::cl_RA allowed;        ///< the sum of the two brackets' widths
+  /// True when a zero was found within the allowed distance.
   bool agrees() const { return found && distance <= allowed; }
 };
 
@@ -59,11 +69,16 @@ struct OverlayMatch {
 struct Overlay {
   std::vector<ContactSet> cases;  ///< the cases present in the map, whose conditions were derived
   int conditions = 0;             ///< how many conditions they have (PSD conditions left out)
+  /// The zeros of those conditions on the grid's edges.
   std::vector<DerivedZero> zeros;
   std::vector<OverlayMatch> matches;  ///< one per boundary point between solved points (PSD edges left out)
   /// The largest distance of a match that was found, in units of the grid
   /// step of its axis, and the largest allowed (both 0 when there is none).
+  ///@{
+  /// Largest distance and largest allowed (see above).
   double largest_distance = 0, largest_allowed = 0;
+  ///@}
+  /// True when every boundary of the map has a derived zero within its allowed distance.
   bool agrees() const;
   /// The scene at the middle of a disagreeing boundary point's bracket.
   Scene scene_at(const Scene& scene, const numeric::Map& map, const OverlayMatch& match) const;

@@ -60,9 +60,11 @@ class Polynomial {
 
 /// A condition "numerator / denominator REL 0" (symbolic::ConditionForm) compiled.
 struct CompiledCondition {
+  /// The kind of the condition compiled.
   symbolic::ConditionKind kind = symbolic::ConditionKind::Superball;
   std::string about;      ///< as in symbolic::Condition
   bool strict = true;     ///< > (else >=)
+  /// The numerator, over the coordinates.
   Polynomial numerator;
   Polynomial denominator; ///< the zero polynomial stands for 1 (sign proved and cleared)
 
@@ -82,10 +84,17 @@ struct CompiledCondition {
 
 /// One coordinate of the space: a symbol of the pattern, as plain data.
 struct Coordinate {
+  /// What the coordinate stands for: a mass, a diagonal K, a coupling, the fall speed.
   symbolic::SymbolKind kind = symbolic::SymbolKind::Mass;
+  ///@{
+  /// The names in ASCII and in text (m1, K12, alpha2, c_12_14, a).
   std::string ascii, text;   ///< names (m1, K12, alpha2, c_12_14, a)
+  ///@}
   int body = 0;              ///< Mass: the body, 1-based
+  ///@{
+  /// Diagonal: first == second; Coupling: the two pairs.
   Pair first, second;        ///< Diagonal: first == second; Coupling: the two pairs
+  ///@}
   int order = 0;             ///< the parameter behaves like ε^order in the regime
   int first_diagonal = -1;   ///< Coupling: the coordinate of K_first (-1 when not declared)
   int second_diagonal = -1;  ///< Coupling: the coordinate of K_second
@@ -106,9 +115,13 @@ class ParameterSpace {
   /// non-integer order or one beyond ±max_sampling_order.
   explicit ParameterSpace(const symbolic::Deriver& deriver);
 
+  /// The coordinates, in the pattern's printing order.
   const std::vector<Coordinate>& coordinates() const { return coordinates_; }
+  /// The number of coordinates.
   int size() const { return static_cast<int>(coordinates_.size()); }
+  /// The number of bodies n.
   int bodies() const { return bodies_; }
+  /// True when body n is a fixed obstacle (infinite mass).
   bool fixed_bottom() const { return fixed_bottom_; }
   /// The coordinate of the fall speed a.
   int fall_speed() const { return fall_speed_; }

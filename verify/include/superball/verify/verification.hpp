@@ -81,16 +81,24 @@ inline constexpr std::size_t verify_task_blocks = 8;
 
 /// A 2×2 confusion table: the conditions (hold / fail) against the truth.
 struct Confusion {
+  ///@{
+  /// Conditions hold and truth true, hold and false, fail and true, fail and false.
   long long holds_true = 0, holds_false = 0, fails_true = 0, fails_false = 0;
+  ///@}
+  /// The number of points.
   long long total() const { return holds_true + holds_false + fails_true + fails_false; }
+  /// The points where the conditions agree with the truth.
   long long agree() const { return holds_true + fails_false; }
 };
 
 /// One condition of the case (superball, evolution or contact; not PSD).
 struct VerifiedCondition {
+  /// The kind of the condition.
   symbolic::ConditionKind kind = symbolic::ConditionKind::Superball;
+  /// What it is about, as in symbolic::Condition ("U1 > a", "2-3").
   std::string about;
   std::string exact_text;       ///< the form compared as exact (the finite-m_n one for a finite obstacle)
+  /// The asymptotic form, as text.
   std::string asymptotic_text;
   /// Always / Never: the asymptotic form holds / fails at every admissible
   /// point, so one side of the condition vanishes as ε → 0 and may be out of reach.
@@ -99,10 +107,20 @@ struct VerifiedCondition {
 
 /// The points of one ε seen by one condition.
 struct ConditionTally {
+  ///@{
+  /// Points on each side: the condition holds, fails (for the exact solution of the case, forced).
   long long holds = 0, fails = 0;            ///< sides: the condition for the exact solution of the case (forced)
+  ///@}
+  ///@{
+  /// Of them, ends of a bracket of this condition (width <= 2^-boundary_bracket_bits).
   long long near_holds = 0, near_fails = 0;  ///< of them, ends of a bracket of this condition (width <= 2^-boundary_bracket_bits)
+  ///@}
+  ///@{
+  /// The points where the exact form, the asymptotic form agrees with the truth.
   long long exact_agree = 0, asymptotic_agree = 0;  ///< the forms that agree with that truth
+  ///@}
   long long near_asymptotic_agree = 0;  ///< of the near points, those where the asymptotic form agrees
+  /// The points seen: holds + fails.
   long long points() const { return holds + fails; }
 };
 
@@ -112,20 +130,28 @@ struct Tally {
   long long found = 0;          ///< of them, found by the search for a side short of points
   long long undrawn = 0;        ///< draws that found no admissible point
   long long unsolved = 0;       ///< points where the exact solver did not report success (not counted below)
+  ///@{
+  /// The conjunction of the exact, the asymptotic conditions against "case actual and U₁⁺ > a".
   Confusion exact, asymptotic;  ///< the conjunction of the conditions against "case actual and U₁⁺ > a"
+  ///@}
   std::vector<ConditionTally> conditions;  ///< in the order of Verification::conditions
 };
 
 /// The results at one ε: the drawn points and the boundary stage apart (the
 /// asymptotic forms are expected to disagree within O(ε) of a boundary).
 struct EpsilonResult {
+  /// The value of ε.
   cln::cl_RA epsilon;
+  ///@{
+  /// The drawn points and the boundary stage.
   Tally drawn, boundary;
+  ///@}
   Tally all() const;  ///< both stages
 };
 
 /// A point where a form disagrees with the exact solution.
 struct Disagreement {
+  /// The index of the ε in Verification::epsilons.
   int epsilon_index = 0;
   bool near = false;               ///< from the boundary stage
   std::vector<std::pair<std::string, cln::cl_RA>> point;  ///< ASCII name → exact value
@@ -133,18 +159,30 @@ struct Disagreement {
   std::string actual_case;         ///< the case of the exact unforced solution
   std::string quantity;            ///< "U1 - a = 3/7" of the exact unforced solution
   bool truth = false;              ///< case actual and U₁⁺ > a
+  ///@{
+  /// The conjunctions of the exact, the asymptotic forms at the point.
   bool exact = false, asymptotic = false;  ///< the conjunctions of the forms
+  ///@}
   bool exact_form = false;         ///< an exact form disagrees (the conjunction or one condition): a defect
   std::vector<std::string> details;        ///< each condition form that disagrees, with the decided quantity
 };
 
 /// The verification of one case.
 struct Verification {
+  ///@{
+  /// The case, the pattern, the obstacle and the scaling, as derive prints them.
   std::string case_name, pattern, obstacle, scaling;  ///< as derive prints them
+  ///@}
+  /// The case's conditions (PSD conditions left out).
   std::vector<VerifiedCondition> conditions;
+  /// The results at each ε, in the order given.
   std::vector<EpsilonResult> epsilons;
   std::vector<Disagreement> disagreements;  ///< in run order (ε, then stage, then block)
+  ///@{
+  /// Points drawn per ε, boundary pairs sought per ε.
   int samples = 0, boundary_pairs = 0;
+  ///@}
+  /// The seed of the draws.
   std::uint64_t seed = 0;
   /// Whether the exact conditions agree with the exact solution at every point (conjunction and each one).
   bool exact_agrees() const;
