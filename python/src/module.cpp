@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "convert.hpp"
 #include "superball/cases/error.hpp"
 #include "superball/cases/parameter.hpp"
 #include "superball/cases/printed_conditions.hpp"
@@ -471,6 +472,7 @@ PYBIND11_MODULE(_superball, m) {
   m.def("audit", &audit, py::arg("epsilon"), py::arg("samples"), py::arg("seed"));
   m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
         py::arg("box_low"), py::arg("box_high"));
+  register_map(m);
   m.def("thread_count", &numeric::thread_count, py::arg("requested"));
   m.attr("default_rtol") = numeric::default_rtol;
   m.attr("__version__") = SUPERBALL_VERSION;

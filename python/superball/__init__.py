@@ -48,7 +48,7 @@ from . import _superball
 __all__ = [
     "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "sweep",
     "SwitchPoint", "switch_points", "Condition", "Derivation", "derive", "audit", "verify", "explore",
-    "DEFAULT_RTOL", "STATUSES",
+    "DEFAULT_RTOL", "STATUSES", "map", "MapResult", "BoundaryPoint", "MapCurve", "MapAxis",
 ]
 
 Error = _superball.Error
@@ -907,3 +907,9 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pai
         out.append(ExploreResult(d["case"], d["reach"], ratio, witness, Scene.from_toml(toml, "<witness>") if toml else None, d, text))
     return out if all else out[0]
 
+
+
+# ---------------------------------------------------------------------------
+# Maps over two parameters (python/superball/_map.py)
+
+from ._map import BoundaryPoint, MapAxis, MapCurve, MapResult, map  # noqa: E402  (uses Scene, defined above)

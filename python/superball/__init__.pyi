@@ -264,3 +264,60 @@ def explore(
     evaluations: int = ...,
     box: Tuple[float, float] = ...,
 ) -> Union[ExploreResult, List[ExploreResult], PatternTable]: ...
+
+# map(): python/superball/_map.py
+@dataclass(frozen=True)
+class MapAxis:
+    key: str
+    start: Fraction
+    stop: Fraction
+    steps: int
+    values: npt.NDArray[np.float64]
+    def fractions(self) -> List[Fraction]: ...
+
+@dataclass(frozen=True)
+class BoundaryPoint:
+    along: str
+    along_x: bool
+    i: int
+    j: int
+    x: float
+    y: float
+    low: Fraction
+    high: Fraction
+    width: float
+    below: Dict[str, Any]
+    above: Dict[str, Any]
+
+@dataclass(frozen=True)
+class MapCurve:
+    kind: str
+    cases: Tuple[str, ...]
+    closed: bool
+    boundaries: List[int]
+    points: npt.NDArray[np.float64]
+    brackets: List[Tuple[Fraction, Fraction]]
+
+class MapResult:
+    scene: str
+    title: str
+    precision: str
+    x: MapAxis
+    y: MapAxis
+    cases: npt.NDArray[np.str_]
+    case_codes: npt.NDArray[np.int32]
+    case_list: Tuple[str, ...]
+    closed_list: Tuple[Tuple[str, ...], ...]
+    ratio: npt.NDArray[np.float64]
+    superball: npt.NDArray[np.bool_]
+    psd: npt.NDArray[np.bool_]
+    status_codes: npt.NDArray[np.int8]
+    boundary_points: List[BoundaryPoint]
+    curves: List[MapCurve]
+    @property
+    def shape(self) -> Tuple[int, int]: ...
+    def plot(self, ax: Any = ..., curves: bool = ..., legend: bool = ...) -> Any: ...
+    def _repr_html_(self) -> str: ...
+
+def map(scene: Scene, x: Union[str, Tuple[str, Number, Number, int]], y: Union[str, Tuple[str, Number, Number, int]],
+        precision: str = ..., threads: Optional[int] = ..., progress: Any = ...) -> MapResult: ...
