@@ -25,31 +25,39 @@ py::object fraction(const cln::cl_RA& x) {
   return type(integer(cln::numerator(x)), integer(cln::denominator(x)));
 }
 
-py::object to_python(const nlohmann::ordered_json& j) {
-  using T = nlohmann::ordered_json::value_t;
+namespace {
+
+template <class Json>
+py::object json_to_python(const Json& j) {
+  using T = typename Json::value_t;
   switch (j.type()) {
     case T::null:
     case T::discarded: return py::none();
-    case T::boolean: return py::bool_(j.get<bool>());
-    case T::number_integer: return py::int_(j.get<std::int64_t>());
-    case T::number_unsigned: return py::int_(j.get<std::uint64_t>());
-    case T::number_float: return py::float_(j.get<double>());
-    case T::string: return py::str(j.get_ref<const std::string&>());
+    case T::boolean: return py::bool_(j.template get<bool>());
+    case T::number_integer: return py::int_(j.template get<std::int64_t>());
+    case T::number_unsigned: return py::int_(j.template get<std::uint64_t>());
+    case T::number_float: return py::float_(j.template get<double>());
+    case T::string: return py::str(j.template get_ref<const std::string&>());
     case T::array: {
       py::list out(j.size());
       std::size_t k = 0;
-      for (const auto& v : j) out[k++] = to_python(v);
+      for (const auto& v : j) out[k++] = json_to_python(v);
       return std::move(out);
     }
     case T::object: {
       py::dict out;
-      for (const auto& [k, v] : j.items()) out[py::str(k)] = to_python(v);
+      for (const auto& [k, v] : j.items()) out[py::str(k)] = json_to_python(v);
       return std::move(out);
     }
     case T::binary: break;
   }
   throw std::logic_error("to_python(): a binary JSON value");
 }
+
+}  // namespace
+
+py::object to_python(const nlohmann::ordered_json& j) { return json_to_python(j); }
+py::object to_python(const nlohmann::json& j) { return json_to_python(j); }
 
 numeric::TaskRunner interruptible_runner(py::object progress, std::vector<std::string> phases) {
   // The runner is copied into the library's settings: its state is shared.

@@ -23,7 +23,11 @@ py::object fraction(const cln::cl_RA& x);
 
 /// \p j as Python objects: objects as dicts (in order), arrays as lists,
 /// numbers as int or float, strings, booleans, None (call with the GIL held).
+/// The library's JSON values of a result (the command's --json) cross into
+/// Python so, as values: no text is written or parsed.
 py::object to_python(const nlohmann::ordered_json& j);
+/// to_python() of an unordered JSON value (its keys in JSON's sorted order).
+py::object to_python(const nlohmann::json& j);
 
 /// A numeric::TaskRunner for a long call made with the GIL released: it runs
 /// the tasks here, one after the other (each on the call's threads), and

@@ -301,7 +301,7 @@ std::vector<py::dict> derive(const py::dict& options) {
   return out;
 }
 
-/// verify(): per case, to_json(Verification) as text, its report, and whether the exact conditions agree.
+/// verify(): per case, to_json(Verification) as Python objects, its report, and whether the exact conditions agree.
 std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<std::string>& epsilons, int samples, int boundary_pairs,
                                     std::uint64_t seed, int threads) {
   verify::VerifyOptions o;
@@ -330,12 +330,12 @@ std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<s
   std::vector<py::tuple> out;
   for (const ContactSet& c : sel.cases) {
     const verify::Verification v = verify::verify_case(*sel.deriver, c, o);
-    out.push_back(py::make_tuple(verify::to_json(v).dump(), verify::to_text(v), v.exact_agrees()));
+    out.push_back(py::make_tuple(to_python(verify::to_json(v)), verify::to_text(v), v.exact_agrees()));
   }
   return out;
 }
 
-/// audit(): the JSON of `superball audit --json` as text, and its report.
+/// audit(): the JSON of `superball audit --json` as Python objects, and its report.
 py::tuple audit(const std::string& epsilon, int samples, std::uint64_t seed) {
   verify::AuditOptions o;
   o.epsilon = parse_exact(epsilon);
@@ -344,10 +344,10 @@ py::tuple audit(const std::string& epsilon, int samples, std::uint64_t seed) {
   o.samples = samples;
   o.seed = seed;
   const verify::Audit a = verify::audit_paper(PrintedConditions::paper(), o);
-  return py::make_tuple(present::audit_json(a).dump(), verify::to_text(a));
+  return py::make_tuple(to_python(present::audit_json(a)), verify::to_text(a));
 }
 
-/// explore(): per case (or per cell of the table), to_json as text and the report.
+/// explore(): per case (or per cell of the table), to_json as Python objects, the report and the witness scene.
 std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::uint64_t seed, int starts, int evaluations, double box_low,
                                double box_high) {
   verify::ExploreOptions o;
@@ -359,14 +359,14 @@ std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::
   std::vector<py::tuple> out;
   if (all_patterns) {
     const verify::PatternTable t = verify::explore_all_patterns(o);
-    out.push_back(py::make_tuple(verify::to_json(t).dump(), verify::to_text(t)));
+    out.push_back(py::make_tuple(to_python(verify::to_json(t)), verify::to_text(t)));
     return out;
   }
   const present::Selection sel = present::resolve(selection(options));
   if (sel.cases.empty()) throw std::invalid_argument("explore: give a case (case=, closed= or all=True) or all_patterns=True");
   for (const ContactSet& c : sel.cases) {
     const verify::ExploreResult r = verify::explore_case(*sel.deriver, c, o);
-    out.push_back(py::make_tuple(verify::to_json(r).dump(), verify::to_text(r), r.scene ? write_scene(*r.scene) : std::string()));
+    out.push_back(py::make_tuple(to_python(verify::to_json(r)), verify::to_text(r), r.scene ? py::cast(*r.scene) : py::none()));
   }
   return out;
 }
@@ -460,7 +460,7 @@ PYBIND11_MODULE(_superball, m) {
       .def_property_readonly("before", [](const present::Presented& p) { return py::array_t<double>(p.before.size(), p.before.data()); })
       .def_property_readonly("after", [](const present::Presented& p) { return py::array_t<double>(p.after.size(), p.after.data()); })
       .def_property_readonly("reactions", [](const present::Presented& p) { return py::array_t<double>(p.reactions.size(), p.reactions.data()); })
-      .def("to_json", [](const present::Presented& p) { return present::to_json(p).dump(); })
+      .def("to_dict", [](const present::Presented& p) { return to_python(present::to_json(p)); })
       .def("to_text", [](const present::Presented& p) { return present::to_text(p); });
 
   m.def("solve", &solve, py::arg("scene"), py::arg("precision"), py::arg("rtol"));

@@ -356,7 +356,7 @@ class Result:
 
     def to_dict(self) -> Dict[str, Any]:
         """Every field, exactly as ``superball solve --json`` writes them."""
-        return _json.loads(self._p.to_json())
+        return self._p.to_dict()
 
     def to_text(self) -> str:
         """The report of ``superball solve``."""
@@ -764,8 +764,7 @@ class AuditResult:
 def audit(epsilon: Number = Fraction(1, 1000), samples: int = 20000, seed: int = 1) -> AuditResult:
     """Audit every condition and claim the paper prints (§4.1–§4.3) against the derivation,
     with counterexamples solved exactly; points sampled at m₁ = ε·O(1), K₁₄ = O(1)/ε."""
-    data, text = _superball.audit(_number_text(epsilon, "epsilon"), int(samples), int(seed))
-    d = _json.loads(data)
+    d, text = _superball.audit(_number_text(epsilon, "epsilon"), int(samples), int(seed))
     return AuditResult(d["conditions"], d["claims"], d, text)
 
 
@@ -833,7 +832,7 @@ def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pair
     in :func:`derive`.  Deterministic given ``seed``, whatever ``threads``.
     """
     eps = [] if epsilons is None else [_number_text(e, "epsilons") for e in epsilons]
-    out = [_verify_result(_json.loads(j), text, agrees)
+    out = [_verify_result(j, text, agrees)
            for j, text, agrees in _superball.verify(_selection(case, alphas, bodies, pairs, coupling, obstacle, scaling, order, closed, all,
                                                                scene, no_limit), eps, int(samples), int(boundary_pairs), int(seed), int(threads))]
     return out if all else out[0]
@@ -893,18 +892,16 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pai
     """
     low, high = box
     if all_patterns:
-        (j, text), = _superball.explore({}, True, int(seed), int(starts), int(evaluations), float(low), float(high))
-        d = _json.loads(j)
+        (d, text), = _superball.explore({}, True, int(seed), int(starts), int(evaluations), float(low), float(high))
         patterns = [row["cells"][0]["pattern"] if row["cells"] else ",".join(f"alpha{k}" for k in row["alphas"]) for row in d["rows"]]
         reach = np.array([[cell["reach"] for cell in row["cells"]] for row in d["rows"]], dtype=str)
         return PatternTable(patterns, list(d["cases"]), reach, d, text)
     options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene, False)
     out = []
-    for j, text, toml in _superball.explore(options, False, int(seed), int(starts), int(evaluations), float(low), float(high)):
-        d = _json.loads(j)
+    for d, text, witness_scene in _superball.explore(options, False, int(seed), int(starts), int(evaluations), float(low), float(high)):
         witness = {k: Fraction(v) for k, v in (d.get("witness") or {}).items()}
         ratio = Fraction(d["ratio"]) if d.get("ratio") is not None and witness else None
-        out.append(ExploreResult(d["case"], d["reach"], ratio, witness, Scene.from_toml(toml, "<witness>") if toml else None, d, text))
+        out.append(ExploreResult(d["case"], d["reach"], ratio, witness, None if witness_scene is None else Scene(_scene=witness_scene), d, text))
     return out if all else out[0]
 
 
