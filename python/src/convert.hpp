@@ -40,5 +40,8 @@ numeric::TaskRunner interruptible_runner(py::object progress, std::vector<std::s
 
 /// Register the functions of map.cpp on \p m.
 void register_map(py::module_& m);
+/// Register scene.cpp's construction from a structured value and the
+/// properties of a scene on \p m's class Scene.
+void register_scene(py::module_& m);
 
 }  // namespace superball::python

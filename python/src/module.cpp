@@ -473,6 +473,7 @@ PYBIND11_MODULE(_superball, m) {
   m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
         py::arg("box_low"), py::arg("box_high"));
   register_map(m);
+  register_scene(m);
   m.def("thread_count", &numeric::thread_count, py::arg("requested"));
   m.attr("default_rtol") = numeric::default_rtol;
   m.attr("__version__") = SUPERBALL_VERSION;

@@ -94,79 +94,71 @@ def _number_text(value: Any, what: str) -> str:
         raise InputError(f"{what}: expected a number, got {value!r}") from None
 
 
-def _toml_string(text: str) -> str:
-    # A TOML basic string; JSON's escapes are TOML's (control characters as \\uXXXX).
-    return _json.dumps(text, ensure_ascii=False)
+def _scene_number(value: Any) -> Any:
+    """A number of a scene as a scene file spells it (exact); anything else as it is,
+    for the scene reader to refuse naming the field ("must be a number …")."""
+    if isinstance(value, (bool, str, list, tuple, dict)) or value is None:
+        return value
+    if isinstance(value, (_numbers.Number, Fraction)) or hasattr(value, "as_integer_ratio"):
+        return _number_text(value, "number")
+    return value
 
 
 _SCENE_KEYS = ("title", "fall_speed", "drop_height", "g", "bodies", "K", "alpha", "coupling", "flight")
 
 
-def _scene_toml(d: Mapping[str, Any]) -> str:
+def _coupling_value(c: Any) -> Any:
+    """A coupling as a scene file's {pairs = [p, q], value = v}, from a dict, (p, q, v), ((p, q), v) or ("p/q", v)."""
+    if isinstance(c, Mapping):
+        pairs, value = c.get("pairs"), c.get("value")
+        rest = {k: v for k, v in c.items() if k not in ("pairs", "value")}
+    elif isinstance(c, (tuple, list)) and len(c) == 3:
+        pairs, value, rest = [c[0], c[1]], c[2], {}
+    elif isinstance(c, (tuple, list)) and len(c) == 2:
+        pairs, value, rest = c[0], c[1], {}
+    else:
+        return c  # refused by the reader, naming the field
+    if isinstance(pairs, str):
+        pairs = pairs.split("/")
+    out = {"pairs": [str(p) for p in pairs] if isinstance(pairs, (list, tuple)) else pairs, "value": _scene_number(value), **rest}
+    return {k: v for k, v in out.items() if v is not None}
+
+
+def _scene_value(d: Mapping[str, Any], what: str) -> Dict[str, Any]:
+    """The keywords of :class:`Scene` as the tree of a scene file (title, body, dissipation, flight),
+    numbers spelled exactly: the library builds and checks the scene from it (no TOML text)."""
     unknown = [k for k in d if k not in _SCENE_KEYS]
     if unknown:
-        raise InputError(f"Scene.from_dict: unknown key '{unknown[0]}' (expected one of: {', '.join(_SCENE_KEYS)})")
-    lines: List[str] = []
+        raise InputError(f"{what}: unknown key '{unknown[0]}' (expected one of: {', '.join(_SCENE_KEYS)})")
+    v: Dict[str, Any] = {}
     if d.get("title") is not None:
-        lines.append(f"title = {_toml_string(str(d['title']))}")
+        v["title"] = d["title"]
     for key in ("fall_speed", "drop_height", "g"):
         if d.get(key) is not None:
-            lines.append(f"{key} = {_toml_string(_number_text(d[key], key))}")
+            v[key] = _scene_number(d[key])
     bodies = d.get("bodies")
-    if bodies is None:
-        raise InputError("Scene.from_dict: bodies: required (a list of masses, or of {'mass': …, 'velocity': …})")
-    for k, body in enumerate(bodies):
-        lines.append("[[body]]")
-        if isinstance(body, Mapping):
-            extra = [x for x in body if x not in ("mass", "velocity")]
-            if extra:
-                raise InputError(f"Scene.from_dict: bodies[{k}]: unknown key '{extra[0]}' (expected mass, velocity)")
-            if "mass" in body:
-                lines.append(f"mass = {_toml_string(_number_text(body['mass'], f'bodies[{k}].mass'))}")
-            if body.get("velocity") is not None:
-                lines.append(f"velocity = {_toml_string(_number_text(body['velocity'], f'bodies[{k}].velocity'))}")
-        else:
-            lines.append(f"mass = {_toml_string(_number_text(body, f'bodies[{k}]'))}")
-    diss: List[str] = []
+    if bodies is not None:
+        if isinstance(bodies, (str, Mapping)) or not isinstance(bodies, Iterable):
+            raise InputError(f"{what}: bodies: expected a list of masses, or of {{'mass': …, 'velocity': …}}, got {bodies!r}")
+        v["body"] = [{k: _scene_number(x) for k, x in b.items()} if isinstance(b, Mapping) else {"mass": _scene_number(b)} for b in bodies]
+    dissipation: Dict[str, Any] = {}
     for key in ("K", "alpha"):
         if d.get(key):
-            items = ", ".join(f"{_toml_string(str(p))} = {_toml_string(_number_text(v, f'{key}[{p}]'))}" for p, v in d[key].items())
-            diss.append(f"{key} = {{ {items} }}")
+            m = d[key]
+            dissipation[key] = {str(p): _scene_number(x) for p, x in m.items()} if isinstance(m, Mapping) else m
     if d.get("coupling"):
-        entries = []
-        for c in d["coupling"]:
-            if isinstance(c, Mapping):
-                pairs, value = c.get("pairs"), c.get("value")
-            else:
-                pairs, value = c
-            if isinstance(pairs, str):
-                pairs = pairs.split("/")
-            entries.append(f"{{ pairs = [{', '.join(_toml_string(str(p)) for p in pairs)}], "
-                           f"value = {_toml_string(_number_text(value, f'coupling {pairs}'))} }}")
-        diss.append(f"coupling = [ {', '.join(entries)} ]")
-    if diss:
-        lines.append("[dissipation]")
-        lines.extend(diss)
+        c = d["coupling"]
+        dissipation["coupling"] = [_coupling_value(x) for x in c] if isinstance(c, (list, tuple)) else c
+    if dissipation:
+        v["dissipation"] = dissipation
     flight = d.get("flight")
-    if flight:
-        lines.append("[flight]")
-        if isinstance(flight, Mapping) and flight.get("duration") is not None:
-            lines.append(f"duration = {_toml_string(_number_text(flight['duration'], 'flight.duration'))}")
-    return "\n".join(lines) + "\n"
-
-
-def _parse_built(text: str, origin: str) -> Any:
-    """The scene of TOML text made from keywords or a dict: the loader's checks and
-    messages, without the line and column of a text the user never wrote."""
-    try:
-        return _superball.Scene.parse(text, origin)
-    except InputError as e:
-        message = str(e)
-        rest = message[len(origin):] if message.startswith(origin + ":") else ""
-        place = rest.split(" ", 1)[0]  # ":LINE:COL:"
-        if rest and place.count(":") == 3 and place[1:-1].replace(":", "").isdigit():
-            raise InputError(origin + ": " + rest.split(" ", 1)[1]) from None
-        raise
+    if flight is True:
+        v["flight"] = {}
+    elif isinstance(flight, Mapping):
+        v["flight"] = {k: _scene_number(x) for k, x in flight.items()}
+    elif flight not in (None, False):
+        v["flight"] = flight
+    return v
 
 
 class Scene:
@@ -198,10 +190,10 @@ class Scene:
         if _scene is not None:
             self._scene = _scene
             return
-        coupling = [c if isinstance(c, Mapping) or len(c) == 2 else ((c[0], c[1]), c[2]) for c in (coupling or [])]
         d = {"title": title, "fall_speed": fall_speed, "drop_height": drop_height, "g": g, "bodies": bodies, "K": K,
              "alpha": alpha, "coupling": coupling, "flight": flight}
-        self._scene = _parse_built(_scene_toml(d), title or "<scene>")
+        origin = title if isinstance(title, str) and title else "<scene>"
+        self._scene = _superball.Scene.from_value(_scene_value(d, "Scene"), origin)
 
     @classmethod
     def load(cls, path: Any) -> "Scene":
@@ -217,10 +209,11 @@ class Scene:
     def from_dict(cls, d: Mapping[str, Any]) -> "Scene":
         """A scene from a dict with the keyword arguments of :class:`Scene` as keys
         (``{"bodies": [...], "fall_speed": 3.13209, "K": {...}, "alpha": {...}}``)."""
-        d = dict(d)
-        if "coupling" in d and d["coupling"]:
-            d["coupling"] = [c if isinstance(c, Mapping) or len(c) == 2 else ((c[0], c[1]), c[2]) for c in d["coupling"]]
-        return cls(_scene=_parse_built(_scene_toml(d), str(d.get("title") or "<dict>")))
+        if not isinstance(d, Mapping):
+            raise InputError(f"Scene.from_dict: expected a dict, got {type(d).__name__}")
+        title = d.get("title")
+        origin = title if isinstance(title, str) and title else "<dict>"
+        return cls(_scene=_superball.Scene.from_value(_scene_value(d, "Scene.from_dict"), origin))
 
     def with_value(self, key: str, value: Number) -> "Scene":
         """A copy with the parameter ``key`` set to ``value``.
@@ -255,8 +248,74 @@ class Scene:
         """The masses, exact (``inf`` for a fixed obstacle)."""
         return [float("inf") if m == "inf" else Fraction(m) for m in self._scene.masses]
 
+    @property
+    def velocities(self) -> List[Optional[Fraction]]:
+        """The velocities given before the collision, per body, exact (None: the body falls at −a)."""
+        return self._scene.velocities
+
+    @property
+    def fall_speed(self) -> Optional[Fraction]:
+        """a, when the scene gives it (else None: a = √(2 g h) from ``drop_height``)."""
+        return self._scene.fall_speed
+
+    @property
+    def drop_height(self) -> Optional[Fraction]:
+        """h, when the scene gives it."""
+        return self._scene.drop_height
+
+    @property
+    def g(self) -> Fraction:
+        """g (9.81 unless given)."""
+        return self._scene.g
+
+    @property
+    def K(self) -> Dict[str, Fraction]:
+        """The diagonal of M as declared: ``{"1-2": Fraction(7), …}``."""
+        return self._scene.matrix["K"]
+
+    @property
+    def alpha(self) -> Dict[int, Fraction]:
+        """The couplings the paper names α₁ … α₇ (4 bodies): ``{2: Fraction(-100)}``."""
+        return self._scene.matrix["alpha"]
+
+    @property
+    def couplings(self) -> Dict[str, Fraction]:
+        """The other couplings (off-diagonal entries of M) as declared: ``{"1-2/2-3": Fraction(3)}``."""
+        return self._scene.matrix["coupling"]
+
+    @property
+    def keys(self) -> List[str]:
+        """The keys of the values the scene holds, as :meth:`with_value`, :func:`sweep` and :func:`map` take them:
+        ``["K.1-2", …, "alpha.2", "mass.1", …, "velocity.4", "fall_speed"]``."""
+        return self._scene.keys
+
+    @property
+    def flight(self) -> bool:
+        """Whether the scene asks for the flight after the collision ([flight])."""
+        return self._scene.flight
+
     def __repr__(self) -> str:
-        return f"Scene({self.origin!r}, bodies={self.bodies}, title={self.title!r})"
+        fall = f"fall_speed={float(self.fall_speed):.6g}" if self.fall_speed is not None else (
+            f"drop_height={float(self.drop_height):.6g}, g={float(self.g):.6g}" if self.drop_height is not None else "no fall")
+        return (f"<superball.Scene {self.origin!r}: {self.bodies} bodies, {fall}, {len(self.K)} K, "
+                f"{len(self.alpha) + len(self.couplings)} couplings>")
+
+    def _repr_html_(self) -> str:
+        e = _html.escape
+
+        def num(x: Any) -> str:
+            return "∞" if x == float("inf") else e(str(x))
+
+        bodies = "".join(f"<tr><td>{i + 1}</td><td>{num(m)}</td><td>{'−a' if v is None else num(v)}</td></tr>"
+                         for i, (m, v) in enumerate(zip(self.masses, self.velocities)))
+        fall = (f"a = {num(self.fall_speed)}" if self.fall_speed is not None else
+                f"h = {num(self.drop_height)}, g = {num(self.g)}" if self.drop_height is not None else "")
+        entries = [f"K<sub>{e(p.replace('-', ''))}</sub> = {num(x)}" for p, x in self.K.items()]
+        entries += [f"α<sub>{k}</sub> = {num(x)}" for k, x in self.alpha.items()]
+        entries += [f"M<sub>{e(p)}</sub> = {num(x)}" for p, x in self.couplings.items()]
+        return (f"<div><b>{e(self.origin)}</b>{': ' + e(self.title) if self.title else ''}<br>{fall}"
+                f"<table><tr><th>body</th><th>mass (kg)</th><th>U⁻ (m/s)</th></tr>{bodies}</table>"
+                f"M: {', '.join(entries) or 'none declared'}<br>keys: {e(', '.join(self.keys))}</div>")
 
 
 # ---------------------------------------------------------------------------
