@@ -59,6 +59,12 @@ py::object json_to_python(const Json& j) {
 py::object to_python(const nlohmann::ordered_json& j) { return json_to_python(j); }
 py::object to_python(const nlohmann::json& j) { return json_to_python(j); }
 
+void between_tasks(const py::object& progress, const std::string& phase, std::size_t done, std::size_t total) {
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  if (!progress.is_none()) progress(phase, done, total);
+}
+
 numeric::TaskRunner interruptible_runner(py::object progress, std::vector<std::string> phases) {
   // The runner is copied into the library's settings: its state is shared.
   struct State {
@@ -74,11 +80,7 @@ numeric::TaskRunner interruptible_runner(py::object progress, std::vector<std::s
     const std::string phase = state->phases.empty() ? std::string("tasks")
                                                     : state->phases[std::min(state->call, state->phases.size() - 1)];
     ++state->call;
-    auto between = [&](std::size_t done) {
-      py::gil_scoped_acquire gil;
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      if (!state->progress.is_none()) state->progress(phase, done, count);
-    };
+    auto between = [&](std::size_t done) { between_tasks(state->progress, phase, done, count); };
     std::vector<std::string> texts;
     texts.reserve(count);
     between(0);

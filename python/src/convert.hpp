@@ -38,6 +38,12 @@ py::object to_python(const nlohmann::json& j);
 /// "boundaries"); a call past the last is named by the last.
 numeric::TaskRunner interruptible_runner(py::object progress, std::vector<std::string> phases);
 
+/// Between two parts of a long call made with the GIL released: takes the
+/// GIL, stops the call with KeyboardInterrupt on Ctrl-C (PyErr_CheckSignals(),
+/// py::error_already_set thrown) and calls \p progress(phase, done, total)
+/// unless it is None.
+void between_tasks(const py::object& progress, const std::string& phase, std::size_t done, std::size_t total);
+
 /// Register the functions of map.cpp on \p m.
 void register_map(py::module_& m);
 /// Register scene.cpp's construction from a structured value and the

@@ -179,7 +179,8 @@ constexpr std::size_t kSweepChunk = std::size_t{1} << 16;
 
 /// sweep(): values, U (one row per value), case numbers into the table of
 /// distinct cases (names, closed contacts), status codes; the GIL is released while it solves.
-py::tuple sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads) {
+py::tuple sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads,
+                py::object progress) {
   const Parameter parameter = Parameter::parse(key, scene);
   const auto p = numeric::Precision::parse(precision);
   if (values.exact.empty()) throw std::invalid_argument("sweep: no value to solve");
@@ -205,6 +206,7 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
     fill_doubles(values, xd);
     const auto total = values.exact.size();
     for (std::size_t first = 0; first < total; first += kSweepChunk) {
+      between_tasks(progress, "values", first, total);
       const auto end = values.exact.begin() + static_cast<std::ptrdiff_t>(std::min(total, first + kSweepChunk));
       const std::vector<cln::cl_RA> chunk(values.exact.begin() + static_cast<std::ptrdiff_t>(first), end);
       const auto points = numeric::sweep(scene, parameter, chunk, p, threads);
@@ -216,6 +218,7 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
         sd[k] = static_cast<std::int8_t>(pt.status);
       }
     }
+    between_tasks(progress, "values", total, total);
   }
   return py::make_tuple(x, u, codes, table.names(), status);
 }
@@ -303,7 +306,7 @@ std::vector<py::dict> derive(const py::dict& options) {
 
 /// verify(): per case, to_json(Verification) as Python objects, its report, and whether the exact conditions agree.
 std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<std::string>& epsilons, int samples, int boundary_pairs,
-                                    std::uint64_t seed, int threads) {
+                                    std::uint64_t seed, int threads, const py::object& progress) {
   verify::VerifyOptions o;
   if (!epsilons.empty()) {
     o.epsilons.clear();
@@ -329,6 +332,7 @@ std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<s
   if (sel.cases.empty()) throw std::invalid_argument("verify: give a case (case=, closed= or all=True)");
   std::vector<py::tuple> out;
   for (const ContactSet& c : sel.cases) {
+    o.runner = interruptible_runner(progress, {"drawn points", "boundaries"});  // progress and Ctrl-C between tasks
     const verify::Verification v = verify::verify_case(*sel.deriver, c, o);
     out.push_back(py::make_tuple(to_python(verify::to_json(v)), verify::to_text(v), v.exact_agrees()));
   }
@@ -464,11 +468,11 @@ PYBIND11_MODULE(_superball, m) {
       .def("to_text", [](const present::Presented& p) { return present::to_text(p); });
 
   m.def("solve", &solve, py::arg("scene"), py::arg("precision"), py::arg("rtol"));
-  m.def("sweep", &sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"));
+  m.def("sweep", &sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"), py::arg("progress"));
   m.def("switch_points", &switch_points, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("bits"), py::arg("threads"));
   m.def("derive", &derive, py::arg("options"));
   m.def("verify", &verify_cases, py::arg("options"), py::arg("epsilons"), py::arg("samples"), py::arg("boundary_pairs"), py::arg("seed"),
-        py::arg("threads"));
+        py::arg("threads"), py::arg("progress"));
   m.def("audit", &audit, py::arg("epsilon"), py::arg("samples"), py::arg("seed"));
   m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
         py::arg("box_low"), py::arg("box_high"));

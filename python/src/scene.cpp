@@ -11,6 +11,7 @@
 #include "superball/cases/error.hpp"
 #include "superball/cases/parameter.hpp"
 #include "superball/cases/scene_file.hpp"
+#include "superball/numeric/problem.hpp"
 #include "superball/numeric/scalar.hpp"
 
 namespace superball::python {
@@ -105,6 +106,22 @@ py::list velocities(const Scene& s) {
 
 py::object optional_number(const std::optional<Number>& n) { return n ? exact(*n) : py::none(); }
 
+/// U⁻ exactly, per body (ExactScene: −a for a falling body, its velocity
+/// otherwise; a fixed obstacle's velocity as given, 0 when not); None for a
+/// falling body when a = √(2 g h) is irrational.
+py::list velocities_before(const Scene& s) {
+  const numeric::ExactScene e = numeric::ExactScene::from(s, numeric::ExactScene::MCheck::Caller);
+  cln::cl_RA a = 0;
+  const bool rational_a = e.a_squared && cln::sqrtp(*e.a_squared, &a);
+  py::list out;
+  for (std::size_t i = 0; i < e.fall.size(); ++i) {
+    if (cln::zerop(e.fall[i])) out.append(fraction(e.velocity[i]));
+    else if (rational_a) out.append(fraction(e.fall[i] * a + e.velocity[i]));
+    else out.append(py::none());
+  }
+  return out;
+}
+
 }  // namespace
 
 void register_scene(py::module_& m) {
@@ -113,6 +130,7 @@ void register_scene(py::module_& m) {
       .def_property_readonly("matrix", &matrix)
       .def_property_readonly("keys", &keys)
       .def_property_readonly("velocities", &velocities)
+      .def_property_readonly("velocities_before", &velocities_before)
       .def_property_readonly("fall_speed", [](const Scene& s) { return optional_number(s.fall_speed); })
       .def_property_readonly("drop_height", [](const Scene& s) { return optional_number(s.drop_height); })
       .def_property_readonly("g", [](const Scene& s) { return exact(s.g); })

@@ -43,7 +43,7 @@ from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import _superball
+from . import _progress, _superball
 
 __all__ = [
     "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "sweep",
@@ -92,6 +92,24 @@ def _number_text(value: Any, what: str) -> str:
         return str(Fraction(value))
     except (TypeError, ValueError):
         raise InputError(f"{what}: expected a number, got {value!r}") from None
+
+
+def _check_scene(scene: Any, function: str) -> None:
+    if not isinstance(scene, Scene):
+        raise InputError(f"{function}: expected a superball.Scene, got {type(scene).__name__}")
+
+
+def _int_option(value: Any, name: str) -> int:
+    """An int argument; anything else (a bool, a float, a string) is an InputError naming it."""
+    if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
+        raise InputError(f"{name}: expected an int, got {value!r}")
+    return int(value)
+
+
+def _str_option(value: Any, name: str) -> str:
+    if not isinstance(value, str):
+        raise InputError(f"{name}: expected a string, got {value!r}")
+    return value
 
 
 def _scene_number(value: Any) -> Any:
@@ -339,11 +357,12 @@ class Result:
     E⁺ = E⁻ − dissipation ≤ E⁻.
     """
 
-    __slots__ = ("_p", "_cache")
+    __slots__ = ("_p", "_cache", "_before")
 
-    def __init__(self, presented: Any) -> None:
+    def __init__(self, presented: Any, before: Optional[List[Optional[Fraction]]] = None) -> None:
         self._p = presented
         self._cache: Dict[str, Any] = {}
+        self._before = before
 
     # plain fields
     origin = property(lambda self: self._p.origin, doc="The scene's file or label.")
@@ -400,6 +419,23 @@ class Result:
         if "v" not in self._cache:
             self._cache["v"] = [_fraction_or_none(t) for t in self._p.after_text]
         return self._cache["v"]
+
+    @property
+    def velocities_before_exact(self) -> List[Optional[Fraction]]:
+        """U⁻ exactly, whatever the arithmetic of the solve: −a for a falling body, its velocity otherwise
+        (``None`` for a falling body when a = √(2 g h) is irrational)."""
+        return list(self._before) if self._before is not None else [None] * self.bodies
+
+    @property
+    def ratio(self) -> Union[Fraction, float, None]:
+        """U₁⁺/a (U₁⁺/|U₁⁻|; the superball is ratio > 1): a Fraction when the arithmetic is exact and a is
+        rational, else a float in the solve's answer; None when U₁⁻ = 0."""
+        u1 = self.velocities_before_exact[0]
+        after = self.velocities_after_exact
+        if u1 is not None and after is not None and after[0] is not None:
+            return after[0] / abs(u1) if u1 != 0 else None
+        before = float(u1) if u1 is not None else float(self.velocities_before[0])
+        return float(self.velocities_after[0]) / abs(before) if before != 0 else None
 
     @property
     def reactions(self) -> np.ndarray:
@@ -461,9 +497,11 @@ def solve(scene: Scene, precision: str = "auto", rtol: Optional[float] = None) -
     and checks it against the equations of motion; ``Result.status`` says
     how it ended.  The GIL is released while it solves.
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"solve: expected a superball.Scene, got {type(scene).__name__}")
-    return Result(_superball.solve(scene._scene, str(precision), None if rtol is None else float(rtol)))
+    _check_scene(scene, "solve")
+    if rtol is not None and (isinstance(rtol, bool) or not isinstance(rtol, _numbers.Real)):
+        raise InputError(f"solve: rtol: expected a number, got {rtol!r}")
+    return Result(_superball.solve(scene._scene, _str_option(precision, "precision"), None if rtol is None else float(rtol)),
+                  scene._scene.velocities_before)
 
 
 # ---------------------------------------------------------------------------
@@ -522,7 +560,7 @@ def _values(values: Any) -> Any:
     return _superball.Values.from_text(texts)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class SweepResult:
     """The velocities after the collision along one parameter.
 
@@ -544,6 +582,47 @@ class SweepResult:
     case_list: Tuple[str, ...]
     closed_list: Tuple[Tuple[str, ...], ...]
     status_codes: np.ndarray
+    scene: Optional["Scene"] = field(default=None, compare=False)
+    exact_values: Any = field(default=None, compare=False)  #: the library's exact values (for switch_points())
+
+    @property
+    def ratio(self) -> np.ndarray:
+        """U₁⁺/a per value (U₁⁺/|U₁⁻|, float64; the superball is ratio > 1), with U₁⁻ exact at each value
+        (NaN where it is 0)."""
+        if self.scene is None:
+            raise Error("SweepResult.ratio: the sweep's scene is not known")
+        keys_of_the_fall = ("velocity.1", "fall_speed", "drop_height", "g")
+        if self.key not in keys_of_the_fall:
+            u1 = self.scene._scene.velocities_before[0]
+            before = np.full(len(self), np.nan if u1 is None else float(u1))
+        else:  # U₁⁻ changes with the value
+            exact = [Fraction(t) for t in self.exact_values.as_text()]
+            before = np.array([float(b) if b is not None else np.nan for b in
+                               (self.scene._scene.with_value(self.key, _number_text(x, self.key)).velocities_before[0] for x in exact)])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(before != 0, self.velocities[:, 0] / np.abs(before), np.nan)
+
+    def switch_points(self, bits: int = 64, threads: int = 0) -> List["SwitchPoint"]:
+        """Where the evolution case changes between this sweep's values (``superball sweep --switch-points``):
+        :func:`switch_points` of the same scene, key and exact values."""
+        if self.scene is None or self.exact_values is None:
+            raise Error("SweepResult.switch_points: the sweep's scene is not known")
+        return _switch_points(self.scene, self.key, self.exact_values, bits, threads, checked=True)
+
+    def __repr__(self) -> str:
+        cases = ", ".join(self.case_list) or "none"
+        span = f"{self.values[0]:.6g} … {self.values[-1]:.6g}" if len(self) else "no value"
+        return (f"<superball.SweepResult {self.key} = {span} ({len(self)} values, {self.precision}): cases {cases}; "
+                f"{'all' if self.ok else int(np.sum(self.status_codes == 0))} solved with success>")
+
+    def _repr_html_(self) -> str:
+        e = _html.escape
+        rows = "".join(f"<tr><td>{e(c)}</td><td>{e(', '.join(cl) or 'none')}</td><td>{int(np.sum(self.case_codes == k))}</td></tr>"
+                       for k, (c, cl) in enumerate(zip(self.case_list, self.closed_list)))
+        span = f"{self.values[0]:.6g} to {self.values[-1]:.6g}" if len(self) else "no value"
+        return (f"<div><b>sweep of {e(self.key)}</b> from {span} ({len(self)} values, {e(self.precision)})"
+                f"<table><tr><th>case</th><th>closed contacts</th><th>values</th></tr>{rows}</table>"
+                f"status: {'every value success' if self.ok else e(', '.join(sorted(set(self.status))))}</div>")
 
     @property
     def status(self) -> np.ndarray:
@@ -562,7 +641,7 @@ class SweepResult:
         return len(self.values)
 
 
-def sweep(scene: Scene, key: str, values: Any, precision: str = "double", threads: int = 0) -> SweepResult:
+def sweep(scene: Scene, key: str, values: Any, precision: str = "double", threads: int = 0, progress: Any = None) -> SweepResult:
     """Solve ``scene`` at every value of the parameter ``key`` (``superball sweep``).
 
     ``key`` as in :meth:`Scene.with_value` (``"K.3-4"``).  ``values``: a
@@ -571,15 +650,20 @@ def sweep(scene: Scene, key: str, values: Any, precision: str = "double", thread
     is checked first (every value admissible, or :class:`InputError` before
     anything is solved).  Solved on ``threads`` threads (0: all cores) with
     the GIL released; the result does not depend on ``threads``, bit for bit.
+    ``progress``: a callable ``(phase, done, total)`` told after each block
+    of 2¹⁶ values, True/False, or None (a bar on standard error when it is a
+    terminal); Ctrl-C stops the sweep (KeyboardInterrupt) between two blocks.
+    ``SweepResult.switch_points()`` bisects its case changes exactly.
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"sweep: expected a superball.Scene, got {type(scene).__name__}")
+    _check_scene(scene, "sweep")
     v = _values(values)
-    if int(threads) < 0:
+    threads = _int_option(threads, "threads")
+    if threads < 0:
         raise InputError(f"threads must be >= 0 (0: all cores), got {threads}")
-    x, u, codes, (names, closed), status = _superball.sweep(scene._scene, str(key), v, str(precision), int(threads))
+    x, u, codes, (names, closed), status = _superball.sweep(scene._scene, _str_option(key, "key"), v, _str_option(precision, "precision"),
+                                                            threads, _progress.resolve(progress, "sweep"))
     cases = np.array(names, dtype=str)[codes] if len(names) else np.array([], dtype=str)
-    return SweepResult(str(key), str(precision), x, u, cases, codes, tuple(names), tuple(tuple(c) for c in closed), status)
+    return SweepResult(str(key), str(precision), x, u, cases, codes, tuple(names), tuple(tuple(c) for c in closed), status, scene, v)
 
 
 @dataclass(frozen=True)
@@ -610,17 +694,19 @@ def switch_points(scene: Scene, key: str, values: Any, bits: int = 64, threads: 
     found too.  In increasing value, each starting in the case the previous
     one ended in.  GIL released; ``threads`` as in :func:`sweep`.
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"switch_points: expected a superball.Scene, got {type(scene).__name__}")
-    v = _values(values)
-    if not isinstance(values, ExactRange):
+    _check_scene(scene, "switch_points")
+    return _switch_points(scene, key, _values(values), bits, threads, checked=isinstance(values, ExactRange))
+
+
+def _switch_points(scene: Scene, key: str, v: Any, bits: int, threads: int, checked: bool) -> List[SwitchPoint]:
+    if not checked:
         x = [Fraction(t) for t in v.as_text()]
         d = [b - a for a, b in zip(x, x[1:])]
         if not (all(s > 0 for s in d) or all(s < 0 for s in d)):
             raise InputError("switch_points: the values must be strictly increasing or strictly decreasing")
     out = []
-    for low, high, middle, width, below, closed_below, above, closed_above in _superball.switch_points(scene._scene, str(key), v, int(bits),
-                                                                                                         int(threads)):
+    for low, high, middle, width, below, closed_below, above, closed_above in _superball.switch_points(
+            scene._scene, _str_option(key, "key"), v, _int_option(bits, "bits"), _int_option(threads, "threads")):
         out.append(SwitchPoint(str(key), float(middle), Fraction(low), Fraction(high), float(width), below, above, tuple(closed_below),
                                tuple(closed_above), middle))
     return out
@@ -794,8 +880,8 @@ def _selection(case: Any, alphas: Any, bodies: int, pairs: Any, coupling: Any, o
         scaling = ",".join(f"{k}={v}" for k, v in scaling.items())
     if coupling is not None and not isinstance(coupling, str):
         coupling = ",".join(c if isinstance(c, str) else "/".join(c) for c in coupling)
-    return {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": int(bodies), "pairs": _list_text(pairs),
-            "coupling": coupling, "obstacle": obstacle, "scaling": scaling, "order": int(order), "closed": _list_text(closed),
+    return {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": _int_option(bodies, "bodies"), "pairs": _list_text(pairs),
+            "coupling": coupling, "obstacle": obstacle, "scaling": scaling, "order": _int_option(order, "order"), "closed": _list_text(closed),
             "all": bool(all), "scene": None if scene is None else str(scene), "no_limit": bool(no_limit)}
 
 
@@ -823,7 +909,7 @@ class AuditResult:
 def audit(epsilon: Number = Fraction(1, 1000), samples: int = 20000, seed: int = 1) -> AuditResult:
     """Audit every condition and claim the paper prints (§4.1–§4.3) against the derivation,
     with counterexamples solved exactly; points sampled at m₁ = ε·O(1), K₁₄ = O(1)/ε."""
-    d, text = _superball.audit(_number_text(epsilon, "epsilon"), int(samples), int(seed))
+    d, text = _superball.audit(_number_text(epsilon, "epsilon"), _int_option(samples, "samples"), _int_option(seed, "seed"))
     return AuditResult(d["conditions"], d["claims"], d, text)
 
 
@@ -880,7 +966,7 @@ def _verify_result(data: Dict[str, Any], text: str, agrees: bool) -> VerifyResul
 def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
            obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, all: bool = False,
            scene: Any = None, no_limit: bool = False, epsilons: Optional[Sequence[Number]] = None, samples: int = 4000,
-           boundary_pairs: int = 20, seed: int = 1, threads: int = 0) -> Union[VerifyResult, List[VerifyResult]]:
+           boundary_pairs: int = 20, seed: int = 1, threads: int = 0, progress: Any = None) -> Union[VerifyResult, List[VerifyResult]]:
     """Check a case's derived conditions, exact and asymptotic, against exact solutions.
 
     Points of the regime (m₁ ~ ε, K₁ₙ ~ 1/ε; M ⪰ 0) are drawn for each ε of
@@ -889,11 +975,15 @@ def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pair
     sides of every condition near its boundary; each point is solved exactly
     (rationals) and compared with the conditions.  The case and pattern as
     in :func:`derive`.  Deterministic given ``seed``, whatever ``threads``.
+    ``progress``: a callable ``(phase, done, total)`` ("drawn points", then
+    "boundaries", per case), True/False, or None (a bar on standard error
+    when it is a terminal); Ctrl-C stops it (KeyboardInterrupt) between tasks.
     """
     eps = [] if epsilons is None else [_number_text(e, "epsilons") for e in epsilons]
     out = [_verify_result(j, text, agrees)
            for j, text, agrees in _superball.verify(_selection(case, alphas, bodies, pairs, coupling, obstacle, scaling, order, closed, all,
-                                                               scene, no_limit), eps, int(samples), int(boundary_pairs), int(seed), int(threads))]
+                                                               scene, no_limit), eps, _int_option(samples, "samples"), _int_option(boundary_pairs, "boundary_pairs"), _int_option(seed, "seed"), _int_option(threads, "threads"),
+                                                               _progress.resolve(progress, "verify"))]
     return out if all else out[0]
 
 
@@ -951,13 +1041,13 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pai
     """
     low, high = box
     if all_patterns:
-        (d, text), = _superball.explore({}, True, int(seed), int(starts), int(evaluations), float(low), float(high))
+        (d, text), = _superball.explore({}, True, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high))
         patterns = [row["cells"][0]["pattern"] if row["cells"] else ",".join(f"alpha{k}" for k in row["alphas"]) for row in d["rows"]]
         reach = np.array([[cell["reach"] for cell in row["cells"]] for row in d["rows"]], dtype=str)
         return PatternTable(patterns, list(d["cases"]), reach, d, text)
     options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene, False)
     out = []
-    for d, text, witness_scene in _superball.explore(options, False, int(seed), int(starts), int(evaluations), float(low), float(high)):
+    for d, text, witness_scene in _superball.explore(options, False, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high)):
         witness = {k: Fraction(v) for k, v in (d.get("witness") or {}).items()}
         ratio = Fraction(d["ratio"]) if d.get("ratio") is not None and witness else None
         out.append(ExploreResult(d["case"], d["reach"], ratio, witness, None if witness_scene is None else Scene(_scene=witness_scene), d, text))

@@ -66,7 +66,7 @@ def test_solve_options(paper):
         with pytest.raises(ValueError, match=what) as e:
             superball.solve(paper, **kwargs)
         one_line(e)
-    with pytest.raises(TypeError):
+    with pytest.raises(superball.InputError, match="^solve: expected a superball.Scene, got str$"):
         superball.solve("cases/scenes/paper-4.4-alpha2.toml")
 
 
