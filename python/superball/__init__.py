@@ -885,7 +885,12 @@ def _selection(case: Any, alphas: Any, bodies: int, pairs: Any, coupling: Any, o
             "all": bool(all), "scene": None if scene is None else str(scene), "no_limit": bool(no_limit)}
 
 
-@dataclass(frozen=True)
+def _text_html(title: str, text: str) -> str:
+    """A result's report for a notebook: a bold title over the command's text."""
+    return f"<div><b>{_html.escape(title)}</b><pre>{_html.escape(text)}</pre></div>"
+
+
+@dataclass(frozen=True, repr=False)
 class AuditResult:
     """The paper's printed conditions (§4.1–§4.3) and claims against the derivation (``superball audit``).
 
@@ -905,6 +910,16 @@ class AuditResult:
     def __str__(self) -> str:
         return self.text
 
+    def __repr__(self) -> str:
+        agreements = [c.get("agreement") for c in self.conditions]
+        different = sum(a == "different" for a in agreements)
+        supported = sum(bool(c.get("supported")) for c in self.claims)
+        return (f"<superball.AuditResult: {len(self.conditions)} printed conditions, {different} different from the derivation; "
+                f"{supported} of {len(self.claims)} claims supported>")
+
+    def _repr_html_(self) -> str:
+        return _text_html("superball audit", self.text)
+
 
 def audit(epsilon: Number = Fraction(1, 1000), samples: int = 20000, seed: int = 1) -> AuditResult:
     """Audit every condition and claim the paper prints (§4.1–§4.3) against the derivation,
@@ -913,7 +928,7 @@ def audit(epsilon: Number = Fraction(1, 1000), samples: int = 20000, seed: int =
     return AuditResult(d["conditions"], d["claims"], d, text)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class VerifyResult:
     """A case's derived conditions against exact solutions (``superball verify``).
 
@@ -938,6 +953,14 @@ class VerifyResult:
 
     def __str__(self) -> str:
         return self.text
+
+    def __repr__(self) -> str:
+        eps = ", ".join(f"{e:g}" for e in self.epsilons)
+        return (f"<superball.VerifyResult case {self.case}: exact conditions agree everywhere: {self.exact_agrees}; "
+                f"eps {eps}; {int(self.points.sum())} points>")
+
+    def _repr_html_(self) -> str:
+        return _text_html(f"superball verify, case {self.case}", self.text)
 
 
 def _verify_result(data: Dict[str, Any], text: str, agrees: bool) -> VerifyResult:
@@ -987,7 +1010,7 @@ def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pair
     return out if all else out[0]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ExploreResult:
     """Is the superball reachable for a pattern in a case (``superball explore``)?
 
@@ -1009,8 +1032,15 @@ class ExploreResult:
     def __str__(self) -> str:
         return self.text
 
+    def __repr__(self) -> str:
+        ratio = f", U1+/a = {float(self.ratio):.6g} (exact)" if self.ratio is not None else ""
+        return f"<superball.ExploreResult case {self.case}: reach {self.reach}{ratio}>"
 
-@dataclass(frozen=True)
+    def _repr_html_(self) -> str:
+        return _text_html(f"superball explore, case {self.case}", self.text)
+
+
+@dataclass(frozen=True, repr=False)
 class PatternTable:
     """``explore(all_patterns=True)``: each α_k (and {α₁, α₆}) against every case.
     ``reach``: a NumPy str array [pattern, case] ("yes", "no (proved)", …);
@@ -1024,6 +1054,16 @@ class PatternTable:
 
     def __str__(self) -> str:
         return self.text
+
+    def __repr__(self) -> str:
+        return f"<superball.PatternTable: {len(self.patterns)} patterns x {len(self.cases)} cases>"
+
+    def _repr_html_(self) -> str:
+        e = _html.escape
+        head = "".join(f"<th>{e(c)}</th>" for c in self.cases)
+        rows = "".join(f"<tr><th>{e(p)}</th>" + "".join(f"<td>{e(str(x))}</td>" for x in row) + "</tr>"
+                       for p, row in zip(self.patterns, self.reach))
+        return f"<div><b>superball explore --all-patterns</b><table><tr><th></th>{head}</tr>{rows}</table></div>"
 
 
 def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,

@@ -226,6 +226,7 @@ class AuditResult:
     claims: List[Dict[str, Any]]
     data: Dict[str, Any]
     text: str
+    def _repr_html_(self) -> str: ...
 
 def audit(epsilon: Number = ..., samples: int = ..., seed: int = ...) -> AuditResult: ...
 
@@ -239,6 +240,7 @@ class VerifyResult:
     asymptotic_agreement: npt.NDArray[np.float64]
     data: Dict[str, Any]
     text: str
+    def _repr_html_(self) -> str: ...
 
 def verify(
     case: Optional[str] = ...,
@@ -270,6 +272,7 @@ class ExploreResult:
     scene: Optional[Scene]
     data: Dict[str, Any]
     text: str
+    def _repr_html_(self) -> str: ...
 
 @dataclass(frozen=True)
 class PatternTable:
@@ -278,6 +281,7 @@ class PatternTable:
     reach: npt.NDArray[np.str_]
     data: Dict[str, Any]
     text: str
+    def _repr_html_(self) -> str: ...
 
 def explore(
     case: Optional[str] = ...,

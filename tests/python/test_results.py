@@ -67,3 +67,15 @@ def test_wrong_types_are_input_errors(paper, call):
     with pytest.raises(superball.InputError) as e:
         call(paper)
     assert "\n" not in str(e.value)
+
+
+def test_checks_have_short_reprs_and_html():
+    a = superball.audit(samples=50)
+    v = superball.verify(case="1", alphas=2, epsilons=["1/100"], samples=30, boundary_pairs=2)
+    e = superball.explore(case="1", alphas=2, starts=4, evaluations=200)
+    t = superball.explore(all_patterns=True, starts=1, evaluations=10)
+    for result, words in ((a, "printed conditions"), (v, "case 1"), (e, "reach yes"), (t, "patterns x")):
+        r = repr(result)
+        assert "\n" not in r and len(r) < 200 and words in r, r
+        assert result._repr_html_().startswith("<div>")
+    assert str(v) in v._repr_html_().replace("&gt;", ">").replace("&lt;", "<").replace("&quot;", '"').replace("&#x27;", "'").replace("&amp;", "&")
