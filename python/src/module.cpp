@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -31,6 +32,7 @@
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/certify.hpp"
 #include "superball/numeric/parallel.hpp"
+#include "superball/numeric/psd_along.hpp"
 #include "superball/numeric/sweep.hpp"
 #include "superball/present/audit.hpp"
 #include "superball/present/derivation.hpp"
@@ -190,29 +192,49 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
   py::array_t<double> u({count, n});
   py::array_t<std::int32_t> codes(count);
   py::array_t<std::int8_t> status(count);
+  py::array_t<bool> psd(count);
   CaseTable table;
   {
     double* xd = x.mutable_data();
     double* ud = u.mutable_data();
     std::int32_t* cd = codes.mutable_data();
     std::int8_t* sd = status.mutable_data();
+    bool* pd = psd.mutable_data();
     py::gil_scoped_release release;
     const std::lock_guard<std::mutex> hold(*values.lock);
-    // Every value admissible before anything is solved, then the values a chunk at a time, so that
-    // the library's per-value results (a few hundred bytes each) never exceed a chunk's.
+    // The values where M is positive semi-definite are solved, the others marked (NaN, case -1, status -1),
+    // as a map marks its points; every value solved is admissible before anything is solved (check_range() of
+    // the smallest and largest of them), then the values are solved a chunk at a time, so that the library's
+    // per-value results (a few hundred bytes each) never exceed a chunk's.
+    const std::vector<bool> marked = numeric::psd_along(scene, parameter, values.exact);
+    std::vector<std::size_t> solved;
+    for (std::size_t k = 0; k < marked.size(); ++k) {
+      pd[k] = marked[k];
+      if (marked[k]) solved.push_back(k);
+      else cd[k] = -1, sd[k] = -1;
+      if (!marked[k])
+        for (py::ssize_t i = 0; i < n; ++i) ud[static_cast<py::ssize_t>(k) * n + i] = std::numeric_limits<double>::quiet_NaN();
+    }
     const auto [low, high] = std::minmax_element(values.exact.begin(), values.exact.end(),
                                                  [](const cln::cl_RA& a, const cln::cl_RA& b) { return a < b; });
-    numeric::check_range(scene, parameter, *low, *high);
+    if (solved.empty())
+      throw InputError(scene.origin + ": M is not positive semi-definite at any value of the sweep (" + parameter.key() + " from " +
+                       numeric::to_string(*low) + " to " + numeric::to_string(*high) + "): nothing to solve");
+    const auto [slow, shigh] = std::minmax_element(solved.begin(), solved.end(),
+                                                   [&](std::size_t a, std::size_t b) { return values.exact[a] < values.exact[b]; });
+    numeric::check_range(scene, parameter, values.exact[*slow], values.exact[*shigh]);
     fill_doubles(values, xd);
-    const auto total = values.exact.size();
+    const auto total = solved.size();
     for (std::size_t first = 0; first < total; first += kSweepChunk) {
       between_tasks(progress, "values", first, total);
-      const auto end = values.exact.begin() + static_cast<std::ptrdiff_t>(std::min(total, first + kSweepChunk));
-      const std::vector<cln::cl_RA> chunk(values.exact.begin() + static_cast<std::ptrdiff_t>(first), end);
+      const std::size_t size = std::min(total, first + kSweepChunk) - first;
+      std::vector<cln::cl_RA> chunk;
+      chunk.reserve(size);
+      for (std::size_t j = 0; j < size; ++j) chunk.push_back(values.exact[solved[first + j]]);
       const auto points = numeric::sweep(scene, parameter, chunk, p, threads);
       for (std::size_t j = 0; j < points.size(); ++j) {
         const auto& pt = points[j];
-        const auto k = static_cast<py::ssize_t>(first + j);
+        const auto k = static_cast<py::ssize_t>(solved[first + j]);
         for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
         cd[k] = table.code(pt.closed);
         sd[k] = static_cast<std::int8_t>(pt.status);
@@ -220,7 +242,7 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
     }
     between_tasks(progress, "values", total, total);
   }
-  return py::make_tuple(x, u, codes, table.names(), status);
+  return py::make_tuple(x, u, codes, table.names(), status, psd);
 }
 
 /// switch_points(): one tuple per change of case, in increasing value:

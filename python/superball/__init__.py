@@ -570,7 +570,10 @@ class SweepResult:
     ``case_codes``: int32 (N,), the number of each value's case in
     ``case_list`` (the distinct cases, in the order met) and
     ``closed_list`` (their closed contacts); ``status_codes``: int8
-    (0 success, see :data:`STATUSES`); ``status``: the names.
+    (0 success, see :data:`STATUSES`); ``status``: the names.  ``psd``:
+    bool (N,), M positive semi-definite at the value; where it is not, the
+    value is not solved (as in a map): NaN velocities, case ``""``, case
+    and status code −1.
     """
 
     key: str
@@ -582,6 +585,7 @@ class SweepResult:
     case_list: Tuple[str, ...]
     closed_list: Tuple[Tuple[str, ...], ...]
     status_codes: np.ndarray
+    psd: Optional[np.ndarray] = None
     scene: Optional["Scene"] = field(default=None, compare=False)
     exact_values: Any = field(default=None, compare=False)  #: the library's exact values (for switch_points())
 
@@ -626,16 +630,18 @@ class SweepResult:
 
     @property
     def status(self) -> np.ndarray:
-        return np.asarray(STATUSES, dtype=object)[self.status_codes].astype(str)
+        """The status names ("" where M is not PSD and the value is not solved)."""
+        return np.asarray(STATUSES + ("",), dtype=object)[self.status_codes].astype(str)
 
     @property
     def ok(self) -> bool:
-        """Whether every value solved with status success."""
+        """Whether every value solved with status success (and M is PSD at every value)."""
         return bool(np.all(self.status_codes == 0))
 
     def closed(self, k: int) -> Tuple[str, ...]:
-        """The contacts closed at ``values[k]``."""
-        return self.closed_list[int(self.case_codes[k])]
+        """The contacts closed at ``values[k]`` (() where it is not solved)."""
+        code = int(self.case_codes[k])
+        return self.closed_list[code] if code >= 0 else ()
 
     def __len__(self) -> int:
         return len(self.values)
@@ -647,8 +653,10 @@ def sweep(scene: Scene, key: str, values: Any, precision: str = "double", thread
     ``key`` as in :meth:`Scene.with_value` (``"K.3-4"``).  ``values``: a
     :func:`linspace` (exact, as the command line), a NumPy array or sequence
     of floats (each double exactly), or ints, Fractions, strings.  The range
-    is checked first (every value admissible, or :class:`InputError` before
-    anything is solved).  Solved on ``threads`` threads (0: all cores) with
+    is checked first: values where M is not positive semi-definite (decided
+    exactly) are marked in ``psd`` and not solved; any other inadmissible
+    value, or M PSD at no value, raises :class:`InputError` before anything
+    is solved.  Solved on ``threads`` threads (0: all cores) with
     the GIL released; the result does not depend on ``threads``, bit for bit.
     ``progress``: a callable ``(phase, done, total)`` told after each block
     of 2¹⁶ values, True/False, or None (a bar on standard error when it is a
@@ -660,10 +668,10 @@ def sweep(scene: Scene, key: str, values: Any, precision: str = "double", thread
     threads = _int_option(threads, "threads")
     if threads < 0:
         raise InputError(f"threads must be >= 0 (0: all cores), got {threads}")
-    x, u, codes, (names, closed), status = _superball.sweep(scene._scene, _str_option(key, "key"), v, _str_option(precision, "precision"),
+    x, u, codes, (names, closed), status, psd = _superball.sweep(scene._scene, _str_option(key, "key"), v, _str_option(precision, "precision"),
                                                             threads, _progress.resolve(progress, "sweep"))
-    cases = np.array(names, dtype=str)[codes] if len(names) else np.array([], dtype=str)
-    return SweepResult(str(key), str(precision), x, u, cases, codes, tuple(names), tuple(tuple(c) for c in closed), status, scene, v)
+    cases = np.array(list(names) + [""], dtype=str)[codes]
+    return SweepResult(str(key), str(precision), x, u, cases, codes, tuple(names), tuple(tuple(c) for c in closed), status, psd, scene, v)
 
 
 @dataclass(frozen=True)

@@ -139,6 +139,7 @@ class SweepResult:
     case_list: Tuple[str, ...]
     closed_list: Tuple[Tuple[str, ...], ...]
     status_codes: npt.NDArray[np.int8]
+    psd: Optional[npt.NDArray[np.bool_]]
     scene: Optional[Scene]
     exact_values: Any
     @property

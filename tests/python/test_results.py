@@ -79,3 +79,20 @@ def test_checks_have_short_reprs_and_html():
         assert "\n" not in r and len(r) < 200 and words in r, r
         assert result._repr_html_().startswith("<div>")
     assert str(v) in v._repr_html_().replace("&gt;", ">").replace("&lt;", "<").replace("&quot;", '"').replace("&#x27;", "'").replace("&amp;", "&")
+
+
+def test_sweep_marks_values_where_m_is_not_psd(paper):
+    """alpha.2 from -110 to 0: M is PSD only from about -102.47 on; the others are marked, not a failed sweep."""
+    s = superball.sweep(paper, "alpha.2", superball.linspace(-110, 0, 111), progress=False)
+    assert s.psd.dtype == np.bool_ and s.psd.sum() == 103 and not s.psd[:8].any() and s.psd[8:].all()  # -102 … 0
+    assert np.isnan(s.velocities[:8]).all() and np.isnan(s.ratio[:8]).all() and (s.cases[:8] == "").all()
+    assert (s.case_codes[:8] == -1).all() and (s.status[:8] == "").all() and s.closed(0) == () and not s.ok
+    for k in (0, 7):  # solve() refuses those values, naming M
+        with pytest.raises(superball.InputError, match="not positive semi-definite"):
+            superball.solve(paper.with_value("alpha.2", -110 + k), "double")
+    for k in (8, 60, 110):
+        r = superball.solve(paper.with_value("alpha.2", -110 + k), "double")
+        np.testing.assert_array_equal(s.velocities[k], r.velocities_after)
+        assert s.cases[k] == r.case
+    with pytest.raises(superball.InputError, match="M is not positive semi-definite at any value of the sweep"):
+        superball.sweep(paper, "alpha.2", [-200, -150], progress=False)
