@@ -5,6 +5,7 @@
 
 #include <cln/rational.h>
 
+#include <cstddef>
 #include <vector>
 
 #include "superball/cases/parameter.hpp"
