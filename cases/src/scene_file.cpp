@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cstring>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <vector>
@@ -421,6 +422,41 @@ Scene parse_scene(const std::string& file_text, const std::string& origin) {
     throw InputError(printable(os.str()));
   }
   return SceneReader(text, origin).read(root);
+}
+
+namespace {
+
+/// \p v as a TOML node of the same shape (no source position: messages name
+/// the field only); \p field names it in the message of a value too deep.
+std::unique_ptr<toml::node> toml_node(const SceneValue& v, const std::string& origin, const std::string& field, int depth) {
+  if (depth > max_scene_nesting)
+    throw InputError(printable(origin + ": " + field + ": tables and arrays nest deeper than " + std::to_string(max_scene_nesting) +
+                               " levels (a scene needs a few)"));
+  switch (v.kind) {
+    case SceneValue::Kind::String: return std::make_unique<toml::value<std::string>>(v.text);
+    case SceneValue::Kind::Boolean: return std::make_unique<toml::value<bool>>(v.flag);
+    case SceneValue::Kind::Array: {
+      auto a = std::make_unique<toml::array>();
+      for (std::size_t k = 0; k < v.items.size(); ++k)
+        a->push_back(std::move(*toml_node(v.items[k], origin, field + "[" + std::to_string(k + 1) + "]", depth + 1)));
+      return a;
+    }
+    case SceneValue::Kind::Table: break;
+  }
+  auto t = std::make_unique<toml::table>();
+  for (const auto& [key, value] : v.members) {
+    if (t->contains(key)) throw InputError(printable(origin + ": " + (field.empty() ? "" : field + ".") + key + ": given twice"));
+    t->insert(key, std::move(*toml_node(value, origin, field.empty() ? key : field + "." + key, depth + 1)));
+  }
+  return t;
+}
+
+}  // namespace
+
+Scene scene_from_value(const SceneValue& root, const std::string& origin) {
+  if (root.kind != SceneValue::Kind::Table) throw InputError(printable(origin + ": a scene is a table of keys (title, body, ...)"));
+  const std::unique_ptr<toml::node> tree = toml_node(root, origin, "", 0);
+  return SceneReader("", origin).read(*tree->as_table());
 }
 
 namespace {

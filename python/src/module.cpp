@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -23,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "convert.hpp"
 #include "superball/cases/error.hpp"
 #include "superball/cases/parameter.hpp"
 #include "superball/cases/printed_conditions.hpp"
@@ -30,6 +32,7 @@
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/certify.hpp"
 #include "superball/numeric/parallel.hpp"
+#include "superball/numeric/psd_along.hpp"
 #include "superball/numeric/sweep.hpp"
 #include "superball/present/audit.hpp"
 #include "superball/present/derivation.hpp"
@@ -178,7 +181,8 @@ constexpr std::size_t kSweepChunk = std::size_t{1} << 16;
 
 /// sweep(): values, U (one row per value), case numbers into the table of
 /// distinct cases (names, closed contacts), status codes; the GIL is released while it solves.
-py::tuple sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads) {
+py::tuple sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads,
+                py::object progress) {
   const Parameter parameter = Parameter::parse(key, scene);
   const auto p = numeric::Precision::parse(precision);
   if (values.exact.empty()) throw std::invalid_argument("sweep: no value to solve");
@@ -188,35 +192,57 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
   py::array_t<double> u({count, n});
   py::array_t<std::int32_t> codes(count);
   py::array_t<std::int8_t> status(count);
+  py::array_t<bool> psd(count);
   CaseTable table;
   {
     double* xd = x.mutable_data();
     double* ud = u.mutable_data();
     std::int32_t* cd = codes.mutable_data();
     std::int8_t* sd = status.mutable_data();
+    bool* pd = psd.mutable_data();
     py::gil_scoped_release release;
     const std::lock_guard<std::mutex> hold(*values.lock);
-    // Every value admissible before anything is solved, then the values a chunk at a time, so that
-    // the library's per-value results (a few hundred bytes each) never exceed a chunk's.
+    // The values where M is positive semi-definite are solved, the others marked (NaN, case -1, status -1),
+    // as a map marks its points; every value solved is admissible before anything is solved (check_range() of
+    // the smallest and largest of them), then the values are solved a chunk at a time, so that the library's
+    // per-value results (a few hundred bytes each) never exceed a chunk's.
+    const std::vector<bool> marked = numeric::psd_along(scene, parameter, values.exact);
+    std::vector<std::size_t> solved;
+    for (std::size_t k = 0; k < marked.size(); ++k) {
+      pd[k] = marked[k];
+      if (marked[k]) solved.push_back(k);
+      else cd[k] = -1, sd[k] = -1;
+      if (!marked[k])
+        for (py::ssize_t i = 0; i < n; ++i) ud[static_cast<py::ssize_t>(k) * n + i] = std::numeric_limits<double>::quiet_NaN();
+    }
     const auto [low, high] = std::minmax_element(values.exact.begin(), values.exact.end(),
                                                  [](const cln::cl_RA& a, const cln::cl_RA& b) { return a < b; });
-    numeric::check_range(scene, parameter, *low, *high);
+    if (solved.empty())
+      throw InputError(scene.origin + ": M is not positive semi-definite at any value of the sweep (" + parameter.key() + " from " +
+                       numeric::to_string(*low) + " to " + numeric::to_string(*high) + "): nothing to solve");
+    const auto [slow, shigh] = std::minmax_element(solved.begin(), solved.end(),
+                                                   [&](std::size_t a, std::size_t b) { return values.exact[a] < values.exact[b]; });
+    numeric::check_range(scene, parameter, values.exact[*slow], values.exact[*shigh]);
     fill_doubles(values, xd);
-    const auto total = values.exact.size();
+    const auto total = solved.size();
     for (std::size_t first = 0; first < total; first += kSweepChunk) {
-      const auto end = values.exact.begin() + static_cast<std::ptrdiff_t>(std::min(total, first + kSweepChunk));
-      const std::vector<cln::cl_RA> chunk(values.exact.begin() + static_cast<std::ptrdiff_t>(first), end);
+      between_tasks(progress, "values", first, total);
+      const std::size_t size = std::min(total, first + kSweepChunk) - first;
+      std::vector<cln::cl_RA> chunk;
+      chunk.reserve(size);
+      for (std::size_t j = 0; j < size; ++j) chunk.push_back(values.exact[solved[first + j]]);
       const auto points = numeric::sweep(scene, parameter, chunk, p, threads);
       for (std::size_t j = 0; j < points.size(); ++j) {
         const auto& pt = points[j];
-        const auto k = static_cast<py::ssize_t>(first + j);
+        const auto k = static_cast<py::ssize_t>(solved[first + j]);
         for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
         cd[k] = table.code(pt.closed);
         sd[k] = static_cast<std::int8_t>(pt.status);
       }
     }
+    between_tasks(progress, "values", total, total);
   }
-  return py::make_tuple(x, u, codes, table.names(), status);
+  return py::make_tuple(x, u, codes, table.names(), status, psd);
 }
 
 /// switch_points(): one tuple per change of case, in increasing value:
@@ -300,9 +326,9 @@ std::vector<py::dict> derive(const py::dict& options) {
   return out;
 }
 
-/// verify(): per case, to_json(Verification) as text, its report, and whether the exact conditions agree.
+/// verify(): per case, to_json(Verification) as Python objects, its report, and whether the exact conditions agree.
 std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<std::string>& epsilons, int samples, int boundary_pairs,
-                                    std::uint64_t seed, int threads) {
+                                    std::uint64_t seed, int threads, const py::object& progress) {
   verify::VerifyOptions o;
   if (!epsilons.empty()) {
     o.epsilons.clear();
@@ -328,13 +354,14 @@ std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<s
   if (sel.cases.empty()) throw std::invalid_argument("verify: give a case (case=, closed= or all=True)");
   std::vector<py::tuple> out;
   for (const ContactSet& c : sel.cases) {
+    o.runner = interruptible_runner(progress, {"drawn points", "boundaries"});  // progress and Ctrl-C between tasks
     const verify::Verification v = verify::verify_case(*sel.deriver, c, o);
-    out.push_back(py::make_tuple(verify::to_json(v).dump(), verify::to_text(v), v.exact_agrees()));
+    out.push_back(py::make_tuple(to_python(verify::to_json(v)), verify::to_text(v), v.exact_agrees()));
   }
   return out;
 }
 
-/// audit(): the JSON of `superball audit --json` as text, and its report.
+/// audit(): the JSON of `superball audit --json` as Python objects, and its report.
 py::tuple audit(const std::string& epsilon, int samples, std::uint64_t seed) {
   verify::AuditOptions o;
   o.epsilon = parse_exact(epsilon);
@@ -343,10 +370,10 @@ py::tuple audit(const std::string& epsilon, int samples, std::uint64_t seed) {
   o.samples = samples;
   o.seed = seed;
   const verify::Audit a = verify::audit_paper(PrintedConditions::paper(), o);
-  return py::make_tuple(present::audit_json(a).dump(), verify::to_text(a));
+  return py::make_tuple(to_python(present::audit_json(a)), verify::to_text(a));
 }
 
-/// explore(): per case (or per cell of the table), to_json as text and the report.
+/// explore(): per case (or per cell of the table), to_json as Python objects, the report and the witness scene.
 std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::uint64_t seed, int starts, int evaluations, double box_low,
                                double box_high) {
   verify::ExploreOptions o;
@@ -358,14 +385,14 @@ std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::
   std::vector<py::tuple> out;
   if (all_patterns) {
     const verify::PatternTable t = verify::explore_all_patterns(o);
-    out.push_back(py::make_tuple(verify::to_json(t).dump(), verify::to_text(t)));
+    out.push_back(py::make_tuple(to_python(verify::to_json(t)), verify::to_text(t)));
     return out;
   }
   const present::Selection sel = present::resolve(selection(options));
   if (sel.cases.empty()) throw std::invalid_argument("explore: give a case (case=, closed= or all=True) or all_patterns=True");
   for (const ContactSet& c : sel.cases) {
     const verify::ExploreResult r = verify::explore_case(*sel.deriver, c, o);
-    out.push_back(py::make_tuple(verify::to_json(r).dump(), verify::to_text(r), r.scene ? write_scene(*r.scene) : std::string()));
+    out.push_back(py::make_tuple(to_python(verify::to_json(r)), verify::to_text(r), r.scene ? py::cast(*r.scene) : py::none()));
   }
   return out;
 }
@@ -459,18 +486,20 @@ PYBIND11_MODULE(_superball, m) {
       .def_property_readonly("before", [](const present::Presented& p) { return py::array_t<double>(p.before.size(), p.before.data()); })
       .def_property_readonly("after", [](const present::Presented& p) { return py::array_t<double>(p.after.size(), p.after.data()); })
       .def_property_readonly("reactions", [](const present::Presented& p) { return py::array_t<double>(p.reactions.size(), p.reactions.data()); })
-      .def("to_json", [](const present::Presented& p) { return present::to_json(p).dump(); })
+      .def("to_dict", [](const present::Presented& p) { return to_python(present::to_json(p)); })
       .def("to_text", [](const present::Presented& p) { return present::to_text(p); });
 
   m.def("solve", &solve, py::arg("scene"), py::arg("precision"), py::arg("rtol"));
-  m.def("sweep", &sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"));
+  m.def("sweep", &sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"), py::arg("progress"));
   m.def("switch_points", &switch_points, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("bits"), py::arg("threads"));
   m.def("derive", &derive, py::arg("options"));
   m.def("verify", &verify_cases, py::arg("options"), py::arg("epsilons"), py::arg("samples"), py::arg("boundary_pairs"), py::arg("seed"),
-        py::arg("threads"));
+        py::arg("threads"), py::arg("progress"));
   m.def("audit", &audit, py::arg("epsilon"), py::arg("samples"), py::arg("seed"));
   m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
         py::arg("box_low"), py::arg("box_high"));
+  register_map(m);
+  register_scene(m);
   m.def("thread_count", &numeric::thread_count, py::arg("requested"));
   m.attr("default_rtol") = numeric::default_rtol;
   m.attr("__version__") = SUPERBALL_VERSION;

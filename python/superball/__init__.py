@@ -43,12 +43,12 @@ from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import _superball
+from . import _progress, _superball
 
 __all__ = [
     "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "sweep",
     "SwitchPoint", "switch_points", "Condition", "Derivation", "derive", "audit", "verify", "explore",
-    "DEFAULT_RTOL", "STATUSES",
+    "DEFAULT_RTOL", "STATUSES", "map", "MapResult", "BoundaryPoint", "MapCurve", "MapAxis",
 ]
 
 Error = _superball.Error
@@ -94,79 +94,89 @@ def _number_text(value: Any, what: str) -> str:
         raise InputError(f"{what}: expected a number, got {value!r}") from None
 
 
-def _toml_string(text: str) -> str:
-    # A TOML basic string; JSON's escapes are TOML's (control characters as \\uXXXX).
-    return _json.dumps(text, ensure_ascii=False)
+def _check_scene(scene: Any, function: str) -> None:
+    if not isinstance(scene, Scene):
+        raise InputError(f"{function}: expected a superball.Scene, got {type(scene).__name__}")
+
+
+def _int_option(value: Any, name: str) -> int:
+    """An int argument; anything else (a bool, a float, a string) is an InputError naming it."""
+    if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
+        raise InputError(f"{name}: expected an int, got {value!r}")
+    return int(value)
+
+
+def _str_option(value: Any, name: str) -> str:
+    if not isinstance(value, str):
+        raise InputError(f"{name}: expected a string, got {value!r}")
+    return value
+
+
+def _scene_number(value: Any) -> Any:
+    """A number of a scene as a scene file spells it (exact); anything else as it is,
+    for the scene reader to refuse naming the field ("must be a number …")."""
+    if isinstance(value, (bool, str, list, tuple, dict)) or value is None:
+        return value
+    if isinstance(value, (_numbers.Number, Fraction)) or hasattr(value, "as_integer_ratio"):
+        return _number_text(value, "number")
+    return value
 
 
 _SCENE_KEYS = ("title", "fall_speed", "drop_height", "g", "bodies", "K", "alpha", "coupling", "flight")
 
 
-def _scene_toml(d: Mapping[str, Any]) -> str:
+def _coupling_value(c: Any) -> Any:
+    """A coupling as a scene file's {pairs = [p, q], value = v}, from a dict, (p, q, v), ((p, q), v) or ("p/q", v)."""
+    if isinstance(c, Mapping):
+        pairs, value = c.get("pairs"), c.get("value")
+        rest = {k: v for k, v in c.items() if k not in ("pairs", "value")}
+    elif isinstance(c, (tuple, list)) and len(c) == 3:
+        pairs, value, rest = [c[0], c[1]], c[2], {}
+    elif isinstance(c, (tuple, list)) and len(c) == 2:
+        pairs, value, rest = c[0], c[1], {}
+    else:
+        return c  # refused by the reader, naming the field
+    if isinstance(pairs, str):
+        pairs = pairs.split("/")
+    out = {"pairs": [str(p) for p in pairs] if isinstance(pairs, (list, tuple)) else pairs, "value": _scene_number(value), **rest}
+    return {k: v for k, v in out.items() if v is not None}
+
+
+def _scene_value(d: Mapping[str, Any], what: str) -> Dict[str, Any]:
+    """The keywords of :class:`Scene` as the tree of a scene file (title, body, dissipation, flight),
+    numbers spelled exactly: the library builds and checks the scene from it (no TOML text)."""
     unknown = [k for k in d if k not in _SCENE_KEYS]
     if unknown:
-        raise InputError(f"Scene.from_dict: unknown key '{unknown[0]}' (expected one of: {', '.join(_SCENE_KEYS)})")
-    lines: List[str] = []
+        raise InputError(f"{what}: unknown key '{unknown[0]}' (expected one of: {', '.join(_SCENE_KEYS)})")
+    v: Dict[str, Any] = {}
     if d.get("title") is not None:
-        lines.append(f"title = {_toml_string(str(d['title']))}")
+        v["title"] = d["title"]
     for key in ("fall_speed", "drop_height", "g"):
         if d.get(key) is not None:
-            lines.append(f"{key} = {_toml_string(_number_text(d[key], key))}")
+            v[key] = _scene_number(d[key])
     bodies = d.get("bodies")
-    if bodies is None:
-        raise InputError("Scene.from_dict: bodies: required (a list of masses, or of {'mass': …, 'velocity': …})")
-    for k, body in enumerate(bodies):
-        lines.append("[[body]]")
-        if isinstance(body, Mapping):
-            extra = [x for x in body if x not in ("mass", "velocity")]
-            if extra:
-                raise InputError(f"Scene.from_dict: bodies[{k}]: unknown key '{extra[0]}' (expected mass, velocity)")
-            if "mass" in body:
-                lines.append(f"mass = {_toml_string(_number_text(body['mass'], f'bodies[{k}].mass'))}")
-            if body.get("velocity") is not None:
-                lines.append(f"velocity = {_toml_string(_number_text(body['velocity'], f'bodies[{k}].velocity'))}")
-        else:
-            lines.append(f"mass = {_toml_string(_number_text(body, f'bodies[{k}]'))}")
-    diss: List[str] = []
+    if bodies is not None:
+        if isinstance(bodies, (str, Mapping)) or not isinstance(bodies, Iterable):
+            raise InputError(f"{what}: bodies: expected a list of masses, or of {{'mass': …, 'velocity': …}}, got {bodies!r}")
+        v["body"] = [{k: _scene_number(x) for k, x in b.items()} if isinstance(b, Mapping) else {"mass": _scene_number(b)} for b in bodies]
+    dissipation: Dict[str, Any] = {}
     for key in ("K", "alpha"):
         if d.get(key):
-            items = ", ".join(f"{_toml_string(str(p))} = {_toml_string(_number_text(v, f'{key}[{p}]'))}" for p, v in d[key].items())
-            diss.append(f"{key} = {{ {items} }}")
+            m = d[key]
+            dissipation[key] = {str(p): _scene_number(x) for p, x in m.items()} if isinstance(m, Mapping) else m
     if d.get("coupling"):
-        entries = []
-        for c in d["coupling"]:
-            if isinstance(c, Mapping):
-                pairs, value = c.get("pairs"), c.get("value")
-            else:
-                pairs, value = c
-            if isinstance(pairs, str):
-                pairs = pairs.split("/")
-            entries.append(f"{{ pairs = [{', '.join(_toml_string(str(p)) for p in pairs)}], "
-                           f"value = {_toml_string(_number_text(value, f'coupling {pairs}'))} }}")
-        diss.append(f"coupling = [ {', '.join(entries)} ]")
-    if diss:
-        lines.append("[dissipation]")
-        lines.extend(diss)
+        c = d["coupling"]
+        dissipation["coupling"] = [_coupling_value(x) for x in c] if isinstance(c, (list, tuple)) else c
+    if dissipation:
+        v["dissipation"] = dissipation
     flight = d.get("flight")
-    if flight:
-        lines.append("[flight]")
-        if isinstance(flight, Mapping) and flight.get("duration") is not None:
-            lines.append(f"duration = {_toml_string(_number_text(flight['duration'], 'flight.duration'))}")
-    return "\n".join(lines) + "\n"
-
-
-def _parse_built(text: str, origin: str) -> Any:
-    """The scene of TOML text made from keywords or a dict: the loader's checks and
-    messages, without the line and column of a text the user never wrote."""
-    try:
-        return _superball.Scene.parse(text, origin)
-    except InputError as e:
-        message = str(e)
-        rest = message[len(origin):] if message.startswith(origin + ":") else ""
-        place = rest.split(" ", 1)[0]  # ":LINE:COL:"
-        if rest and place.count(":") == 3 and place[1:-1].replace(":", "").isdigit():
-            raise InputError(origin + ": " + rest.split(" ", 1)[1]) from None
-        raise
+    if flight is True:
+        v["flight"] = {}
+    elif isinstance(flight, Mapping):
+        v["flight"] = {k: _scene_number(x) for k, x in flight.items()}
+    elif flight not in (None, False):
+        v["flight"] = flight
+    return v
 
 
 class Scene:
@@ -198,10 +208,10 @@ class Scene:
         if _scene is not None:
             self._scene = _scene
             return
-        coupling = [c if isinstance(c, Mapping) or len(c) == 2 else ((c[0], c[1]), c[2]) for c in (coupling or [])]
         d = {"title": title, "fall_speed": fall_speed, "drop_height": drop_height, "g": g, "bodies": bodies, "K": K,
              "alpha": alpha, "coupling": coupling, "flight": flight}
-        self._scene = _parse_built(_scene_toml(d), title or "<scene>")
+        origin = title if isinstance(title, str) and title else "<scene>"
+        self._scene = _superball.Scene.from_value(_scene_value(d, "Scene"), origin)
 
     @classmethod
     def load(cls, path: Any) -> "Scene":
@@ -217,10 +227,11 @@ class Scene:
     def from_dict(cls, d: Mapping[str, Any]) -> "Scene":
         """A scene from a dict with the keyword arguments of :class:`Scene` as keys
         (``{"bodies": [...], "fall_speed": 3.13209, "K": {...}, "alpha": {...}}``)."""
-        d = dict(d)
-        if "coupling" in d and d["coupling"]:
-            d["coupling"] = [c if isinstance(c, Mapping) or len(c) == 2 else ((c[0], c[1]), c[2]) for c in d["coupling"]]
-        return cls(_scene=_parse_built(_scene_toml(d), str(d.get("title") or "<dict>")))
+        if not isinstance(d, Mapping):
+            raise InputError(f"Scene.from_dict: expected a dict, got {type(d).__name__}")
+        title = d.get("title")
+        origin = title if isinstance(title, str) and title else "<dict>"
+        return cls(_scene=_superball.Scene.from_value(_scene_value(d, "Scene.from_dict"), origin))
 
     def with_value(self, key: str, value: Number) -> "Scene":
         """A copy with the parameter ``key`` set to ``value``.
@@ -256,8 +267,74 @@ class Scene:
         """The masses, exact (``inf`` for a fixed obstacle)."""
         return [float("inf") if m == "inf" else Fraction(m) for m in self._scene.masses]
 
+    @property
+    def velocities(self) -> List[Optional[Fraction]]:
+        """The velocities given before the collision, per body, exact (None: the body falls at −a)."""
+        return self._scene.velocities
+
+    @property
+    def fall_speed(self) -> Optional[Fraction]:
+        """a, when the scene gives it (else None: a = √(2 g h) from ``drop_height``)."""
+        return self._scene.fall_speed
+
+    @property
+    def drop_height(self) -> Optional[Fraction]:
+        """h, when the scene gives it."""
+        return self._scene.drop_height
+
+    @property
+    def g(self) -> Fraction:
+        """g (9.81 unless given)."""
+        return self._scene.g
+
+    @property
+    def K(self) -> Dict[str, Fraction]:
+        """The diagonal of M as declared: ``{"1-2": Fraction(7), …}``."""
+        return self._scene.matrix["K"]
+
+    @property
+    def alpha(self) -> Dict[int, Fraction]:
+        """The couplings the paper names α₁ … α₇ (4 bodies): ``{2: Fraction(-100)}``."""
+        return self._scene.matrix["alpha"]
+
+    @property
+    def couplings(self) -> Dict[str, Fraction]:
+        """The other couplings (off-diagonal entries of M) as declared: ``{"1-2/2-3": Fraction(3)}``."""
+        return self._scene.matrix["coupling"]
+
+    @property
+    def keys(self) -> List[str]:
+        """The keys of the values the scene holds, as :meth:`with_value`, :func:`sweep` and :func:`map` take them:
+        ``["K.1-2", …, "alpha.2", "mass.1", …, "velocity.4", "fall_speed"]``."""
+        return self._scene.keys
+
+    @property
+    def flight(self) -> bool:
+        """Whether the scene asks for the flight after the collision ([flight])."""
+        return self._scene.flight
+
     def __repr__(self) -> str:
-        return f"Scene({self.origin!r}, bodies={self.bodies}, title={self.title!r})"
+        fall = f"fall_speed={float(self.fall_speed):.6g}" if self.fall_speed is not None else (
+            f"drop_height={float(self.drop_height):.6g}, g={float(self.g):.6g}" if self.drop_height is not None else "no fall")
+        return (f"<superball.Scene {self.origin!r}: {self.bodies} bodies, {fall}, {len(self.K)} K, "
+                f"{len(self.alpha) + len(self.couplings)} couplings>")
+
+    def _repr_html_(self) -> str:
+        e = _html.escape
+
+        def num(x: Any) -> str:
+            return "∞" if x == float("inf") else e(str(x))
+
+        bodies = "".join(f"<tr><td>{i + 1}</td><td>{num(m)}</td><td>{'−a' if v is None else num(v)}</td></tr>"
+                         for i, (m, v) in enumerate(zip(self.masses, self.velocities)))
+        fall = (f"a = {num(self.fall_speed)}" if self.fall_speed is not None else
+                f"h = {num(self.drop_height)}, g = {num(self.g)}" if self.drop_height is not None else "")
+        entries = [f"K<sub>{e(p.replace('-', ''))}</sub> = {num(x)}" for p, x in self.K.items()]
+        entries += [f"α<sub>{k}</sub> = {num(x)}" for k, x in self.alpha.items()]
+        entries += [f"M<sub>{e(p)}</sub> = {num(x)}" for p, x in self.couplings.items()]
+        return (f"<div><b>{e(self.origin)}</b>{': ' + e(self.title) if self.title else ''}<br>{fall}"
+                f"<table><tr><th>body</th><th>mass (kg)</th><th>U⁻ (m/s)</th></tr>{bodies}</table>"
+                f"M: {', '.join(entries) or 'none declared'}<br>keys: {e(', '.join(self.keys))}</div>")
 
 
 # ---------------------------------------------------------------------------
@@ -281,11 +358,12 @@ class Result:
     E⁺ = E⁻ − dissipation ≤ E⁻.
     """
 
-    __slots__ = ("_p", "_cache")
+    __slots__ = ("_p", "_cache", "_before")
 
-    def __init__(self, presented: Any) -> None:
+    def __init__(self, presented: Any, before: Optional[List[Optional[Fraction]]] = None) -> None:
         self._p = presented
         self._cache: Dict[str, Any] = {}
+        self._before = before
 
     # plain fields
     origin = property(lambda self: self._p.origin, doc="The scene's file or label.")
@@ -344,6 +422,23 @@ class Result:
         return self._cache["v"]
 
     @property
+    def velocities_before_exact(self) -> List[Optional[Fraction]]:
+        """U⁻ exactly, whatever the arithmetic of the solve: −a for a falling body, its velocity otherwise
+        (``None`` for a falling body when a = √(2 g h) is irrational)."""
+        return list(self._before) if self._before is not None else [None] * self.bodies
+
+    @property
+    def ratio(self) -> Union[Fraction, float, None]:
+        """U₁⁺/a (U₁⁺/|U₁⁻|; the superball is ratio > 1): a Fraction when the arithmetic is exact and a is
+        rational, else a float in the solve's answer; None when U₁⁻ = 0."""
+        u1 = self.velocities_before_exact[0]
+        after = self.velocities_after_exact
+        if u1 is not None and after is not None and after[0] is not None:
+            return after[0] / abs(u1) if u1 != 0 else None
+        before = float(u1) if u1 is not None else float(self.velocities_before[0])
+        return float(self.velocities_after[0]) / abs(before) if before != 0 else None
+
+    @property
     def reactions(self) -> np.ndarray:
         """R on each contact (N s, ≤ 0), float64, shape (n−1,)."""
         return self._p.reactions
@@ -357,7 +452,7 @@ class Result:
 
     def to_dict(self) -> Dict[str, Any]:
         """Every field, exactly as ``superball solve --json`` writes them."""
-        return _json.loads(self._p.to_json())
+        return self._p.to_dict()
 
     def to_text(self) -> str:
         """The report of ``superball solve``."""
@@ -403,9 +498,11 @@ def solve(scene: Scene, precision: str = "auto", rtol: Optional[float] = None) -
     and checks it against the equations of motion; ``Result.status`` says
     how it ended.  The GIL is released while it solves.
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"solve: expected a superball.Scene, got {type(scene).__name__}")
-    return Result(_superball.solve(scene._scene, str(precision), None if rtol is None else float(rtol)))
+    _check_scene(scene, "solve")
+    if rtol is not None and (isinstance(rtol, bool) or not isinstance(rtol, _numbers.Real)):
+        raise InputError(f"solve: rtol: expected a number, got {rtol!r}")
+    return Result(_superball.solve(scene._scene, _str_option(precision, "precision"), None if rtol is None else float(rtol)),
+                  scene._scene.velocities_before)
 
 
 # ---------------------------------------------------------------------------
@@ -464,7 +561,7 @@ def _values(values: Any) -> Any:
     return _superball.Values.from_text(texts)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class SweepResult:
     """The velocities after the collision along one parameter.
 
@@ -474,7 +571,10 @@ class SweepResult:
     ``case_codes``: int32 (N,), the number of each value's case in
     ``case_list`` (the distinct cases, in the order met) and
     ``closed_list`` (their closed contacts); ``status_codes``: int8
-    (0 success, see :data:`STATUSES`); ``status``: the names.
+    (0 success, see :data:`STATUSES`); ``status``: the names.  ``psd``:
+    bool (N,), M positive semi-definite at the value; where it is not, the
+    value is not solved (as in a map): NaN velocities, case ``""``, case
+    and status code −1.
     """
 
     key: str
@@ -486,43 +586,93 @@ class SweepResult:
     case_list: Tuple[str, ...]
     closed_list: Tuple[Tuple[str, ...], ...]
     status_codes: np.ndarray
+    psd: Optional[np.ndarray] = None
+    scene: Optional["Scene"] = field(default=None, compare=False)
+    exact_values: Any = field(default=None, compare=False)  #: the library's exact values (for switch_points())
+
+    @property
+    def ratio(self) -> np.ndarray:
+        """U₁⁺/a per value (U₁⁺/|U₁⁻|, float64; the superball is ratio > 1), with U₁⁻ exact at each value
+        (NaN where it is 0)."""
+        if self.scene is None:
+            raise Error("SweepResult.ratio: the sweep's scene is not known")
+        keys_of_the_fall = ("velocity.1", "fall_speed", "drop_height", "g")
+        if self.key not in keys_of_the_fall:
+            u1 = self.scene._scene.velocities_before[0]
+            before = np.full(len(self), np.nan if u1 is None else float(u1))
+        else:  # U₁⁻ changes with the value
+            exact = [Fraction(t) for t in self.exact_values.as_text()]
+            before = np.array([float(b) if b is not None else np.nan for b in
+                               (self.scene._scene.with_value(self.key, _number_text(x, self.key)).velocities_before[0] for x in exact)])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(before != 0, self.velocities[:, 0] / np.abs(before), np.nan)
+
+    def switch_points(self, bits: int = 64, threads: int = 0) -> List["SwitchPoint"]:
+        """Where the evolution case changes between this sweep's values (``superball sweep --switch-points``):
+        :func:`switch_points` of the same scene, key and exact values."""
+        if self.scene is None or self.exact_values is None:
+            raise Error("SweepResult.switch_points: the sweep's scene is not known")
+        return _switch_points(self.scene, self.key, self.exact_values, bits, threads, checked=True)
+
+    def __repr__(self) -> str:
+        cases = ", ".join(self.case_list) or "none"
+        span = f"{self.values[0]:.6g} … {self.values[-1]:.6g}" if len(self) else "no value"
+        return (f"<superball.SweepResult {self.key} = {span} ({len(self)} values, {self.precision}): cases {cases}; "
+                f"{'all' if self.ok else int(np.sum(self.status_codes == 0))} solved with success>")
+
+    def _repr_html_(self) -> str:
+        e = _html.escape
+        rows = "".join(f"<tr><td>{e(c)}</td><td>{e(', '.join(cl) or 'none')}</td><td>{int(np.sum(self.case_codes == k))}</td></tr>"
+                       for k, (c, cl) in enumerate(zip(self.case_list, self.closed_list)))
+        span = f"{self.values[0]:.6g} to {self.values[-1]:.6g}" if len(self) else "no value"
+        return (f"<div><b>sweep of {e(self.key)}</b> from {span} ({len(self)} values, {e(self.precision)})"
+                f"<table><tr><th>case</th><th>closed contacts</th><th>values</th></tr>{rows}</table>"
+                f"status: {'every value success' if self.ok else e(', '.join(sorted(set(self.status))))}</div>")
 
     @property
     def status(self) -> np.ndarray:
-        """Each value's solve status as a name (one of ``STATUSES``)."""
-        return np.asarray(STATUSES, dtype=object)[self.status_codes].astype(str)
+        """The status names ("" where M is not PSD and the value is not solved)."""
+        return np.asarray(STATUSES + ("",), dtype=object)[self.status_codes].astype(str)
 
     @property
     def ok(self) -> bool:
-        """Whether every value solved with status success."""
+        """Whether every value solved with status success (and M is PSD at every value)."""
         return bool(np.all(self.status_codes == 0))
 
     def closed(self, k: int) -> Tuple[str, ...]:
-        """The contacts closed at ``values[k]``."""
-        return self.closed_list[int(self.case_codes[k])]
+        """The contacts closed at ``values[k]`` (() where it is not solved)."""
+        code = int(self.case_codes[k])
+        return self.closed_list[code] if code >= 0 else ()
 
     def __len__(self) -> int:
         return len(self.values)
 
 
-def sweep(scene: Scene, key: str, values: Any, precision: str = "double", threads: int = 0) -> SweepResult:
+def sweep(scene: Scene, key: str, values: Any, precision: str = "double", threads: int = 0, progress: Any = None) -> SweepResult:
     """Solve ``scene`` at every value of the parameter ``key`` (``superball sweep``).
 
     ``key`` as in :meth:`Scene.with_value` (``"K.3-4"``).  ``values``: a
     :func:`linspace` (exact, as the command line), a NumPy array or sequence
     of floats (each double exactly), or ints, Fractions, strings.  The range
-    is checked first (every value admissible, or :class:`InputError` before
-    anything is solved).  Solved on ``threads`` threads (0: all cores) with
+    is checked first: values where M is not positive semi-definite (decided
+    exactly) are marked in ``psd`` and not solved; any other inadmissible
+    value, or M PSD at no value, raises :class:`InputError` before anything
+    is solved.  Solved on ``threads`` threads (0: all cores) with
     the GIL released; the result does not depend on ``threads``, bit for bit.
+    ``progress``: a callable ``(phase, done, total)`` told after each block
+    of 2¹⁶ values, True/False, or None (a bar on standard error when it is a
+    terminal); Ctrl-C stops the sweep (KeyboardInterrupt) between two blocks.
+    ``SweepResult.switch_points()`` bisects its case changes exactly.
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"sweep: expected a superball.Scene, got {type(scene).__name__}")
+    _check_scene(scene, "sweep")
     v = _values(values)
-    if int(threads) < 0:
+    threads = _int_option(threads, "threads")
+    if threads < 0:
         raise InputError(f"threads must be >= 0 (0: all cores), got {threads}")
-    x, u, codes, (names, closed), status = _superball.sweep(scene._scene, str(key), v, str(precision), int(threads))
-    cases = np.array(names, dtype=str)[codes] if len(names) else np.array([], dtype=str)
-    return SweepResult(str(key), str(precision), x, u, cases, codes, tuple(names), tuple(tuple(c) for c in closed), status)
+    x, u, codes, (names, closed), status, psd = _superball.sweep(scene._scene, _str_option(key, "key"), v, _str_option(precision, "precision"),
+                                                            threads, _progress.resolve(progress, "sweep"))
+    cases = np.array(list(names) + [""], dtype=str)[codes]
+    return SweepResult(str(key), str(precision), x, u, cases, codes, tuple(names), tuple(tuple(c) for c in closed), status, psd, scene, v)
 
 
 @dataclass(frozen=True)
@@ -553,17 +703,19 @@ def switch_points(scene: Scene, key: str, values: Any, bits: int = 64, threads: 
     found too.  In increasing value, each starting in the case the previous
     one ended in.  GIL released; ``threads`` as in :func:`sweep`.
     """
-    if not isinstance(scene, Scene):
-        raise TypeError(f"switch_points: expected a superball.Scene, got {type(scene).__name__}")
-    v = _values(values)
-    if not isinstance(values, ExactRange):
+    _check_scene(scene, "switch_points")
+    return _switch_points(scene, key, _values(values), bits, threads, checked=isinstance(values, ExactRange))
+
+
+def _switch_points(scene: Scene, key: str, v: Any, bits: int, threads: int, checked: bool) -> List[SwitchPoint]:
+    if not checked:
         x = [Fraction(t) for t in v.as_text()]
         d = [b - a for a, b in zip(x, x[1:])]
         if not (all(s > 0 for s in d) or all(s < 0 for s in d)):
             raise InputError("switch_points: the values must be strictly increasing or strictly decreasing")
     out = []
-    for low, high, middle, width, below, closed_below, above, closed_above in _superball.switch_points(scene._scene, str(key), v, int(bits),
-                                                                                                         int(threads)):
+    for low, high, middle, width, below, closed_below, above, closed_above in _superball.switch_points(
+            scene._scene, _str_option(key, "key"), v, _int_option(bits, "bits"), _int_option(threads, "threads")):
         out.append(SwitchPoint(str(key), float(middle), Fraction(low), Fraction(high), float(width), below, above, tuple(closed_below),
                                tuple(closed_above), middle))
     return out
@@ -737,12 +889,17 @@ def _selection(case: Any, alphas: Any, bodies: int, pairs: Any, coupling: Any, o
         scaling = ",".join(f"{k}={v}" for k, v in scaling.items())
     if coupling is not None and not isinstance(coupling, str):
         coupling = ",".join(c if isinstance(c, str) else "/".join(c) for c in coupling)
-    return {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": int(bodies), "pairs": _list_text(pairs),
-            "coupling": coupling, "obstacle": obstacle, "scaling": scaling, "order": int(order), "closed": _list_text(closed),
+    return {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": _int_option(bodies, "bodies"), "pairs": _list_text(pairs),
+            "coupling": coupling, "obstacle": obstacle, "scaling": scaling, "order": _int_option(order, "order"), "closed": _list_text(closed),
             "all": bool(all), "scene": None if scene is None else str(scene), "no_limit": bool(no_limit)}
 
 
-@dataclass(frozen=True)
+def _text_html(title: str, text: str) -> str:
+    """A result's report for a notebook: a bold title over the command's text."""
+    return f"<div><b>{_html.escape(title)}</b><pre>{_html.escape(text)}</pre></div>"
+
+
+@dataclass(frozen=True, repr=False)
 class AuditResult:
     """The paper's printed conditions (§4.1–§4.3) and claims against the derivation (``superball audit``).
 
@@ -762,16 +919,25 @@ class AuditResult:
     def __str__(self) -> str:
         return self.text
 
+    def __repr__(self) -> str:
+        agreements = [c.get("agreement") for c in self.conditions]
+        different = sum(a == "different" for a in agreements)
+        supported = sum(bool(c.get("supported")) for c in self.claims)
+        return (f"<superball.AuditResult: {len(self.conditions)} printed conditions, {different} different from the derivation; "
+                f"{supported} of {len(self.claims)} claims supported>")
+
+    def _repr_html_(self) -> str:
+        return _text_html("superball audit", self.text)
+
 
 def audit(epsilon: Number = Fraction(1, 1000), samples: int = 20000, seed: int = 1) -> AuditResult:
     """Audit every condition and claim the paper prints (§4.1–§4.3) against the derivation,
     with counterexamples solved exactly; points sampled at m₁ = ε·O(1), K₁₄ = O(1)/ε."""
-    data, text = _superball.audit(_number_text(epsilon, "epsilon"), int(samples), int(seed))
-    d = _json.loads(data)
+    d, text = _superball.audit(_number_text(epsilon, "epsilon"), _int_option(samples, "samples"), _int_option(seed, "seed"))
     return AuditResult(d["conditions"], d["claims"], d, text)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class VerifyResult:
     """A case's derived conditions against exact solutions (``superball verify``).
 
@@ -796,6 +962,14 @@ class VerifyResult:
 
     def __str__(self) -> str:
         return self.text
+
+    def __repr__(self) -> str:
+        eps = ", ".join(f"{e:g}" for e in self.epsilons)
+        return (f"<superball.VerifyResult case {self.case}: exact conditions agree everywhere: {self.exact_agrees}; "
+                f"eps {eps}; {int(self.points.sum())} points>")
+
+    def _repr_html_(self) -> str:
+        return _text_html(f"superball verify, case {self.case}", self.text)
 
 
 def _verify_result(data: Dict[str, Any], text: str, agrees: bool) -> VerifyResult:
@@ -824,7 +998,7 @@ def _verify_result(data: Dict[str, Any], text: str, agrees: bool) -> VerifyResul
 def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
            obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, all: bool = False,
            scene: Any = None, no_limit: bool = False, epsilons: Optional[Sequence[Number]] = None, samples: int = 4000,
-           boundary_pairs: int = 20, seed: int = 1, threads: int = 0) -> Union[VerifyResult, List[VerifyResult]]:
+           boundary_pairs: int = 20, seed: int = 1, threads: int = 0, progress: Any = None) -> Union[VerifyResult, List[VerifyResult]]:
     """Check a case's derived conditions, exact and asymptotic, against exact solutions.
 
     Points of the regime (m₁ ~ ε, K₁ₙ ~ 1/ε; M ⪰ 0) are drawn for each ε of
@@ -833,15 +1007,19 @@ def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pair
     sides of every condition near its boundary; each point is solved exactly
     (rationals) and compared with the conditions.  The case and pattern as
     in :func:`derive`.  Deterministic given ``seed``, whatever ``threads``.
+    ``progress``: a callable ``(phase, done, total)`` ("drawn points", then
+    "boundaries", per case), True/False, or None (a bar on standard error
+    when it is a terminal); Ctrl-C stops it (KeyboardInterrupt) between tasks.
     """
     eps = [] if epsilons is None else [_number_text(e, "epsilons") for e in epsilons]
-    out = [_verify_result(_json.loads(j), text, agrees)
+    out = [_verify_result(j, text, agrees)
            for j, text, agrees in _superball.verify(_selection(case, alphas, bodies, pairs, coupling, obstacle, scaling, order, closed, all,
-                                                               scene, no_limit), eps, int(samples), int(boundary_pairs), int(seed), int(threads))]
+                                                               scene, no_limit), eps, _int_option(samples, "samples"), _int_option(boundary_pairs, "boundary_pairs"), _int_option(seed, "seed"), _int_option(threads, "threads"),
+                                                               _progress.resolve(progress, "verify"))]
     return out if all else out[0]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ExploreResult:
     """Is the superball reachable for a pattern in a case (``superball explore``)?
 
@@ -863,8 +1041,15 @@ class ExploreResult:
     def __str__(self) -> str:
         return self.text
 
+    def __repr__(self) -> str:
+        ratio = f", U1+/a = {float(self.ratio):.6g} (exact)" if self.ratio is not None else ""
+        return f"<superball.ExploreResult case {self.case}: reach {self.reach}{ratio}>"
 
-@dataclass(frozen=True)
+    def _repr_html_(self) -> str:
+        return _text_html(f"superball explore, case {self.case}", self.text)
+
+
+@dataclass(frozen=True, repr=False)
 class PatternTable:
     """``explore(all_patterns=True)``: each α_k (and {α₁, α₆}) against every case.
     ``reach``: a NumPy str array [pattern, case] ("yes", "no (proved)", …);
@@ -878,6 +1063,16 @@ class PatternTable:
 
     def __str__(self) -> str:
         return self.text
+
+    def __repr__(self) -> str:
+        return f"<superball.PatternTable: {len(self.patterns)} patterns x {len(self.cases)} cases>"
+
+    def _repr_html_(self) -> str:
+        e = _html.escape
+        head = "".join(f"<th>{e(c)}</th>" for c in self.cases)
+        rows = "".join(f"<tr><th>{e(p)}</th>" + "".join(f"<td>{e(str(x))}</td>" for x in row) + "</tr>"
+                       for p, row in zip(self.patterns, self.reach))
+        return f"<div><b>superball explore --all-patterns</b><table><tr><th></th>{head}</tr>{rows}</table></div>"
 
 
 def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
@@ -895,17 +1090,21 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pai
     """
     low, high = box
     if all_patterns:
-        (j, text), = _superball.explore({}, True, int(seed), int(starts), int(evaluations), float(low), float(high))
-        d = _json.loads(j)
+        (d, text), = _superball.explore({}, True, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high))
         patterns = [row["cells"][0]["pattern"] if row["cells"] else ",".join(f"alpha{k}" for k in row["alphas"]) for row in d["rows"]]
         reach = np.array([[cell["reach"] for cell in row["cells"]] for row in d["rows"]], dtype=str)
         return PatternTable(patterns, list(d["cases"]), reach, d, text)
     options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene, False)
     out = []
-    for j, text, toml in _superball.explore(options, False, int(seed), int(starts), int(evaluations), float(low), float(high)):
-        d = _json.loads(j)
+    for d, text, witness_scene in _superball.explore(options, False, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high)):
         witness = {k: Fraction(v) for k, v in (d.get("witness") or {}).items()}
         ratio = Fraction(d["ratio"]) if d.get("ratio") is not None and witness else None
-        out.append(ExploreResult(d["case"], d["reach"], ratio, witness, Scene.from_toml(toml, "<witness>") if toml else None, d, text))
+        out.append(ExploreResult(d["case"], d["reach"], ratio, witness, None if witness_scene is None else Scene(_scene=witness_scene), d, text))
     return out if all else out[0]
 
+
+
+# ---------------------------------------------------------------------------
+# Maps over two parameters (python/superball/_map.py)
+
+from ._map import BoundaryPoint, MapAxis, MapCurve, MapResult, map  # noqa: E402  (uses Scene, defined above)

@@ -50,6 +50,25 @@ class Scene:
     def bodies(self) -> int: ...
     @property
     def masses(self) -> List[Union[Fraction, float]]: ...
+    @property
+    def velocities(self) -> List[Optional[Fraction]]: ...
+    @property
+    def fall_speed(self) -> Optional[Fraction]: ...
+    @property
+    def drop_height(self) -> Optional[Fraction]: ...
+    @property
+    def g(self) -> Fraction: ...
+    @property
+    def K(self) -> Dict[str, Fraction]: ...
+    @property
+    def alpha(self) -> Dict[int, Fraction]: ...
+    @property
+    def couplings(self) -> Dict[str, Fraction]: ...
+    @property
+    def keys(self) -> List[str]: ...
+    @property
+    def flight(self) -> bool: ...
+    def _repr_html_(self) -> str: ...
 
 class Result:
     origin: str
@@ -85,6 +104,10 @@ class Result:
     @property
     def velocities_after_exact(self) -> Optional[List[Optional[Fraction]]]: ...
     @property
+    def velocities_before_exact(self) -> List[Optional[Fraction]]: ...
+    @property
+    def ratio(self) -> Union[Fraction, float, None]: ...
+    @property
     def reactions(self) -> npt.NDArray[np.float64]: ...
     @property
     def reactions_exact(self) -> Optional[List[Optional[Fraction]]]: ...
@@ -116,6 +139,13 @@ class SweepResult:
     case_list: Tuple[str, ...]
     closed_list: Tuple[Tuple[str, ...], ...]
     status_codes: npt.NDArray[np.int8]
+    psd: Optional[npt.NDArray[np.bool_]]
+    scene: Optional[Scene]
+    exact_values: Any
+    @property
+    def ratio(self) -> npt.NDArray[np.float64]: ...
+    def switch_points(self, bits: int = ..., threads: int = ...) -> List[SwitchPoint]: ...
+    def _repr_html_(self) -> str: ...
     @property
     def status(self) -> npt.NDArray[np.str_]: ...
     @property
@@ -123,7 +153,7 @@ class SweepResult:
     def closed(self, k: int) -> Tuple[str, ...]: ...
     def __len__(self) -> int: ...
 
-def sweep(scene: Scene, key: str, values: Values, precision: str = ..., threads: int = ...) -> SweepResult: ...
+def sweep(scene: Scene, key: str, values: Values, precision: str = ..., threads: int = ..., progress: Any = ...) -> SweepResult: ...
 
 @dataclass(frozen=True)
 class SwitchPoint:
@@ -197,6 +227,7 @@ class AuditResult:
     claims: List[Dict[str, Any]]
     data: Dict[str, Any]
     text: str
+    def _repr_html_(self) -> str: ...
 
 def audit(epsilon: Number = ..., samples: int = ..., seed: int = ...) -> AuditResult: ...
 
@@ -210,6 +241,7 @@ class VerifyResult:
     asymptotic_agreement: npt.NDArray[np.float64]
     data: Dict[str, Any]
     text: str
+    def _repr_html_(self) -> str: ...
 
 def verify(
     case: Optional[str] = ...,
@@ -229,6 +261,7 @@ def verify(
     boundary_pairs: int = ...,
     seed: int = ...,
     threads: int = ...,
+    progress: Any = ...,
 ) -> Union[VerifyResult, List[VerifyResult]]: ...
 
 @dataclass(frozen=True)
@@ -240,6 +273,7 @@ class ExploreResult:
     scene: Optional[Scene]
     data: Dict[str, Any]
     text: str
+    def _repr_html_(self) -> str: ...
 
 @dataclass(frozen=True)
 class PatternTable:
@@ -248,6 +282,7 @@ class PatternTable:
     reach: npt.NDArray[np.str_]
     data: Dict[str, Any]
     text: str
+    def _repr_html_(self) -> str: ...
 
 def explore(
     case: Optional[str] = ...,
@@ -264,3 +299,60 @@ def explore(
     evaluations: int = ...,
     box: Tuple[float, float] = ...,
 ) -> Union[ExploreResult, List[ExploreResult], PatternTable]: ...
+
+# map(): python/superball/_map.py
+@dataclass(frozen=True)
+class MapAxis:
+    key: str
+    start: Fraction
+    stop: Fraction
+    steps: int
+    values: npt.NDArray[np.float64]
+    def fractions(self) -> List[Fraction]: ...
+
+@dataclass(frozen=True)
+class BoundaryPoint:
+    along: str
+    along_x: bool
+    i: int
+    j: int
+    x: float
+    y: float
+    low: Fraction
+    high: Fraction
+    width: float
+    below: Dict[str, Any]
+    above: Dict[str, Any]
+
+@dataclass(frozen=True)
+class MapCurve:
+    kind: str
+    cases: Tuple[str, ...]
+    closed: bool
+    boundaries: List[int]
+    points: npt.NDArray[np.float64]
+    brackets: List[Tuple[Fraction, Fraction]]
+
+class MapResult:
+    scene: str
+    title: str
+    precision: str
+    x: MapAxis
+    y: MapAxis
+    cases: npt.NDArray[np.str_]
+    case_codes: npt.NDArray[np.int32]
+    case_list: Tuple[str, ...]
+    closed_list: Tuple[Tuple[str, ...], ...]
+    ratio: npt.NDArray[np.float64]
+    superball: npt.NDArray[np.bool_]
+    psd: npt.NDArray[np.bool_]
+    status_codes: npt.NDArray[np.int8]
+    boundary_points: List[BoundaryPoint]
+    curves: List[MapCurve]
+    @property
+    def shape(self) -> Tuple[int, int]: ...
+    def plot(self, ax: Any = ..., curves: bool = ..., legend: bool = ...) -> Any: ...
+    def _repr_html_(self) -> str: ...
+
+def map(scene: Scene, x: Union[str, Tuple[str, Number, Number, int]], y: Union[str, Tuple[str, Number, Number, int]],
+        precision: str = ..., threads: Optional[int] = ..., progress: Any = ...) -> MapResult: ...

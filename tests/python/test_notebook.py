@@ -23,7 +23,8 @@ def test_the_tour_runs():
     text = "".join(o.get("text", "") for o in outputs if o.get("output_type") == "stream")
     assert "case 2.2 -> 3.3" in text and "case 3.3 -> 3.2" in text
     assert "exact conditions agree at every point: True" in text
-    assert any("image/png" in o.get("data", {}) for o in outputs), "the sweep's figure was not drawn"
+    assert "map of " in text and "superball (U1+ > a):" in text and "first boundary point: " in text
+    assert sum("image/png" in o.get("data", {}) for o in outputs) >= 2, "the sweep's and the map's figures were not both drawn"
     assert any("text/latex" in o.get("data", {}) for o in outputs), "no condition was shown as LaTeX"
 
 

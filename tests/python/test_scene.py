@@ -68,9 +68,41 @@ def test_toml_round_trip(paper):
 
 
 def test_repr_names_the_scene(paper):
-    assert "paper-4.4-alpha2.toml" in repr(paper) and "bodies=4" in repr(paper)
+    r = repr(paper)
+    assert "paper-4.4-alpha2.toml" in r and "4 bodies" in r and "fall_speed=3.13209" in r and "\n" not in r
 
 
 def test_flight_table():
     s = superball.Scene(bodies=[1, {"mass": "inf"}], fall_speed=2, K={"1-2": 1}, flight={"duration": 1})
     assert "[flight]" in s.to_toml()
+
+
+def test_a_scene_shows_its_matrix_and_keys(paper):
+    for s in (paper, superball.Scene(**PAPER_KW)):
+        assert s.K == {"1-2": 7, "1-3": 7, "1-4": 1500, "2-3": 10, "2-4": 13, "3-4": 10}
+        assert s.alpha == {2: -100} and s.couplings == {}
+        assert s.fall_speed == Fraction(313209, 100000) and s.drop_height is None and s.g == Fraction(981, 100)
+        assert s.velocities == [None, None, None, 0]
+        assert s.keys == ["K.1-2", "K.1-3", "K.1-4", "K.2-3", "K.2-4", "K.3-4", "alpha.2", "mass.1", "mass.2", "mass.3", "mass.4",
+                          "velocity.4", "fall_speed"]
+        for key in s.keys:  # every key is one with_value() takes, and names the value the scene holds
+            assert s.with_value(key, 1).keys == s.keys
+    html = paper._repr_html_()
+    assert "<table>" in html and "α<sub>2</sub> = -100" in html and "K<sub>34</sub> = 10" in html
+    chain = superball.Scene(bodies=[1, 2, {"mass": "inf"}], drop_height="1/2", K={"1-2": 1},
+                            coupling=[("1-2", "2-3", "1/3"), {"pairs": "1-3/2-3", "value": 0}])
+    assert chain.couplings == {"1-2/2-3": Fraction(1, 3), "1-3/2-3": 0} and chain.alpha == {}
+    assert chain.keys == ["K.1-2", "coupling.1-2/2-3", "coupling.1-3/2-3", "mass.1", "mass.2", "drop_height", "g"]
+    assert chain.masses[2] == float("inf") and chain.drop_height == Fraction(1, 2)
+
+
+def test_a_scene_from_a_dict_is_not_written_as_text(monkeypatch):
+    """The scene is built in C++ from the dict (Scene.from_value): no TOML text is made or parsed."""
+    import superball._superball as ext
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("a scene went through TOML text")
+
+    monkeypatch.setattr(ext.Scene, "parse", refuse)
+    assert superball.Scene(**PAPER_KW).bodies == 4
+    assert superball.Scene.from_dict(PAPER_KW).K["3-4"] == 10

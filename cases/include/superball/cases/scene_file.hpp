@@ -6,6 +6,8 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "superball/cases/error.hpp"
 #include "superball/cases/model.hpp"
@@ -59,6 +61,28 @@ Scene load_scene(const std::string& path);
 /// messages.  A leading UTF-8 byte-order mark is skipped; text nesting deeper
 /// than max_scene_nesting is refused (naming the line) before it is parsed.
 Scene parse_scene(const std::string& text, const std::string& origin);
+
+/// A scene as a structured value, as a front builds it from its own data
+/// (Python's dicts and keywords) rather than as text: the tree of tables,
+/// arrays and values of a scene file (docs/SCENES.md: `title`, `body` an
+/// array of tables, `dissipation.K`, …).  Numbers are strings spelled as a
+/// scene file reads them ("0.001", "1/3", "5e6", "inf"), read exactly.
+struct SceneValue {
+  enum class Kind { Table, Array, String, Boolean };
+  Kind kind = Kind::Table;
+  std::string text;                                         ///< Kind::String
+  bool flag = false;                                        ///< Kind::Boolean
+  std::vector<std::pair<std::string, SceneValue>> members;  ///< Kind::Table, in order
+  std::vector<SceneValue> items;                            ///< Kind::Array
+};
+
+/// The scene of \p root, with every check of parse_scene() by the same
+/// reader: the messages are a file's without its line and column
+/// ("ORIGIN: body[2].mass: must be > 0 (got -1)").  A value nesting deeper
+/// than max_scene_nesting is refused (naming the field) before it is read.
+/// Throws InputError; \p origin names the scene in messages and in
+/// Scene::origin.
+Scene scene_from_value(const SceneValue& root, const std::string& origin);
 
 /// The TOML text of \p scene, in the format load_scene() reads: numbers as
 /// the user spelled them when that spelling is a TOML number, else as an exact

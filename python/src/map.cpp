@@ -1,0 +1,170 @@
+// map(): numeric::map() for Python, its result as NumPy arrays, Fractions and
+// dicts (the numbers of `superball map --json`, built from the same Map).
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <cln/real.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "convert.hpp"
+#include "superball/cases/scene_file.hpp"
+#include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/map.hpp"
+#include "superball/numeric/range.hpp"
+#include "superball/present/map.hpp"
+
+namespace superball::python {
+namespace {
+
+/// An axis of KEY=FROM:TO:STEPS text, read by the library's range parser (its checks and messages).
+numeric::Axis axis(const std::string& name, const std::string& text, const Scene& scene) {
+  const numeric::Range r = numeric::parse_range(name, text, scene, numeric::map_max_steps);
+  return numeric::Axis{r.parameter, r.from, r.to, r.steps};
+}
+
+/// The axis as a dict: key, exact ends, steps, and its values rounded to double.
+py::dict axis_dict(const numeric::Axis& a) {
+  py::dict d;
+  d["key"] = a.parameter.key();
+  d["from"] = fraction(a.from);
+  d["to"] = fraction(a.to);
+  d["steps"] = a.steps;
+  py::array_t<double> values(a.steps);
+  double* v = values.mutable_data();
+  const std::vector<cln::cl_RA> exact = a.values();
+  for (std::size_t k = 0; k < exact.size(); ++k) v[k] = cln::double_approx(exact[k]);
+  d["values"] = std::move(values);
+  return d;
+}
+
+/// A region as the command's JSON has it: case, closed contacts, superball verdict (psd false and nothing else when M is not PSD).
+py::dict region(bool psd, const numeric::Region& r) {
+  py::dict d;
+  d["psd"] = psd;
+  if (!psd) return d;
+  d["case"] = present::case_name(r);
+  d["closed"] = r.closed.closed_names();
+  d["superball"] = r.superball;
+  return d;
+}
+
+/// The map as Python objects: per-point arrays (ny, nx), row j at y_j, column i at x_i.
+py::dict result(const numeric::Map& m, const Scene& scene, const std::string& precision) {
+  const auto nx = static_cast<py::ssize_t>(m.x.steps), ny = static_cast<py::ssize_t>(m.y.steps);
+  py::array_t<double> ratio({ny, nx});
+  py::array_t<bool> superball({ny, nx}), psd({ny, nx});
+  py::array_t<std::int32_t> codes({ny, nx});
+  py::array_t<std::int8_t> status({ny, nx});
+  double* rd = ratio.mutable_data();
+  bool* sd = superball.mutable_data();
+  bool* pd = psd.mutable_data();
+  std::int32_t* cd = codes.mutable_data();
+  std::int8_t* td = status.mutable_data();
+  std::vector<ContactSet> cases;  // the distinct cases, in the order met
+  for (std::size_t k = 0; k < m.points.size(); ++k) {
+    const numeric::MapPoint& p = m.points[k];
+    pd[k] = p.admissible;
+    sd[k] = p.admissible && p.region.superball;
+    rd[k] = p.admissible ? p.ratio : std::numeric_limits<double>::quiet_NaN();
+    td[k] = p.admissible ? static_cast<std::int8_t>(p.status) : std::int8_t{-1};
+    cd[k] = -1;
+    if (!p.admissible) continue;
+    std::size_t c = 0;
+    while (c < cases.size() && cases[c] != p.region.closed) ++c;
+    if (c == cases.size()) cases.push_back(p.region.closed);
+    cd[k] = static_cast<std::int32_t>(c);
+  }
+  py::list names, closed;
+  for (const ContactSet& c : cases) {
+    names.append(Vocabulary::paper().case_name(c));
+    closed.append(py::tuple(py::cast(c.closed_names())));
+  }
+  py::list boundaries;
+  for (const numeric::MapBoundary& b : m.boundaries) {
+    const auto [x, y] = numeric::position(m, b);
+    py::dict d;
+    d["along"] = b.along_x ? m.x.parameter.key() : m.y.parameter.key();
+    d["along_x"] = b.along_x;
+    d["i"] = b.i;
+    d["j"] = b.j;
+    d["x"] = x;
+    d["y"] = y;
+    d["low"] = fraction(b.low);
+    d["high"] = fraction(b.high);
+    d["bracket_width"] = cln::double_approx(b.high - b.low);
+    d["below"] = region(b.below_psd, b.below);
+    d["above"] = region(b.above_psd, b.above);
+    boundaries.append(std::move(d));
+  }
+  py::list curves;
+  using Kind = numeric::MapCurve::Kind;
+  for (const numeric::MapCurve& c : m.curves) {
+    py::dict d;
+    d["kind"] = c.kind == Kind::Superball ? "superball edge" : c.kind == Kind::Psd ? "psd edge" : "case change";
+    if (c.kind == Kind::Case) d["cases"] = py::make_tuple(Vocabulary::paper().case_name(c.first), Vocabulary::paper().case_name(c.second));
+    d["closed"] = c.closed;
+    d["boundaries"] = c.points;
+    py::array_t<double> xy({static_cast<py::ssize_t>(c.points.size()), py::ssize_t{2}});
+    double* v = xy.mutable_data();
+    for (std::size_t k = 0; k < c.points.size(); ++k) {
+      const auto [x, y] = numeric::position(m, m.boundaries[c.points[k]]);
+      v[2 * k] = x;
+      v[2 * k + 1] = y;
+    }
+    d["points"] = std::move(xy);
+    curves.append(std::move(d));
+  }
+  py::dict out;
+  out["scene"] = scene.origin;
+  out["title"] = scene.title;
+  out["precision"] = precision;
+  out["x"] = axis_dict(m.x);
+  out["y"] = axis_dict(m.y);
+  out["case_codes"] = std::move(codes);
+  out["case_list"] = py::tuple(names);
+  out["closed_list"] = py::tuple(closed);
+  out["ratio"] = std::move(ratio);
+  out["superball"] = std::move(superball);
+  out["psd"] = std::move(psd);
+  out["status_codes"] = std::move(status);
+  out["boundary_points"] = std::move(boundaries);
+  out["curves"] = std::move(curves);
+  out["summary"] = present::map_summary(m, scene, precision);
+  return out;
+}
+
+/// map(): the grid of \p x by \p y (KEY=FROM:TO:STEPS) solved in \p precision
+/// on \p threads (0: all cores), boundaries bisected exactly; the GIL is
+/// released while it computes, Ctrl-C stops it between two of its tasks, and
+/// \p progress (None or a callable (phase, done, total)) is told of each.
+py::dict map(const Scene& scene, const std::string& x, const std::string& y, const std::string& precision, int threads, py::object progress) {
+  const numeric::Axis ax = axis("x", x, scene), ay = axis("y", y, scene);
+  numeric::MapSettings settings;
+  settings.precision = numeric::Precision::parse(precision);
+  settings.threads = numeric::thread_count(threads);
+  // The result's arrays and dicts, beside the map at its peak: about what the command's JSON holds.
+  settings.output_bytes_per_point = present::map_output_bytes_per_point(present::MapOutput::Json);
+  settings.runner = interruptible_runner(std::move(progress), {"points", "boundaries"});
+  std::optional<numeric::Map> m;
+  {
+    py::gil_scoped_release release;
+    m = numeric::map(scene, ax, ay, settings);
+  }
+  settings.runner = nullptr;  // drops the progress callable with the GIL held
+  return result(*m, scene, settings.precision.name());
+}
+
+}  // namespace
+
+void register_map(py::module_& m) {
+  m.def("map", &map, py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("precision"), py::arg("threads"), py::arg("progress"));
+}
+
+}  // namespace superball::python
