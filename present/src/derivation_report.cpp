@@ -25,13 +25,6 @@ using latex::latex_width;
 
 namespace {
 
-std::string order_text(const GiNaC::numeric& k, Style style) {
-  std::ostringstream os;
-  os << k;
-  if (style == Style::Latex) return "\\varepsilon^{" + os.str() + "}";
-  return "ε^" + os.str();
-}
-
 std::string math(const std::string& s, Style style) { return style == Style::Latex ? "$" + s + "$" : s; }
 
 /// Prose of the library (proofs, checks, case names) in \p style: "Z^T A Z"
@@ -58,11 +51,11 @@ std::string prose(const std::string& s, Style style) {
 
 
 std::string order_note(const Condition& c, Style style) {
-  std::string s = "order " + math(order_text(c.leading_order, style), style);
+  std::string s = "order " + math(epsilon_power(c.leading_order, style), style);
   if (c.descended > 0) {
     std::ostringstream os;
     os << c.descended;
-    s += "; the leading terms of order " + math(order_text(c.leading_order - c.descended, style), style) + " cancel";
+    s += "; the leading terms of order " + math(epsilon_power(c.leading_order - c.descended, style), style) + " cancel";
   }
   return s;
 }

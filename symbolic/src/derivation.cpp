@@ -15,6 +15,7 @@
 #include "polynomial.hpp"
 #include "superball/cases/error.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/symbolic/format.hpp"
 
 namespace superball::symbolic {
 namespace {
@@ -25,13 +26,6 @@ std::string show(const GiNaC::ex& e) {
   return os.str();
 }
 
-std::string order_text(const GiNaC::numeric& k, Style style) {
-  std::ostringstream os;
-  os << k;
-  if (style == Style::Latex) return "\\varepsilon^{" + os.str() + "}";
-  if (style == Style::Text) return "ε^" + os.str();
-  return "eps^" + os.str();
-}
 
 /// Polynomial `p` with the lowest ε-orders kept: (order, polynomial) per level, ascending.
 std::vector<std::pair<GiNaC::numeric, GiNaC::ex>> levels(const GiNaC::ex& p, const Symbols& symbols, const Scaling& scaling) {
@@ -172,7 +166,7 @@ std::string Scaling::describe(const Symbols& symbols, Style style) const {
   for (const SymbolInfo& s : symbols.all()) {
     const auto it = order_.find(s.ascii);
     if (it == order_.end()) continue;
-    out += (out.empty() ? "" : ", ") + s.name(style) + (style == Style::Latex ? " \\sim " : " ~ ") + order_text(it->second, style);
+    out += (out.empty() ? "" : ", ") + s.name(style) + (style == Style::Latex ? " \\sim " : " ~ ") + epsilon_power(it->second, style);
   }
   return out + (style == Style::Latex ? ",\\ \\text{others } O(1)" : ", others O(1)");
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,14 @@ std::string format_pivot_product(const Elimination& e, Style style) {
   std::vector<std::string> pivots;
   for (int c = 1; c <= e.size; ++c) pivots.push_back(elimination_name("p", static_cast<std::size_t>(c - 1), std::nullopt, style));
   return product(pivots, style);
+}
+
+std::string epsilon_power(const GiNaC::numeric& k, Style style) {
+  std::ostringstream os;
+  os << k;
+  if (style == Style::Latex) return "\\varepsilon^{" + os.str() + "}";
+  if (style == Style::Text) return "ε^" + os.str();
+  return "eps^" + os.str();
 }
 
 std::string mass_name(int body, Style style) {

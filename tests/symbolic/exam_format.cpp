@@ -75,6 +75,9 @@ TEST(ExamFormat, NamesAndCommonFactor) {
   EXPECT_EQ(mass_name(4, Style::Text), "m₄");
   EXPECT_EQ(mass_name(12, Style::Latex), "m_{12}");
   EXPECT_EQ(mass_name(4, Style::Ascii), "m4");
+  EXPECT_EQ(epsilon_power(GiNaC::numeric(-1), Style::Text), "ε^-1");
+  EXPECT_EQ(epsilon_power(GiNaC::numeric(1, 2), Style::Latex), "\\varepsilon^{1/2}");
+  EXPECT_EQ(epsilon_power(GiNaC::numeric(2), Style::Ascii), "eps^2");
   const Deriver deriver(Pattern::paper({2}), Obstacle::Infinite);
   const Symbols& s = deriver.symbols();
   GiNaC::parser reader(s.table(), true);

@@ -104,6 +104,9 @@ std::string format_linear(const EliminatedForm& f, const Symbols& symbols, Style
 /// "p_{1} p_{2} p_{3}" (LaTeX), "p1*p2*p3" (ASCII).
 std::string format_pivot_product(const Elimination& e, Style style);
 
+/// ε^k in \p style: "ε^-1" (text), "\\varepsilon^{-1}" (LaTeX), "eps^-1" (ASCII).
+std::string epsilon_power(const GiNaC::numeric& k, Style style);
+
 /// m₄ (text), m_{4} (LaTeX), m4 (ASCII): the mass of \p body, a symbol or not
 /// (the fixed obstacle's m_n = ∞).
 std::string mass_name(int body, Style style);
