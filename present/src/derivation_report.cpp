@@ -25,6 +25,7 @@ using latex::latex_width;
 
 namespace {
 
+/// \p s in math mode when \p style is LaTeX ($…$), else as it is.
 std::string math(const std::string& s, Style style) { return style == Style::Latex ? "$" + s + "$" : s; }
 
 /// Prose of the library (proofs, checks, case names) in \p style: "Z^T A Z"
@@ -49,17 +50,16 @@ std::string prose(const std::string& s, Style style) {
   return out;
 }
 
-
+/// "order ε^-1; the leading terms of order ε^-2 cancel": the order of a condition's asymptotic form.
 std::string order_note(const Condition& c, Style style) {
   std::string s = "order " + math(epsilon_power(c.leading_order, style), style);
   if (c.descended > 0) {
-    std::ostringstream os;
-    os << c.descended;
     s += "; the leading terms of order " + math(epsilon_power(c.leading_order - c.descended, style), style) + " cancel";
   }
   return s;
 }
 
+/// How a condition's denominator was cleared, in a few words ("" for a condition on M).
 std::string short_proof(const Condition& c) {
   if (c.kind == ConditionKind::Psd) return "";
   if (c.proof.rfind("sign not proved", 0) == 0) return "sign of the denominator not proved";
@@ -68,14 +68,13 @@ std::string short_proof(const Condition& c) {
   return "denominator cleared: " + c.proof;
 }
 
-
 /// How many orders of ε the asymptotic forms keep, in words.
 std::string orders_kept_text(int order) {
   if (order == 0) return "the dominant balance only";
   return "the dominant balance and the next " + (order == 1 ? std::string("order") : std::to_string(order) + " orders");
 }
 
-
+/// A labelled line: "  LABEL VALUE" (text), "\noindent LABEL VALUE\par" (LaTeX).
 void write_line(std::ostream& os, Style style, const std::string& label, const std::string& value) {
   if (style == Style::Latex)
     os << "\\noindent " << label << (label.empty() ? "" : " ") << value << "\\par\n";
@@ -129,7 +128,6 @@ void write_condition(std::ostream& os, const Condition& c, const Symbols& sy, St
 }
 
 }  // namespace
-
 
 std::string report(const Derivation& d, const Deriver& deriver, Style style, bool with_psd) {
   if (style == Style::Ascii) throw std::invalid_argument("report(): ASCII output is JSON (see `superball derive --format json`)");
@@ -265,6 +263,5 @@ std::string latex_document(const std::vector<Derivation>& derivations, const Der
   os << "\\end{document}\n";
   return os.str();
 }
-
 
 }  // namespace superball::present

@@ -13,7 +13,6 @@ using namespace superball::symbolic;
 
 namespace {
 
-
 /// Widest a "label: formula" line is kept inline, by the same estimate.
 constexpr double kInlineLinePt = 0.9 * kTextWidthPt;
 /// A first side (left of the first relation) at most this wide stays in the

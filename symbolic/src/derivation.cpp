@@ -26,7 +26,6 @@ std::string show(const GiNaC::ex& e) {
   return os.str();
 }
 
-
 /// Polynomial `p` with the lowest ε-orders kept: (order, polynomial) per level, ascending.
 std::vector<std::pair<GiNaC::numeric, GiNaC::ex>> levels(const GiNaC::ex& p, const Symbols& symbols, const Scaling& scaling) {
   std::vector<std::pair<GiNaC::numeric, GiNaC::ex>> out;

@@ -353,7 +353,6 @@ class Reader {
   const std::vector<cl_RA>& epsilons_;
 };
 
-
 /// The state of each of \p threads worker threads: its own clones of the
 /// space, the compiled conditions and the values of ε, sharing no CLN object.
 std::vector<Context> contexts(int threads, const ParameterSpace& space, const std::vector<CompiledCondition>& exact,
