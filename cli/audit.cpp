@@ -50,7 +50,7 @@ void add_audit(CLI::App& app, Action& action) {
       options.samples = o->samples;
       options.seed = o->seed;
       const verify::Audit a = verify::audit_paper(PrintedConditions::paper(), options);
-      const std::string text = o->json ? audit_json(a).dump(2) + "\n" : verify::to_text(a);
+      const std::string text = o->json ? audit_json(a).dump(2) + "\n" : present::to_text(a);
       write_output(o->output, text);
       return ok;
     };

@@ -23,6 +23,9 @@ namespace superball::cli {
 
 using namespace superball::symbolic;
 using present::derivation_json;
+using present::latex_document;
+using present::report;
+using present::report_psd;
 
 void add_derive(CLI::App& app, Action& action) {
   struct Options {

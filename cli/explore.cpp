@@ -16,6 +16,7 @@
 #include "selection.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/scalar.hpp"
+#include "superball/present/explore.hpp"
 #include "superball/verify/explore.hpp"
 
 namespace superball::cli {
@@ -194,17 +195,17 @@ void add_explore(CLI::App& app, Action& action) {
       // A task's text: the result rendered every way the output may need it (JSON).
       auto task = [&](std::size_t k) {
         const verify::ExploreResult r = verify::explore_case(deriver(k / columns), cases[k % columns], o->explore);
-        const verify::RenderedCell cell = verify::render(r);
+        const present::RenderedCell cell = present::render(r);
         nlohmann::ordered_json j;
         j["pattern"] = cell.pattern;
         j["cell"] = cell.text;
         j["json"] = cell.json;
-        j["text"] = verify::to_text(r);
-        if (r.scene) j["witness"] = {witness_name(r), verify::witness_file(r, command.str())};
+        j["text"] = present::to_text(r);
+        if (r.scene) j["witness"] = {witness_name(r), present::witness_file(r, command.str())};
         return j.dump() + "\n";
       };
       Distribution run(*cmd, o->distribute, count);
-      std::vector<std::vector<verify::RenderedCell>> cells;
+      std::vector<std::vector<present::RenderedCell>> cells;
       std::vector<nlohmann::ordered_json> results;
       std::string text;
       std::vector<std::pair<std::string, std::string>> witnesses;
@@ -222,7 +223,7 @@ void add_explore(CLI::App& app, Action& action) {
       });
       if (!run.writes_output()) return ok;  // a part file, or a rank other than 0
       if (o->all_patterns) {
-        text = o->json ? verify::to_json(table, cells).dump(2) + "\n" : verify::to_text(table, cells);
+        text = o->json ? present::to_json(table, cells).dump(2) + "\n" : present::to_text(table, cells);
       } else if (o->json) {
         nlohmann::ordered_json j = nlohmann::ordered_json::array();
         for (auto& r : results) j.push_back(std::move(r));

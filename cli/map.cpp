@@ -10,6 +10,7 @@
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/range.hpp"
+#include "superball/present/overlay.hpp"
 #include "superball/verify/overlay.hpp"
 
 namespace superball::cli {
@@ -166,13 +167,13 @@ void add_map(CLI::App& app, Action& action) {
       std::string text;
       if (o->json) {
         auto j = present::map_json(m, scene, precision);
-        if (overlay) j["overlay"] = verify::to_json(*overlay, m);
+        if (overlay) j["overlay"] = present::to_json(*overlay, m);
         text = j.dump(1) + "\n";
       } else if (o->csv) {
         text = o->boundary_points ? present::boundaries_csv(m) : present::map_csv(m);
       } else {
         text = present::map_summary(m, scene, precision);
-        if (overlay) text += verify::to_text(*overlay, m);
+        if (overlay) text += present::to_text(*overlay, m);
         if (o->boundary_points) {
           text += "boundary points (the middle of the bracket on the axis named, the grid value on the other):\n";
           for (const auto& b : m.boundaries) {

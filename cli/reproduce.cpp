@@ -25,6 +25,7 @@
 #include "superball/numeric/map.hpp"
 #include "superball/numeric/sweep.hpp"
 #include "superball/symbolic/derivation.hpp"
+#include "superball/present/explore.hpp"
 #include "superball/verify/audit.hpp"
 #include "superball/verify/explore.hpp"
 #include "superball/verify/overlay.hpp"
@@ -591,7 +592,7 @@ void verification_and_patterns(const std::vector<verify::Verification>& runs, co
   std::vector<std::vector<Cell>> rows;
   for (std::size_t r = 0; r < table.cells.size(); ++r) {
     std::vector<Cell> row{table.cells[r].front().pattern};
-    for (const verify::ExploreResult& cell : table.cells[r]) row.push_back(verify::cell_text(cell));
+    for (const verify::ExploreResult& cell : table.cells[r]) row.push_back(present::cell_text(cell));
     rows.push_back(row);
   }
   doc.table(header, rows);
@@ -617,7 +618,7 @@ void verification_and_patterns(const std::vector<verify::Verification>& runs, co
   for (const auto& c : said) {
     const verify::ExploreResult& r = cell(c.pattern, c.case_name);
     const bool agrees = c.possible ? r.reach == verify::Reach::Yes : r.reach == verify::Reach::Impossible || r.reach == verify::Reach::CaseImpossible;
-    claims.push_back(std::string(c.paper) + ": " + (agrees ? "agrees" : "**does not agree**") + " (" + verify::cell_text(r) + ").");
+    claims.push_back(std::string(c.paper) + ": " + (agrees ? "agrees" : "**does not agree**") + " (" + present::cell_text(r) + ").");
   }
   doc.bullets(claims);
 }

@@ -17,6 +17,7 @@
 #include "superball/cases/number.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/present/verification.hpp"
 #include "superball/verify/verification.hpp"
 
 namespace superball::cli {
@@ -172,12 +173,12 @@ void add_verify(CLI::App& app, Action& action) {
           const verify::Disagreement& d = v.disagreements[i];
           const std::string name = "case-" + file_part(v.case_name) + "-eps-" +
                                    file_part(verify::epsilon_name(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon)) + "-" + numbered(i + 1) + ".toml";
-          const std::string scene = write_scene(d.scene, verify::describe(v, d) + "\nrerun: superball solve " + name + " --precision exact");
+          const std::string scene = write_scene(d.scene, present::describe(v, d) + "\nrerun: superball solve " + name + " --precision exact");
           text += std::to_string(scene.size()) + " " + name + "\n" + scene;
         }
         text += "report\n";
-        if (!o->json) return text + verify::to_text(v) + "\n";
-        const std::string element = verify::to_json(v).dump(2);
+        if (!o->json) return text + present::to_text(v) + "\n";
+        const std::string element = present::to_json(v).dump(2);
         if (count == 1) return text + element + "\n";
         text += "  ";
         for (char ch : element) {

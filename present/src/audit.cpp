@@ -1,5 +1,13 @@
-// The JSON of the audit (`superball audit --json`, the Python module's audit()).
+// The audit for people and programs (`superball audit`, `--json`, the Python module's audit()).
 #include "superball/present/audit.hpp"
+
+#include <cln/rational_io.h>
+
+#include <cctype>
+#include <sstream>
+#include <string>
+
+#include "superball/verify/space.hpp"
 
 namespace superball::present {
 
@@ -67,6 +75,63 @@ nlohmann::ordered_json audit_json(const verify::Audit& a) {
   }
   j["claims"] = claims;
   return j;
+}
+
+std::string to_text(const verify::Audit& audit) {
+  std::ostringstream os;
+  auto decimal = [](const cln::cl_RA& x) {
+    std::ostringstream d;
+    d.precision(6);
+    d << cln::double_approx(x);
+    return d.str();
+  };
+  auto point = [&](const verify::Witness& w) {
+    std::string s;
+    for (const auto& [name, v] : w.point) s += (s.empty() ? "" : ", ") + name + " = " + verify::to_string(v) + (cln::denominator(v) == 1 ? "" : " (" + decimal(v) + ")");
+    return s;
+  };
+  auto yes = [](bool b) { return b ? "holds" : "fails"; };
+  os << "superball audit: the paper's printed conditions against the derivation\n"
+     << "(bottom body fixed, m4 = inf; regime m1 ~ eps, K14 ~ 1/eps, others O(1); points sampled at eps = " << verify::to_string(audit.options.epsilon)
+     << ", M positive semi-definite; the exact solution of each point is the numeric backend's, in rationals)\n\n";
+  int counts[3] = {0, 0, 0};
+  for (const verify::ConditionAudit& c : audit.conditions) {
+    ++counts[static_cast<int>(c.agreement)];
+    os << "§" << c.printed.section << " case " << c.printed.case_name << ", " << c.printed.kind << " " << c.printed.about << " — " << c.printed.words << '\n';
+    os << "  printed:    " << c.as_printed.text << "      [paper: " << c.printed.printed << "]\n";
+    os << "  derived:    exact " << c.exact.text << '\n';
+    os << "              asymptotic " << c.asymptotic.text << '\n';
+    if (c.printed.kind != "velocity") os << "  printed, dominant balance: " << c.printed_asymptotic.text << '\n';
+    std::string verdict = verify::to_string(c.agreement);
+    for (char& ch : verdict) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    os << "  verdict:    " << verdict << '\n';
+    for (const std::string& n : c.notes) os << "  note:       " << n << '\n';
+    if (c.agreement == verify::Agreement::Different) {
+      if (c.witness) {
+        const verify::Witness& w = *c.witness;
+        os << "  point:      " << point(w) << '\n';
+        os << "  there:      exact solution of case " << c.printed.case_name << ": " << w.quantity << " -> the condition " << yes(w.numeric)
+           << "; printed " << yes(w.printed) << " (disagrees); derived exact " << yes(w.derived_exact) << (w.derived_exact == w.numeric ? " (agrees)" : " (DISAGREES)")
+           << "; derived asymptotic " << yes(w.derived_asymptotic) << (w.derived_asymptotic == w.numeric ? " (agrees)" : " (disagrees)");
+        if (!w.actual_case.empty()) os << "; actual case there " << w.actual_case;
+        os << " [" << c.tried << " points tried]\n";
+      } else {
+        os << "  no disagreeing point in " << c.tried << " samples\n";
+      }
+    }
+    os << '\n';
+  }
+  for (const verify::ClaimAudit& c : audit.claims) {
+    os << "claim (§" << c.claim.section << "): \"" << c.claim.text << "\"\n";
+    os << "  derived superball condition in case " << c.claim.case_name << ": " << c.superball.text << '\n';
+    for (const std::string& line : c.comparisons) os << "  vs the like pattern: " << line << '\n';
+    if (!c.certificate.empty()) os << "  certificate: " << c.certificate << '\n';
+    if (c.example) os << "  example:    " << point(*c.example) << " -> " << c.example->quantity << ", actual case " << c.example->actual_case << '\n';
+    os << "  verdict:    " << c.verdict << " (" << c.tried << " points tried, " << c.hits << " with the superball in the case)\n\n";
+  }
+  os << "summary: " << counts[0] << " printed conditions identical to the exact condition, " << counts[1] << " identical at the asymptotic order, "
+     << counts[2] << " different\n";
+  return os.str();
 }
 
 }  // namespace superball::present

@@ -36,8 +36,10 @@
 #include "superball/numeric/sweep.hpp"
 #include "superball/present/audit.hpp"
 #include "superball/present/derivation.hpp"
+#include "superball/present/explore.hpp"
 #include "superball/present/selection.hpp"
 #include "superball/present/solution.hpp"
+#include "superball/present/verification.hpp"
 #include "superball/symbolic/format.hpp"
 #include "superball/verify/audit.hpp"
 #include "superball/verify/explore.hpp"
@@ -319,8 +321,8 @@ std::vector<py::dict> derive(const py::dict& options) {
     x["velocities_latex"] = vl;
     x["reactions_text"] = rt;
     x["reactions_latex"] = rl;
-    x["report"] = symbolic::report(d, deriver, symbolic::Style::Text);
-    x["report_latex"] = symbolic::report(d, deriver, symbolic::Style::Latex);
+    x["report"] = present::report(d, deriver, symbolic::Style::Text);
+    x["report_latex"] = present::report(d, deriver, symbolic::Style::Latex);
     out.push_back(std::move(x));
   }
   return out;
@@ -356,7 +358,7 @@ std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<s
   for (const ContactSet& c : sel.cases) {
     o.runner = interruptible_runner(progress, {"drawn points", "boundaries"});  // progress and Ctrl-C between tasks
     const verify::Verification v = verify::verify_case(*sel.deriver, c, o);
-    out.push_back(py::make_tuple(to_python(verify::to_json(v)), verify::to_text(v), v.exact_agrees()));
+    out.push_back(py::make_tuple(to_python(present::to_json(v)), present::to_text(v), v.exact_agrees()));
   }
   return out;
 }
@@ -370,7 +372,7 @@ py::tuple audit(const std::string& epsilon, int samples, std::uint64_t seed) {
   o.samples = samples;
   o.seed = seed;
   const verify::Audit a = verify::audit_paper(PrintedConditions::paper(), o);
-  return py::make_tuple(to_python(present::audit_json(a)), verify::to_text(a));
+  return py::make_tuple(to_python(present::audit_json(a)), present::to_text(a));
 }
 
 /// explore(): per case (or per cell of the table), to_json as Python objects, the report and the witness scene.
@@ -385,14 +387,14 @@ std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::
   std::vector<py::tuple> out;
   if (all_patterns) {
     const verify::PatternTable t = verify::explore_all_patterns(o);
-    out.push_back(py::make_tuple(to_python(verify::to_json(t)), verify::to_text(t)));
+    out.push_back(py::make_tuple(to_python(present::to_json(t)), present::to_text(t)));
     return out;
   }
   const present::Selection sel = present::resolve(selection(options));
   if (sel.cases.empty()) throw std::invalid_argument("explore: give a case (case=, closed= or all=True) or all_patterns=True");
   for (const ContactSet& c : sel.cases) {
     const verify::ExploreResult r = verify::explore_case(*sel.deriver, c, o);
-    out.push_back(py::make_tuple(to_python(verify::to_json(r)), verify::to_text(r), r.scene ? py::cast(*r.scene) : py::none()));
+    out.push_back(py::make_tuple(to_python(present::to_json(r)), present::to_text(r), r.scene ? py::cast(*r.scene) : py::none()));
   }
   return out;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 #include "polynomial.hpp"
 #include "superball/cases/error.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/symbolic/format.hpp"
 
 namespace superball::symbolic {
 namespace {
@@ -22,14 +24,6 @@ std::string show(const GiNaC::ex& e) {
   std::ostringstream os;
   os << e;
   return os.str();
-}
-
-std::string order_text(const GiNaC::numeric& k, Style style) {
-  std::ostringstream os;
-  os << k;
-  if (style == Style::Latex) return "\\varepsilon^{" + os.str() + "}";
-  if (style == Style::Text) return "ε^" + os.str();
-  return "eps^" + os.str();
 }
 
 /// Polynomial `p` with the lowest ε-orders kept: (order, polynomial) per level, ascending.
@@ -171,7 +165,7 @@ std::string Scaling::describe(const Symbols& symbols, Style style) const {
   for (const SymbolInfo& s : symbols.all()) {
     const auto it = order_.find(s.ascii);
     if (it == order_.end()) continue;
-    out += (out.empty() ? "" : ", ") + s.name(style) + (style == Style::Latex ? " \\sim " : " ~ ") + order_text(it->second, style);
+    out += (out.empty() ? "" : ", ") + s.name(style) + (style == Style::Latex ? " \\sim " : " ~ ") + epsilon_power(it->second, style);
   }
   return out + (style == Style::Latex ? ",\\ \\text{others } O(1)" : ", others O(1)");
 }
@@ -638,157 +632,215 @@ void Deriver::build_psd() {
   }
 }
 
-Derivation Deriver::derive(const ContactSet& closed) const {
-  const Symbols& sy = *symbols_;
-  const int n = sy.bodies();
-  if (closed.bodies() != n)
-    throw std::invalid_argument("Deriver::derive(): the case " + closed.to_string() + " is for " + std::to_string(closed.bodies()) +
-                                " bodies, the pattern has " + std::to_string(n));
-  const bool fixed = sy.obstacle() == Obstacle::Infinite;
-  const int free_bodies = fixed ? n - 1 : n;
-  const GiNaC::ex& a = sy.fall_speed();
+// ---------------------------------------------------------------------------
+// Deriver::derive(), phase by phase: the clusters of the case, its equations
+// as polynomials and the reduced system, the solution by Cramer's rule, the
+// results stored in lowest terms, the check that they solve the equations,
+// the conditions as linear forms in the cluster velocities, the elimination
+// of a long case, and the case's conditions, named parts and verdict.
+namespace {
 
-  // Clusters of bodies joined by closed contacts; with a fixed obstacle the
-  // bottom cluster does not move (velocity u_n = 0).
-  std::vector<int> cluster(static_cast<std::size_t>(n)), top(1, 0);
+using detail::Poly;
+
+/// The clusters of a case: bodies joined by closed contacts.
+struct Clusters {
+  std::vector<int> of;   ///< the cluster of each body, 0-based from the top
+  std::vector<int> top;  ///< the top body of each cluster
+  int fixed = -1;        ///< the cluster that stays at rest (the fixed obstacle's), else −1
+  int free = 0;          ///< k: the free clusters are 0..k−1 (the fixed one is the last)
+};
+
+/// Phase 1: the clusters of \p closed; with a \p fixed obstacle the bottom
+/// cluster does not move (velocity u_n = 0).
+Clusters clusters_of(const ContactSet& closed, bool fixed) {
+  const int n = closed.bodies();
+  Clusters c;
+  c.of.assign(static_cast<std::size_t>(n), 0);
+  c.top.assign(1, 0);
   for (int i = 1; i < n; ++i) {
-    if (!closed.closed(i - 1)) top.push_back(i);
-    cluster[static_cast<std::size_t>(i)] = static_cast<int>(top.size()) - 1;
+    if (!closed.closed(i - 1)) c.top.push_back(i);
+    c.of[static_cast<std::size_t>(i)] = static_cast<int>(c.top.size()) - 1;
   }
-  const int clusters = static_cast<int>(top.size());
-  const int fixed_cluster = fixed ? cluster[static_cast<std::size_t>(n - 1)] : -1;
-  const int k = fixed ? clusters - 1 : clusters;  // free clusters are 0..k-1 (the fixed one is the last)
+  const int clusters = static_cast<int>(c.top.size());
+  c.fixed = fixed ? c.of[static_cast<std::size_t>(n - 1)] : -1;
+  c.free = fixed ? clusters - 1 : clusters;
+  return c;
+}
 
-  // Data: K = DᵀMD (declared entries only), masses, u, as polynomials (poly.hpp).
-  using detail::Poly;
-  const int vars = static_cast<int>(sy.all().size());
-  auto symbol = [&](const GiNaC::ex& x) { return Poly::variable(vars, sy.info(x).rank); };
-  const auto N = static_cast<std::size_t>(n);
-  std::vector<Poly> K(N * N, Poly(vars));
+/// The equations of a case as polynomials (poly.hpp).
+struct System {
+  const Symbols* sy = nullptr;
+  int n = 0, vars = 0, free_bodies = 0;
+  bool fixed = false;  ///< the obstacle is fixed (m_n = ∞)
+  Clusters clusters;
+  std::vector<Poly> K;       ///< DᵀMD, n×n row-major (declared entries only)
+  std::vector<Poly> m, u;    ///< the masses (0 for a fixed obstacle) and the velocities before
+  std::vector<Poly> B, rhs;  ///< the reduced system (ZᵀAZ) V = Zᵀb over the free clusters: k×k row-major, k
+
+  std::size_t size() const { return static_cast<std::size_t>(n); }
+  std::size_t k() const { return static_cast<std::size_t>(clusters.free); }
+  Poly symbol(const GiNaC::ex& x) const { return Poly::variable(vars, sy->info(x).rank); }
+  const Poly& Kij(int i, int j) const { return K[static_cast<std::size_t>(i) * size() + static_cast<std::size_t>(j)]; }
+};
+
+/// Phase 2: K = DᵀMD, the masses and the velocities before of the case
+/// \p closed, and its reduced system (ZᵀAZ) V = Zᵀb over the free clusters.
+System system_of(const Symbols& sy, const ContactSet& closed) {
+  System s;
+  s.sy = &sy;
+  s.n = sy.bodies();
+  s.fixed = sy.obstacle() == Obstacle::Infinite;
+  s.free_bodies = s.fixed ? s.n - 1 : s.n;
+  s.vars = static_cast<int>(sy.all().size());
+  s.clusters = clusters_of(closed, s.fixed);
+  const int n = s.n, vars = s.vars;
+  const std::size_t N = s.size();
+  s.K.assign(N * N, Poly(vars));
   auto add_outer = [&](const Pair& p, const Pair& q, const Poly& v) {
     const std::size_t pi = p.i - 1, pj = p.j - 1, qi = q.i - 1, qj = q.j - 1;
-    K[pi * N + qi] += v;
-    K[pi * N + qj] -= v;
-    K[pj * N + qi] -= v;
-    K[pj * N + qj] += v;
+    s.K[pi * N + qi] += v;
+    s.K[pi * N + qj] -= v;
+    s.K[pj * N + qi] -= v;
+    s.K[pj * N + qj] += v;
   };
-  for (const Pair& p : sy.pattern().diagonal) add_outer(p, p, symbol(sy.diagonal(p)));
+  for (const Pair& p : sy.pattern().diagonal) add_outer(p, p, s.symbol(sy.diagonal(p)));
   for (const auto& [p, q] : sy.pattern().couplings) {
-    add_outer(p, q, symbol(sy.coupling(p, q)));
-    add_outer(q, p, symbol(sy.coupling(p, q)));
+    add_outer(p, q, s.symbol(sy.coupling(p, q)));
+    add_outer(q, p, s.symbol(sy.coupling(p, q)));
   }
-  auto Kij = [&](int i, int j) -> const Poly& { return K[static_cast<std::size_t>(i) * N + static_cast<std::size_t>(j)]; };
-  std::vector<Poly> m(N, Poly(vars)), u(N, Poly(vars));
-  for (int i = 0; i < free_bodies; ++i) m[static_cast<std::size_t>(i)] = symbol(sy.mass(i + 1));
-  for (int i = 0; i + 1 < n; ++i) u[static_cast<std::size_t>(i)] = -symbol(a);
-  const Poly u_obstacle = u[N - 1];
-
-  // Reduced system (ZᵀAZ) V = Zᵀb over the free clusters.
-  const auto Kc = static_cast<std::size_t>(k);
-  std::vector<Poly> B(Kc * Kc, Poly(vars)), rhs(Kc, Poly(vars));
-  for (int i = 0; i < free_bodies; ++i) {
+  s.m.assign(N, Poly(vars));
+  s.u.assign(N, Poly(vars));
+  for (int i = 0; i < s.free_bodies; ++i) s.m[static_cast<std::size_t>(i)] = s.symbol(sy.mass(i + 1));
+  for (int i = 0; i + 1 < n; ++i) s.u[static_cast<std::size_t>(i)] = -s.symbol(sy.fall_speed());
+  const std::size_t Kc = s.k();
+  const std::vector<int>& cluster = s.clusters.of;
+  s.B.assign(Kc * Kc, Poly(vars));
+  s.rhs.assign(Kc, Poly(vars));
+  for (int i = 0; i < s.free_bodies; ++i) {
     const int ci = cluster[static_cast<std::size_t>(i)];
-    if (ci == fixed_cluster) continue;
-    Poly r = m[static_cast<std::size_t>(i)] * u[static_cast<std::size_t>(i)];
+    if (ci == s.clusters.fixed) continue;
+    Poly r = s.m[static_cast<std::size_t>(i)] * s.u[static_cast<std::size_t>(i)];
     for (int j = 0; j < n; ++j) {
-      if (Kij(i, j).is_zero()) {
-        if (i == j) B[static_cast<std::size_t>(ci) * Kc + static_cast<std::size_t>(ci)] += m[static_cast<std::size_t>(i)];
+      if (s.Kij(i, j).is_zero()) {
+        if (i == j) s.B[static_cast<std::size_t>(ci) * Kc + static_cast<std::size_t>(ci)] += s.m[static_cast<std::size_t>(i)];
         continue;
       }
-      r -= Kij(i, j) * u[static_cast<std::size_t>(j)];
+      r -= s.Kij(i, j) * s.u[static_cast<std::size_t>(j)];
       const int cj = cluster[static_cast<std::size_t>(j)];
-      if (cj == fixed_cluster)
-        r -= Kij(i, j) * u_obstacle;  // W_j = u_n is known
+      if (cj == s.clusters.fixed)
+        r -= s.Kij(i, j) * s.u[N - 1];  // W_j = u_n is known
       else
-        B[static_cast<std::size_t>(ci) * Kc + static_cast<std::size_t>(cj)] += i == j ? Kij(i, j) + m[static_cast<std::size_t>(i)] : Kij(i, j);
+        s.B[static_cast<std::size_t>(ci) * Kc + static_cast<std::size_t>(cj)] += i == j ? s.Kij(i, j) + s.m[static_cast<std::size_t>(i)] : s.Kij(i, j);
     }
-    rhs[static_cast<std::size_t>(ci)] += r;
+    s.rhs[static_cast<std::size_t>(ci)] += r;
   }
-  const Poly D = detail::determinant(B, k, vars);
-  if (D.is_zero()) throw std::logic_error("Deriver::derive(): the reduced system of case " + closed.to_string() + " is singular");
-  const detail::Denominator denominator(D, sy);
-  std::vector<Poly> uD(N, Poly(vars));  // u_j D, the velocities before times D
-  for (std::size_t j = 0; j < N; ++j) uD[j] = u[j] * D;
-  // Cramer's rule, fraction-free: V_c = det(B with column c replaced by rhs) / D.
-  std::vector<Poly> Wh(N, Poly(vars));  // D · W
-  std::vector<Poly> Vh(Kc, Poly(vars));
+  return s;
+}
+
+/// Row i of the equations of motion times D, without the reactions, for
+/// velocities times D \p V: its inertia part m_i(V_i − u_i D) ...
+Poly inertia_of(const System& s, int i, const std::vector<Poly>& V, const std::vector<Poly>& uD) {
+  return s.m[static_cast<std::size_t>(i)] * (V[static_cast<std::size_t>(i)] - uD[static_cast<std::size_t>(i)]);
+}
+/// ... and its dissipation part Σ_j K_ij (V_j + u_j D).
+Poly dissipation_of(const System& s, int i, const std::vector<Poly>& V, const std::vector<Poly>& uD) {
+  Poly r(s.vars);
+  for (int j = 0; j < s.n; ++j)
+    if (!s.Kij(i, j).is_zero()) r += s.Kij(i, j) * (V[static_cast<std::size_t>(j)] + uD[static_cast<std::size_t>(j)]);
+  return r;
+}
+
+/// The solution of a case times D = det(ZᵀAZ).
+struct Solution {
+  Poly D;
+  Poly aD;               ///< a · D
+  std::vector<Poly> uD;  ///< u_j D: the velocities before times D
+  std::vector<Poly> Vh;  ///< D · V_c: the free clusters' velocities after
+  std::vector<Poly> Wh;  ///< D · W_i: each body's velocity after
+  std::vector<Poly> Lh, inertia, dissipation;  ///< λ_c · D on a closed contact c, and its inertia and dissipation parts
+};
+
+/// Phase 3: the velocities after by Cramer's rule, fraction-free
+/// (V_c = det(B with column c replaced by rhs) / D), and λ_c · D on the
+/// closed contacts as running sums from the cluster's top body.  Throws
+/// std::logic_error when the reduced system is singular.
+Solution solve(const System& s, const ContactSet& closed) {
+  const int n = s.n, vars = s.vars, k = s.clusters.free;
+  const std::size_t N = s.size(), Kc = s.k();
+  const std::vector<int>& cluster = s.clusters.of;
+  Solution x;
+  x.D = detail::determinant(s.B, k, vars);
+  if (x.D.is_zero()) throw std::logic_error("Deriver::derive(): the reduced system of case " + closed.to_string() + " is singular");
+  x.aD = s.symbol(s.sy->fall_speed()) * x.D;
+  x.uD.assign(N, Poly(vars));
+  for (std::size_t j = 0; j < N; ++j) x.uD[j] = s.u[j] * x.D;
+  x.Wh.assign(N, Poly(vars));
+  x.Vh.assign(Kc, Poly(vars));
   for (std::size_t c = 0; c < Kc; ++c) {
-    std::vector<Poly> Bc = B;
-    for (std::size_t r = 0; r < Kc; ++r) Bc[r * Kc + c] = rhs[r];
-    Vh[c] = detail::determinant(Bc, k, vars);
+    std::vector<Poly> Bc = s.B;
+    for (std::size_t r = 0; r < Kc; ++r) Bc[r * Kc + c] = s.rhs[r];
+    x.Vh[c] = detail::determinant(Bc, k, vars);
   }
   for (int i = 0; i < n; ++i) {
     const int ci = cluster[static_cast<std::size_t>(i)];
-    Wh[static_cast<std::size_t>(i)] = ci == fixed_cluster ? uD[N - 1] : Vh[static_cast<std::size_t>(ci)];
+    x.Wh[static_cast<std::size_t>(i)] = ci == s.clusters.fixed ? x.uD[N - 1] : x.Vh[static_cast<std::size_t>(ci)];
   }
-  // Row i of the equations of motion times D, without the reactions, for
-  // velocities times D `V`: its inertia m_i(V_i − u_i D) and dissipation
-  // Σ_j K_ij (V_j + u_j D) parts.
-  auto inertia_of = [&](int i, const std::vector<Poly>& V) {
-    return m[static_cast<std::size_t>(i)] * (V[static_cast<std::size_t>(i)] - uD[static_cast<std::size_t>(i)]);
-  };
-  auto dissipation_of = [&](int i, const std::vector<Poly>& V) {
-    Poly r(vars);
-    for (int j = 0; j < n; ++j)
-      if (!Kij(i, j).is_zero()) r += Kij(i, j) * (V[static_cast<std::size_t>(j)] + uD[static_cast<std::size_t>(j)]);
-    return r;
-  };
-  // λ_c · D on closed contacts: running sums from the cluster's top body.
-  std::vector<Poly> Lh(N - 1, Poly(vars)), inertia(N - 1, Poly(vars)), dissipation(N - 1, Poly(vars));
+  x.Lh.assign(N - 1, Poly(vars));
+  x.inertia.assign(N - 1, Poly(vars));
+  x.dissipation.assign(N - 1, Poly(vars));
   for (int c = 0; c + 1 < n; ++c) {
     if (!closed.closed(c)) continue;
     Poly in(vars), dis(vars);
-    for (int i = top[static_cast<std::size_t>(cluster[static_cast<std::size_t>(c)])]; i <= c; ++i) {
-      in += inertia_of(i, Wh);
-      dis += dissipation_of(i, Wh);
+    for (int i = s.clusters.top[static_cast<std::size_t>(cluster[static_cast<std::size_t>(c)])]; i <= c; ++i) {
+      in += inertia_of(s, i, x.Wh, x.uD);
+      dis += dissipation_of(s, i, x.Wh, x.uD);
     }
-    inertia[static_cast<std::size_t>(c)] = in;
-    dissipation[static_cast<std::size_t>(c)] = dis;
-    Lh[static_cast<std::size_t>(c)] = in + dis;
+    x.inertia[static_cast<std::size_t>(c)] = in;
+    x.dissipation[static_cast<std::size_t>(c)] = dis;
+    x.Lh[static_cast<std::size_t>(c)] = in + dis;
   }
+  return x;
+}
 
-  Derivation out;
-  out.symbols = symbols_;
-  out.closed = closed;
-  out.case_name = Vocabulary::paper().case_name(closed);
-  out.determinant = denominator.value();
-  out.free_clusters = k;
-  const GiNaC::exmap ref = reference_point(sy);
-  // Each result is stored in lowest terms, with how it was reduced (content,
-  // sign) so that the check below can multiply it back by D.
-  struct Stored {
-    Fraction fraction;
-    detail::Denominator::Reduced reduced;
-    int sign = 1;
-  };
-  auto normalise = [&](const Poly& numerator) {
-    Stored s;
-    s.reduced = denominator.lowest_terms(numerator);
-    s.fraction = {s.reduced.numerator, s.reduced.denominator};
-    const int sign = s.reduced.whole ? denominator.sign_at_reference() : detail::evaluate(s.fraction.denominator, ref).csgn();
-    if (sign < 0) {
-      s.fraction = {GiNaC::expand(-s.fraction.numerator), GiNaC::expand(-s.fraction.denominator)};
-      s.sign = -1;
-    }
-    return s;
-  };
-  std::vector<Stored> velocities, reactions;
-  for (int i = 0; i < n; ++i) velocities.push_back(normalise(Wh[static_cast<std::size_t>(i)]));
-  for (int c = 0; c + 1 < n; ++c) reactions.push_back(closed.closed(c) ? normalise(-Lh[static_cast<std::size_t>(c)]) : Stored{});
-  for (const Stored& s : velocities) out.velocities.push_back(s.fraction);
-  for (const Stored& s : reactions) out.reactions.push_back(s.fraction);
+/// A result stored in lowest terms, with how it was reduced (content, sign)
+/// so that the check can multiply it back by D.
+struct Stored {
+  Fraction fraction;
+  detail::Denominator::Reduced reduced;
+  int sign = 1;
+};
 
-  // Check: the stored fractions times D are the polynomials Wh, −Lh, and
-  // these satisfy the unreduced equations exactly.  Everything is multiplied
-  // by D = det(ZᵀAZ) ≠ 0 first, so each identity is between polynomials,
-  // compared term by term.
-  auto times_D = [&](const Stored& s, const char* what) {
-    const Fraction& f = s.fraction;
-    if (s.reduced.whole) {  // numerator = ±P / content, denominator = ±D / content
-      const cln::cl_I c = s.reduced.content * s.sign;
+/// Phase 4: \p numerator / D in lowest terms, its denominator positive at
+/// the reference point \p ref.
+Stored normalise(const Poly& numerator, const detail::Denominator& denominator, const GiNaC::exmap& ref) {
+  Stored s;
+  s.reduced = denominator.lowest_terms(numerator);
+  s.fraction = {s.reduced.numerator, s.reduced.denominator};
+  const int sign = s.reduced.whole ? denominator.sign_at_reference() : detail::evaluate(s.fraction.denominator, ref).csgn();
+  if (sign < 0) {
+    s.fraction = {GiNaC::expand(-s.fraction.numerator), GiNaC::expand(-s.fraction.denominator)};
+    s.sign = -1;
+  }
+  return s;
+}
+
+/// Phase 5: the stored fractions times D are the polynomials Wh, −Lh, and
+/// these satisfy the unreduced equations exactly.  Everything is multiplied
+/// by D = det(ZᵀAZ) ≠ 0 first, so each identity is between polynomials,
+/// compared term by term.  Throws std::logic_error on a failure; returns
+/// what was checked, in words (Derivation::check).
+std::string check_solution(const System& s, const ContactSet& closed, const Solution& x, const detail::Denominator& denominator,
+                           const std::vector<Stored>& velocities, const std::vector<Stored>& reactions) {
+  const Symbols& sy = *s.sy;
+  const int n = s.n;
+  const std::size_t N = s.size();
+  auto times_D = [&](const Stored& st, const char* what) {
+    const Fraction& f = st.fraction;
+    if (st.reduced.whole) {  // numerator = ±P / content, denominator = ±D / content
+      const cln::cl_I c = st.reduced.content * st.sign;
       // The denominator is usually D's own expression (content 1, sign +): no need to read it back.
       const bool own = c == 1 && f.denominator.is_equal(denominator.value());
-      if (!own && Poly::from_ex(f.denominator, sy).scaled(c) != D)
+      if (!own && Poly::from_ex(f.denominator, sy).scaled(c) != x.D)
         throw std::logic_error(std::string("Deriver::derive(): the denominator of ") + what + " is not det(Z^T A Z) over its content");
       return Poly::from_ex(f.numerator, sy).scaled(c);
     }
@@ -797,12 +849,12 @@ Derivation Deriver::derive(const ContactSet& closed) const {
       throw std::logic_error(std::string("Deriver::derive(): the denominator of ") + what + " does not divide det(Z^T A Z)");
     return Poly::from_ex(GiNaC::expand(f.numerator * q), sy);
   };
-  std::vector<Poly> W(N, Poly(vars)), L(N - 1, Poly(vars));
+  std::vector<Poly> W(N, Poly(s.vars)), L(N - 1, Poly(s.vars));
   for (int i = 0; i < n; ++i) W[static_cast<std::size_t>(i)] = times_D(velocities[static_cast<std::size_t>(i)], "a velocity");
   for (int c = 0; c + 1 < n; ++c)
     if (closed.closed(c)) L[static_cast<std::size_t>(c)] = -times_D(reactions[static_cast<std::size_t>(c)], "a reaction");
-  for (int i = 0; i < free_bodies; ++i) {
-    Poly r = inertia_of(i, W) + dissipation_of(i, W);
+  for (int i = 0; i < s.free_bodies; ++i) {
+    Poly r = inertia_of(s, i, W, x.uD) + dissipation_of(s, i, W, x.uD);
     if (i + 1 < n) r -= L[static_cast<std::size_t>(i)];
     if (i > 0) r += L[static_cast<std::size_t>(i - 1)];
     if (!r.is_zero())
@@ -812,178 +864,244 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   for (int c = 0; c + 1 < n; ++c)
     if (closed.closed(c) && W[static_cast<std::size_t>(c)] != W[static_cast<std::size_t>(c + 1)])
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": contact " + Pair{c + 1, c + 2}.name() + " does not stay closed");
-  if (fixed && W[N - 1] != uD[N - 1]) throw std::logic_error("Deriver::derive(): the fixed obstacle moves");
-  out.check = "substituted back: the " + std::to_string(free_bodies) +
-              " equations of motion with the reactions hold exactly (times det(Z^T A Z) they expand to 0), closed contacts keep equal "
-              "velocities" + std::string(fixed ? ", the obstacle stays at rest" : "");
+  if (s.fixed && W[N - 1] != x.uD[N - 1]) throw std::logic_error("Deriver::derive(): the fixed obstacle moves");
+  return "substituted back: the " + std::to_string(s.free_bodies) +
+         " equations of motion with the reactions hold exactly (times det(Z^T A Z) they expand to 0), closed contacts keep equal "
+         "velocities" + std::string(s.fixed ? ", the obstacle stays at rest" : "");
+}
 
-  // Conditions (paper §4), each also as a linear form in the cluster
-  // velocities: raw = Σ_c ℓ_c Vh_c + β D, so that raw / D = Σ_c ℓ_c V_c + β.
-  struct Linear {
-    std::vector<Poly> coefficients;
-    Poly constant;
-  };
-  auto linear = [&]() { return Linear{std::vector<Poly>(Kc, Poly(vars)), Poly(vars)}; };
+/// A linear form Σ_c coefficients_c V_c + constant in the cluster velocities.
+struct Linear {
+  std::vector<Poly> coefficients;
+  Poly constant;
+};
+
+/// A condition of the case before its forms are made: raw = Σ_c ℓ_c Vh_c +
+/// β D (the value times D), so that raw / D = Σ_c ℓ_c V_c + β (`form`).
+struct Pending {
+  ConditionKind kind;
+  std::string about;
+  Relation relation;
+  Poly raw;
+  std::vector<const Poly*> parts;  ///< the parts whose leading orders may cancel (into x of phase 3)
+  Linear form;
+};
+
+/// The conditions of a case (paper §4) and the reactions as linear forms.
+struct Conditions {
+  std::vector<Pending> pending;        ///< superball, each open contact's opening, each closed contact's reaction
+  std::vector<Linear> reaction_forms;  ///< −λ_c on each contact (zero on open ones)
+};
+
+/// Phase 6: the superball condition, the open contacts' openings and the
+/// closed contacts' reactions, each as its value times D and as a linear
+/// form in the cluster velocities.  The parts point into \p x.
+Conditions conditions_of(const System& s, const ContactSet& closed, const Solution& x) {
+  const int n = s.n;
+  const std::vector<int>& cluster = s.clusters.of;
+  auto linear = [&]() { return Linear{std::vector<Poly>(s.k(), Poly(s.vars)), Poly(s.vars)}; };
   auto add_velocity = [&](Linear& f, int i, const Poly& coefficient) {  // + coefficient · W_i
     const int ci = cluster[static_cast<std::size_t>(i)];
-    if (ci == fixed_cluster)
-      f.constant += coefficient * u[N - 1];
+    if (ci == s.clusters.fixed)
+      f.constant += coefficient * s.u[s.size() - 1];
     else
       f.coefficients[static_cast<std::size_t>(ci)] += coefficient;
   };
-  const Poly one = Poly::constant(vars, 1);
-  struct Pending {
-    ConditionKind kind;
-    std::string about;
-    Relation relation;
-    Poly raw;
-    std::vector<const Poly*> parts;
-    Linear form;
-  };
-  std::vector<Pending> pending;
-  const Poly aD = symbol(a) * D;
+  const Poly one = Poly::constant(s.vars, 1);
+  Conditions out;
   {
     Linear f = linear();
     add_velocity(f, 0, one);
-    f.constant -= symbol(a);
-    pending.push_back({ConditionKind::Superball, "U1 > a", Relation::Greater, Wh[0] - aD, {&Wh[0], &aD}, f});
+    f.constant -= s.symbol(s.sy->fall_speed());
+    out.pending.push_back({ConditionKind::Superball, "U1 > a", Relation::Greater, x.Wh[0] - x.aD, {&x.Wh[0], &x.aD}, f});
   }
   for (int c = 0; c + 1 < n; ++c) {
     if (closed.closed(c)) continue;
     Linear f = linear();
     add_velocity(f, c, one);
     add_velocity(f, c + 1, -one);
-    pending.push_back({ConditionKind::Evolution, Pair{c + 1, c + 2}.name(), Relation::Greater,
-                       Wh[static_cast<std::size_t>(c)] - Wh[static_cast<std::size_t>(c + 1)],
-                       {&Wh[static_cast<std::size_t>(c)], &Wh[static_cast<std::size_t>(c + 1)]}, f});
+    out.pending.push_back({ConditionKind::Evolution, Pair{c + 1, c + 2}.name(), Relation::Greater,
+                           x.Wh[static_cast<std::size_t>(c)] - x.Wh[static_cast<std::size_t>(c + 1)],
+                           {&x.Wh[static_cast<std::size_t>(c)], &x.Wh[static_cast<std::size_t>(c + 1)]}, f});
   }
-  std::vector<Linear> reaction_forms(N - 1, linear());
+  out.reaction_forms.assign(s.size() - 1, linear());
   for (int c = 0; c + 1 < n; ++c) {
     if (!closed.closed(c)) continue;
-    Linear& f = reaction_forms[static_cast<std::size_t>(c)];
-    for (int i = top[static_cast<std::size_t>(cluster[static_cast<std::size_t>(c)])]; i <= c; ++i) {
-      add_velocity(f, i, m[static_cast<std::size_t>(i)]);
-      f.constant -= m[static_cast<std::size_t>(i)] * u[static_cast<std::size_t>(i)];
+    Linear& f = out.reaction_forms[static_cast<std::size_t>(c)];
+    for (int i = s.clusters.top[static_cast<std::size_t>(cluster[static_cast<std::size_t>(c)])]; i <= c; ++i) {
+      add_velocity(f, i, s.m[static_cast<std::size_t>(i)]);
+      f.constant -= s.m[static_cast<std::size_t>(i)] * s.u[static_cast<std::size_t>(i)];
       for (int j = 0; j < n; ++j) {
-        if (Kij(i, j).is_zero()) continue;
-        add_velocity(f, j, Kij(i, j));
-        f.constant += Kij(i, j) * u[static_cast<std::size_t>(j)];
+        if (s.Kij(i, j).is_zero()) continue;
+        add_velocity(f, j, s.Kij(i, j));
+        f.constant += s.Kij(i, j) * s.u[static_cast<std::size_t>(j)];
       }
     }
-    pending.push_back({ConditionKind::Contact, Pair{c + 1, c + 2}.name(), Relation::GreaterEqual, Lh[static_cast<std::size_t>(c)],
-                       {&inertia[static_cast<std::size_t>(c)], &dissipation[static_cast<std::size_t>(c)]}, f});
+    out.pending.push_back({ConditionKind::Contact, Pair{c + 1, c + 2}.name(), Relation::GreaterEqual, x.Lh[static_cast<std::size_t>(c)],
+                           {&x.inertia[static_cast<std::size_t>(c)], &x.dissipation[static_cast<std::size_t>(c)]}, f});
   }
+  return out;
+}
 
-  // The elimination (Elimination), when something of the case is long:
-  // checked against the Cramer solution and every linear form exactly at a
-  // random point, and at the same point with the small parameters at 0 for
-  // the asymptotic forms.
+/// Phase 7: the elimination (Elimination), when something of the case is
+/// long: checked against the Cramer solution and every linear form exactly
+/// at a random point, and at the same point with the small parameters at 0
+/// for the asymptotic forms (then `limit[q]` is set for each condition q whose
+/// ε⁰ part it gives).  \p orders: the ε-order of each symbol; \p order: the
+/// orders kept beyond the dominant balance; \p epsilon_order of a polynomial.
+/// nullopt when the case is short or a pivot vanishes at the point.
+std::optional<Elimination> eliminate(const System& s, const ContactSet& closed, const Solution& x, const std::vector<Pending>& pending,
+                                     const std::vector<GiNaC::numeric>& orders, int order,
+                                     const std::function<GiNaC::numeric(const Poly&)>& epsilon_order, std::vector<char>& limit) {
+  const Symbols& sy = *s.sy;
+  const int k = s.clusters.free, vars = s.vars;
+  const std::size_t Kc = s.k();
   bool long_case = false;
   for (const Pending& p : pending) long_case = long_case || p.raw.size() > max_inline_terms;
-  for (const Poly& v : Vh) long_case = long_case || v.size() > max_inline_exact_terms;
+  for (const Poly& v : x.Vh) long_case = long_case || v.size() > max_inline_exact_terms;
   long_case = long_case && k >= min_eliminated_clusters;
-  std::vector<char> limit(pending.size(), 0);
-  if (long_case) {
-    Elimination e;
-    e.size = k;
-    for (int c = k; c-- > 0;) e.order.push_back(c);
-    e.multiplier = multipliers(B, k, e.order);
-    for (const Poly& b : B) e.matrix.push_back(b.to_ex(sy));
-    for (const Poly& r : rhs) e.rhs.push_back(r.to_ex(sy));
-    bool small_only = order_ == 0;  // the asymptotic forms are the ε⁰ parts: no parameter of negative order
-    for (const GiNaC::numeric& o : orders_) small_only = small_only && !o.is_negative();
-    small_only = small_only && epsilon_order(D).is_zero();
-    // A point with 62-bit coordinates, drawn from the case (the output does not depend on it).
-    std::mt19937_64 draw(0x5eedu + closed.to_string().size() * 7919u + std::hash<std::string>{}(closed.to_string()));
-    std::vector<cln::cl_I> point(static_cast<std::size_t>(vars)), zeroed;
-    for (auto& x : point) x = cln::cl_I(static_cast<std::uint64_t>(draw() >> 2) + 1);
-    zeroed = point;
-    for (std::size_t s = 0; s < orders_.size(); ++s)
-      if (orders_[s].is_positive()) zeroed[s] = 0;
-    auto velocities_at = [&](const std::vector<cln::cl_I>& x) {
-      std::vector<cln::cl_RA> Bx, rx;
-      for (const Poly& b : B) Bx.push_back(b.evaluate(x));
-      for (const Poly& r : rhs) rx.push_back(r.evaluate(x));
-      return eliminated_velocities(Bx, rx, k, e.multiplier, e.order);
-    };
-    auto value_at = [&](const Linear& f, const std::vector<cln::cl_RA>& V, const std::vector<cln::cl_I>& x) {
-      cln::cl_RA v = f.constant.evaluate(x);
-      for (std::size_t c = 0; c < Kc; ++c)
-        if (!f.coefficients[c].is_zero()) v += f.coefficients[c].evaluate(x) * V[c];
-      return v;
-    };
-    const auto V = velocities_at(point);
-    if (V) {
-      const cln::cl_I Dx = D.evaluate(point);
-      for (std::size_t c = 0; c < Kc; ++c)
-        if ((*V)[c] * Dx != Vh[c].evaluate(point))
-          throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the elimination's velocity of cluster " +
-                                 std::to_string(c + 1) + " is not the Cramer solution");
-      for (const Pending& p : pending)
-        if (value_at(p.form, *V, point) * Dx != p.raw.evaluate(point))
-          throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the condition on " + p.about +
-                                 " through the elimination is not the condition");
-      const auto V0 = small_only ? velocities_at(zeroed) : std::nullopt;
-      if (V0) {
-        const cln::cl_I D0 = D.evaluate(zeroed);
-        for (std::size_t q = 0; q < pending.size(); ++q) {
-          const Pending& p = pending[q];
-          if (p.raw.is_zero() || !epsilon_order(p.raw).is_zero()) continue;  // the ε⁰ part vanishes: not the dominant balance
-          if (value_at(p.form, *V0, zeroed) * D0 != p.raw.evaluate(zeroed))
-            throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the condition on " + p.about +
-                                   " through the elimination at order ε^0 is not the condition's");
-          limit[q] = 1;
-        }
-        for (std::size_t s = 0; s < orders_.size(); ++s)
-          if (orders_[s].is_positive()) e.small.push_back(sy.all()[s].symbol);
-      }
-      out.elimination = e;
-    }
-  }
-  auto eliminated = [&](const Linear& f) {
-    EliminatedForm e;
-    for (const Poly& c : f.coefficients) e.coefficients.push_back(c.to_ex(sy));
-    e.constant = f.constant.to_ex(sy);
-    return e;
+  if (!long_case) return std::nullopt;
+  Elimination e;
+  e.size = k;
+  for (int c = k; c-- > 0;) e.order.push_back(c);
+  e.multiplier = multipliers(s.B, k, e.order);
+  for (const Poly& b : s.B) e.matrix.push_back(b.to_ex(sy));
+  for (const Poly& r : s.rhs) e.rhs.push_back(r.to_ex(sy));
+  bool small_only = order == 0;  // the asymptotic forms are the ε⁰ parts: no parameter of negative order
+  for (const GiNaC::numeric& o : orders) small_only = small_only && !o.is_negative();
+  small_only = small_only && epsilon_order(x.D).is_zero();
+  // A point with 62-bit coordinates, drawn from the case (the output does not depend on it).
+  std::mt19937_64 draw(0x5eedu + closed.to_string().size() * 7919u + std::hash<std::string>{}(closed.to_string()));
+  std::vector<cln::cl_I> point(static_cast<std::size_t>(vars)), zeroed;
+  for (auto& v : point) v = cln::cl_I(static_cast<std::uint64_t>(draw() >> 2) + 1);
+  zeroed = point;
+  for (std::size_t q = 0; q < orders.size(); ++q)
+    if (orders[q].is_positive()) zeroed[q] = 0;
+  auto velocities_at = [&](const std::vector<cln::cl_I>& at) {
+    std::vector<cln::cl_RA> Bx, rx;
+    for (const Poly& b : s.B) Bx.push_back(b.evaluate(at));
+    for (const Poly& r : s.rhs) rx.push_back(r.evaluate(at));
+    return eliminated_velocities(Bx, rx, k, e.multiplier, e.order);
   };
-  if (out.elimination)
-    for (const Linear& f : reaction_forms) out.reactions_eliminated.push_back(eliminated(f));
-
-  detail::Naming naming;  // the case's named parts, and the diagonal of ZᵀAZ as candidates
+  auto value_at = [&](const Linear& f, const std::vector<cln::cl_RA>& V, const std::vector<cln::cl_I>& at) {
+    cln::cl_RA v = f.constant.evaluate(at);
+    for (std::size_t c = 0; c < Kc; ++c)
+      if (!f.coefficients[c].is_zero()) v += f.coefficients[c].evaluate(at) * V[c];
+    return v;
+  };
+  const auto V = velocities_at(point);
+  if (!V) return std::nullopt;
+  const cln::cl_I Dx = x.D.evaluate(point);
   for (std::size_t c = 0; c < Kc; ++c)
-    if (!B[c * Kc + c].is_constant()) naming.candidates.push_back(B[c * Kc + c]);
+    if ((*V)[c] * Dx != x.Vh[c].evaluate(point))
+      throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the elimination's velocity of cluster " + std::to_string(c + 1) +
+                             " is not the Cramer solution");
+  for (const Pending& p : pending)
+    if (value_at(p.form, *V, point) * Dx != p.raw.evaluate(point))
+      throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the condition on " + p.about +
+                             " through the elimination is not the condition");
+  const auto V0 = small_only ? velocities_at(zeroed) : std::nullopt;
+  if (V0) {
+    const cln::cl_I D0 = x.D.evaluate(zeroed);
+    for (std::size_t q = 0; q < pending.size(); ++q) {
+      const Pending& p = pending[q];
+      if (p.raw.is_zero() || !epsilon_order(p.raw).is_zero()) continue;  // the ε⁰ part vanishes: not the dominant balance
+      if (value_at(p.form, *V0, zeroed) * D0 != p.raw.evaluate(zeroed))
+        throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the condition on " + p.about +
+                               " through the elimination at order ε^0 is not the condition's");
+      limit[q] = 1;
+    }
+    for (std::size_t q = 0; q < orders.size(); ++q)
+      if (orders[q].is_positive()) e.small.push_back(sy.all()[q].symbol);
+  }
+  return e;
+}
+
+/// A linear form as the derivation keeps it (EliminatedForm).
+EliminatedForm eliminated_form(const Linear& f, const Symbols& sy) {
+  EliminatedForm e;
+  for (const Poly& c : f.coefficients) e.coefficients.push_back(c.to_ex(sy));
+  e.constant = f.constant.to_ex(sy);
+  return e;
+}
+
+/// Phase 8, its end: whether something of \p d is written through its
+/// elimination (present/'s report writes a velocity, a reaction or
+/// det(ZᵀAZ) through it by the same count of terms), so that it is kept.
+bool elimination_used(const Derivation& d) {
+  bool used = terms_of(d.determinant) > max_inline_exact_terms;
+  for (const Fraction& f : d.velocities) used = used || terms_of(f.numerator) > max_inline_exact_terms;
+  for (const Fraction& f : d.reactions) used = used || terms_of(f.numerator) > max_inline_exact_terms;
+  for (const Condition& c : d.conditions) used = used || c.exact.eliminated || c.asymptotic.eliminated || (c.finite && c.finite->eliminated);
+  return used;
+}
+
+/// The case as a whole: never actual when one of its evolution or contact
+/// conditions never holds, always when each of them always does.
+void set_actual(Derivation& d) {
+  d.actual = Verdict::Always;
+  for (const Condition& c : d.conditions) {
+    if (c.kind != ConditionKind::Evolution && c.kind != ConditionKind::Contact) continue;
+    if (c.exact.verdict == Verdict::Never) {
+      d.actual = Verdict::Never;
+      d.actual_reason = c.about;
+      break;
+    }
+    if (c.exact.verdict == Verdict::Depends) d.actual = Verdict::Depends;
+  }
+}
+
+}  // namespace
+
+Derivation Deriver::derive(const ContactSet& closed) const {
+  const Symbols& sy = *symbols_;
+  if (closed.bodies() != sy.bodies())
+    throw std::invalid_argument("Deriver::derive(): the case " + closed.to_string() + " is for " + std::to_string(closed.bodies()) +
+                                " bodies, the pattern has " + std::to_string(sy.bodies()));
+  const System s = system_of(sy, closed);  // phases 1 and 2
+  const Solution x = solve(s, closed);     // phase 3
+  const detail::Denominator denominator(x.D, sy);
+
+  Derivation out;  // phase 4: the results in lowest terms
+  out.symbols = symbols_;
+  out.closed = closed;
+  out.case_name = Vocabulary::paper().case_name(closed);
+  out.determinant = denominator.value();
+  out.free_clusters = s.clusters.free;
+  const GiNaC::exmap ref = reference_point(sy);
+  std::vector<Stored> velocities, reactions;
+  for (int i = 0; i < s.n; ++i) velocities.push_back(normalise(x.Wh[static_cast<std::size_t>(i)], denominator, ref));
+  for (int c = 0; c + 1 < s.n; ++c)
+    reactions.push_back(closed.closed(c) ? normalise(-x.Lh[static_cast<std::size_t>(c)], denominator, ref) : Stored{});
+  for (const Stored& v : velocities) out.velocities.push_back(v.fraction);
+  for (const Stored& r : reactions) out.reactions.push_back(r.fraction);
+  out.check = check_solution(s, closed, x, denominator, velocities, reactions);  // phase 5
+
+  const Conditions conditions = conditions_of(s, closed, x);  // phase 6
+  const std::vector<Pending>& pending = conditions.pending;
+  std::vector<char> limit(pending.size(), 0);
+  out.elimination = eliminate(s, closed, x, pending, orders_, order_, [this](const Poly& p) { return epsilon_order(p); }, limit);  // phase 7
+  if (out.elimination)
+    for (const Linear& f : conditions.reaction_forms) out.reactions_eliminated.push_back(eliminated_form(f, sy));
+
+  // Phase 8: the conditions' forms, the named parts, the case's verdict.
+  detail::Naming naming;  // the case's named parts, and the diagonal of ZᵀAZ as candidates
+  const std::size_t Kc = s.k();
+  for (std::size_t c = 0; c < Kc; ++c)
+    if (!s.B[c * Kc + c].is_constant()) naming.candidates.push_back(s.B[c * Kc + c]);
   for (std::size_t q = 0; q < pending.size(); ++q) {
     const Pending& p = pending[q];
-    const EliminatedForm form = out.elimination ? eliminated(p.form) : EliminatedForm{};
+    const EliminatedForm form = out.elimination ? eliminated_form(p.form, sy) : EliminatedForm{};
     out.conditions.push_back(make_condition(p.kind, p.about, p.relation, p.raw, denominator, p.parts, naming,
                                             out.elimination ? &form : nullptr, limit[q] != 0));
   }
-  // The elimination is kept only when something is written through it.
-  if (out.elimination) {
-    // (report() writes a velocity, a reaction or det(ZᵀAZ) through it by the same count of terms)
-    bool used = terms_of(out.determinant) > max_inline_exact_terms;
-    for (const Fraction& f : out.velocities) used = used || terms_of(f.numerator) > max_inline_exact_terms;
-    for (const Fraction& f : out.reactions) used = used || terms_of(f.numerator) > max_inline_exact_terms;
-    for (const Condition& c : out.conditions)
-      used = used || c.exact.eliminated || c.asymptotic.eliminated || (c.finite && c.finite->eliminated);
-    if (!used) {
-      out.elimination.reset();
-      out.reactions_eliminated.clear();
-    }
+  if (out.elimination && !elimination_used(out)) {  // the elimination is kept only when something is written through it
+    out.elimination.reset();
+    out.reactions_eliminated.clear();
   }
   for (std::size_t k = 0; k < naming.named.size(); ++k)
     out.named.push_back(NamedPart{static_cast<int>(k) + 1, naming.named[k].to_ex(sy), positive_terms(naming.named[k])});
-  // The case as a whole: never actual when one of its conditions never holds.
-  out.actual = Verdict::Always;
-  for (const Condition& c : out.conditions) {
-    if (c.kind != ConditionKind::Evolution && c.kind != ConditionKind::Contact) continue;
-    if (c.exact.verdict == Verdict::Never) {
-      out.actual = Verdict::Never;
-      out.actual_reason = c.about;
-      break;
-    }
-    if (c.exact.verdict == Verdict::Depends) out.actual = Verdict::Depends;
-  }
+  set_actual(out);
   out.conditions.insert(out.conditions.end(), psd_.begin(), psd_.end());
   return out;
 }

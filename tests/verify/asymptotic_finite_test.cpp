@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include "superball/cases/vocabulary.hpp"
+#include "superball/present/verification.hpp"
 #include "superball/verify/verification.hpp"
 
 namespace superball::verify {
 namespace {
 
 using cln::cl_RA;
+using present::to_text;
 using symbolic::Deriver;
 using symbolic::Obstacle;
 using symbolic::Pattern;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "superball/present/audit.hpp"
 #include "superball/verify/audit.hpp"
 
 namespace superball::verify {
@@ -70,7 +71,7 @@ TEST(Audit, Reproducible) {
   AuditOptions o;
   o.samples = 200;
   o.seed = 5;
-  EXPECT_EQ(to_text(audit_paper(PrintedConditions::paper(), o)), to_text(audit_paper(PrintedConditions::paper(), o)));
+  EXPECT_EQ(present::to_text(audit_paper(PrintedConditions::paper(), o)), present::to_text(audit_paper(PrintedConditions::paper(), o)));
 }
 
 TEST(Audit, BadDataIsReported) {

@@ -12,6 +12,7 @@
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/collision.hpp"
+#include "superball/present/explore.hpp"
 #include "superball/verify/explore.hpp"
 #include "superball/verify/space.hpp"
 
@@ -19,6 +20,10 @@ namespace superball::verify {
 namespace {
 
 using cln::cl_RA;
+using present::cell_text;
+using present::to_json;
+using present::to_text;
+using present::witness_file;
 using symbolic::Deriver;
 using symbolic::Obstacle;
 using symbolic::Pattern;

@@ -9,12 +9,16 @@
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/collision.hpp"
 #include "superball/verify/space.hpp"
+#include "superball/present/verification.hpp"
 #include "superball/verify/verification.hpp"
 
 namespace superball::verify {
 namespace {
 
 using cln::cl_RA;
+using present::describe;
+using present::to_json;
+using present::to_text;
 using symbolic::Deriver;
 using symbolic::Obstacle;
 using symbolic::Pattern;

@@ -47,10 +47,6 @@ Point point_of(const ParameterSpace& space, const numeric::ExactScene& s) {
 /// The grid line's parameter at fraction \p t from grid index \p k to k + 1 of \p a.
 cln::cl_RA at(const numeric::Axis& a, int k, const cln::cl_RA& t) { return a.from + (a.to - a.from) * (k + t) / (a.steps - 1); }
 
-std::string condition_name(symbolic::ConditionKind kind, const std::string& about) {
-  return std::string(symbolic::to_string(kind)) + (about.empty() ? "" : " " + about);
-}
-
 }  // namespace
 
 bool Overlay::agrees() const {
@@ -190,71 +186,10 @@ Overlay overlay(const Scene& scene, const Map& map, int bits) {
   return o;
 }
 
-std::string to_text(const Overlay& o, const Map& map) {
-  const Vocabulary& v = Vocabulary::paper();
-  std::string cases;
-  for (const ContactSet& c : o.cases) cases += (cases.empty() ? "" : ", ") + v.case_name(c);
-  std::size_t bounding = 0;
-  for (const DerivedZero& z : o.zeros) bounding += z.at_case;
-  std::string text = "overlay: the derived conditions of case" + std::string(o.cases.size() == 1 ? " " : "s ") + cases + " (" +
-                     std::to_string(o.conditions) + " conditions, PSD left out), located exactly on the grid lines: " +
-                     std::to_string(o.zeros.size()) + " zeros, " + std::to_string(bounding) + " of them next to a point of their case\n";
-  text += "  boundary points compared: " + std::to_string(o.matches.size()) + "; largest distance to the nearest derived zero " +
-          numeric::to_string(o.largest_distance, 3) + " of the grid step (allowed: the two brackets' widths, up to " +
-          numeric::to_string(o.largest_allowed, 3) + "): " + (o.agrees() ? "agree" : "DISAGREE") + "\n";
-  for (const OverlayMatch& m : o.matches) {
-    if (m.agrees()) continue;
-    const MapBoundary& b = map.boundaries[m.boundary];
-    const auto [x, y] = numeric::position(map, b);
-    text += "  disagreement at (" + numeric::to_string(x, 17) + ", " + numeric::to_string(y, 17) + "): case " + v.case_name(b.below.closed) +
-            (b.below.superball ? " superball" : "") + " -> case " + v.case_name(b.above.closed) + (b.above.superball ? " superball" : "") + ": ";
-    if (!m.found) {
-      text += "no derived condition of either case changes side on its grid segment\n";
-    } else {
-      const DerivedZero& z = o.zeros[m.zero];
-      text += "the nearest derived zero (case " + v.case_name(z.closed) + ", " + condition_name(z.kind, z.about) + ") is " +
-              numeric::to_string(cln::double_approx(m.distance), 3) + " away, allowed " + numeric::to_string(cln::double_approx(m.allowed), 3) +
-              "\n";
-    }
-  }
-  return text;
-}
-
-nlohmann::ordered_json to_json(const Overlay& o, const Map& map) {
-  const Vocabulary& v = Vocabulary::paper();
-  nlohmann::ordered_json j;
-  auto& cases = j["cases"] = nlohmann::ordered_json::array();
-  for (const ContactSet& c : o.cases) cases.push_back(v.case_name(c));
-  j["conditions"] = o.conditions;
-  j["agrees"] = o.agrees();
-  j["largest_distance_in_steps"] = o.largest_distance;
-  j["largest_allowed_in_steps"] = o.largest_allowed;
-  auto& zeros = j["zeros"] = nlohmann::ordered_json::array();
-  for (const DerivedZero& z : o.zeros) {
-    const cln::cl_RA mid = (z.low + z.high) / 2;
-    const cln::cl_RA fixed = z.along_x ? at(map.y, z.j, 0) : at(map.x, z.i, 0);
-    zeros.push_back({{"case", v.case_name(z.closed)},
-                     {"condition", condition_name(z.kind, z.about)},
-                     {"along", z.along_x ? map.x.parameter.key() : map.y.parameter.key()},
-                     {"x", cln::double_approx(z.along_x ? mid : fixed)},
-                     {"y", cln::double_approx(z.along_x ? fixed : mid)},
-                     {"low", numeric::to_string(z.low)},
-                     {"high", numeric::to_string(z.high)},
-                     {"holds_low", z.holds_low},
-                     {"next_to_case", z.at_case}});
-  }
-  auto& matches = j["matches"] = nlohmann::ordered_json::array();
-  for (const OverlayMatch& m : o.matches) {
-    nlohmann::ordered_json q{{"boundary", m.boundary}, {"found", m.found}};
-    if (m.found) {
-      q["zero"] = m.zero;
-      q["distance"] = cln::double_approx(m.distance);
-      q["allowed"] = cln::double_approx(m.allowed);
-    }
-    q["agrees"] = m.agrees();
-    matches.push_back(std::move(q));
-  }
-  return j;
+std::pair<cln::cl_RA, cln::cl_RA> position(const Map& map, const DerivedZero& z) {
+  const cln::cl_RA mid = (z.low + z.high) / 2;
+  const cln::cl_RA fixed = z.along_x ? at(map.y, z.j, 0) : at(map.x, z.i, 0);
+  return z.along_x ? std::pair{mid, fixed} : std::pair{fixed, mid};
 }
 
 }  // namespace superball::verify

@@ -64,10 +64,6 @@ struct BlockResult {
 
 const char* yes(bool b) { return b ? "holds" : "fails"; }
 
-std::string condition_name(const VerifiedCondition& c) {
-  return std::string(symbolic::to_string(c.kind)) + " " + c.about;
-}
-
 /// The role of a point in evaluate(): drawn, found by reach(), or (>= 0) an
 /// end of a bracket of that condition.
 constexpr int drawn_point = -1, found_point = -2;
@@ -107,7 +103,7 @@ void evaluate(Context& ctx, const std::vector<VerifiedCondition>& names, const P
     ct.asymptotic_agree += s == truth_c;
     for (const auto& [form, holds] : {std::pair<const char*, bool>{"exact", e}, {"asymptotic", s}})
       if (holds != truth_c)
-        details.push_back(std::string(form) + " form of " + condition_name(names[c]) + " " + yes(holds) + "; the exact solution of the case: " +
+        details.push_back(std::string(form) + " form of " + names[c].name() + " " + yes(holds) + "; the exact solution of the case: " +
                           quantity + " (" + yes(truth_c) + ")");
   }
   auto count = [truth](Confusion& m, bool holds) {
@@ -357,12 +353,78 @@ class Reader {
   const std::vector<cl_RA>& epsilons_;
 };
 
-std::string pad(const std::string& s, std::size_t width, bool right = true) {
-  // width in characters: count UTF-8 lead bytes only
-  std::size_t n = 0;
-  for (unsigned char ch : s) n += (ch & 0xC0) != 0x80;
-  const std::string fill(n < width ? width - n : 0, ' ');
-  return right ? fill + s : s + fill;
+/// The state of each of \p threads worker threads: its own clones of the
+/// space, the compiled conditions and the values of ε, sharing no CLN object.
+std::vector<Context> contexts(int threads, const ParameterSpace& space, const std::vector<CompiledCondition>& exact,
+                              const std::vector<CompiledCondition>& asymptotic, const std::vector<cl_RA>& epsilons, const ContactSet& closed,
+                              const std::string& title) {
+  std::vector<Context> out;
+  for (int t = 0; t < threads; ++t) {
+    Context ctx{space.clone(), {}, {}, {}, closed, title};
+    for (std::size_t c = 0; c < exact.size(); ++c) {
+      ctx.exact.push_back(exact[c].clone());
+      ctx.asymptotic.push_back(asymptotic[c].clone());
+    }
+    for (const cl_RA& e : epsilons) ctx.epsilons.push_back(deep_copy(e));
+    out.push_back(std::move(ctx));
+  }
+  return out;
+}
+
+/// One block of the boundary stage: an ε and a condition.
+struct Work {
+  std::size_t epsilon;
+  int condition;
+  std::vector<std::pair<Point, Point>> pairs;  ///< (holds, fails)
+  std::vector<Point> starts;                   ///< points to search from, best first
+  bool want_holds = false;                     ///< the side searched for
+};
+
+/// The boundary stage's blocks, one per ε and condition: pair the drawn
+/// points of \p bulk (\p per_eps blocks per ε) where the \p exact form holds
+/// with those where it fails (in run order), to bisect between them; when a
+/// side has fewer than \p boundary_pairs points, search for more of it from
+/// the other side's points nearest to it.
+std::vector<Work> boundary_work(const std::vector<BlockResult>& bulk, std::size_t n_eps, std::size_t per_eps,
+                                const std::vector<CompiledCondition>& exact, int boundary_pairs) {
+  std::vector<Work> work;
+  for (std::size_t e = 0; e < n_eps; ++e) {
+    for (std::size_t c = 0; c < exact.size(); ++c) {
+      Work w{e, static_cast<int>(c), {}, {}, false};
+      std::vector<const Point*> hold, fails;
+      for (std::size_t b = e * per_eps; b < (e + 1) * per_eps; ++b)
+        for (std::size_t i = 0; i < bulk[b].points.size(); ++i)
+          if (!on_boundary(exact[c], bulk[b].points[i]))  // a segment's ends are strictly on a side
+            (bulk[b].sides[i][c] ? hold : fails).push_back(&bulk[b].points[i]);
+      const std::size_t wanted = static_cast<std::size_t>(boundary_pairs);
+      const std::size_t n = std::min({wanted, hold.size(), fails.size()});
+      for (std::size_t i = 0; i < n; ++i) w.pairs.emplace_back(deep_copy(*hold[i]), deep_copy(*fails[i]));
+      if (n < wanted && (hold.size() < wanted || fails.size() < wanted)) {
+        w.want_holds = hold.size() < fails.size();
+        std::vector<std::pair<double, const Point*>> from;
+        for (const Point* x : w.want_holds ? fails : hold) from.emplace_back(-toward(exact[c], *x, w.want_holds), x);
+        std::stable_sort(from.begin(), from.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (std::size_t i = 0; i < from.size() && i < wanted - n; ++i) w.starts.push_back(deep_copy(*from[i].second));
+      }
+      work.push_back(std::move(w));
+    }
+  }
+  return work;
+}
+
+/// The blocks' results into \p v in run order: per ε, the bulk blocks then the boundary blocks.
+void merge_stages(Verification& v, const std::vector<BlockResult>& bulk, const std::vector<BlockResult>& boundary, std::size_t per_eps) {
+  for (std::size_t e = 0; e < v.epsilons.size(); ++e) {
+    for (std::size_t b = e * per_eps; b < (e + 1) * per_eps; ++b) {
+      merge(v.epsilons[e].drawn, bulk[b].tally);
+      v.disagreements.insert(v.disagreements.end(), bulk[b].disagreements.begin(), bulk[b].disagreements.end());
+    }
+    for (const BlockResult& r : boundary) {
+      if (r.epsilon != e) continue;
+      merge(v.epsilons[e].boundary, r.tally);
+      v.disagreements.insert(v.disagreements.end(), r.disagreements.begin(), r.disagreements.end());
+    }
+  }
 }
 
 }  // namespace
@@ -385,6 +447,15 @@ Tally EpsilonResult::all() const {
   Tally t = drawn;
   detail::merge(t, boundary);
   return t;
+}
+
+ConditionTally Verification::condition_total(std::size_t c) const {
+  ConditionTally all;
+  for (const EpsilonResult& e : epsilons) {
+    detail::merge(all, e.drawn.conditions[c]);
+    detail::merge(all, e.boundary.conditions[c]);
+  }
+  return all;
 }
 
 bool Verification::exact_agrees() const {
@@ -450,16 +521,7 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
     asymptotic.emplace_back(c, c.asymptotic, sy);
   }
   const std::string title = "superball verify: case " + d.case_name + ", " + v.pattern;
-  std::vector<Context> contexts;
-  for (int t = 0; t < threads; ++t) {
-    Context ctx{space.clone(), {}, {}, {}, closed, title};
-    for (std::size_t c = 0; c < exact.size(); ++c) {
-      ctx.exact.push_back(exact[c].clone());
-      ctx.asymptotic.push_back(asymptotic[c].clone());
-    }
-    for (const cl_RA& e : options.epsilons) ctx.epsilons.push_back(deep_copy(e));
-    contexts.push_back(std::move(ctx));
-  }
+  std::vector<Context> contexts = detail::contexts(threads, space, exact, asymptotic, options.epsilons, closed, title);
   const std::size_t n_eps = options.epsilons.size(), n_cond = exact.size();
   auto fresh = [&](std::size_t e) {
     BlockResult r;
@@ -530,41 +592,10 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
     return r;
   });
 
-  // Stage 2, one block per ε and condition: pair the drawn points where the
-  // exact form holds with those where it fails (in run order) and bisect
-  // between them; when a side has fewer than boundary_pairs points, search
-  // for more of it from the other side's points nearest to it.
-  struct Work {
-    std::size_t epsilon;
-    int condition;
-    std::vector<std::pair<Point, Point>> pairs;  ///< (holds, fails)
-    std::vector<Point> starts;                   ///< points to search from, best first
-    bool want_holds = false;                     ///< the side searched for
-  };
-  std::vector<Work> work;
-  for (std::size_t e = 0; e < n_eps; ++e) {
-    for (std::size_t c = 0; c < n_cond; ++c) {
-      Work w{e, static_cast<int>(c), {}, {}, false};
-      std::vector<const Point*> hold, fails;
-      for (std::size_t b = e * per_eps; b < (e + 1) * per_eps; ++b)
-        for (std::size_t i = 0; i < bulk[b].points.size(); ++i)
-          if (!detail::on_boundary(exact[c], bulk[b].points[i]))  // a segment's ends are strictly on a side
-            (bulk[b].sides[i][c] ? hold : fails).push_back(&bulk[b].points[i]);
-      const std::size_t wanted = static_cast<std::size_t>(options.boundary_pairs);
-      const std::size_t n = std::min({wanted, hold.size(), fails.size()});
-      for (std::size_t i = 0; i < n; ++i) w.pairs.emplace_back(deep_copy(*hold[i]), deep_copy(*fails[i]));
-      if (n < wanted && (hold.size() < wanted || fails.size() < wanted)) {
-        w.want_holds = hold.size() < fails.size();
-        std::vector<std::pair<double, const Point*>> from;
-        for (const Point* x : w.want_holds ? fails : hold) from.emplace_back(-detail::toward(exact[c], *x, w.want_holds), x);
-        std::stable_sort(from.begin(), from.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-        for (std::size_t i = 0; i < from.size() && i < wanted - n; ++i) w.starts.push_back(deep_copy(*from[i].second));
-      }
-      work.push_back(std::move(w));
-    }
-  }
+  // Stage 2, one block per ε and condition (detail::boundary_work()).
+  const std::vector<detail::Work> work = detail::boundary_work(bulk, n_eps, per_eps, exact, options.boundary_pairs);
   const auto boundary = stage(work.size(), 1, [&](Context& ctx, std::size_t block) {
-    const Work& w = work[block];
+    const detail::Work& w = work[block];
     BlockResult r = fresh(w.epsilon);
     for (const auto& [hold, fails] : w.pairs) detail::bisect(ctx, v.conditions, hold, fails, w.condition, r);
     for (std::size_t i = 0; i < w.starts.size(); ++i) {
@@ -579,164 +610,8 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
   });
   if (options.progress) options.progress(planned, planned);
 
-  // Merge in run order: per ε, the bulk blocks then the boundary blocks.
-  for (std::size_t e = 0; e < n_eps; ++e) {
-    for (std::size_t b = e * per_eps; b < (e + 1) * per_eps; ++b) {
-      detail::merge(v.epsilons[e].drawn, bulk[b].tally);
-      v.disagreements.insert(v.disagreements.end(), bulk[b].disagreements.begin(), bulk[b].disagreements.end());
-    }
-    for (const BlockResult& r : boundary) {
-      if (r.epsilon != e) continue;
-      detail::merge(v.epsilons[e].boundary, r.tally);
-      v.disagreements.insert(v.disagreements.end(), r.disagreements.begin(), r.disagreements.end());
-    }
-  }
+  detail::merge_stages(v, bulk, boundary, per_eps);
   return v;
-}
-
-std::string describe(const Verification& v, const Disagreement& d) {
-  std::ostringstream os;
-  os << "superball verify: case " << v.case_name << " (" << v.pattern << ", obstacle " << v.obstacle << "), eps = "
-     << epsilon_name(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon) << (d.near ? ", a point near a boundary" : "") << '\n';
-  os << "the exact solution: case " << d.actual_case << ", " << d.quantity << " -> case " << v.case_name << " with U1+ > a "
-     << (d.truth ? "TRUE" : "FALSE") << '\n';
-  os << "the exact conditions " << (d.exact ? "hold" : "fail") << (d.exact == d.truth ? " (agree)" : " (DISAGREE)") << "; the asymptotic conditions "
-     << (d.asymptotic ? "hold" : "fail") << (d.asymptotic == d.truth ? " (agree)" : " (disagree)") << '\n';
-  for (const std::string& s : d.details) os << s << '\n';
-  std::string point;
-  for (const auto& [name, x] : d.point) point += (point.empty() ? "" : ", ") + name + " = " + to_string(x);
-  os << "point: " << point;
-  return os.str();
-}
-
-std::string to_text(const Verification& v) {
-  using detail::pad;
-  std::ostringstream os;
-  os << "case " << v.case_name << " — " << v.pattern << ", obstacle " << v.obstacle << ", regime " << v.scaling << '\n';
-  os << "conditions (exact" << (v.obstacle == "finite" ? ", finite m_n" : "") << " | asymptotic):\n";
-  for (const VerifiedCondition& c : v.conditions)
-    os << "  " << pad(detail::condition_name(c), 18, false) << ' ' << c.exact_text << "   |   " << c.asymptotic_text << '\n';
-  os << "points per eps: " << v.samples << " drawn, then per condition up to " << v.boundary_pairs
-     << " segments across its boundary bisected to 2^-" << boundary_bracket_bits << " (both ends kept; a side short of drawn points is searched for), seed "
-     << v.seed << "\n\n";
-  auto ratio = [](long long part, long long whole) { return std::to_string(part) + "/" + std::to_string(whole); };
-  os << "   eps  points  drawn  bound |  exact agree |  asymptotic agree: drawn     near |  exact: H&T   H&F   F&T   F&F |  asymptotic: H&T   H&F   F&T   F&F\n";
-  for (const EpsilonResult& e : v.epsilons) {
-    const Tally t = e.all();
-    os << pad(epsilon_name(e.epsilon), 6) << pad(std::to_string(t.exact.total()), 8) << pad(std::to_string(e.drawn.exact.total()), 7)
-       << pad(std::to_string(e.boundary.exact.total()), 7) << " | " << pad(ratio(t.exact.agree(), t.exact.total()), 12) << " | "
-       << pad(ratio(e.drawn.asymptotic.agree(), e.drawn.asymptotic.total()), 23) << pad(ratio(e.boundary.asymptotic.agree(), e.boundary.asymptotic.total()), 9)
-       << " |";
-    for (const Confusion* m : {&t.exact, &t.asymptotic})
-      os << (m == &t.exact ? "     " : "           ") << pad(std::to_string(m->holds_true), 5) << pad(std::to_string(m->holds_false), 6)
-         << pad(std::to_string(m->fails_true), 6) << pad(std::to_string(m->fails_false), 6) << (m == &t.exact ? " |" : "");
-    if (t.undrawn || t.unsolved) os << "   (" << t.undrawn << " draws without an admissible point, " << t.unsolved << " unsolved)";
-    os << '\n';
-  }
-  os << "\nper condition (all eps): points on each side of it, of them near its boundary, agreement of its exact form;\n"
-     << "then per eps the points where its asymptotic form disagrees: among the drawn ones / among those near its boundary\n";
-  os << "  condition            holds (near)    fails (near)  exact agree  | asymptotic disagree:";
-  for (const EpsilonResult& e : v.epsilons) os << pad(epsilon_name(e.epsilon), 12);
-  os << '\n';
-  for (std::size_t c = 0; c < v.conditions.size(); ++c) {
-    ConditionTally all;
-    for (const EpsilonResult& e : v.epsilons) {
-      detail::merge(all, e.drawn.conditions[c]);
-      detail::merge(all, e.boundary.conditions[c]);
-    }
-    os << "  " << pad(detail::condition_name(v.conditions[c]), 18, false) << pad(std::to_string(all.holds) + " (" + std::to_string(all.near_holds) + ")", 15)
-       << pad(std::to_string(all.fails) + " (" + std::to_string(all.near_fails) + ")", 16) << pad(ratio(all.exact_agree, all.points()), 13)
-       << "  |                     ";
-    for (const EpsilonResult& e : v.epsilons) {
-      const ConditionTally& d = e.drawn.conditions[c];
-      const ConditionTally& n = e.boundary.conditions[c];
-      const long long near = n.near_holds + n.near_fails;
-      os << pad(std::to_string(d.points() - d.asymptotic_agree) + " / " + (near ? ratio(near - n.near_asymptotic_agree, near) : std::string("-")), 12);
-    }
-    for (bool side : {true, false}) {
-      std::string where;
-      for (const EpsilonResult& e : v.epsilons) {
-        const ConditionTally& t = e.drawn.conditions[c];
-        const ConditionTally& n = e.boundary.conditions[c];
-        if ((side ? t.holds + n.holds : t.fails + n.fails) == 0) where += (where.empty() ? "" : ",") + epsilon_name(e.epsilon);
-      }
-      if (where.empty()) continue;
-      const symbolic::Verdict verdict = v.conditions[c].asymptotic_verdict;
-      os << "   (" << (side ? "holds" : "fails") << " side not reached at eps " << where;
-      if (verdict != symbolic::Verdict::Depends) os << ": its asymptotic form " << (verdict == symbolic::Verdict::Always ? "always holds" : "never holds");
-      os << ")";
-    }
-    os << '\n';
-  }
-  const auto exact = std::count_if(v.disagreements.begin(), v.disagreements.end(), [](const Disagreement& d) { return d.exact_form; });
-  os << "\ndisagreements: " << v.disagreements.size() << " points (" << exact << " where an exact form disagrees)\n";
-  for (const Disagreement& d : v.disagreements)
-    if (d.exact_form) os << "  EXACT FORM DISAGREES: " << describe(v, d) << '\n';
-  return os.str();
-}
-
-nlohmann::ordered_json to_json(const Verification& v) {
-  using nlohmann::ordered_json;
-  ordered_json j;
-  j["case"] = v.case_name;
-  j["pattern"] = v.pattern;
-  j["obstacle"] = v.obstacle;
-  j["scaling"] = v.scaling;
-  j["samples"] = v.samples;
-  j["boundary_pairs"] = v.boundary_pairs;
-  j["boundary_bracket"] = "2^-" + std::to_string(boundary_bracket_bits);
-  j["seed"] = v.seed;
-  j["exact_agrees"] = v.exact_agrees();
-  ordered_json conditions = ordered_json::array();
-  for (const VerifiedCondition& c : v.conditions)
-    conditions.push_back({{"kind", symbolic::to_string(c.kind)},
-                          {"about", c.about},
-                          {"exact", c.exact_text},
-                          {"asymptotic", c.asymptotic_text},
-                          {"asymptotic_verdict", symbolic::to_string(c.asymptotic_verdict)}});
-  j["conditions"] = conditions;
-  auto confusion = [](const Confusion& m) {
-    return ordered_json{{"holds_true", m.holds_true}, {"holds_false", m.holds_false}, {"fails_true", m.fails_true}, {"fails_false", m.fails_false},
-                        {"agree", m.agree()}, {"total", m.total()}};
-  };
-  auto tally = [&](const Tally& t) {
-    ordered_json x;
-    x["points"] = t.points;
-    x["undrawn"] = t.undrawn;
-    x["unsolved"] = t.unsolved;
-    x["exact"] = confusion(t.exact);
-    x["asymptotic"] = confusion(t.asymptotic);
-    ordered_json per = ordered_json::array();
-    for (std::size_t c = 0; c < t.conditions.size(); ++c) {
-      const ConditionTally& k = t.conditions[c];
-      per.push_back({{"condition", detail::condition_name(v.conditions[c])}, {"holds", k.holds}, {"fails", k.fails}, {"near_holds", k.near_holds},
-                     {"near_fails", k.near_fails}, {"exact_agree", k.exact_agree}, {"asymptotic_agree", k.asymptotic_agree},
-                     {"near_asymptotic_agree", k.near_asymptotic_agree}});
-    }
-    x["conditions"] = per;
-    return x;
-  };
-  ordered_json eps = ordered_json::array();
-  for (const EpsilonResult& e : v.epsilons)
-    eps.push_back({{"epsilon", to_string(e.epsilon)}, {"all", tally(e.all())}, {"drawn", tally(e.drawn)}, {"boundary", tally(e.boundary)}});
-  j["epsilons"] = eps;
-  ordered_json dis = ordered_json::array();
-  for (const Disagreement& d : v.disagreements) {
-    ordered_json point = ordered_json::object();
-    for (const auto& [name, x] : d.point) point[name] = to_string(x);
-    dis.push_back({{"epsilon", to_string(v.epsilons[static_cast<std::size_t>(d.epsilon_index)].epsilon)},
-                   {"near_boundary", d.near},
-                   {"point", point},
-                   {"actual_case", d.actual_case},
-                   {"quantity", d.quantity},
-                   {"truth", d.truth},
-                   {"exact_holds", d.exact},
-                   {"asymptotic_holds", d.asymptotic},
-                   {"exact_form_disagrees", d.exact_form},
-                   {"details", d.details}});
-  }
-  j["disagreements"] = dis;
-  return j;
 }
 
 }  // namespace superball::verify

@@ -1,10 +1,13 @@
 #pragma once
 /// \file derivation.hpp
-/// A derivation for programs: the JSON of `superball derive --format json`,
-/// shared by the command and the Python module; not installed.
+/// A derivation as people and programs read it: the report in text and
+/// LaTeX (`superball derive`, `--format latex`), a standalone LaTeX document,
+/// and the JSON of `--format json`.  Shared by the command and the Python
+/// module; not installed.  The formulas themselves are symbolic/format.hpp's.
 
 #include <nlohmann/json.hpp>
 
+#include <string>
 #include <vector>
 
 #include "superball/symbolic/derivation.hpp"
@@ -23,5 +26,21 @@ nlohmann::ordered_json condition_json(const symbolic::Condition& c, const symbol
 /// were most of the conditions written.
 nlohmann::ordered_json derivation_json(const symbolic::Derivation& d, const symbolic::Deriver& deriver,
                                        std::vector<nlohmann::ordered_json>& psd);
+
+/// A full report of \p d in Text or Latex style (a LaTeX fragment: use
+/// latex_document() for a compilable file); \p with_psd false leaves out the
+/// conditions on M, which are the same in every case (report_psd()).
+/// Throws std::invalid_argument ("report(): ...") for Style::Ascii (use JSON for programs).
+std::string report(const symbolic::Derivation& d, const symbolic::Deriver& deriver, symbolic::Style style, bool with_psd = true);
+
+/// The conditions on M of the deriver's pattern (paper §3: M positive
+/// semi-definite, one principal minor per connected set of coupled pairs),
+/// once, in Text or Latex style.  Throws std::invalid_argument("report_psd(): ...") for Style::Ascii.
+std::string report_psd(const symbolic::Deriver& deriver, symbolic::Style style);
+
+/// A standalone LaTeX document (article class, amsmath, geometry) with the
+/// reports of \p derivations; compiles with texlive-latex-base's pdflatex
+/// without an overfull line or a missing glyph (tests/present/latex_test.cpp).
+std::string latex_document(const std::vector<symbolic::Derivation>& derivations, const symbolic::Deriver& deriver);
 
 }  // namespace superball::present

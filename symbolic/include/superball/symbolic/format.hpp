@@ -8,7 +8,9 @@
 /// is GiNaC's input syntax with the names m1, K12, alpha2, c_12_14, a.  All
 /// three styles print the terms in one canonical order (GiNaC's own term
 /// order is not reproducible between processes), so every output is the same
-/// from run to run.  No global print state changes.
+/// from run to run.  No global print state changes.  These are the
+/// formula-level forms; the reports of a derivation (text, LaTeX document,
+/// JSON) are present/derivation.hpp's.
 
 #include <ginac/ginac.h>
 
@@ -44,6 +46,19 @@ std::string format_condition(const GiNaC::ex& p, Relation relation, const Symbol
 /// A condition form, with its unproved denominator if it has one
 /// ("(N)/(D) > 0 (sign of the denominator not proved)").
 std::string format_condition(const ConditionForm& form, Relation relation, const Symbols& symbols, Style style);
+
+/// A polynomial as FACTOR·(REST): its rational content and common
+/// monomial, with the sign taken out when every term is negative, and the
+/// primitive rest in the canonical order (a long fraction's numerator
+/// written over a display's rows: present/derivation.hpp's LaTeX report).
+struct CommonFactor {
+  bool negative = false;  ///< every term is negative: the polynomial is −FACTOR·(REST)
+  std::string factor;     ///< "1" when there is no common factor
+  std::string rest;       ///< the terms left, joined with their signs
+  bool rest_is_one = false;  ///< the polynomial is ±FACTOR alone
+};
+/// \p p split into its common factor and the rest, in \p style.
+CommonFactor format_common_factor(const GiNaC::ex& p, const Symbols& symbols, Style style);
 
 /// One formula in the three notations.
 struct StyledText {
@@ -88,27 +103,21 @@ std::string format_eliminated(const EliminatedForm& f, Relation relation, const 
 /// The value Σ_c ℓ_c V_c + β of \p f, negated when \p negate (a reaction R = −λ).
 std::string format_linear(const EliminatedForm& f, const Symbols& symbols, Style style, bool negate = false);
 
+/// det(ZᵀAZ) of the elimination \p e as the product of its pivots: "p₁p₂p₃" (text),
+/// "p_{1} p_{2} p_{3}" (LaTeX), "p1*p2*p3" (ASCII).
+std::string format_pivot_product(const Elimination& e, Style style);
+
+/// ε^k in \p style: "ε^-1" (text), "\\varepsilon^{-1}" (LaTeX), "eps^-1" (ASCII).
+std::string epsilon_power(const GiNaC::numeric& k, Style style);
+
+/// m₄ (text), m_{4} (LaTeX), m4 (ASCII): the mass of \p body, a symbol or not
+/// (the fixed obstacle's m_n = ∞).
+std::string mass_name(int body, Style style);
 /// U₁⁺ (text), U_{1}^{+} (LaTeX), U1 (ASCII).
 std::string velocity_name(int body, Style style);
 /// R₂₃ (text), R_{23} (LaTeX), R2_3 (ASCII): the reaction on contact \p contact.
 std::string reaction_name(const Pair& contact, Style style);
 /// What the condition says in words: "superball (U₁⁺ > a)", "contact 2-3 stays closed (R₂₃ ≤ 0)", …
 std::string condition_title(const Condition& c, Style style);
-
-/// A full report of \p d in Text or Latex style (a LaTeX fragment: use
-/// latex_document() for a compilable file); \p with_psd false leaves out the
-/// conditions on M, which are the same in every case (report_psd()).
-/// Throws std::invalid_argument ("report(): ...") for Style::Ascii (use JSON for programs).
-std::string report(const Derivation& d, const Deriver& deriver, Style style, bool with_psd = true);
-
-/// The conditions on M of the deriver's pattern (paper §3: M positive
-/// semi-definite, one principal minor per connected set of coupled pairs),
-/// once, in Text or Latex style.  Throws std::invalid_argument("report_psd(): ...") for Style::Ascii.
-std::string report_psd(const Deriver& deriver, Style style);
-
-/// A standalone LaTeX document (article class, amsmath, geometry) with the
-/// reports of \p derivations; compiles with texlive-latex-base's pdflatex
-/// without an overfull line or a missing glyph (tests/symbolic/latex_test.cpp).
-std::string latex_document(const std::vector<Derivation>& derivations, const Deriver& deriver);
 
 }  // namespace superball::symbolic

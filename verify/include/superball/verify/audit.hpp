@@ -7,6 +7,7 @@
 /// asymptotic order, or different — and a "different" one comes with a
 /// parameter point (M positive semi-definite, in the asymptotic regime) where
 /// it disagrees with the exact solution while the derived condition agrees.
+/// The audit's reports (text, JSON) are present/audit.hpp's.
 
 #include <cln/rational.h>
 
@@ -100,8 +101,5 @@ struct Audit {
 /// Throws std::invalid_argument("audit_paper(): ...") when an entry names an
 /// unknown case, condition or symbol, or the scaling has non-integer orders.
 Audit audit_paper(const PrintedConditions& data, const AuditOptions& options = {});
-
-/// The audit as text for people (Unicode notation).
-std::string to_text(const Audit& audit);
 
 }  // namespace superball::verify

@@ -43,9 +43,11 @@
 /// Without the superball condition that proves the case never actual.  The
 /// same search on the leading-order (asymptotic) forms says whether the
 /// paper's asymptotic conditions clash too.
+///
+/// The reports of a result (text, JSON, the table, witness files) are
+/// present/explore.hpp's.
 
 #include <cln/rational.h>
-#include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <optional>
@@ -149,49 +151,12 @@ struct PatternTable {
   std::vector<std::vector<ExploreResult>> cells;  ///< [row][column]
 };
 
-/// One cell of the table as the table prints it, for a table whose cells
-/// were explored one at a time elsewhere (`superball explore --all-patterns`
-/// as a task list over processes): plain text, no CLN object.
-struct RenderedCell {
-  std::string pattern;          ///< ExploreResult::pattern (the row's label)
-  std::string text;             ///< cell_text()
-  nlohmann::ordered_json json;  ///< to_json() of the result
-};
-/// The text and JSON of one cell of a PatternTable, rendered where it was explored.
-RenderedCell render(const ExploreResult& r);
-
-/// to_text() and to_json() of a table from its options, patterns and cases
-/// (its cells left empty) and its cells rendered: \p cells[row][column].
-/// The same text as from the table with its cells filled.
-std::string to_text(const PatternTable& t, const std::vector<std::vector<RenderedCell>>& cells);
-/// The same JSON as to_json(const PatternTable&) of the table with its cells filled.
-nlohmann::ordered_json to_json(const PatternTable& t, const std::vector<std::vector<RenderedCell>>& cells);
-
 /// The patterns of the table (rows).
 std::vector<std::vector<int>> table_patterns();
 
 /// Explore every pattern of table_patterns() in every case of the paper's
 /// vocabulary, with \p options for each cell.
 PatternTable explore_all_patterns(const ExploreOptions& options = {});
-
-/// The cell text: "yes U₁⁺/a = 12.3", "no (proved)", "case impossible", "not found"
-/// (with the best U₁⁺/a at a point where the case is actual, when there is
-/// one, and whether the leading-order conditions clash).
-std::string cell_text(const ExploreResult& r);
-
-/// One result for people: verdict, witness, exact U₁⁺/a, statistics, clashes.
-std::string to_text(const ExploreResult& r);
-/// The table as Markdown (rows patterns, columns cases) with the box and budget.
-std::string to_text(const PatternTable& t);
-/// Every field, for programs (exact values as "p/q" strings).
-nlohmann::ordered_json to_json(const ExploreResult& r);
-/// Every field of a table, for programs (exact values as "p/q" strings).
-nlohmann::ordered_json to_json(const PatternTable& t);
-
-/// The TOML text of the witness scene of \p r (write_scene) with a comment
-/// saying how it was found (\p command) and what the exact solve gives.
-/// Throws std::invalid_argument("witness_file(): ...") when r has no witness.
-std::string witness_file(const ExploreResult& r, const std::string& command);
 
 /// The audit's certificate for one superball condition: −S = t·xᵀMx + (terms
 /// >= 0) for some x ∈ {−1, 0, 1}^pairs and t ∈ {1, 2}; then S <= 0 wherever M

@@ -14,12 +14,12 @@
 /// its grid segment, within the two brackets' widths of a zero of a
 /// condition of one of the two cases on its sides: at a change of case or of
 /// superball verdict, one of the conditions that decide them changes sign.
+/// Its reports (text, JSON) are present/overlay.hpp's.
 
 #include <cln/rational.h>
 
-#include <nlohmann/json.hpp>
-
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "superball/cases/model.hpp"
@@ -52,6 +52,8 @@ struct DerivedZero {
   /// can bound the case's region there; the others lie where the case is not
   /// actual and its conditions say nothing).
   bool at_case = false;
+  /// "superball", "contact 2-3": its kind and what it is about.
+  std::string condition() const { return std::string(symbolic::to_string(kind)) + (about.empty() ? "" : " " + about); }
 };
 
 /// How one boundary point of the map compares with the derived zeros.
@@ -92,11 +94,7 @@ struct Overlay {
 /// otherwise.  Exact throughout; \p bits as for the map's bisections.
 Overlay overlay(const Scene& scene, const numeric::Map& map, int bits = 64);
 
-/// The overlay's summary for people: the conditions derived, the zeros
-/// found, the largest distance against the allowed one, each disagreement.
-std::string to_text(const Overlay& o, const numeric::Map& map);
-
-/// Every zero and match, for programs.
-nlohmann::ordered_json to_json(const Overlay& o, const numeric::Map& map);
+/// The middle of \p z's bracket as the point (x, y) of \p map's plane, exact.
+std::pair<cln::cl_RA, cln::cl_RA> position(const numeric::Map& map, const DerivedZero& z);
 
 }  // namespace superball::verify

@@ -19,8 +19,9 @@
 /// The run is a function of the options and the seed only: the work is cut
 /// into blocks of fixed size, each with its own seed, merged in block order,
 /// whatever the number of threads.
-
-#include <nlohmann/json.hpp>
+///
+/// Its reports (text, JSON, a disagreement's scene comment) are
+/// present/verification.hpp's.
 
 #include <cln/rational.h>
 
@@ -103,6 +104,8 @@ struct VerifiedCondition {
   /// Always / Never: the asymptotic form holds / fails at every admissible
   /// point, so one side of the condition vanishes as ε → 0 and may be out of reach.
   symbolic::Verdict asymptotic_verdict = symbolic::Verdict::Depends;
+  /// "superball 1", "contact 2-3": its kind and what it is about.
+  std::string name() const { return std::string(symbolic::to_string(kind)) + " " + about; }
 };
 
 /// The points of one ε seen by one condition.
@@ -186,6 +189,8 @@ struct Verification {
   std::uint64_t seed = 0;
   /// Whether the exact conditions agree with the exact solution at every point (conjunction and each one).
   bool exact_agrees() const;
+  /// The points of condition \p c (index into `conditions`) over every ε, both stages.
+  ConditionTally condition_total(std::size_t c) const;
 };
 
 /// Verify the case \p closed of \p deriver's pattern (paper §4) at each ε of
@@ -198,18 +203,6 @@ struct Verification {
 /// std::invalid_argument("verify_case(): ...") for bad options or a
 /// pattern the sampler cannot handle (non-integer orders of ε).
 Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& closed, const VerifyOptions& options);
-
-/// The tables for people: per ε the samples, the agreement of the exact and
-/// asymptotic conjunctions and their confusion cells; per condition the
-/// sides reached and the agreement of each form; the disagreements.
-std::string to_text(const Verification& v);
-
-/// Every field, for programs (exact values as fractions).
-nlohmann::ordered_json to_json(const Verification& v);
-
-/// The comment of a disagreement's scene file: the case, ε, what disagreed
-/// and what the exact solution says (several lines, no '#').
-std::string describe(const Verification& v, const Disagreement& d);
 
 /// \p text of ε as a power of ten when it is one ("1e-3"), else the fraction.
 std::string epsilon_name(const cln::cl_RA& epsilon);

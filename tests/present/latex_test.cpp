@@ -19,10 +19,12 @@
 #include <vector>
 
 #include "superball/cases/vocabulary.hpp"
-#include "superball/symbolic/format.hpp"
+#include "superball/present/derivation.hpp"
 
-namespace superball::symbolic {
+namespace superball::present {
 namespace {
+
+using namespace superball::symbolic;
 
 /// An overfull box at most this much wider than the text is accepted: below
 /// what a reader sees in the margin, above TeX's own \hfuzz (0.1 pt).
@@ -200,4 +202,4 @@ TEST(Latex, OrdersKeptInWords) {
 }
 
 }  // namespace
-}  // namespace superball::symbolic
+}  // namespace superball::present
