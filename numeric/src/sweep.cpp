@@ -350,6 +350,12 @@ void bisect(Labeller& label_at, LabelChange c, int bits, std::vector<LabelChange
 
 std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                                        const Label& label, int bits, int threads, const ProvenLabel& proven, LabelCounts* counts) {
+  check_threads(threads);
+  if (bits < 1 || bits > max_bits)
+    throw std::invalid_argument("label_changes(): bits must be a whole number from 1 to " + std::to_string(max_bits) + ", got " + std::to_string(bits));
+  for (std::size_t k = 1; k < values.size(); ++k)
+    if (values[k] == values[k - 1] || (values[k] > values[k - 1]) != (values[1] > values[0]))
+      throw std::invalid_argument("label_changes(): the values must be strictly increasing or strictly decreasing");
   const auto ends = check_values(scene, parameter, values);
   // In increasing value: a descending sweep has the same brackets, read backwards.
   const bool descending = values.size() > 1 && values.back() < values.front();
@@ -453,6 +459,8 @@ std::vector<SweepPoint> entry_sweep(const Scene& first, std::size_t entry, const
 
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads) {
+  check_threads(threads);
+  if (values.empty()) throw std::invalid_argument("sweep(): no value to solve");
   check_values(scene, parameter, values);
   if (values.size() > 1 && (precision.kind == Precision::Kind::Double || precision.kind == Precision::Kind::LongDouble)) {
     const Scene first = with_value(scene, parameter, values.front());
@@ -486,6 +494,7 @@ std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& para
 
 std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                                        int bits, int threads) {
+  if (values.size() < 2) throw std::invalid_argument("switch_points(): at least two values are needed");
   const Label by_case = [](const ExactPoint& e) { return e.solution.closed.to_string(); };
   const ProvenLabel proven_case = [](const ProvenPoint& p) -> std::optional<std::string> { return p.closed.to_string(); };
   // The label back to the case: "{2-3,3-4}" without its braces.

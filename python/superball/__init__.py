@@ -516,8 +516,6 @@ def sweep(scene: Scene, key: str, values: Any, precision: str = "double", thread
     if not isinstance(scene, Scene):
         raise TypeError(f"sweep: expected a superball.Scene, got {type(scene).__name__}")
     v = _values(values)
-    if int(threads) < 0:
-        raise InputError(f"threads must be >= 0 (0: all cores), got {threads}")
     x, u, codes, (names, closed), status = _superball.sweep(scene._scene, str(key), v, str(precision), int(threads))
     cases = np.array(names, dtype=str)[codes] if len(names) else np.array([], dtype=str)
     return SweepResult(str(key), str(precision), x, u, cases, codes, tuple(names), tuple(tuple(c) for c in closed), status)
@@ -554,11 +552,6 @@ def switch_points(scene: Scene, key: str, values: Any, bits: int = 64, threads: 
     if not isinstance(scene, Scene):
         raise TypeError(f"switch_points: expected a superball.Scene, got {type(scene).__name__}")
     v = _values(values)
-    if not isinstance(values, ExactRange):
-        x = [Fraction(t) for t in v.as_text()]
-        d = [b - a for a, b in zip(x, x[1:])]
-        if not (all(s > 0 for s in d) or all(s < 0 for s in d)):
-            raise InputError("switch_points: the values must be strictly increasing or strictly decreasing")
     out = []
     for low, high, middle, width, below, closed_below, above, closed_above in _superball.switch_points(scene._scene, str(key), v, int(bits),
                                                                                                          int(threads)):
@@ -892,13 +885,13 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pai
     conditions clash.  ``all_patterns=True`` gives the table of every α_k.
     """
     low, high = box
+    options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene, False)
     if all_patterns:
-        (j, text), = _superball.explore({}, True, int(seed), int(starts), int(evaluations), float(low), float(high))
+        (j, text), = _superball.explore(options, True, int(seed), int(starts), int(evaluations), float(low), float(high))
         d = _json.loads(j)
         patterns = [row["cells"][0]["pattern"] if row["cells"] else ",".join(f"alpha{k}" for k in row["alphas"]) for row in d["rows"]]
         reach = np.array([[cell["reach"] for cell in row["cells"]] for row in d["rows"]], dtype=str)
         return PatternTable(patterns, list(d["cases"]), reach, d, text)
-    options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene, False)
     out = []
     for j, text, toml in _superball.explore(options, False, int(seed), int(starts), int(evaluations), float(low), float(high)):
         d = _json.loads(j)
