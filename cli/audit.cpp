@@ -9,6 +9,7 @@
 #include "superball/cases/printed_conditions.hpp"
 #include "superball/present/audit.hpp"
 #include "superball/verify/audit.hpp"
+#include "superball/verify/verification.hpp"
 
 namespace superball::cli {
 
