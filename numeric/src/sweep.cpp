@@ -396,7 +396,8 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
 }
 
 std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int first, int count) {
-  if (steps < 2) throw std::invalid_argument("linspace(): a sweep needs at least 2 steps");
+  if (steps < 2) throw std::invalid_argument("linspace(): steps must be at least 2, got " + std::to_string(steps));
+  if (from == to) throw std::invalid_argument("linspace(): start and stop are equal");
   if (count < 0) count = steps - first;
   if (first < 0 || count < 0 || first > steps - count)
     throw std::invalid_argument("linspace(): values " + std::to_string(first) + " .. " + std::to_string(first + count - 1) +

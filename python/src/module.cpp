@@ -91,10 +91,7 @@ Values values_from_doubles(const py::array_t<double, py::array::c_style | py::ar
 
 /// The command line's KEY=FROM:TO:STEPS: numeric::linspace() of exact ends.
 Values values_linspace(const std::string& from, const std::string& to, int steps) {
-  if (steps < 2) throw std::invalid_argument("linspace: steps must be at least 2 (got " + std::to_string(steps) + ")");
-  const cln::cl_RA a = parse_exact(from), b = parse_exact(to);
-  if (a == b) throw std::invalid_argument("linspace: start and stop are equal");
-  return Values{numeric::linspace(a, b, steps)};
+  return Values{numeric::linspace(parse_exact(from), parse_exact(to), steps)};
 }
 
 /// The values rounded to double into \p y (size: the values'); call with v.lock held.
