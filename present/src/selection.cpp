@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "superball/cases/error.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 
@@ -56,6 +57,21 @@ void SelectionOptions::check() const {
     throw std::invalid_argument("SelectionOptions::check(): case, closed and all each choose the cases: give one of them");
 }
 
+namespace {
+
+/// parse() of the text \p text of the option \p option, its refusal naming
+/// them: "pairs: '1-9': pair 1-9 is outside bodies 1..5".
+template <class Parse>
+auto named(const char* option, const std::string& text, Parse parse) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("resolve(): ") + option + ": '" + text + "': " + without_function_prefix(e.what()));
+  }
+}
+
+}  // namespace
+
 namespace detail {
 
 int body_limit(int width, bool all_cases) {
@@ -93,9 +109,9 @@ Selection resolve(const SelectionOptions& o) {
     } else {
       pattern.bodies = o.bodies;
     }
-    pattern.diagonal = Pattern::parse_pairs(o.pairs, o.bodies);
+    pattern.diagonal = named("pairs", o.pairs, [&] { return Pattern::parse_pairs(o.pairs, o.bodies); });
     if (!o.coupling.empty()) {
-      const auto more = Pattern::parse_couplings(o.coupling, o.bodies);
+      const auto more = named("coupling", o.coupling, [&] { return Pattern::parse_couplings(o.coupling, o.bodies); });
       pattern.couplings.insert(pattern.couplings.end(), more.begin(), more.end());
     }
     pattern.check();
