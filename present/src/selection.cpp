@@ -27,12 +27,6 @@ std::vector<int> parse_alphas(const std::string& text) {
   }
 }
 
-std::string alphas_text(const std::vector<int>& alphas) {
-  std::string out;
-  for (int k : alphas) out += (out.empty() ? "" : ",") + std::to_string(k);
-  return out;
-}
-
 void require_case(const SelectionOptions& o, bool or_all_patterns) {
   if (o.case_name.empty() && o.closed.empty() && !o.all)
     throw std::invalid_argument(std::string("require_case(): give a case: case, closed or all") + (or_all_patterns ? ", or all_patterns" : ""));

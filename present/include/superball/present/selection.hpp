@@ -77,7 +77,4 @@ int body_limit(int width, bool all_cases);
 /// word or an index out of 1..7.
 std::vector<int> parse_alphas(const std::string& text);
 
-/// The alphas as parse_alphas() reads them ("1,6").
-std::string alphas_text(const std::vector<int>& alphas);
-
 }  // namespace superball::present
