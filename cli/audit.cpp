@@ -6,10 +6,10 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "superball/cases/number.hpp"
 #include "superball/cases/printed_conditions.hpp"
 #include "superball/present/audit.hpp"
 #include "superball/verify/audit.hpp"
+#include "superball/verify/verification.hpp"
 
 namespace superball::cli {
 
@@ -38,17 +38,17 @@ void add_audit(CLI::App& app, Action& action) {
       "  superball audit --epsilon 1/100000 --samples 50000 --seed 7\n"
       "  superball audit --json -o audit.json");
   cmd->add_option("--epsilon", o->epsilon, "The small parameter of the sampled points, a number or fraction in (0, 1)")->capture_default_str();
-  cmd->add_option("--samples", o->samples, "Points tried per search")->check(CLI::Range(1, 10000000))->capture_default_str();
+  cmd->add_option("--samples", o->samples, "Points tried per search, 1 to " + std::to_string(verify::max_audit_samples))->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the pseudo-random points")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON for programs");
   cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output")->check(non_empty());
   cmd->callback([o, &action] {
     action = [o] {
       verify::AuditOptions options;
-      const Number eps = Number::parse(o->epsilon);
-      options.epsilon = cln::cl_RA((eps.numerator + "/" + eps.denominator).c_str());
+      options.epsilon = verify::parse_epsilon("epsilon", o->epsilon);
       options.samples = o->samples;
       options.seed = o->seed;
+      options.check();
       const verify::Audit a = verify::audit_paper(PrintedConditions::paper(), options);
       const std::string text = o->json ? audit_json(a).dump(2) + "\n" : present::to_text(a);
       write_output(o->output, text);

@@ -22,20 +22,6 @@
 namespace superball::cli {
 namespace {
 
-/// "1e-3:1e3" into (low, high): two decimal numbers; throws
-/// std::invalid_argument naming --box.  Their rule is ExploreOptions::check()'s.
-std::pair<double, double> parse_box(const std::string& text) {
-  const std::size_t colon = text.find(':');
-  auto number = [&](const std::string& s) {
-    char* end = nullptr;
-    const double v = s.empty() || std::isspace(static_cast<unsigned char>(s[0])) ? 0 : std::strtod(s.c_str(), &end);
-    if (!end || end != s.c_str() + s.size()) throw std::invalid_argument("--box: '" + text + "' is not LOW:HIGH (e.g. --box 1e-3:1e3)");
-    return v;
-  };
-  if (colon == std::string::npos) throw std::invalid_argument("--box: '" + text + "' is not LOW:HIGH (e.g. --box 1e-3:1e3)");
-  return {number(text.substr(0, colon)), number(text.substr(colon + 1))};
-}
-
 /// The file name of a witness: explore_alpha1_alpha6_case2.1.toml.
 std::string witness_name(const verify::ExploreResult& r) {
   std::string pattern = r.pattern_ascii;
@@ -145,8 +131,9 @@ void add_explore(CLI::App& app, Action& action) {
   add_selection_options(cmd, o->selection, false);
   cmd->add_flag("--all-patterns", o->all_patterns, "Every single alpha_k (k = 1..7) and {alpha_1, alpha_6} against every case of n = 4, as one table");
   cmd->add_option("--seed", o->explore.seed, "Seed of the starting points")->capture_default_str();
-  cmd->add_option("--starts", o->explore.starts, "Local searches (Nelder-Mead) per case")->check(CLI::Range(1, 100000))->capture_default_str();
-  cmd->add_option("--evaluations", o->explore.evaluations, "Objective evaluations per local search")->check(CLI::Range(10, 10000000))->capture_default_str();
+  cmd->add_option("--starts", o->explore.starts, "Local searches (Nelder-Mead) per case, 1 to " + std::to_string(verify::max_starts))->capture_default_str();
+  cmd->add_option("--evaluations", o->explore.evaluations, "Objective evaluations per local search, 10 to " + std::to_string(verify::max_evaluations))
+      ->capture_default_str();
   cmd->add_option("--box", o->box, "LOW:HIGH, the range of every mass and K (log scale): 0 < LOW < HIGH, both normal doubles")->capture_default_str();
   cmd->add_option("--out", o->out, "Write each witness scene file into this folder (created if missing)")->check(non_empty());
   cmd->add_flag("--json", o->json, "Print JSON for programs");
@@ -154,7 +141,7 @@ void add_explore(CLI::App& app, Action& action) {
   add_distribute_options(cmd, o->distribute, "case (with --all-patterns: cell)");
   cmd->callback([o, cmd, &action] {
     action = [o, cmd] {
-      std::tie(o->explore.box_low, o->explore.box_high) = parse_box(o->box);
+      std::tie(o->explore.box_low, o->explore.box_high) = verify::parse_box(o->box);
       o->explore.check();
       const SelectionOptions& sel = o->selection;
       std::ostringstream command;
@@ -165,8 +152,7 @@ void add_explore(CLI::App& app, Action& action) {
       std::optional<Selection> selection;
       std::vector<ContactSet> cases;
       if (o->all_patterns) {
-        if (!sel.case_name.empty() || !sel.closed.empty() || sel.all || !sel.alphas.empty() || !sel.coupling.empty() || !sel.scene.empty())
-          throw std::invalid_argument("--all-patterns chooses the patterns and cases: drop --case/--closed/--all/--alphas/--coupling/--scene");
+        present::check_all_patterns(sel.typed());
         table.options = o->explore;
         table.patterns = verify::table_patterns();
         for (const NamedCase& c : Vocabulary::paper().cases()) {
@@ -175,10 +161,10 @@ void add_explore(CLI::App& app, Action& action) {
         }
         command << " --all-patterns";
       } else {
+        present::require_case(sel.typed(), true);
         selection = resolve(sel);
-        if (selection->cases.empty()) throw std::invalid_argument("give a case (--case, --closed or --all) or --all-patterns");
         cases = selection->cases;
-        command << (sel.alphas.empty() ? "" : " --alphas " + sel.alphas) << (sel.coupling.empty() ? "" : " --coupling " + sel.coupling)
+        command << (sel.alphas_text.empty() ? "" : " --alphas " + sel.alphas_text) << (sel.coupling.empty() ? "" : " --coupling " + sel.coupling)
                 << (sel.scene.empty() ? "" : " --scene " + sel.scene) << (sel.case_name.empty() ? "" : " --case " + sel.case_name)
                 << (sel.closed.empty() ? "" : " --closed " + sel.closed) << (sel.all ? " --all" : "");
       }

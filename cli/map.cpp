@@ -113,7 +113,8 @@ void add_map(CLI::App& app, Action& action) {
   cmd->add_flag("--overlay", o->overlay, "Derive each case's conditions and compare their zeros with the exact boundaries");
   cmd->add_option("--out", o->out, "With --overlay: write each disagreeing boundary point as a scene file in this folder")
       ->check(non_empty());
-  cmd->add_option("--threads,-j", o->threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 1024))->capture_default_str();
+  cmd->add_option("--threads,-j", o->threads, "Worker threads (default and 0: all cores; at most " + std::to_string(numeric::max_threads) + ")")
+      ->capture_default_str();
   add_distribute_options(cmd, o->distribute, "group of grid points (then of bisections)", false);
   cmd->callback([o, cmd, &action] {
     action = [o, cmd] {
@@ -130,6 +131,7 @@ void add_map(CLI::App& app, Action& action) {
       numeric::MapSettings settings;
       settings.precision = numeric::Precision::parse(o->precision);
       settings.threads = o->threads;
+      settings.check();  // before any output (the grid alone as CSV is streamed)
       // Under MPI every rank takes part in the map (its grid points, then its
       // bisections, handed out as tasks) and holds the whole map after it;
       // rank 0 alone goes on (overlay, output, figures).  Each of the two

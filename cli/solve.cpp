@@ -1,6 +1,6 @@
-#include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "commands.hpp"
 #include "present.hpp"
@@ -33,26 +33,17 @@ void add_solve(CLI::App& app, Action& action) {
                   "Arithmetic: auto (default: the cheapest of double, long-double, exact whose result is certified to --rtol), "
                   "double, long-double, digits:N (CLN floats, N decimal digits), exact (CLN rationals)")
       ->capture_default_str();
-  CLI::Option* rtol = cmd->add_option("--rtol", o->rtol, "With --precision auto: largest certified relative error of the velocities")
-      ->capture_default_str()
-      ->check(CLI::Validator(
-          [](std::string& text) {  // CLI::Range lets NaN through
-            const double x = std::strtod(text.c_str(), nullptr);
-            return x >= 0 && x <= 1 ? std::string() : "must be a number from 0 to 1, got '" + text + "'";
-          },
-          "in [0, 1]"));
+  CLI::Option* rtol = cmd->add_option("--rtol", o->rtol, "With --precision auto: largest certified relative error of the velocities, 0 to 1")
+      ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON for programs instead of text");
   cmd->add_option("--plot", o->plot, "Folder for the trajectory plot (scenes with a [flight] table)")->check(non_empty());
   cmd->callback([o, rtol, &action] {
     action = [o, rtol] {
-      const bool automatic = o->precision == "auto";
-      if (!automatic && rtol->count() > 0)
-        throw std::invalid_argument("--rtol is the certified error of --precision auto; --precision " + o->precision + " has none");
-      const auto precision = automatic ? numeric::Precision{} : numeric::Precision::parse(o->precision);
+      const auto precision = numeric::SolvePrecision::parse(o->precision, rtol->count() > 0 ? std::optional<double>(o->rtol) : std::nullopt);
       const Scene scene = load_scene(o->scene);
       if (!o->plot.empty() && !scene.flight.requested)
         throw std::invalid_argument("--plot: " + o->scene + " has no [flight] table, so there is no flight to draw");
-      const Presented p = automatic ? solve_scene_auto(scene, o->rtol) : solve_scene(scene, precision);
+      const Presented p = precision.automatic ? solve_scene_auto(scene, precision.tolerance()) : solve_scene(scene, precision.fixed);
       if (!o->plot.empty()) draw_flight(p, o->plot);
       write_output("", o->json ? to_json(p).dump(2) + "\n" : to_text(p));
       for (const std::string& w : p.warnings) std::cerr << "superball: warning: " << w << '\n';

@@ -261,8 +261,7 @@ void add_sweep(CLI::App& app, Action& action) {
   cmd->add_option("--precision,-p", o->precision, "Arithmetic of the sweep values (see solve; not with --switch-points, which is exact)")->capture_default_str();
   cmd->add_flag("--csv", o->csv, "Print CSV: the parameter, U1..Un, the case, the status (or the switch points)");
   cmd->add_flag("--switch-points", o->switches, "Print only the parameter values where the evolution case changes (as CSV with --csv)");
-  cmd->add_option("--threads,-j", o->threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 1024))
+  cmd->add_option("--threads,-j", o->threads, "Worker threads (default and 0: all cores; at most " + std::to_string(numeric::max_threads) + ")")
       ->capture_default_str();
   add_distribute_options(cmd, o->distribute, "block of " + std::to_string(kChunk) + " value");
   cmd->callback([o, cmd, &action] {
@@ -272,6 +271,7 @@ void add_sweep(CLI::App& app, Action& action) {
       if (o->switches && cmd->count("--precision") > 0)
         throw std::invalid_argument("sweep: --switch-points bisects on the exact solution; --precision does not apply to it");
       const auto precision = numeric::Precision::parse(o->precision);
+      numeric::check_threads(o->threads);  // before any output, as the range
       numeric::check_range(scene, r.parameter, r.from, r.to);  // every value, before any output
       const std::size_t count = sweep_tasks(r, o->switches);
       // A block's text: at most kChunk + 1 lines of a few numbers each.

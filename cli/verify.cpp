@@ -26,24 +26,6 @@ namespace {
 /// The progress bar is drawn only after this long, and redrawn at most this often.
 constexpr std::chrono::milliseconds progress_delay{1000}, progress_period{100};
 
-std::vector<cln::cl_RA> parse_epsilons(const std::string& text) {
-  std::vector<cln::cl_RA> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    Number n;
-    try {
-      n = Number::parse(item);
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("--epsilons: '" + item + "': " + without_function_prefix(e.what()));
-    }
-    const cln::cl_RA x(n.fraction().c_str());
-    if (!(x > 0) || !(x < 1)) throw std::invalid_argument("--epsilons: '" + item + "' is not in (0, 1)");
-    out.push_back(x);
-  }
-  if (out.empty()) throw std::invalid_argument("--epsilons: no value (e.g. --epsilons 1e-2,1e-4)");
-  return out;
-}
-
 /// A file name for a case name ("3.2", "{2-3,3-4}").
 std::string file_part(const std::string& name) {
   std::string out;
@@ -137,11 +119,13 @@ void add_verify(CLI::App& app, Action& action) {
       "points, then its boundary searches, are handed out to them (each on its --threads).");
   add_selection_options(cmd, o->selection);
   cmd->add_option("--epsilons", o->epsilons, "Values of eps in (0, 1), comma-separated (decimals, 1e-3 or fractions 1/1000)")->capture_default_str();
-  cmd->add_option("--samples", o->samples, "Points drawn per eps")->check(CLI::Range(1, 100000000))->capture_default_str();
-  cmd->add_option("--boundary-pairs", o->boundary_pairs, "Segments bisected per condition and eps")->check(CLI::Range(0, 1000000))->capture_default_str();
+  cmd->add_option("--samples", o->samples, "Points drawn per eps, 1 to " + std::to_string(verify::max_verify_samples))->capture_default_str();
+  cmd->add_option("--boundary-pairs", o->boundary_pairs, "Segments bisected per condition and eps, 0 to " + std::to_string(verify::max_boundary_pairs))
+      ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the pseudo-random points")->capture_default_str();
-  cmd->add_option("--threads,-j", o->threads, "Worker threads (default: all cores, " + std::to_string(std::thread::hardware_concurrency()) + " here)")
-      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--threads,-j", o->threads,
+                  "Worker threads (default 0: all cores, " + std::to_string(std::thread::hardware_concurrency()) + " here; at most " +
+                      std::to_string(numeric::max_threads) + ")");
   cmd->add_option("--out", o->out, "Write each disagreeing point as a scene file in this folder (created)")->check(non_empty());
   cmd->add_flag("--json", o->json, "Print JSON for programs");
   cmd->add_flag("--quiet,-q", o->quiet, "No progress bar on standard error");
@@ -149,11 +133,12 @@ void add_verify(CLI::App& app, Action& action) {
   cmd->callback([o, cmd, &action] {
     action = [o, cmd] {
       verify::VerifyOptions options;
-      options.epsilons = parse_epsilons(o->epsilons);
+      options.epsilons = verify::parse_epsilons(o->epsilons);
       options.samples = o->samples;
       options.boundary_pairs = o->boundary_pairs;
       options.seed = o->seed;
       options.threads = o->threads;
+      options.check();
       if (!o->out.empty() && std::filesystem::exists(o->out) && !std::filesystem::is_directory(o->out))
         throw OutputError("--out " + o->out + ": exists and is not a folder");
       const Selection selection = resolve(o->selection);

@@ -221,8 +221,7 @@ bool try_precision(const ExactScene& scene, double rtol, AutoChoice& choice) {
 }  // namespace
 
 AutoChoice choose_precision(const ExactScene& scene, double rtol) {
-  if (!(rtol >= 0 && rtol <= 1))
-    throw std::invalid_argument("choose_precision(): rtol must be a number from 0 to 1, got " + to_string(rtol, 3));
+  SolvePrecision{true, {}, rtol}.check();
   AutoChoice choice;
   if (try_precision<double>(scene, rtol, choice)) {
     choice.precision = {Precision::Kind::Double, 0};

@@ -529,8 +529,15 @@ bool MapSettings::fits(const Axis& x, const Axis& y, std::string* why) const {
   return true;
 }
 
+void MapSettings::check() const {
+  check_threads(threads);
+  if (bits < 1 || bits > max_bits)
+    throw std::invalid_argument("MapSettings::check(): bits must be a whole number from 1 to " + std::to_string(max_bits) + ", got " + std::to_string(bits));
+}
+
 void map_points(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings, std::size_t block,
                 const std::function<void(std::size_t first, const std::vector<MapPoint>& points)>& sink) {
+  settings.check();
   check_map(scene, x, y);
   const GridSolver solve_range(scene, x, y, settings);
   const std::size_t count = static_cast<std::size_t>(x.steps) * static_cast<std::size_t>(y.steps);
@@ -545,6 +552,7 @@ void map_points(const Scene& scene, const Axis& x, const Axis& y, const MapSetti
 }
 
 Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings) {
+  settings.check();
   check_map(scene, x, y);
   if (std::string why; !settings.fits(x, y, &why)) throw std::invalid_argument(why);
   Map m{x, y, {}, {}, {}};

@@ -3,6 +3,8 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "superball/numeric/scalar.hpp"
+
 namespace superball::numeric {
 
 Precision Precision::parse(const std::string& text) {
@@ -21,6 +23,25 @@ Precision Precision::parse(const std::string& text) {
   }
   throw std::invalid_argument("Precision::parse(): unknown precision '" + text +
                               "' (expected double, long-double, digits:N or exact)");
+}
+
+SolvePrecision SolvePrecision::parse(const std::string& precision, std::optional<double> rtol) {
+  SolvePrecision p;
+  p.automatic = precision == "auto";
+  p.rtol = rtol;
+  if (!p.automatic) {
+    // The rule of rtol first: it names what was asked, whatever the spelling of the precision.
+    if (rtol) throw std::invalid_argument("SolvePrecision::check(): rtol is the certified error of precision auto; precision " + precision + " has none");
+    p.fixed = Precision::parse(precision);
+  }
+  p.check();
+  return p;
+}
+
+void SolvePrecision::check() const {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("SolvePrecision::check(): " + what); };
+  if (rtol && !automatic) fail("rtol is the certified error of precision auto; precision " + fixed.name() + " has none");
+  if (rtol && !(*rtol >= 0 && *rtol <= 1)) fail("rtol must be a number from 0 to 1, got " + to_string(*rtol, 3));
 }
 
 std::string Precision::name() const {

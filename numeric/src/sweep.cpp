@@ -350,6 +350,12 @@ void bisect(Labeller& label_at, LabelChange c, int bits, std::vector<LabelChange
 
 std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                                        const Label& label, int bits, int threads, const ProvenLabel& proven, LabelCounts* counts) {
+  check_threads(threads);
+  if (bits < 1 || bits > max_bits)
+    throw std::invalid_argument("label_changes(): bits must be a whole number from 1 to " + std::to_string(max_bits) + ", got " + std::to_string(bits));
+  for (std::size_t k = 1; k < values.size(); ++k)
+    if (values[k] == values[k - 1] || (values[k] > values[k - 1]) != (values[1] > values[0]))
+      throw std::invalid_argument("label_changes(): the values must be strictly increasing or strictly decreasing");
   const auto ends = check_values(scene, parameter, values);
   // In increasing value: a descending sweep has the same brackets, read backwards.
   const bool descending = values.size() > 1 && values.back() < values.front();
@@ -390,7 +396,8 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
 }
 
 std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int first, int count) {
-  if (steps < 2) throw std::invalid_argument("linspace(): a sweep needs at least 2 steps");
+  if (steps < 2) throw std::invalid_argument("linspace(): steps must be at least 2, got " + std::to_string(steps));
+  if (from == to) throw std::invalid_argument("linspace(): start and stop are equal");
   if (count < 0) count = steps - first;
   if (first < 0 || count < 0 || first > steps - count)
     throw std::invalid_argument("linspace(): values " + std::to_string(first) + " .. " + std::to_string(first + count - 1) +
@@ -453,6 +460,8 @@ std::vector<SweepPoint> entry_sweep(const Scene& first, std::size_t entry, const
 
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads) {
+  check_threads(threads);
+  if (values.empty()) throw std::invalid_argument("sweep(): no value to solve");
   check_values(scene, parameter, values);
   if (values.size() > 1 && (precision.kind == Precision::Kind::Double || precision.kind == Precision::Kind::LongDouble)) {
     const Scene first = with_value(scene, parameter, values.front());
@@ -486,6 +495,7 @@ std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& para
 
 std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                                        int bits, int threads) {
+  if (values.size() < 2) throw std::invalid_argument("switch_points(): at least two values are needed");
   const Label by_case = [](const ExactPoint& e) { return e.solution.closed.to_string(); };
   const ProvenLabel proven_case = [](const ProvenPoint& p) -> std::optional<std::string> { return p.closed.to_string(); };
   // The label back to the case: "{2-3,3-4}" without its braces.

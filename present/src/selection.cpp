@@ -1,7 +1,8 @@
 #include "superball/present/selection.hpp"
 
-#include <sstream>
+#include <stdexcept>
 
+#include "superball/cases/error.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
 
@@ -10,22 +11,60 @@ namespace superball::present {
 using namespace superball::symbolic;
 
 std::vector<int> parse_alphas(const std::string& text) {
+  const int count = static_cast<int>(Vocabulary::paper().alphas().size());
   std::vector<int> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    if (item.empty()) continue;
-    std::size_t used = 0;
-    int k = 0;
-    try {
-      k = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size()) throw std::invalid_argument("--alphas: '" + item + "' is not an index 1..7 (e.g. --alphas 1,6)");
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const bool digits = !item.empty() && item.size() < 4 && item.find_first_not_of("0123456789") == std::string::npos;
+    const int k = digits ? std::stoi(item) : 0;
+    if (k < 1 || k > count)
+      throw std::invalid_argument("parse_alphas(): alphas: '" + text + "': " + (item.empty() ? std::string("an empty item") : "'" + item + "'") +
+                                  " is not an index 1.." + std::to_string(count) + " (e.g. 1,6)");
     out.push_back(k);
+    if (comma == std::string::npos) return out;
+    start = comma + 1;
   }
-  return out;
 }
+
+void require_case(const SelectionOptions& o, bool or_all_patterns) {
+  if (o.case_name.empty() && o.closed.empty() && !o.all)
+    throw std::invalid_argument(std::string("require_case(): give a case: case, closed or all") + (or_all_patterns ? ", or all_patterns" : ""));
+}
+
+void check_all_patterns(const SelectionOptions& o) {
+  if (!o.case_name.empty() || !o.closed.empty() || o.all || !o.alphas.empty() || !o.coupling.empty() || !o.scene.empty())
+    throw std::invalid_argument("check_all_patterns(): all_patterns chooses the patterns and cases: drop case, closed, all, alphas, coupling and scene");
+}
+
+Obstacle parse_obstacle(const std::string& text) {
+  if (text == "infinite") return Obstacle::Infinite;
+  if (text == "finite") return Obstacle::Finite;
+  throw std::invalid_argument("parse_obstacle(): obstacle must be infinite or finite, got '" + text + "'");
+}
+
+void SelectionOptions::check() const {
+  if (order < 0 || order > max_order)
+    throw std::invalid_argument("SelectionOptions::check(): order must be a whole number from 0 to " + std::to_string(max_order) + ", got " +
+                                std::to_string(order));
+  if ((!case_name.empty()) + (!closed.empty()) + all > 1)
+    throw std::invalid_argument("SelectionOptions::check(): case, closed and all each choose the cases: give one of them");
+}
+
+namespace {
+
+/// parse() of the text \p text of the option \p option, its refusal naming
+/// them: "pairs: '1-9': pair 1-9 is outside bodies 1..5".
+template <class Parse>
+auto named(const char* option, const std::string& text, Parse parse) {
+  try {
+    return parse();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("resolve(): ") + option + ": '" + text + "': " + without_function_prefix(e.what()));
+  }
+}
+
+}  // namespace
 
 namespace detail {
 
@@ -50,7 +89,8 @@ int width(const Pattern& p) {
 }  // namespace detail
 
 Selection resolve(const SelectionOptions& o) {
-  const Obstacle obstacle = o.obstacle == "finite" ? Obstacle::Finite : Obstacle::Infinite;
+  o.check();
+  const Obstacle obstacle = o.obstacle;
   Pattern pattern;
   if (!o.scene.empty()) {
     pattern = Pattern::from_scene(load_scene(o.scene));
@@ -59,13 +99,13 @@ Selection resolve(const SelectionOptions& o) {
     if (!o.alphas.empty()) {
       if (o.bodies != Vocabulary::paper().bodies())
         throw std::invalid_argument("--alphas names the paper's couplings of 4 bodies; use --coupling for " + std::to_string(o.bodies));
-      pattern = Pattern::paper(parse_alphas(o.alphas));
+      pattern = Pattern::paper(o.alphas);
     } else {
       pattern.bodies = o.bodies;
     }
-    pattern.diagonal = Pattern::parse_pairs(o.pairs, o.bodies);
+    pattern.diagonal = named("pairs", o.pairs, [&] { return Pattern::parse_pairs(o.pairs, o.bodies); });
     if (!o.coupling.empty()) {
-      const auto more = Pattern::parse_couplings(o.coupling, o.bodies);
+      const auto more = named("coupling", o.coupling, [&] { return Pattern::parse_couplings(o.coupling, o.bodies); });
       pattern.couplings.insert(pattern.couplings.end(), more.begin(), more.end());
     }
     pattern.check();

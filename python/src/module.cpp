@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -95,10 +96,7 @@ Values values_from_doubles(const py::array_t<double, py::array::c_style | py::ar
 
 /// The command line's KEY=FROM:TO:STEPS: numeric::linspace() of exact ends.
 Values values_linspace(const std::string& from, const std::string& to, int steps) {
-  if (steps < 2) throw std::invalid_argument("linspace: steps must be at least 2 (got " + std::to_string(steps) + ")");
-  const cln::cl_RA a = parse_exact(from), b = parse_exact(to);
-  if (a == b) throw std::invalid_argument("linspace: start and stop are equal");
-  return Values{numeric::linspace(a, b, steps)};
+  return Values{numeric::linspace(parse_exact(from), parse_exact(to), steps)};
 }
 
 /// The values rounded to double into \p y (size: the values'); call with v.lock held.
@@ -167,15 +165,10 @@ Scene with_value(const Scene& scene, const std::string& key, const std::string& 
 }
 
 /// solve(): the flattened solution of `superball solve`; the GIL is released while it solves.
-present::Presented solve(const Scene& scene, const std::string& precision, py::object rtol) {
-  const bool automatic = precision == "auto";
-  if (!automatic && !rtol.is_none())
-    throw std::invalid_argument("rtol is the certified error of precision='auto'; precision='" + printable(precision) + "' has none");
-  const double r = rtol.is_none() ? numeric::default_rtol : rtol.cast<double>();
-  if (automatic && !(r >= 0 && r <= 1)) throw std::invalid_argument("rtol must be a number from 0 to 1, got " + numeric::to_string(r));
-  const auto p = automatic ? numeric::Precision{} : numeric::Precision::parse(precision);
+present::Presented solve(const Scene& scene, const std::string& precision, std::optional<double> rtol) {
+  const auto p = numeric::SolvePrecision::parse(precision, rtol);
   py::gil_scoped_release release;
-  return automatic ? present::solve_scene_auto(scene, r) : present::solve_scene(scene, p);
+  return p.automatic ? present::solve_scene_auto(scene, p.tolerance()) : present::solve_scene(scene, p.fixed);
 }
 
 /// Values solved by one library call in sweep().
@@ -187,7 +180,7 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
                 py::object progress) {
   const Parameter parameter = Parameter::parse(key, scene);
   const auto p = numeric::Precision::parse(precision);
-  if (values.exact.empty()) throw std::invalid_argument("sweep: no value to solve");
+  if (values.exact.empty()) (void)numeric::sweep(scene, parameter, {}, p, threads);  // refuses it: no value to solve
   const auto n = static_cast<py::ssize_t>(scene.size());
   const auto count = static_cast<py::ssize_t>(values.exact.size());
   py::array_t<double> x(count);
@@ -251,8 +244,6 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
 /// (low, high, middle as decimal text, bracket width as decimal text, case below and its closed contacts, the same above).
 std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key, const Values& values, int bits, int threads) {
   const Parameter parameter = Parameter::parse(key, scene);
-  if (values.exact.size() < 2) throw std::invalid_argument("switch_points: at least two values are needed");
-  if (bits < 1 || bits > 1024) throw std::invalid_argument("switch_points: bits must be 1..1024 (got " + std::to_string(bits) + ")");
   std::vector<numeric::SwitchPoint> found;
   {
     py::gil_scoped_release release;
@@ -267,7 +258,8 @@ std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key,
   return out;
 }
 
-/// The command line's selection options from derive()'s keywords (None: the default).
+/// The library's selection options from derive()'s keywords (None: the
+/// default); alphas and obstacle read by the library's parsers, as the command reads its options.
 present::SelectionOptions selection(const py::dict& o) {
   present::SelectionOptions s;
   for (const auto& [k, v] : o) {
@@ -277,27 +269,25 @@ present::SelectionOptions selection(const py::dict& o) {
     else if (key == "order") s.order = v.cast<int>();
     else if (key == "case") s.case_name = v.cast<std::string>();
     else if (key == "closed") s.closed = v.cast<std::string>();
-    else if (key == "alphas") s.alphas = v.cast<std::string>();
+    else if (key == "alphas") s.alphas = present::parse_alphas(v.cast<std::string>());
     else if (key == "coupling") s.coupling = v.cast<std::string>();
     else if (key == "pairs") s.pairs = v.cast<std::string>();
     else if (key == "scene") s.scene = v.cast<std::string>();
-    else if (key == "obstacle") s.obstacle = v.cast<std::string>();
+    else if (key == "obstacle") s.obstacle = present::parse_obstacle(v.cast<std::string>());
     else if (key == "scaling") s.scaling = v.cast<std::string>();
     else if (key == "all") s.all = v.cast<bool>();
     else if (key == "no_limit") s.no_limit = v.cast<bool>();
     else throw std::invalid_argument("unknown selection option '" + printable(key) + "'");
   }
-  if (s.obstacle != "infinite" && s.obstacle != "finite")
-    throw std::invalid_argument("obstacle must be 'infinite' or 'finite' (got '" + printable(s.obstacle) + "')");
-  if (s.order < 0 || s.order > 20) throw std::invalid_argument("order must be 0..20 (got " + std::to_string(s.order) + ")");
   return s;
 }
 
 /// derive(): per case, the JSON of `superball derive --format json` (as text)
 /// and the text and LaTeX of the velocities and reactions and of the report.
 std::vector<py::dict> derive(const py::dict& options) {
-  const present::Selection sel = present::resolve(selection(options));
-  if (sel.cases.empty()) throw std::invalid_argument("derive: give a case (case=, closed= or all=True)");
+  const present::SelectionOptions chosen = selection(options);
+  present::require_case(chosen);
+  const present::Selection sel = present::resolve(chosen);
   const symbolic::Deriver& deriver = *sel.deriver;
   std::vector<nlohmann::ordered_json> psd;
   std::vector<py::dict> out;
@@ -334,26 +324,16 @@ std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<s
   verify::VerifyOptions o;
   if (!epsilons.empty()) {
     o.epsilons.clear();
-    for (const auto& e : epsilons) {
-      cln::cl_RA x;
-      try {
-        x = parse_exact(e);
-      } catch (const std::invalid_argument& error) {
-        throw std::invalid_argument("epsilons: '" + printable(e) + "': " + without_function_prefix(error.what()));
-      }
-      if (!(x > 0) || !(x < 1)) throw std::invalid_argument("epsilons: '" + printable(e) + "' is not in (0, 1)");
-      o.epsilons.push_back(x);
-    }
+    for (const auto& e : epsilons) o.epsilons.push_back(verify::parse_epsilon("epsilons", e));
   }
-  if (samples < 1) throw std::invalid_argument("samples must be at least 1 (got " + std::to_string(samples) + ")");
-  if (boundary_pairs < 0) throw std::invalid_argument("boundary_pairs must be >= 0 (got " + std::to_string(boundary_pairs) + ")");
-  if (threads < 0) throw std::invalid_argument("threads must be >= 0 (0: all cores; got " + std::to_string(threads) + ")");
   o.samples = samples;
   o.boundary_pairs = boundary_pairs;
   o.seed = seed;
   o.threads = threads;
-  const present::Selection sel = present::resolve(selection(options));
-  if (sel.cases.empty()) throw std::invalid_argument("verify: give a case (case=, closed= or all=True)");
+  o.check();
+  const present::SelectionOptions chosen = selection(options);
+  present::require_case(chosen);
+  const present::Selection sel = present::resolve(chosen);
   std::vector<py::tuple> out;
   for (const ContactSet& c : sel.cases) {
     o.runner = interruptible_runner(progress, {"drawn points", "boundaries"});  // progress and Ctrl-C between tasks
@@ -366,11 +346,10 @@ std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<s
 /// audit(): the JSON of `superball audit --json` as Python objects, and its report.
 py::tuple audit(const std::string& epsilon, int samples, std::uint64_t seed) {
   verify::AuditOptions o;
-  o.epsilon = parse_exact(epsilon);
-  if (!(o.epsilon > 0) || !(o.epsilon < 1)) throw std::invalid_argument("epsilon: '" + printable(epsilon) + "' is not in (0, 1)");
-  if (samples < 1) throw std::invalid_argument("samples must be at least 1 (got " + std::to_string(samples) + ")");
+  o.epsilon = verify::parse_epsilon("epsilon", epsilon);
   o.samples = samples;
   o.seed = seed;
+  o.check();
   const verify::Audit a = verify::audit_paper(PrintedConditions::paper(), o);
   return py::make_tuple(to_python(present::audit_json(a)), present::to_text(a));
 }
@@ -384,14 +363,17 @@ std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::
   o.evaluations = evaluations;
   o.box_low = box_low;
   o.box_high = box_high;
+  o.check();
+  const present::SelectionOptions chosen = selection(options);
   std::vector<py::tuple> out;
   if (all_patterns) {
+    present::check_all_patterns(chosen);
     const verify::PatternTable t = verify::explore_all_patterns(o);
     out.push_back(py::make_tuple(to_python(present::to_json(t)), present::to_text(t)));
     return out;
   }
-  const present::Selection sel = present::resolve(selection(options));
-  if (sel.cases.empty()) throw std::invalid_argument("explore: give a case (case=, closed= or all=True) or all_patterns=True");
+  present::require_case(chosen, true);
+  const present::Selection sel = present::resolve(chosen);
   for (const ContactSet& c : sel.cases) {
     const verify::ExploreResult r = verify::explore_case(*sel.deriver, c, o);
     out.push_back(py::make_tuple(to_python(present::to_json(r)), present::to_text(r), r.scene ? py::cast(*r.scene) : py::none()));

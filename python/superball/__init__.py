@@ -612,7 +612,7 @@ class SweepResult:
         :func:`switch_points` of the same scene, key and exact values."""
         if self.scene is None or self.exact_values is None:
             raise Error("SweepResult.switch_points: the sweep's scene is not known")
-        return _switch_points(self.scene, self.key, self.exact_values, bits, threads, checked=True)
+        return _switch_points(self.scene, self.key, self.exact_values, bits, threads)
 
     def __repr__(self) -> str:
         cases = ", ".join(self.case_list) or "none"
@@ -666,11 +666,8 @@ def sweep(scene: Scene, key: str, values: Any, precision: str = "double", thread
     """
     _check_scene(scene, "sweep")
     v = _values(values)
-    threads = _int_option(threads, "threads")
-    if threads < 0:
-        raise InputError(f"threads must be >= 0 (0: all cores), got {threads}")
     x, u, codes, (names, closed), status, psd = _superball.sweep(scene._scene, _str_option(key, "key"), v, _str_option(precision, "precision"),
-                                                            threads, _progress.resolve(progress, "sweep"))
+                                                            _int_option(threads, "threads"), _progress.resolve(progress, "sweep"))
     cases = np.array(list(names) + [""], dtype=str)[codes]
     return SweepResult(str(key), str(precision), x, u, cases, codes, tuple(names), tuple(tuple(c) for c in closed), status, psd, scene, v)
 
@@ -704,15 +701,10 @@ def switch_points(scene: Scene, key: str, values: Any, bits: int = 64, threads: 
     one ended in.  GIL released; ``threads`` as in :func:`sweep`.
     """
     _check_scene(scene, "switch_points")
-    return _switch_points(scene, key, _values(values), bits, threads, checked=isinstance(values, ExactRange))
+    return _switch_points(scene, key, _values(values), bits, threads)
 
 
-def _switch_points(scene: Scene, key: str, v: Any, bits: int, threads: int, checked: bool) -> List[SwitchPoint]:
-    if not checked:
-        x = [Fraction(t) for t in v.as_text()]
-        d = [b - a for a, b in zip(x, x[1:])]
-        if not (all(s > 0 for s in d) or all(s < 0 for s in d)):
-            raise InputError("switch_points: the values must be strictly increasing or strictly decreasing")
+def _switch_points(scene: Scene, key: str, v: Any, bits: int, threads: int) -> List[SwitchPoint]:
     out = []
     for low, high, middle, width, below, closed_below, above, closed_above in _superball.switch_points(
             scene._scene, _str_option(key, "key"), v, _int_option(bits, "bits"), _int_option(threads, "threads")):
@@ -1089,12 +1081,12 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pai
     conditions clash.  ``all_patterns=True`` gives the table of every α_k.
     """
     low, high = box
+    options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene, False)
     if all_patterns:
-        (d, text), = _superball.explore({}, True, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high))
+        (d, text), = _superball.explore(options, True, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high))
         patterns = [row["cells"][0]["pattern"] if row["cells"] else ",".join(f"alpha{k}" for k in row["alphas"]) for row in d["rows"]]
         reach = np.array([[cell["reach"] for cell in row["cells"]] for row in d["rows"]], dtype=str)
         return PatternTable(patterns, list(d["cases"]), reach, d, text)
-    options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene, False)
     out = []
     for d, text, witness_scene in _superball.explore(options, False, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high)):
         witness = {k: Fraction(v) for k, v in (d.get("witness") or {}).items()}

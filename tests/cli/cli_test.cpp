@@ -332,7 +332,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadArgs{{"sweep", kPaper, "--vary", "mass.1=-1:1:3"}, {"must be > 0"}},
         BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:5", "--precision", "quad"}, {"quad"}},
         BadArgs{{"sweep", kPaper}, {"--vary"}},
-        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:5", "--threads", "0"}, {"--threads"}},
+        BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:5", "--threads", "-1"}, {"threads must be a whole number from 0 (all cores) to 1024, got -1"}},
+        BadArgs{{"solve", kPaper, "--rtol", "nan"}, {"rtol must be a number from 0 to 1, got nan"}},
         BadArgs{{"sweep", kPaper, "--vary", "K.3-4=0:20:5", "--threads", "many"}, {"--threads"}},
         BadArgs{{"solve"}, {"scene"}},
         BadArgs{{"solve", kPaper, "--bogus"}, {"--bogus"}},
@@ -434,17 +435,21 @@ TEST(Verify, NothingWrittenWithoutDisagreements) {
 /// Bad options: exit 2, one line naming what is wrong, nothing on stdout.
 TEST(Verify, BadOptionsGiveOneLineAndExitTwo) {
   const std::vector<std::string> base = {"verify", "--alphas", "2"};
-  const std::vector<BadArgs> bad = {{{"--case", "1", "--epsilons", "2"}, {"--epsilons", "'2' is not in (0, 1)"}},
-                                    {{"--case", "1", "--epsilons", "1e-2,abc"}, {"--epsilons", "abc"}},
-                                    {{"--case", "1", "--epsilons", "0"}, {"--epsilons", "'0'"}},
-                                    {{"--case", "1", "--threads", "0"}, {"--threads"}},
-                                    {{"--case", "1", "--samples", "0"}, {"--samples"}},
+  const std::vector<BadArgs> bad = {{{"--case", "1", "--epsilons", "2"}, {"epsilons must be in (0, 1), got 2"}},
+                                    {{"--case", "1", "--epsilons", "1e-2,abc"}, {"epsilons: 'abc'"}},
+                                    {{"--case", "1", "--epsilons", "0"}, {"epsilons must be in (0, 1), got 0"}},
+                                    {{"--case", "1", "--epsilons", ""}, {"epsilons: no value"}},
+                                    {{"--case", "1", "--threads", "-1"}, {"threads must be a whole number from 0 (all cores) to 1024, got -1"}},
+                                    {{"--case", "1", "--samples", "0"}, {"samples must be a whole number from 1 to 100000000, got 0"}},
+                                    {{"--case", "1", "--boundary-pairs", "-1"}, {"boundary_pairs must be a whole number from 0 to 1000000, got -1"}},
+                                    {{"--case", "1", "--obstacle", "middle"}, {"obstacle must be infinite or finite, got 'middle'"}},
+                                    {{"--case", "1", "--order", "21"}, {"order must be a whole number from 0 to 20, got 21"}},
                                     // Every drawn point is held until the boundaries are bisected: 5 x 10^8 of them do not fit.
                                     {{"--case", "1", "--samples", "100000000"},
                                      {"drawing 100000000 points at each of 5 values of epsilon holds about ", "available (", "draw fewer points (--samples)"}},
                                     {{"--case", "9"}, {"9"}},
-                                    {{"--case", "1", "--closed", "2-3"}, {"case"}},
-                                    {{}, {"case"}}};
+                                    {{"--case", "1", "--closed", "2-3"}, {"case, closed and all each choose the cases: give one of them"}},
+                                    {{}, {"give a case: case, closed or all"}}};
   for (const BadArgs& b : bad) {
     std::vector<std::string> args = base;
     args.insert(args.end(), b.args.begin(), b.args.end());
@@ -503,13 +508,14 @@ TEST(Explore, TheBoxMayReachTheEndsOfDouble) {
 /// Bad options: exit 2, one line on stderr naming the option, nothing on stdout.
 TEST(Explore, BadOptionsAreOneLine) {
   const std::vector<std::pair<std::vector<std::string>, std::vector<std::string>>> cases = {
-      {{"explore", "--alphas", "3"}, {"--case", "--all-patterns"}},
-      {{"explore", "--all-patterns", "--case", "1"}, {"--all-patterns", "drop"}},
+      {{"explore", "--alphas", "3"}, {"give a case: case, closed or all, or all_patterns"}},
+      {{"explore", "--all-patterns", "--case", "1"}, {"all_patterns chooses the patterns and cases: drop case, closed, all, alphas, coupling and scene"}},
       {{"explore", "--alphas", "3", "--case", "1", "--box", "5:1"}, {"box 5:1: needs 0 < LOW < HIGH"}},
       {{"explore", "--alphas", "3", "--case", "1", "--box", "1e-320:1"}, {"box ", ":1: needs 0 < LOW < HIGH with LOW >= 2.2250738585072014e-308"}},
       {{"explore", "--alphas", "3", "--case", "1", "--box", "1:1e400"}, {"box 1:inf: needs", "HIGH finite"}},
-      {{"explore", "--alphas", "3", "--case", "1", "--box", "wide"}, {"--box", "LOW:HIGH"}},
-      {{"explore", "--alphas", "3", "--case", "1", "--starts", "0"}, {"--starts"}},
+      {{"explore", "--alphas", "3", "--case", "1", "--box", "wide"}, {"box: 'wide' is not LOW:HIGH"}},
+      {{"explore", "--alphas", "3", "--case", "1", "--starts", "0"}, {"starts must be a whole number from 1 to 100000, got 0"}},
+      {{"explore", "--alphas", "3", "--case", "1", "--evaluations", "9"}, {"evaluations must be a whole number from 10 to 10000000, got 9"}},
       {{"explore", "--alphas", "3", "--case", "1", "--obstacle", "finite"}, {"fixed obstacle"}},
       {{"explore", "--alphas", "9", "--case", "1"}, {"9"}}};
   for (const auto& [args, expected] : cases) {

@@ -28,7 +28,7 @@ def test_verify_agrees_with_the_command():
 def test_verify_every_case_and_errors():
     every = superball.verify(all=True, alphas=2, epsilons=["1/100"], samples=20, boundary_pairs=1)
     assert len(every) == 8 and all(v.exact_agrees for v in every)
-    for kwargs, what in ((dict(epsilons=["2"]), "not in \\(0, 1\\)"), (dict(epsilons=["x"]), "epsilons: 'x'"),
+    for kwargs, what in ((dict(epsilons=["2"]), "epsilons must be in \\(0, 1\\), got 2"), (dict(epsilons=["x"]), "epsilons: 'x'"),
                          (dict(samples=0), "samples"), (dict(boundary_pairs=-1), "boundary_pairs"), (dict(threads=-2), "threads")):
         with pytest.raises(ValueError, match=what):
             superball.verify(case="1", alphas=2, **kwargs)

@@ -101,7 +101,7 @@ def test_sweep_and_switch_point_arguments(paper):
 def test_derive_options():
     cases = [
         (dict(case="9"), "9"),
-        (dict(case="1", alphas="x"), "--alphas"),
+        (dict(case="1", alphas="x"), "alphas: 'x'"),
         (dict(case="1", alphas=8), "8"),
         (dict(case="1", alphas=2, obstacle="soft"), "obstacle"),
         (dict(case="1", alphas=2, order=-1), "order"),

@@ -311,8 +311,7 @@ const char* to_string(Agreement a) {
 }
 
 Audit audit_paper(const PrintedConditions& data, const AuditOptions& options) {
-  if (!(options.epsilon > 0) || !(options.epsilon < 1)) throw std::invalid_argument("audit_paper(): epsilon must be in (0, 1)");
-  if (options.samples < 1) throw std::invalid_argument("audit_paper(): samples must be >= 1");
+  options.check();
   Audit audit;
   audit.options = options;
   detail::Cache cache;

@@ -55,15 +55,6 @@ std::string couplings_text(const Symbols& sy, Style style) {
 }  // namespace
 }  // namespace detail::explore
 
-void ExploreOptions::check() const {
-  auto fail = [](const std::string& what) { throw std::invalid_argument("ExploreOptions::check(): " + what); };
-  if (starts < 1) fail("starts must be >= 1 (got " + std::to_string(starts) + ")");
-  if (evaluations < 10) fail("evaluations must be >= 10 (got " + std::to_string(evaluations) + ")");
-  if (!(box_low > 0) || !(box_high > box_low) || !std::isnormal(box_low) || !std::isnormal(box_high))
-    fail("box " + numeric::to_string(box_low, 6) + ":" + numeric::to_string(box_high, 6) + ": needs 0 < LOW < HIGH with LOW >= " +
-         numeric::to_string(std::numeric_limits<double>::min(), 17) + " and HIGH finite (normal doubles)");
-}
-
 std::string describe_box(const ExploreOptions& o) {
   return "every mass and K in [" + numeric::to_string(o.box_low, 6) + ", " + numeric::to_string(o.box_high, 6) +
          "] (log scale), each coupling t·√(K_p K_q) with t in [-1, 1], a = 1, bottom body fixed";

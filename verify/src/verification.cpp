@@ -472,12 +472,7 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
   using detail::BlockResult;
   using detail::Context;
   using cln::cl_RA;
-  if (options.epsilons.empty()) detail::fail("no value of epsilon");
-  for (const cl_RA& e : options.epsilons)
-    if (!(e > 0) || !(e < 1)) detail::fail("epsilon " + to_string(e) + " is not in (0, 1)");
-  if (options.samples < 1) detail::fail("samples must be >= 1");
-  if (options.boundary_pairs < 0) detail::fail("boundary pairs must be >= 0");
-  if (options.threads < 0) detail::fail("threads must be >= 0");
+  options.check();
   const int threads = numeric::thread_count(options.threads);
 
   // Everything symbolic, in this thread.

@@ -64,12 +64,9 @@ struct AutoChoice {
 /// Solve \p scene in double, then long double, then exact rationals, and
 /// stop at the first whose case is certain and whose velocity bound is at
 /// most \p rtol (relative to the largest velocity).  Exact always qualifies.
-/// Throws std::invalid_argument("choose_precision(): ...") unless 0 <= rtol <= 1
+/// Throws std::invalid_argument (SolvePrecision::check()) unless 0 <= rtol <= 1
 /// (NaN included).
 AutoChoice choose_precision(const ExactScene& scene, double rtol);
-
-/// Default `--rtol`: six significant digits of every velocity, certified.
-inline constexpr double default_rtol = 1e-6;
 
 ///@{
 /// The explicit instantiations of certify() and trust_warnings() compiled into

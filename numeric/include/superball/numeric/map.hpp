@@ -176,6 +176,9 @@ struct MapSettings {
   /// per point, 2 threads); this machine has 5.1 GB available
   /// (MemAvailable); use a coarser grid …").
   bool fits(const Axis& x, const Axis& y, std::string* why = nullptr) const;
+  /// Throws std::invalid_argument unless #threads passes check_threads() and
+  /// #bits is from 1 to max_bits; map() and map_points() call it first.
+  void check() const;
 };
 
 /// The most tasks of each phase of a map given to MapSettings::runner:

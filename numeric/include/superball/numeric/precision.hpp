@@ -6,6 +6,7 @@
 #include <cln/rational.h>
 #include <cln/real.h>
 
+#include <optional>
 #include <string>
 
 namespace superball::numeric {
@@ -27,6 +28,27 @@ struct Precision {
 inline constexpr int min_digits = 10;
 /// Largest digits:N accepted.
 inline constexpr int max_digits = 10000;
+
+/// Default rtol of auto: six significant digits of every velocity, certified.
+inline constexpr double default_rtol = 1e-6;
+
+/// What one solve is asked for (`solve --precision P --rtol R`, Python's
+/// `solve(precision=P, rtol=R)`): auto, the cheapest arithmetic whose answer
+/// is certified to rtol (choose_precision()), or one fixed Precision.
+struct SolvePrecision {
+  bool automatic = true;
+  Precision fixed;             ///< the arithmetic when not automatic
+  std::optional<double> rtol;  ///< the certified relative error asked of auto; nullopt: not given (default_rtol)
+
+  /// \p precision spelled "auto" or as Precision::parse() reads it, with
+  /// \p rtol as given; checked (check()).  Throws std::invalid_argument.
+  static SolvePrecision parse(const std::string& precision, std::optional<double> rtol);
+  /// Throws std::invalid_argument("SolvePrecision::check(): ...") when rtol
+  /// is given without auto, or is not a number from 0 to 1 (NaN included).
+  void check() const;
+  /// The rtol of auto: the one given, else default_rtol.
+  double tolerance() const { return rtol.value_or(default_rtol); }
+};
 
 /// Call \p f with a value-initialised scalar of the type for \p p (a tag).
 template <class F>

@@ -62,7 +62,8 @@ struct SweepPoint {
 /// or long double, each thread converts the scene once and sets only that
 /// entry per value: the same problem as converting the value's scene, bit
 /// for bit, at a fraction of the cost.  The smallest and largest of \p values pass check_range()
-/// first (throws InputError), so every value solved is admissible.
+/// first (throws InputError), so every value solved is admissible; no value,
+/// or \p threads refused by check_threads(), throws std::invalid_argument.
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads = 1);
 
@@ -131,7 +132,9 @@ struct LabelChange {
 /// not seen).  The result is in increasing parameter value, low < high, with
 /// `below` the label at low and `above` the label at high, and the changes
 /// chain: each one's `above` is the next one's `below`.  The values pass
-/// check_range() first, as in sweep().
+/// check_range() first, as in sweep().  Throws std::invalid_argument
+/// unless \p bits is from 1 to max_bits, \p threads passes check_threads()
+/// and the values are strictly monotone.
 /// The labels at \p values, then the bisections, run on \p threads threads
 /// (0: all cores); with more than one, \p label is called on several threads
 /// at once and must not share a CLN object between calls (no captured
@@ -171,7 +174,11 @@ struct SwitchPoint {
   ///@}
 };
 
-/// Locate every case change between consecutive \p values by bisection on
+/// Most halvings of a bracket (`bits` of label_changes(), switch_points(), MapSettings).
+inline constexpr int max_bits = 1024;
+
+/// Locate every case change between consecutive \p values (at least two: else
+/// std::invalid_argument) by bisection on
 /// the exact solution (CLN rationals) until the bracket is narrower than
 /// 2^-bits of the sweep step (default: 64 bits, beyond double precision),
 /// on \p threads threads (0: all cores), as label_changes(): in increasing

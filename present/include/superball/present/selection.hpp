@@ -13,12 +13,43 @@
 
 namespace superball::present {
 
-/// The raw option values (the command line's --bodies, --case, … with the same names).
+/// The most correction orders kept beyond the dominant balance (SelectionOptions::order).
+inline constexpr int max_order = 20;
+
+/// The choice of a pattern, an obstacle, a regime and cases (the command's
+/// --bodies, --case, … and Python's keywords of the same names).  The text
+/// fields are read against the number of bodies by the library when the
+/// choice is resolved: pairs by symbolic::Pattern::parse_pairs(), coupling by
+/// Pattern::parse_couplings(), scaling by Scaling::parse(), closed by
+/// ContactSet::parse(), case_name by the paper's vocabulary.
 struct SelectionOptions {
-  int bodies = 4, order = 0;
-  std::string case_name, closed, alphas, coupling, pairs = "all", scene, obstacle = "infinite", scaling;
+  int bodies = 4;
+  int order = 0;                 ///< correction orders kept, 0 to max_order
+  std::string case_name, closed;  ///< the paper's case name (n = 4), or the closed contacts ("2-3,3-4", "none")
+  std::vector<int> alphas;       ///< the paper's couplings α_k in play (n = 4; parse_alphas()); empty: none
+  std::string coupling, pairs = "all", scene, scaling;
+  symbolic::Obstacle obstacle = symbolic::Obstacle::Infinite;  ///< parse_obstacle()
   bool all = false, no_limit = false;
+
+  /// Throws std::invalid_argument("SelectionOptions::check(): ...") naming
+  /// the option when order is not from 0 to max_order, or when more than one
+  /// of case_name, closed and all is given.  resolve() calls it.
+  void check() const;
 };
+
+/// The rule of the commands that need cases (derive, verify; explore
+/// unless \p or_all_patterns): throws std::invalid_argument("require_case():
+/// give a case: case, closed or all[, or all_patterns]") when \p o chooses none.
+void require_case(const SelectionOptions& o, bool or_all_patterns = false);
+
+/// The rule of explore's all_patterns, which chooses the patterns and cases
+/// itself: throws std::invalid_argument("check_all_patterns(): ...") when
+/// \p o names a case, closed contacts, all, alphas, a coupling or a scene.
+void check_all_patterns(const SelectionOptions& o);
+
+/// "infinite" or "finite" as symbolic::Obstacle; throws
+/// std::invalid_argument("parse_obstacle(): obstacle must be infinite or finite, got 'TEXT'").
+symbolic::Obstacle parse_obstacle(const std::string& text);
 
 /// A pattern, obstacle and regime resolved, with the chosen cases.
 struct Selection {
@@ -41,7 +72,9 @@ int body_limit(int width, bool all_cases);
 
 }  // namespace detail
 
-/// Parse "1,6" into {1, 6}; throws std::invalid_argument naming --alphas.
+/// Parse "1,6" into {1, 6}: comma-separated indices 1..7; throws
+/// std::invalid_argument("parse_alphas(): alphas: ...") on an empty item, a
+/// word or an index out of 1..7.
 std::vector<int> parse_alphas(const std::string& text);
 
 }  // namespace superball::present

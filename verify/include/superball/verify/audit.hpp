@@ -27,7 +27,15 @@ struct AuditOptions {
   cln::cl_RA epsilon = cln::cl_RA(1) / 1000;  ///< ε of the regime: m₁ = ε·m̃₁, K₁₄ = K̃₁₄/ε, others O(1)
   int samples = 20000;                        ///< points tried per search
   std::uint64_t seed = 1;                     ///< of the pseudo-random points (reproducible)
+
+  /// Throws std::invalid_argument("AuditOptions::check(): ...") unless
+  /// epsilon is in (0, 1) and samples from 1 to max_audit_samples (read
+  /// ε with parse_epsilon("epsilon", text)).  audit_paper() calls it.
+  void check() const;
 };
+
+/// The most points tried per search of the audit (AuditOptions::samples).
+inline constexpr int max_audit_samples = 10000000;
 
 /// A parameter point and what each side says there.
 struct Witness {

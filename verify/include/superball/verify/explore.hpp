@@ -69,14 +69,25 @@ struct ExploreOptions {
   /// The upper end of the box (see box_low).
   double box_high = 1e3;
 
-  /// Throws std::invalid_argument("ExploreOptions::check(): ...") unless
-  /// starts >= 1, evaluations >= 10 and 0 < box_low < box_high with both
-  /// ends normal doubles (box_low >= 2.2250738585072014e-308, box_high
-  /// finite): any such box is searched; a point where a condition's terms
-  /// overflow or underflow in double counts as infeasible, and every witness
-  /// is confirmed exactly.
+  /// Throws std::invalid_argument("ExploreOptions::check(): ...") naming
+  /// the option unless starts is from 1 to max_starts, evaluations from 10
+  /// to max_evaluations and 0 < box_low < box_high with both ends normal
+  /// doubles (box_low >= 2.2250738585072014e-308, box_high finite): any such
+  /// box is searched; a point where a condition's terms overflow or
+  /// underflow in double counts as infeasible, and every witness is
+  /// confirmed exactly.
   void check() const;
 };
+
+/// The most local searches per case (ExploreOptions::starts).
+inline constexpr int max_starts = 100000;
+/// The most objective evaluations per local search (ExploreOptions::evaluations).
+inline constexpr int max_evaluations = 10000000;
+
+/// "1e-3:1e3" into (box_low, box_high): two decimal numbers; throws
+/// std::invalid_argument("box: 'TEXT' is not LOW:HIGH …").  Their rule is
+/// ExploreOptions::check()'s.
+std::pair<double, double> parse_box(const std::string& text);
 
 /// The box of \p options in words (for reports).
 std::string describe_box(const ExploreOptions& options);

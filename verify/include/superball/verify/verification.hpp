@@ -74,7 +74,29 @@ struct VerifyOptions {
   /// builds the boundary stage from the drawn points, and the result).  The
   /// result is the same, bit for bit, whoever runs the tasks.
   numeric::TaskRunner runner;
+
+  /// Throws std::invalid_argument("VerifyOptions::check(): ...") naming the
+  /// option (as Python's keywords and the command's options without "--"
+  /// spell it): no epsilon, an epsilon not in (0, 1), samples not from 1 to
+  /// max_verify_samples, boundary_pairs not from 0 to max_boundary_pairs,
+  /// threads refused by numeric::check_threads().  verify_case() calls it.
+  void check() const;
 };
+
+/// The most drawn points per ε (VerifyOptions::samples).
+inline constexpr int max_verify_samples = 100000000;
+/// The most segments bisected per condition and ε (VerifyOptions::boundary_pairs).
+inline constexpr int max_boundary_pairs = 1000000;
+
+/// A value of ε spelled as a scene file spells numbers ("1e-3", "0.001",
+/// "1/1000"), exact; throws std::invalid_argument("OPTION: 'TEXT': what is
+/// wrong") naming \p option ("epsilons", "epsilon").  Its range is the
+/// options' check().
+cln::cl_RA parse_epsilon(const std::string& option, const std::string& text);
+
+/// Comma-separated values of ε ("1e-2,1e-4"), each read by parse_epsilon();
+/// throws std::invalid_argument naming "epsilons" when there is none.
+std::vector<cln::cl_RA> parse_epsilons(const std::string& text);
 
 /// Blocks of drawn points per task of VerifyOptions::runner (400 points):
 /// enough work to outweigh sending the points, enough tasks to share out.

@@ -1,0 +1,106 @@
+"""One rule, one message: the same bad option value refused by the command and
+by the Python module, with the same line.
+
+Every rule on an option lives in the library type it belongs to (its check()
+or its parse_…() function); the command and the module only translate their
+arguments, so the command's stderr line after "superball: " is exactly the
+InputError's message.  The library names an option by its bare name, as a
+Python keyword spells it (the command's --name without its dashes, "-" as "_").
+"""
+import pytest
+
+import superball
+
+from conftest import PAPER, cli_path, run_cli
+
+VERIFY = ("verify", "--case", "1", "--alphas", "2")
+AUDIT = ("audit",)
+EXPLORE = ("explore", "--case", "1", "--alphas", "2")
+SOLVE = ("solve", PAPER)
+SWEEP = ("sweep", PAPER, "--vary", "K.3-4=0:20:5")
+
+
+def scene():
+    return superball.Scene.load(PAPER)
+
+
+def verify(**kw):
+    return superball.verify(**{"case": "1", "alphas": 2, **kw})
+
+
+def explore(**kw):
+    return superball.explore(**{"case": "1", "alphas": 2, **kw})
+
+
+def sweep(**kw):
+    return superball.sweep(scene(), "K.3-4", superball.linspace(0, 20, 5), **kw)
+
+
+# (command line, the same request from Python, the message both give)
+CASES = [
+    # epsilon in (0, 1): VerifyOptions::check(), AuditOptions::check(); its text by parse_epsilon()
+    (VERIFY + ("--epsilons", "0"), lambda: verify(epsilons=[0]), "epsilons must be in (0, 1), got 0"),
+    (VERIFY + ("--epsilons", "1"), lambda: verify(epsilons=[1]), "epsilons must be in (0, 1), got 1"),
+    (VERIFY + ("--epsilons=-1",), lambda: verify(epsilons=[-1]), "epsilons must be in (0, 1), got -1"),
+    (VERIFY + ("--epsilons", "2"), lambda: verify(epsilons=[2]), "epsilons must be in (0, 1), got 2"),
+    (VERIFY + ("--epsilons", "1/100,3/2"), lambda: verify(epsilons=["1/100", 1.5]), "epsilons must be in (0, 1), got 3/2"),
+    (VERIFY + ("--epsilons", "nan"), lambda: verify(epsilons=[float("nan")]), None),
+    (AUDIT + ("--epsilon", "0"), lambda: superball.audit(epsilon=0), "epsilon must be in (0, 1), got 0"),
+    (AUDIT + ("--epsilon", "2"), lambda: superball.audit(epsilon=2), "epsilon must be in (0, 1), got 2"),
+    (AUDIT + ("--epsilon", "nan"), lambda: superball.audit(epsilon=float("nan")), None),
+    # samples, boundary pairs, threads
+    (VERIFY + ("--samples", "0"), lambda: verify(samples=0), "samples must be a whole number from 1 to 100000000, got 0"),
+    (VERIFY + ("--samples", "-5"), lambda: verify(samples=-5), "samples must be a whole number from 1 to 100000000, got -5"),
+    (AUDIT + ("--samples", "0"), lambda: superball.audit(samples=0), "samples must be a whole number from 1 to 10000000, got 0"),
+    (VERIFY + ("--boundary-pairs", "-1"), lambda: verify(boundary_pairs=-1),
+     "boundary_pairs must be a whole number from 0 to 1000000, got -1"),
+    (VERIFY + ("--threads", "-1"), lambda: verify(threads=-1), "threads must be a whole number from 0 (all cores) to 1024, got -1"),
+    (SWEEP + ("--threads", "-1"), lambda: sweep(threads=-1), "threads must be a whole number from 0 (all cores) to 1024, got -1"),
+    (SWEEP + ("--threads", "5000"), lambda: sweep(threads=5000), "threads must be a whole number from 0 (all cores) to 1024, got 5000"),
+    # the selection: SelectionOptions::check(), parse_obstacle(), parse_alphas(), the pattern's parsers
+    (VERIFY + ("--obstacle", "middle"), lambda: verify(obstacle="middle"), "obstacle must be infinite or finite, got 'middle'"),
+    (VERIFY + ("--order", "21"), lambda: verify(order=21), "order must be a whole number from 0 to 20, got 21"),
+    (VERIFY + ("--order=-1",), lambda: verify(order=-1), "order must be a whole number from 0 to 20, got -1"),
+    (("verify", "--case", "1", "--alphas", "1,,6"), lambda: superball.verify(case="1", alphas="1,,6"),
+     "alphas: '1,,6': an empty item is not an index 1..7 (e.g. 1,6)"),
+    (("verify", "--case", "1", "--alphas", "x"), lambda: superball.verify(case="1", alphas="x"),
+     "alphas: 'x': 'x' is not an index 1..7 (e.g. 1,6)"),
+    (("verify", "--case", "1", "--alphas", "1,8"), lambda: superball.verify(case="1", alphas=[1, 8]),
+     "alphas: '1,8': '8' is not an index 1..7 (e.g. 1,6)"),
+    (("verify", "--closed", "2-3", "--bodies", "5", "--pairs", "1-9"), lambda: superball.verify(closed="2-3", bodies=5, pairs="1-9"),
+     "pairs: '1-9': pair 1-9 is outside bodies 1..5"),
+    (("verify", "--closed", "2-3", "--bodies", "5", "--coupling", "1-2"), lambda: superball.verify(closed="2-3", bodies=5, coupling="1-2"),
+     "coupling: '1-2': '1-2' is not a coupling of two pairs i-j/k-l"),
+    (("verify", "--case", "1", "--closed", "2-3", "--alphas", "2"), lambda: superball.verify(case="1", closed="2-3", alphas=2),
+     "case, closed and all each choose the cases: give one of them"),
+    (("verify", "--alphas", "2"), lambda: superball.verify(alphas=2), "give a case: case, closed or all"),
+    (("explore", "--alphas", "2"), lambda: superball.explore(alphas=2), "give a case: case, closed or all, or all_patterns"),
+    (("explore", "--all-patterns", "--case", "1"), lambda: superball.explore(all_patterns=True, case="1"),
+     "all_patterns chooses the patterns and cases: drop case, closed, all, alphas, coupling and scene"),
+    # explore: ExploreOptions::check(), parse_box()
+    (EXPLORE + ("--starts", "0"), lambda: explore(starts=0), "starts must be a whole number from 1 to 100000, got 0"),
+    (EXPLORE + ("--evaluations", "5"), lambda: explore(evaluations=5), "evaluations must be a whole number from 10 to 10000000, got 5"),
+    (EXPLORE + ("--box", "2:1"), lambda: explore(box=(2, 1)), None),
+    # solve and sweep: SolvePrecision::parse(), Precision::parse()
+    (SOLVE + ("--precision", "double", "--rtol", "1e-3"), lambda: superball.solve(scene(), "double", 1e-3),
+     "rtol is the certified error of precision auto; precision double has none"),
+    (SOLVE + ("--rtol", "2"), lambda: superball.solve(scene(), rtol=2), "rtol must be a number from 0 to 1, got 2"),
+    (SOLVE + ("--rtol", "nan"), lambda: superball.solve(scene(), rtol=float("nan")), "rtol must be a number from 0 to 1, got nan"),
+    (SOLVE + ("--precision", "quad"), lambda: superball.solve(scene(), "quad"), None),
+    (SOLVE + ("--precision", "digits:3"), lambda: superball.solve(scene(), "digits:3"), None),
+    (SWEEP + ("--precision", "quad"), lambda: sweep(precision="quad"), None),
+]
+
+
+@pytest.mark.parametrize("args, call, message", CASES, ids=[" ".join(map(str, c[0][1:] if c[0][0] != "solve" and c[0][0] != "sweep"
+                                                                              else c[0][2:])) or c[0][0] for c in CASES])
+def test_the_command_and_the_module_refuse_with_the_same_line(args, call, message):
+    cli_path()
+    code, out, err = run_cli(*args, check=False)
+    assert code == 2 and out == "", f"superball {' '.join(map(str, args))}: exit {code}: {err}"
+    assert err.startswith("superball: ") and err.endswith("\n") and err.count("\n") == 1, err
+    with pytest.raises(superball.InputError) as e:
+        call()
+    assert str(e.value) == err[len("superball: "):-1]
+    if message is not None:
+        assert str(e.value) == message
