@@ -13,15 +13,23 @@ namespace superball::present {
 
 /// One condition: kind, about, the exact and asymptotic forms in ASCII
 /// (GiNaC's syntax), text and LaTeX, the readable and eliminated forms when
-/// there are, the order in ε, the verdicts and the proof.
-nlohmann::ordered_json condition_json(const symbolic::Condition& c, const symbolic::Symbols& s);
+/// there are, the order in ε, the verdicts and the proof.  Compact (not
+/// \p expanded): a form written through the case's elimination (an
+/// `eliminated` form) leaves out its expanded forms (exact, text, latex;
+/// asymptotic, asymptotic_text, asymptotic_latex; finite).
+nlohmann::ordered_json condition_json(const symbolic::Condition& c, const symbolic::Symbols& s, bool expanded);
 
 /// The case \p d of \p deriver: symbols, velocities, reactions, the
 /// determinant, named parts, the elimination when set, and the conditions.
 /// \p psd holds the JSON of the conditions on M (Deriver::psd(), the same in
 /// every case), made on the first call and reused: with many cases they
-/// were most of the conditions written.
+/// were most of the conditions written.  Compact (not \p expanded, the
+/// command's default): the conditions as condition_json() says, and a
+/// velocity, reaction or determinant that the text report writes through the
+/// elimination is that form over the names of `elimination.definitions`
+/// ("V1", "p1*p2*p3"); \p expanded writes every expanded form (1.7 GB at 8
+/// bodies against 63 MB).
 nlohmann::ordered_json derivation_json(const symbolic::Derivation& d, const symbolic::Deriver& deriver,
-                                       std::vector<nlohmann::ordered_json>& psd);
+                                       std::vector<nlohmann::ordered_json>& psd, bool expanded);
 
 }  // namespace superball::present
