@@ -17,6 +17,10 @@ bool written(const ConditionForm& form, bool expanded) { return expanded || !for
 
 }  // namespace
 
+bool through_elimination(const Derivation& d, const GiNaC::ex& p) {
+  return d.elimination && (GiNaC::is_a<GiNaC::add>(p) ? p.nops() : 1) > max_inline_exact_terms;
+}
+
 nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s, bool expanded) {
   nlohmann::ordered_json j;
   j["kind"] = to_string(c.kind);
@@ -90,8 +94,7 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
   j["symbols"] = symbols;
   // Compact: a value the report writes through the elimination (over max_inline_exact_terms terms) is that
   // form, over the names of elimination.definitions: V1, -(...V1 + ...), p1*p2*...
-  const Elimination* e = d.elimination ? &*d.elimination : nullptr;
-  auto through = [&](const GiNaC::ex& p) { return !expanded && e && (GiNaC::is_a<GiNaC::add>(p) ? p.nops() : 1) > max_inline_exact_terms; };
+  auto through = [&](const GiNaC::ex& p) { return !expanded && through_elimination(d, p); };
   nlohmann::ordered_json v = nlohmann::ordered_json::object();
   for (int i = 1, cluster = 1; i <= s.bodies(); ++i) {
     const Fraction& f = d.velocities[static_cast<std::size_t>(i - 1)];
@@ -109,7 +112,7 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
   j["reactions"] = r;
   std::string determinant;  // det(ZᵀAZ) = Π p_j when written through the elimination
   if (through(d.determinant))
-    for (const auto& [name, value] : elimination_definitions(*e, s, Style::Ascii))
+    for (const auto& [name, value] : elimination_definitions(*d.elimination, s, Style::Ascii))
       if (name[0] == 'p') determinant = name + (determinant.empty() ? "" : "*" + determinant);
   j["determinant"] = determinant.empty() ? format_polynomial(d.determinant, s, Style::Ascii) : determinant;
   j["check"] = d.check;

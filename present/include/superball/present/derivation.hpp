@@ -11,6 +11,12 @@
 
 namespace superball::present {
 
+/// Whether the text report writes \p p (the numerator of a velocity or a
+/// reaction of \p d, or its determinant) through the case's elimination,
+/// and the compact JSON likewise: the case has one and \p p has more than
+/// symbolic::max_inline_exact_terms terms.
+bool through_elimination(const symbolic::Derivation& d, const GiNaC::ex& p);
+
 /// One condition: kind, about, the exact and asymptotic forms in ASCII
 /// (GiNaC's syntax), text and LaTeX, the readable and eliminated forms when
 /// there are, the order in ε, the verdicts and the proof.  Compact (not
