@@ -112,7 +112,7 @@ void add_derive(CLI::App& app, Action& action) {
       "Size.  Any number of bodies is derived (2 to 21, the engine's bound), but the time grows steeply with n\n"
       "and the pattern's width (1 for near, 2 for near2, 3 with its couplings, n-1 for all).  Before a run\n"
       "estimated over " + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kProgressDelay).count()) +
-      " s (or with --progress) one line says its estimate, from the growth measured per width\n"
+      " s one line says its estimate (not with --quiet), from the growth measured per width\n"
       "(docs/SYMBOLIC.md, Limits): \"derive: deriving every case of 7 bodies, a pattern of width 3: about 21 s on\n"
       "one core, 2 workers, about 317 MB each (22.7 GB available)\".  Only a run whose one process would not fit in\n"
       "the memory available is refused (exit 2); fewer workers are used when they would not all fit.  Ctrl-C\n"
@@ -151,8 +151,8 @@ void add_derive(CLI::App& app, Action& action) {
       // Refuse only what cannot fit in memory; say the estimate before a long run.
       const present::DerivePlan plan = present::plan_derivation(selection, numeric::thread_count(o->jobs), numeric::available_memory());
       const ProgressMode mode = o->progress.mode();
-      if (mpi_rank() == 0 && (mode == ProgressMode::Always || (mode == ProgressMode::Auto && plan.estimate.seconds * 1000 >= kProgressDelay.count())))
-        std::cerr << "derive: " << plan.text << "; Ctrl-C stops it, writing nothing\n";
+      if (mpi_rank() == 0 && mode != ProgressMode::Quiet && plan.estimate.seconds * 1000 >= kProgressDelay.count())
+        std::cerr << "derive: " << plan.text << "; Ctrl-C stops it\n";
       try {
         // Each case is written as soon as it is derived and then dropped (a
         // 7- or 8-body --all would otherwise hold every case and the whole
