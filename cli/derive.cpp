@@ -117,9 +117,11 @@ void add_derive(CLI::App& app, Action& action) {
       "one core, 2 workers, about 317 MB each (22.7 GB available)\".  Only a run whose one process would not fit in\n"
       "the memory available is refused (exit 2); fewer workers are used when they would not all fit.  Ctrl-C\n"
       "stops the workers and exits with 130 and one line, writing nothing (no partial output file).\n\n"
-      "JSON.  Compact by default: a form the case writes through its elimination (long forms, from about 6\n"
+      "JSON.  Compact by default: a form the case writes through its elimination (long forms, from about 5\n"
       "bodies) is given only that way (`eliminated`, `elimination.definitions`; a velocity as \"V1\"), readable forms\n"
-      "kept; --expanded adds every expanded form too (8 bodies, near2 with couplings: 1.68 GB instead of 63 MB).\n\n"
+      "kept, and with several cases the conditions on M (the same in every case) are in the first case only;\n"
+      "--expanded adds every expanded form too, and those conditions in every case (8 bodies, near2 with couplings:\n"
+      "1.68 GB instead of about 12 MB).\n\n"
       "Workers.  Text and JSON: the cases are derived in --jobs worker processes (all cores by default; GiNaC is\n"
       "not thread-safe, so processes, each a copy of this one) and written in case order as they come: the output\n"
       "does not depend on --jobs; the memory is that of the cases being derived at once (one per worker).  LaTeX\n"
@@ -138,7 +140,7 @@ void add_derive(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output")->check(non_empty());
   cmd->add_flag("--expanded", o->expanded,
-                "JSON: every form expanded too, also those written through the elimination (1.7 GB at 8 bodies against 63 MB)");
+                "JSON: every form expanded too, also those written through the elimination, and the conditions on M in every case (1.7 GB at 8 bodies against about 12 MB)");
   add_progress_options(cmd, o->progress, "case");
   add_distribute_options(cmd, o->distribute, "case");
   cmd->add_option("--jobs,-j", o->jobs, "Worker processes (default: all cores); the output does not depend on it")
@@ -198,7 +200,8 @@ void add_derive(CLI::App& app, Action& action) {
           auto task = [&](std::size_t k) {
             const Derivation d = deriver.derive(selection.cases[k]);
             if (!json) return report(d, deriver, Style::Text, !shared) + "\n";
-            const std::string element = derivation_json(d, deriver, psd, o->expanded).dump(2);
+            // Compact, several cases: the conditions on M in the first case only (as the text writes them once).
+          const std::string element = derivation_json(d, deriver, psd, o->expanded, o->expanded || !shared || k == 0).dump(2);
             if (!shared) return element + "\n";
             std::string indented = "  ";
             indented.reserve(element.size() + element.size() / 16);

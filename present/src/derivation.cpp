@@ -76,7 +76,8 @@ nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s, bool
   return j;
 }
 
-nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriver, std::vector<nlohmann::ordered_json>& psd, bool expanded) {
+nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriver, std::vector<nlohmann::ordered_json>& psd, bool expanded,
+                                       bool with_psd) {
   const Symbols& s = *d.symbols;
   nlohmann::ordered_json j;
   j["case"] = d.case_name;
@@ -140,11 +141,12 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
   j["actual"] = to_string(d.actual);
   if (d.actual == Verdict::Never) j["actual_reason"] = d.actual_reason;
   nlohmann::ordered_json conditions = nlohmann::ordered_json::array();
-  if (psd.empty())
+  if (psd.empty() && with_psd)
     for (const Condition& c : deriver.psd()) psd.push_back(condition_json(c, s, expanded));
   for (const Condition& c : d.conditions)
     if (c.kind != ConditionKind::Psd) conditions.push_back(condition_json(c, s, expanded));
-  for (const nlohmann::ordered_json& c : psd) conditions.push_back(c);
+  if (with_psd)
+    for (const nlohmann::ordered_json& c : psd) conditions.push_back(c);
   j["conditions"] = conditions;
   return j;
 }

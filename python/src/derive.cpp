@@ -55,12 +55,12 @@ py::object to_python(const nlohmann::ordered_json& j) {
 /// One case as it crosses from its worker: the command's JSON of the case
 /// (present::derivation_json) and the text and LaTeX of its velocities,
 /// reactions and report.
-std::string case_record(const symbolic::Derivation& d, const symbolic::Deriver& deriver, bool expanded,
+std::string case_record(const symbolic::Derivation& d, const symbolic::Deriver& deriver, bool expanded, bool with_psd,
                         std::vector<nlohmann::ordered_json>& psd) {
   using symbolic::Style;
   const symbolic::Symbols& s = *d.symbols;
   nlohmann::ordered_json x;
-  x["data"] = present::derivation_json(d, deriver, psd, expanded);
+  x["data"] = present::derivation_json(d, deriver, psd, expanded, with_psd);
   // Compact as the JSON is: a long value written through the elimination (V₁, a sum over the V's).
   auto through = [&](const symbolic::Fraction& f) { return !expanded && present::through_elimination(d, f.numerator); };
   std::vector<std::string> vt, vl, rt, rl;
@@ -117,7 +117,11 @@ py::list derive(const py::dict& options, bool expanded, int jobs, const py::obje
   try {
     const py::gil_scoped_release release;
     symbolic::derive_cases(
-        deriver, sel.cases, [&](const symbolic::Derivation& d) { return case_record(d, deriver, expanded, psd); },
+        deriver, sel.cases,
+        [&](std::size_t k, const symbolic::Derivation& d) {
+          // As the command's JSON: compact with several cases, the conditions on M in the first case only.
+          return case_record(d, deriver, expanded, expanded || sel.cases.size() == 1 || k == 0, psd);
+        },
         [&](std::size_t, std::string&& text) {
           const nlohmann::ordered_json j = nlohmann::ordered_json::parse(text);
           text.clear();

@@ -282,9 +282,9 @@ void Workers::run(const Deliver& deliver, const Interrupt& interrupted) {
 
 namespace superball::symbolic {
 
-void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::function<std::string(const Derivation&)>& write,
-                  const Workers::Deliver& deliver, const DeriveRun& run) {
-  Workers workers(cases.size(), run.jobs, [&](std::size_t k) { return write(deriver.derive(cases[k])); });
+void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
+                  const std::function<std::string(std::size_t, const Derivation&)>& write, const Workers::Deliver& deliver, const DeriveRun& run) {
+  Workers workers(cases.size(), run.jobs, [&](std::size_t k) { return write(k, deriver.derive(cases[k])); });
   if (run.progress) run.progress(0, cases.size());
   workers.run(
       [&](std::size_t k, std::string&& text) {

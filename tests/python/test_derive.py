@@ -151,6 +151,10 @@ def test_derive_all_equals_the_command_whatever_the_workers(chain5):
     assert [d.data for d in every] == j
     one = superball.derive_all(bodies=5, pairs="near2", coupling="near2", jobs=1, progress=False)
     assert [d.data for d in one] == j
+    # The compact JSON has the conditions on M in its first case only; every Derivation shows them.
+    assert not any(c["kind"] == "psd" for c in j[1]["conditions"])
+    psd = [c.about for c in every[0].conditions if c.kind == "psd"]
+    assert psd and all([c.about for c in d.conditions if c.kind == "psd"] == psd for d in every)
     expanded = superball.derive(bodies=5, pairs="near2", coupling="near2", closed="none", expanded=True)
     assert expanded.data == cli_json("derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--closed", "none", "--format",
                                      "json", "--expanded")

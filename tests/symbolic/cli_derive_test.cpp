@@ -196,11 +196,26 @@ TEST(CliDerive, JsonIsCompactUnlessExpanded) {
     EXPECT_EQ(cc, ee) << cc.at("about");
   }
   EXPECT_GE(dropped, 5);
-  // The paper's cases with one alpha have no long form: the same JSON whichever the flag.
+  // The paper's cases with one alpha have no long form: the same JSON whichever the flag, but for the
+  // conditions on M, which the compact list of cases has in its first case only.
   const RunResult paper = run({"derive", "--all", "--alphas", "2", "--format", "json"});
   const RunResult paper_expanded = run({"derive", "--all", "--alphas", "2", "--format", "json", "--expanded"});
   ASSERT_EQ(paper.exit_code, 0) << paper.err;
-  EXPECT_EQ(paper.out, paper_expanded.out);
+  const nlohmann::json p = nlohmann::json::parse(paper.out);
+  nlohmann::json pe = nlohmann::json::parse(paper_expanded.out);
+  ASSERT_EQ(p.size(), 8u);
+  EXPECT_EQ(p.at(0), pe.at(0));
+  for (std::size_t k = 1; k < pe.size(); ++k) {
+    nlohmann::json kept = nlohmann::json::array();
+    int psd = 0;
+    for (const auto& c : pe.at(k).at("conditions")) {
+      if (c.at("kind") == "psd") ++psd;
+      else kept.push_back(c);
+    }
+    EXPECT_GT(psd, 0);
+    pe.at(k).at("conditions") = kept;
+    EXPECT_EQ(p.at(k), pe.at(k)) << k;
+  }
 }
 
 TEST(CliDerive, TheOutputDoesNotDependOnTheNumberOfWorkers) {

@@ -191,7 +191,7 @@ TEST(DeriveCases, TheSameResultsInCaseOrderWhateverTheWorkers) {
   const Deriver deriver(Pattern::nearest_and_next_nearest(4), Obstacle::Infinite);
   std::vector<ContactSet> cases;
   for (std::uint64_t mask = 0; mask < 8; ++mask) cases.push_back(ContactSet::from_mask(mask, 4));
-  auto write = [](const Derivation& d) { return d.case_name + ": " + d.conditions.front().about; };
+  auto write = [](std::size_t k, const Derivation& d) { return std::to_string(k) + " " + d.case_name + ": " + d.conditions.front().about; };
   std::vector<std::string> first;
   for (int jobs : {0, 1, 3}) {
     std::vector<std::string> out;
@@ -208,7 +208,7 @@ TEST(DeriveCases, TheSameResultsInCaseOrderWhateverTheWorkers) {
     }, run);
     EXPECT_EQ(progress, (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7, 8})) << jobs;
     ASSERT_EQ(out.size(), 8u);
-    EXPECT_EQ(out[0], deriver.derive(cases[0]).case_name + ": U1 > a");
+    EXPECT_EQ(out[0], "0 " + deriver.derive(cases[0]).case_name + ": U1 > a");
     if (first.empty()) first = out;
     EXPECT_EQ(out, first) << jobs;
     EXPECT_TRUE(no_children()) << jobs;

@@ -34,8 +34,11 @@ nlohmann::ordered_json condition_json(const symbolic::Condition& c, const symbol
 /// velocity, reaction or determinant that the text report writes through the
 /// elimination is that form over the names of `elimination.definitions`
 /// ("V1", "p1*p2*p3"); \p expanded writes every expanded form (1.7 GB at 8
-/// bodies against 63 MB).
+/// bodies against 12 MB).  \p with_psd false leaves out the conditions on
+/// M: a compact list of several cases has them in its first case only, as
+/// the text report writes them once (at 8 bodies they were 104 MB of the
+/// 144 MB when repeated in every case).
 nlohmann::ordered_json derivation_json(const symbolic::Derivation& d, const symbolic::Deriver& deriver,
-                                       std::vector<nlohmann::ordered_json>& psd, bool expanded);
+                                       std::vector<nlohmann::ordered_json>& psd, bool expanded, bool with_psd = true);
 
 }  // namespace superball::present

@@ -89,11 +89,11 @@ struct DeriveRun {
 };
 
 /// Derives \p cases of \p deriver over run.jobs worker processes and calls
-/// deliver(k, write(derivation of case k)) here in case order (the same
+/// deliver(k, write(k, derivation of case k)) here in case order (the same
 /// whatever the number of workers).  \p write runs in the worker: it turns a
 /// Derivation into the text that crosses back (a report, JSON).  Errors and
 /// interrupts as Workers::run().
-void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::function<std::string(const Derivation&)>& write,
-                  const Workers::Deliver& deliver, const DeriveRun& run);
+void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
+                  const std::function<std::string(std::size_t, const Derivation&)>& write, const Workers::Deliver& deliver, const DeriveRun& run);
 
 }  // namespace superball::symbolic
