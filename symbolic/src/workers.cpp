@@ -3,6 +3,9 @@
 
 #include <poll.h>
 #include <signal.h>
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -110,6 +113,7 @@ void stop_all(std::vector<Workers::Worker>& workers) {
 Workers::Workers(std::size_t count, int jobs, Task task) : count_(count), task_(std::move(task)) {
   if (jobs <= 0 || count == 0) return;
   workers_.resize(std::min<std::size_t>(static_cast<std::size_t>(jobs), count));
+  const pid_t parent = ::getpid();
   try {
     for (std::size_t i = 0; i < workers_.size(); ++i) {
       int to_worker[2], from_worker[2];
@@ -131,6 +135,11 @@ Workers::Workers(std::size_t count, int jobs, Task task) : count_(count), task_(
           for (int fd : {workers_[j].tasks, workers_[j].results}) ::close(fd);
         ::signal(SIGPIPE, SIG_DFL);
         ::signal(SIGINT, SIG_IGN);  // Ctrl-C is this process's parent's to handle: it stops the workers
+#ifdef __linux__
+        // A parent killed outright (SIGKILL) takes its workers with it: no case goes on being derived.
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent) ::_exit(1);
+#endif
         work(to_worker[0], from_worker[1], task_);
       }
       ::close(to_worker[0]);

@@ -43,7 +43,8 @@ class TaskError : public std::runtime_error {
 ///
 /// The workers are forked by the constructor, before anything else starts
 /// a thread (make the pool before a progress line's timer).  They ignore
-/// SIGINT: Ctrl-C reaches this process, whose `interrupted` hook stops them.
+/// SIGINT: Ctrl-C reaches this process, whose `interrupted` hook stops them;
+/// on Linux they die with this process however it ends (PR_SET_PDEATHSIG).
 /// A task that throws ends the run: no later task is handed out, the tasks
 /// before it are finished and delivered, the other workers are stopped, and
 /// run() throws the exception again with its message (std::invalid_argument,
