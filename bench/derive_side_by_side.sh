@@ -39,5 +39,5 @@ PY
 }
 uptime
 measure "n=4 seven alphas" --all --alphas 1,2,3,4,5,6,7
-for n in 4 5 6; do measure "n=$n near2+coupling" --bodies "$n" --pairs near2 --coupling near2 --all --no-limit; done
+for n in 4 5 6; do measure "n=$n near2+coupling" --bodies "$n" --pairs near2 --coupling near2 --all; done
 uptime

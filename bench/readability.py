@@ -7,7 +7,7 @@ For every "asymptotic:" line: the characters of the formula after
 median, the 90th percentile and the longest, and the longest line of the
 whole output.
 
-    superball derive --bodies 6 --pairs near2 --coupling near2 --all --no-limit > d6.txt
+    superball derive --bodies 6 --pairs near2 --coupling near2 --all > d6.txt
     python3 bench/readability.py d6.txt [--skip-psd]
 
 --skip-psd leaves out the positive semi-definiteness minors (the same in

@@ -3,6 +3,8 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <csignal>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -13,11 +15,12 @@
 #include "selection.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/memory.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/present/derivation.hpp"
 #include "superball/symbolic/derivation.hpp"
 #include "superball/symbolic/format.hpp"
-#include "workers.hpp"
+#include "superball/symbolic/workers.hpp"
 
 namespace superball::cli {
 
@@ -27,6 +30,48 @@ using present::latex_document;
 using present::report;
 using present::report_psd;
 
+namespace {
+
+/// The exit code of a run stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
+constexpr int kInterruptedExit = 128 + SIGINT;
+
+volatile std::sig_atomic_t interrupt_requested = 0;
+struct sigaction interrupt_previous {};
+
+/// The first SIGINT asks the run to stop (Workers polls interrupt_requested);
+/// a second one does what SIGINT did before (Output's: remove its temporary
+/// and end the process).
+extern "C" void request_interrupt(int signal) {
+  if (interrupt_requested) {
+    ::sigaction(signal, &interrupt_previous, nullptr);
+    std::raise(signal);
+    return;
+  }
+  interrupt_requested = 1;
+}
+
+/// SIGINT handled by request_interrupt() while this object lives (not where
+/// the caller ignores it, e.g. a background job of a shell without job control).
+struct InterruptHandler {
+  bool installed = false;
+  InterruptHandler() {
+    interrupt_requested = 0;
+    if (::sigaction(SIGINT, nullptr, &interrupt_previous) != 0 || interrupt_previous.sa_handler == SIG_IGN) return;
+    struct sigaction act {};
+    act.sa_handler = request_interrupt;
+    sigemptyset(&act.sa_mask);
+    installed = ::sigaction(SIGINT, &act, nullptr) == 0;
+  }
+  ~InterruptHandler() {
+    if (installed) ::sigaction(SIGINT, &interrupt_previous, nullptr);
+  }
+  InterruptHandler(const InterruptHandler&) = delete;
+  InterruptHandler& operator=(const InterruptHandler&) = delete;
+  static bool requested() { return interrupt_requested != 0; }
+};
+
+}  // namespace
+
 void add_derive(CLI::App& app, Action& action) {
   struct Options {
     SelectionOptions selection;
@@ -34,6 +79,7 @@ void add_derive(CLI::App& app, Action& action) {
     DistributeOptions distribute;
     std::string format = "text", output;
     int jobs = 0;
+    bool expanded = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("derive", "Solve evolution cases symbolically: velocities, reactions and the conditions, exact and asymptotic");
@@ -66,6 +112,19 @@ void add_derive(CLI::App& app, Action& action) {
       "redrawn in place and erased before the output is written; nothing is shown when standard error is not a terminal or\n"
       "with --quiet.  --progress shows it from the first case, one line each when standard error is not a\n"
       "terminal (a log).\n\n"
+      "Size.  Any number of bodies is derived (2 to 21, the engine's bound), but the time grows steeply with n\n"
+      "and the pattern's width (1 for near, 2 for near2, 3 with its couplings, n-1 for all).  Before a run\n"
+      "estimated over " + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kProgressDelay).count()) +
+      " s one line says its estimate (not with --quiet), from the growth measured per width\n"
+      "(docs/SYMBOLIC.md, Limits): \"derive: deriving every case of 7 bodies, a pattern of width 3: about 21 s on\n"
+      "one core, 2 workers, about 317 MB each (22.7 GB available)\".  Only a run whose one process would not fit in\n"
+      "the memory available is refused (exit 2); fewer workers are used when they would not all fit.  Ctrl-C\n"
+      "stops the workers and exits with 130 and one line, writing nothing (no partial output file).\n\n"
+      "JSON.  Compact by default: a form the case writes through its elimination (long forms, from about 5\n"
+      "bodies) is given only that way (`eliminated`, `elimination.definitions`; a velocity as \"V1\"), readable forms\n"
+      "kept, and with several cases the conditions on M (the same in every case) are in the first case only;\n"
+      "--expanded adds every expanded form too, and those conditions in every case (8 bodies, near2 with couplings:\n"
+      "1.68 GB instead of about 12 MB).\n\n"
       "Workers.  Text and JSON: the cases are derived in --jobs worker processes (all cores by default; GiNaC is\n"
       "not thread-safe, so processes, each a copy of this one) and written in case order as they come: the output\n"
       "does not depend on --jobs; the memory is that of the cases being derived at once (one per worker).  LaTeX\n"
@@ -83,91 +142,121 @@ void add_derive(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"text", "latex", "json"}))
       ->capture_default_str();
   cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output")->check(non_empty());
+  cmd->add_flag("--expanded", o->expanded,
+                "JSON: every form expanded too, also those written through the elimination, and the conditions on M in every case (1.7 GB at 8 bodies against about 12 MB)");
   add_progress_options(cmd, o->progress, "case");
   add_distribute_options(cmd, o->distribute, "case");
   cmd->add_option("--jobs,-j", o->jobs, "Worker processes (default: all cores); the output does not depend on it")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   cmd->callback([o, cmd, &action] {
-    action = [o, cmd] {
+    action = [o, cmd]() -> int {
       const Selection selection = resolve(o->selection);
       const Deriver& deriver = *selection.deriver;
-      // Each case is written as soon as it is derived and then dropped (a
-      // 7- or 8-body --all would otherwise hold every case and the whole
-      // JSON tree): into the output file's temporary with -o, else into one
-      // string written once the progress line is erased.  LaTeX needs every
-      // case at once (latex_document).
-      const bool to_file = !o->output.empty() && o->output != "-" && o->output != "/dev/stdout";
-      std::optional<Output> file;
-      if (to_file) file.emplace(o->output);
-      std::string text;
-      auto emit = [&](const std::string& piece) {
-        if (file)
-          file->write(piece);
-        else
-          text += piece;
-      };
-      const std::size_t count = selection.cases.size();
-      const bool json = o->format == "json", latex = o->format == "latex";
-      const bool shared = count > 1;  // text: the conditions on M, the same in every case, once before them
-      auto name = [&](std::size_t k) {
-        const ContactSet& c = selection.cases[k];
-        const std::string paper = Vocabulary::paper().case_name(c);
-        return paper == c.to_string() ? paper : paper + " " + c.to_string();
-      };
-      if (latex && (!o->distribute.shard.empty() || !o->distribute.checkpoint.empty() || mpi_size() > 1))
-        throw std::invalid_argument("derive: --format latex writes one document of every case, derived in one process: "
-                                    "--shard, --checkpoint and MPI apply to text and json");
-      if (latex) {  // latex_document() needs every case: derived here, in order
-        StepProgress progress("derive", "case", static_cast<int>(count), o->progress.mode());
-        std::vector<Derivation> kept;
-        for (std::size_t k = 0; k < count; ++k) {
-          progress.step(static_cast<int>(k + 1), name(k));
-          kept.push_back(deriver.derive(selection.cases[k]));
-        }
-        progress.note("writing " + std::to_string(count) + (count == 1 ? " case" : " cases") + " as latex");
-        emit(latex_document(kept, deriver));
-      } else {
-        // One case's text: its report, or its JSON as the array's dump(2) would
-        // write it (each line indented by two more).  Runs in a worker process.
-        std::vector<nlohmann::ordered_json> psd;  // JSON: the conditions on M, made once per process
-        auto task = [&](std::size_t k) {
-          const Derivation d = deriver.derive(selection.cases[k]);
-          if (!json) return report(d, deriver, Style::Text, !shared) + "\n";
-          const std::string element = derivation_json(d, deriver, psd).dump(2);
-          if (!shared) return element + "\n";
-          std::string indented = "  ";
-          indented.reserve(element.size() + element.size() / 16);
-          for (char ch : element) {
-            indented += ch;
-            if (ch == '\n') indented += "  ";
-          }
-          return indented;
+      // Refuse only what cannot fit in memory; say the estimate before a long run.
+      const present::DerivePlan plan = present::plan_derivation(selection, numeric::thread_count(o->jobs), numeric::available_memory());
+      const ProgressMode mode = o->progress.mode();
+      if (mpi_rank() == 0 && mode != ProgressMode::Quiet && plan.estimate.seconds * 1000 >= kProgressDelay.count())
+        std::cerr << "derive: " << plan.text << "; Ctrl-C stops it\n";
+      try {
+        // Each case is written as soon as it is derived and then dropped (a
+        // 7- or 8-body --all would otherwise hold every case and the whole
+        // JSON tree): into the output file's temporary with -o, else into one
+        // string written once the progress line is erased.  LaTeX needs every
+        // case at once (latex_document).
+        const bool to_file = !o->output.empty() && o->output != "-" && o->output != "/dev/stdout";
+        std::optional<Output> file;
+        if (to_file) file.emplace(o->output);
+        std::string text;
+        auto emit = [&](const std::string& piece) {
+          if (file)
+            file->write(piece);
+          else
+            text += piece;
         };
-        Distribution run(*cmd, o->distribute, count);
-        std::optional<Workers> workers;  // forked before the progress starts its thread
-        if (run.local()) workers.emplace(run.todo().size(), numeric::thread_count(o->jobs), [&, kept = run.keeping(task)](std::size_t j) { return kept(run.todo()[j]); });
-        const bool writes = run.writes_output();
-        std::optional<StepProgress> progress;
-        if (writes) progress.emplace("derive", "case", static_cast<int>(count), o->progress.mode());
-        if (writes && json && shared) emit("[\n");
-        if (writes && !json && shared) emit(report_psd(deriver, Style::Text) + "\n");
-        if (count && progress) progress->step(1, name(0));
-        run.run(
-            task,
-            [&](std::size_t k, std::string&& piece) {
-              // The case shown is the one the output waits for next, as when the cases run one after the other.
-              if (k + 1 < count && progress) progress->step(static_cast<int>(k + 2), name(k + 1));
-              emit(json && shared ? piece + (k + 1 < count ? ",\n" : "\n") : piece);
-            },
-            [&](const std::vector<std::size_t>&, const Distribution::Task&, const Distribution::Deliver& deliver) { workers->run(deliver); });
-        if (!writes) return ok;  // a part file, or a rank other than 0
-        if (json && shared) emit("]\n");
-      }  // either way the progress line is erased before anything is written to standard output
-      if (file)
-        file->commit();
-      else
-        write_output(o->output, text);
+        const std::size_t count = selection.cases.size();
+        const bool json = o->format == "json", latex = o->format == "latex";
+        const bool shared = count > 1;  // text: the conditions on M, the same in every case, once before them
+        auto name = [&](std::size_t k) {
+          const ContactSet& c = selection.cases[k];
+          const std::string paper = Vocabulary::paper().case_name(c);
+          return paper == c.to_string() ? paper : paper + " " + c.to_string();
+        };
+        if (latex && (!o->distribute.shard.empty() || !o->distribute.checkpoint.empty() || mpi_size() > 1))
+          throw std::invalid_argument("derive: --format latex writes one document of every case, derived in one process: "
+                                      "--shard, --checkpoint and MPI apply to text and json");
+        if (latex) {  // latex_document() needs every case: derived here, in order
+          const InterruptHandler interrupt;
+          StepProgress progress("derive", "case", static_cast<int>(count), o->progress.mode());
+          std::vector<Derivation> kept;
+          for (std::size_t k = 0; k < count; ++k) {
+            if (InterruptHandler::requested()) throw Interrupted("interrupted");
+            progress.step(static_cast<int>(k + 1), name(k));
+            kept.push_back(deriver.derive(selection.cases[k]));
+          }
+          progress.note("writing " + std::to_string(count) + (count == 1 ? " case" : " cases") + " as latex");
+          emit(latex_document(kept, deriver));
+        } else {
+          // One case's text: its report, or its JSON as the array's dump(2) would
+          // write it (each line indented by two more).  Runs in a worker process.
+          std::vector<nlohmann::ordered_json> psd;  // JSON: the conditions on M, made once per process
+          auto task = [&](std::size_t k) {
+            const Derivation d = deriver.derive(selection.cases[k]);
+            if (!json) return report(d, deriver, Style::Text, !shared) + "\n";
+            // Compact, several cases: the conditions on M in the first case only (as the text writes them once).
+          const std::string element = derivation_json(d, deriver, psd, o->expanded, o->expanded || !shared || k == 0).dump(2);
+            if (!shared) return element + "\n";
+            std::string indented = "  ";
+            indented.reserve(element.size() + element.size() / 16);
+            for (char ch : element) {
+              indented += ch;
+              if (ch == '\n') indented += "  ";
+            }
+            return indented;
+          };
+          Distribution run(*cmd, o->distribute, count);
+          std::optional<Workers> workers;  // forked before the progress starts its thread
+          // A checkpoint the worker cannot write crosses back as a TaskError and is an OutputError again here (exit 3).
+          auto in_worker = [&, kept = run.keeping(task)](std::size_t j) {
+            try {
+              return kept(run.todo()[j]);
+            } catch (const OutputError& e) {
+              throw TaskError(output_error, e.what());
+            }
+          };
+          if (run.local()) workers.emplace(run.todo().size(), plan.workers, in_worker);
+          const InterruptHandler interrupt;
+          const bool writes = run.writes_output();
+          std::optional<StepProgress> progress;
+          if (writes) progress.emplace("derive", "case", static_cast<int>(count), o->progress.mode());
+          if (writes && json && shared) emit("[\n");
+          if (writes && !json && shared) emit(report_psd(deriver, Style::Text) + "\n");
+          if (count && progress) progress->step(1, name(0));
+          run.run(
+              task,
+              [&](std::size_t k, std::string&& piece) {
+                // The case shown is the one the output waits for next, as when the cases run one after the other.
+                if (k + 1 < count && progress) progress->step(static_cast<int>(k + 2), name(k + 1));
+                emit(json && shared ? piece + (k + 1 < count ? ",\n" : "\n") : piece);
+              },
+              [&](const std::vector<std::size_t>&, const Distribution::Task&, const Distribution::Deliver& deliver) {
+                try {
+                  workers->run(deliver, &InterruptHandler::requested);
+                } catch (const TaskError& e) {
+                  throw OutputError(e.what());
+                }
+              });
+          if (!writes) return ok;  // a part file, or a rank other than 0
+          if (json && shared) emit("]\n");
+        }  // either way the progress line is erased before anything is written to standard output
+        if (file)
+          file->commit();
+        else
+          write_output(o->output, text);
+      } catch (const Interrupted&) {  // the workers are stopped, the progress line erased, the output's temporary removed
+        std::cerr << "superball: derive: interrupted (Ctrl-C): stopped before the end, nothing written\n";
+        return kInterruptedExit;
+      }
       return ok;
     };
   });

@@ -39,7 +39,6 @@ void add_selection_options(CLI::App* cmd, SelectionOptions& o, bool require_case
   cmd->add_option("--scaling", o.scaling, "Orders in epsilon, e.g. m1=1,K14=-1 (default m1=1, K1n=-1, mn=-1 if finite; \"none\")")->check(non_empty());
   cmd->add_option("--order", o.order, "Correction orders kept beyond the dominant balance, 0 to " + std::to_string(present::max_order))
       ->capture_default_str();
-  cmd->add_flag("--no-limit", o.no_limit, "Derive even past the number of bodies measured to take about 10 s (see docs/SYMBOLIC.md)");
 }
 
 }  // namespace superball::cli

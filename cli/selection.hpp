@@ -30,7 +30,7 @@ Selection resolve(const SelectionOptions& o);
 
 /// Register --bodies, --case/--closed/--all (one of them required when
 /// \p require_case), --alphas, --coupling, --pairs, --scene, --obstacle,
-/// --scaling, --order and --no-limit on \p cmd, writing into \p o.
+/// --scaling and --order on \p cmd, writing into \p o.
 void add_selection_options(CLI::App* cmd, SelectionOptions& o, bool require_case = true);
 
 }  // namespace superball::cli

@@ -9,21 +9,38 @@ namespace superball::present {
 
 using namespace superball::symbolic;
 
-nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s) {
+namespace {
+
+/// Whether a form is written out expanded: always with \p expanded, else
+/// only when the case does not write it through its elimination (compact).
+bool written(const ConditionForm& form, bool expanded) { return expanded || !form.eliminated; }
+
+}  // namespace
+
+bool through_elimination(const Derivation& d, const GiNaC::ex& p) {
+  return d.elimination && (GiNaC::is_a<GiNaC::add>(p) ? p.nops() : 1) > max_inline_exact_terms;
+}
+
+nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s, bool expanded) {
   nlohmann::ordered_json j;
   j["kind"] = to_string(c.kind);
   j["about"] = c.about;
-  const StyledText exact = format_condition_styles(c.exact, c.relation, s);
+  const bool with_exact = written(c.exact, expanded), with_asymptotic = written(c.asymptotic, expanded);
+  const StyledText exact = with_exact ? format_condition_styles(c.exact, c.relation, s) : StyledText{};
   // The asymptotic form is often the exact one again (every term of the leading order): formatted once.
-  const bool same = c.asymptotic.numerator.is_equal(c.exact.numerator) && c.asymptotic.denominator.is_equal(c.exact.denominator);
-  const StyledText asymptotic = same ? exact : format_condition_styles(c.asymptotic, c.relation, s);
-  j["exact"] = exact.ascii;
-  j["asymptotic"] = asymptotic.ascii;
-  j["text"] = exact.text;
-  j["latex"] = exact.latex;
-  j["asymptotic_text"] = asymptotic.text;
-  j["asymptotic_latex"] = asymptotic.latex;
-  if (c.finite) j["finite"] = format_condition(*c.finite, c.relation, s, Style::Ascii);
+  const bool same = with_exact && c.asymptotic.numerator.is_equal(c.exact.numerator) && c.asymptotic.denominator.is_equal(c.exact.denominator);
+  const StyledText asymptotic = !with_asymptotic ? StyledText{} : same ? exact : format_condition_styles(c.asymptotic, c.relation, s);
+  if (with_exact) j["exact"] = exact.ascii;
+  if (with_asymptotic) j["asymptotic"] = asymptotic.ascii;
+  if (with_exact) {
+    j["text"] = exact.text;
+    j["latex"] = exact.latex;
+  }
+  if (with_asymptotic) {
+    j["asymptotic_text"] = asymptotic.text;
+    j["asymptotic_latex"] = asymptotic.latex;
+  }
+  if (c.finite && written(*c.finite, expanded)) j["finite"] = format_condition(*c.finite, c.relation, s, Style::Ascii);
   // The same conditions as a person writes them (isolated or grouped; derivation.hpp, Readable).
   nlohmann::ordered_json readable = nlohmann::ordered_json::object();
   auto add = [&](const char* key, const ConditionForm& form) {
@@ -59,7 +76,8 @@ nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s) {
   return j;
 }
 
-nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriver, std::vector<nlohmann::ordered_json>& psd) {
+nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriver, std::vector<nlohmann::ordered_json>& psd, bool expanded,
+                                       bool with_psd) {
   const Symbols& s = *d.symbols;
   nlohmann::ordered_json j;
   j["case"] = d.case_name;
@@ -75,14 +93,29 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
     symbols.push_back(sym);
   }
   j["symbols"] = symbols;
+  // Compact: a value the report writes through the elimination (over max_inline_exact_terms terms) is that
+  // form, over the names of elimination.definitions: V1, -(...V1 + ...), p1*p2*...
+  auto through = [&](const GiNaC::ex& p) { return !expanded && through_elimination(d, p); };
   nlohmann::ordered_json v = nlohmann::ordered_json::object();
-  for (int i = 1; i <= s.bodies(); ++i) v["U" + std::to_string(i)] = format_fraction(d.velocities[static_cast<std::size_t>(i - 1)], s, Style::Ascii);
+  for (int i = 1, cluster = 1; i <= s.bodies(); ++i) {
+    const Fraction& f = d.velocities[static_cast<std::size_t>(i - 1)];
+    v["U" + std::to_string(i)] = through(f.numerator) ? cluster_velocity_name(cluster, Style::Ascii) : format_fraction(f, s, Style::Ascii);
+    if (i < s.bodies() && !d.closed.closed(i - 1)) ++cluster;  // the next body starts a cluster
+  }
   j["velocities_after"] = v;
   nlohmann::ordered_json r = nlohmann::ordered_json::object();
-  for (int c = 0; c + 1 < s.bodies(); ++c)
-    if (d.closed.closed(c)) r[Pair{c + 1, c + 2}.name()] = format_fraction(d.reactions[static_cast<std::size_t>(c)], s, Style::Ascii);
+  for (int c = 0; c + 1 < s.bodies(); ++c) {
+    if (!d.closed.closed(c)) continue;
+    const Fraction& f = d.reactions[static_cast<std::size_t>(c)];
+    r[Pair{c + 1, c + 2}.name()] = through(f.numerator) ? format_linear(d.reactions_eliminated[static_cast<std::size_t>(c)], s, Style::Ascii, true)
+                                                        : format_fraction(f, s, Style::Ascii);
+  }
   j["reactions"] = r;
-  j["determinant"] = format_polynomial(d.determinant, s, Style::Ascii);
+  std::string determinant;  // det(ZᵀAZ) = Π p_j when written through the elimination
+  if (through(d.determinant))
+    for (const auto& [name, value] : elimination_definitions(*d.elimination, s, Style::Ascii))
+      if (name[0] == 'p') determinant = name + (determinant.empty() ? "" : "*" + determinant);
+  j["determinant"] = determinant.empty() ? format_polynomial(d.determinant, s, Style::Ascii) : determinant;
   j["check"] = d.check;
   nlohmann::ordered_json named = nlohmann::ordered_json::array();
   for (const NamedPart& p : d.named)
@@ -108,11 +141,12 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
   j["actual"] = to_string(d.actual);
   if (d.actual == Verdict::Never) j["actual_reason"] = d.actual_reason;
   nlohmann::ordered_json conditions = nlohmann::ordered_json::array();
-  if (psd.empty())
-    for (const Condition& c : deriver.psd()) psd.push_back(condition_json(c, s));
+  if (psd.empty() && with_psd)
+    for (const Condition& c : deriver.psd()) psd.push_back(condition_json(c, s, expanded));
   for (const Condition& c : d.conditions)
-    if (c.kind != ConditionKind::Psd) conditions.push_back(condition_json(c, s));
-  for (const nlohmann::ordered_json& c : psd) conditions.push_back(c);
+    if (c.kind != ConditionKind::Psd) conditions.push_back(condition_json(c, s, expanded));
+  if (with_psd)
+    for (const nlohmann::ordered_json& c : psd) conditions.push_back(c);
   j["conditions"] = conditions;
   return j;
 }

@@ -1,10 +1,15 @@
 #include "superball/present/selection.hpp"
 
 #include <stdexcept>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
 
 #include "superball/cases/error.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/symbolic/estimate.hpp"
 
 namespace superball::present {
 
@@ -66,28 +71,6 @@ auto named(const char* option, const std::string& text, Parse parse) {
 
 }  // namespace
 
-namespace detail {
-
-int body_limit(int width, bool all_cases) {
-  // The largest n under about 10 s (docs/SYMBOLIC.md, "Limits"), for width 1 (--pairs near), 2 (near2), 3 and
-  // more (all, or near2 with couplings): one case (--closed none, the slowest) and every case (--all).
-  constexpr int one[] = {11, 8, 6}, every[] = {9, 7, 6};
-  const int k = std::min(std::max(width, 1), 3) - 1;
-  return all_cases ? every[k] : one[k];
-}
-
-/// The width of \p p: how many bodies apart the widest declared entry joins
-/// (a diagonal K or a coupled pair), one more when there are couplings
-/// (they were measured to cost as much as one more step of width).
-int width(const Pattern& p) {
-  int r = 1;
-  for (const Pair& q : p.diagonal) r = std::max(r, q.j - q.i);
-  for (const PairCoupling& c : p.couplings) r = std::max({r, c.first.j - c.first.i, c.second.j - c.second.i});
-  return r + (p.couplings.empty() ? 0 : 1);
-}
-
-}  // namespace detail
-
 Selection resolve(const SelectionOptions& o) {
   o.check();
   const Obstacle obstacle = o.obstacle;
@@ -111,13 +94,6 @@ Selection resolve(const SelectionOptions& o) {
     pattern.check();
   }
   const int n = pattern.bodies;
-  if (!o.no_limit) {
-    const int w = detail::width(pattern), limit = detail::body_limit(w, o.all);
-    if (n > limit)
-      throw std::invalid_argument("--bodies " + std::to_string(n) + ": deriving " + (o.all ? "every case" : "a case") + " of a pattern of width " +
-                                  std::to_string(w) + " was measured to take over 10 s past " + std::to_string(limit) +
-                                  " bodies (docs/SYMBOLIC.md, Limits); --no-limit derives anyway");
-  }
   const Symbols symbols(pattern, obstacle);
   std::optional<Scaling> scaling;
   if (!o.scaling.empty()) scaling = Scaling::parse(o.scaling, symbols);
@@ -133,6 +109,26 @@ Selection resolve(const SelectionOptions& o) {
     s.cases.push_back(ContactSet::parse(o.closed, n));
   }
   return s;
+}
+
+DerivePlan plan_derivation(const Selection& s, int jobs, const numeric::Memory& available) {
+  const Deriver& d = *s.deriver;
+  const int n = d.symbols().bodies();
+  const std::size_t count = s.cases.size();
+  const bool every = n <= 64 && count == (std::uint64_t{1} << (n - 1));
+  DerivePlan p;
+  p.estimate = estimate_derivation(d.symbols().pattern(), d.symbols().obstacle(), count, every);
+  const double each = p.estimate.process_bytes;
+  const std::string what = (every ? "every case" : count == 1 ? "a case" : std::to_string(count) + " cases") + " of " + std::to_string(n) +
+                           " bodies, a pattern of width " + std::to_string(p.estimate.width);
+  numeric::check_memory("derive()", "deriving " + what, each, "one process, from the growth measured per pattern width: docs/SYMBOLIC.md, Limits",
+                        available, "derive fewer bodies or a narrower pattern");
+  const double fit = std::floor(available.bytes / each);
+  p.workers = static_cast<int>(std::max(1.0, std::min({static_cast<double>(std::max(jobs, 1)), static_cast<double>(std::max<std::size_t>(count, 1)), fit})));
+  p.text = "deriving " + what + ": about " + duration_text(p.estimate.seconds) + " on one core, " + std::to_string(p.workers) +
+           (p.workers == 1 ? " worker" : " workers") + (p.workers < jobs && p.workers < static_cast<int>(count) ? " (as many as the memory holds)" : "") +
+           ", about " + numeric::bytes_text(each) + (p.workers == 1 ? "" : " each") + " (" + numeric::bytes_text(available.bytes) + " available)";
+  return p;
 }
 
 }  // namespace superball::present

@@ -45,6 +45,7 @@
 #include "superball/verify/audit.hpp"
 #include "superball/verify/explore.hpp"
 #include "superball/verify/verification.hpp"
+#include "module.hpp"
 
 namespace py = pybind11;
 
@@ -258,6 +259,8 @@ std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key,
   return out;
 }
 
+}  // namespace
+
 /// The library's selection options from derive()'s keywords (None: the
 /// default); alphas and obstacle read by the library's parsers, as the command reads its options.
 present::SelectionOptions selection(const py::dict& o) {
@@ -276,47 +279,12 @@ present::SelectionOptions selection(const py::dict& o) {
     else if (key == "obstacle") s.obstacle = present::parse_obstacle(v.cast<std::string>());
     else if (key == "scaling") s.scaling = v.cast<std::string>();
     else if (key == "all") s.all = v.cast<bool>();
-    else if (key == "no_limit") s.no_limit = v.cast<bool>();
     else throw std::invalid_argument("unknown selection option '" + printable(key) + "'");
   }
   return s;
 }
 
-/// derive(): per case, the JSON of `superball derive --format json` (as text)
-/// and the text and LaTeX of the velocities and reactions and of the report.
-std::vector<py::dict> derive(const py::dict& options) {
-  const present::SelectionOptions chosen = selection(options);
-  present::require_case(chosen);
-  const present::Selection sel = present::resolve(chosen);
-  const symbolic::Deriver& deriver = *sel.deriver;
-  std::vector<nlohmann::ordered_json> psd;
-  std::vector<py::dict> out;
-  for (const ContactSet& c : sel.cases) {
-    const symbolic::Derivation d = deriver.derive(c);
-    const symbolic::Symbols& s = *d.symbols;
-    py::dict x;
-    x["json"] = present::derivation_json(d, deriver, psd).dump();
-    std::vector<std::string> vt, vl, rt, rl;
-    for (const auto& f : d.velocities) {
-      vt.push_back(symbolic::format_fraction(f, s, symbolic::Style::Text));
-      vl.push_back(symbolic::format_fraction(f, s, symbolic::Style::Latex));
-    }
-    for (int k = 0; k + 1 < s.bodies(); ++k) {
-      const bool closed = d.closed.closed(k);
-      const auto& f = d.reactions[static_cast<std::size_t>(k)];
-      rt.push_back(closed ? symbolic::format_fraction(f, s, symbolic::Style::Text) : "0");
-      rl.push_back(closed ? symbolic::format_fraction(f, s, symbolic::Style::Latex) : "0");
-    }
-    x["velocities_text"] = vt;
-    x["velocities_latex"] = vl;
-    x["reactions_text"] = rt;
-    x["reactions_latex"] = rl;
-    x["report"] = present::report(d, deriver, symbolic::Style::Text);
-    x["report_latex"] = present::report(d, deriver, symbolic::Style::Latex);
-    out.push_back(std::move(x));
-  }
-  return out;
-}
+namespace {
 
 /// verify(): per case, to_json(Verification) as Python objects, its report, and whether the exact conditions agree.
 std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<std::string>& epsilons, int samples, int boundary_pairs,
@@ -476,7 +444,7 @@ PYBIND11_MODULE(_superball, m) {
   m.def("solve", &solve, py::arg("scene"), py::arg("precision"), py::arg("rtol"));
   m.def("sweep", &sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"), py::arg("progress"));
   m.def("switch_points", &switch_points, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("bits"), py::arg("threads"));
-  m.def("derive", &derive, py::arg("options"));
+  register_derive(m);
   m.def("verify", &verify_cases, py::arg("options"), py::arg("epsilons"), py::arg("samples"), py::arg("boundary_pairs"), py::arg("seed"),
         py::arg("threads"), py::arg("progress"));
   m.def("audit", &audit, py::arg("epsilon"), py::arg("samples"), py::arg("seed"));

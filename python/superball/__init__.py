@@ -22,8 +22,9 @@ command (same answers, same messages):
   digits, exact rationals, or ``auto`` (the cheapest certified);
 - :func:`sweep` and :func:`switch_points` — one parameter varied, on all
   cores, without the GIL; where the evolution case changes, exactly;
-- :func:`derive` — an evolution case solved symbolically (GiNaC), with its
-  conditions exact and asymptotic, as text, LaTeX and SymPy;
+- :func:`derive`, :func:`derive_all` — an evolution case, or every case in
+  worker processes, solved symbolically (GiNaC), with its conditions exact
+  and asymptotic, as text, LaTeX, exact values, NumPy functions and SymPy;
 - :func:`audit`, :func:`verify`, :func:`explore` — the paper's printed
   conditions checked, derived conditions checked against exact solutions,
   and a search for the superball in a case.
@@ -44,10 +45,11 @@ from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _progress, _superball
+from ._options import _int_option, _selection, _str_option
 
 __all__ = [
     "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "sweep",
-    "SwitchPoint", "switch_points", "Condition", "Derivation", "derive", "audit", "verify", "explore",
+    "SwitchPoint", "switch_points", "Condition", "Derivation", "derive", "derive_all", "audit", "verify", "explore",
     "DEFAULT_RTOL", "STATUSES", "map", "MapResult", "BoundaryPoint", "MapCurve", "MapAxis",
 ]
 
@@ -97,19 +99,6 @@ def _number_text(value: Any, what: str) -> str:
 def _check_scene(scene: Any, function: str) -> None:
     if not isinstance(scene, Scene):
         raise InputError(f"{function}: expected a superball.Scene, got {type(scene).__name__}")
-
-
-def _int_option(value: Any, name: str) -> int:
-    """An int argument; anything else (a bool, a float, a string) is an InputError naming it."""
-    if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
-        raise InputError(f"{name}: expected an int, got {value!r}")
-    return int(value)
-
-
-def _str_option(value: Any, name: str) -> str:
-    if not isinstance(value, str):
-        raise InputError(f"{name}: expected a string, got {value!r}")
-    return value
 
 
 def _scene_number(value: Any) -> Any:
@@ -714,176 +703,12 @@ def _switch_points(scene: Scene, key: str, v: Any, bits: int, threads: int) -> L
 
 
 # ---------------------------------------------------------------------------
-# Derivations
+# Derivations (_derive.py)
 
-
-def _sympy_relation(ascii_text: str, symbols: Sequence[Mapping[str, Any]]) -> Any:
-    import sympy  # optional: imported only here
-
-    names = {}
-    for s in symbols:
-        names[s["name"]] = sympy.Symbol(s["name"], positive=True) if s.get("positive") else sympy.Symbol(s["name"], real=True)
-    text = ascii_text.split("  (")[0].strip()  # a note after the relation ("(sign of the denominator not proved)")
-    for op, rel in ((">=", sympy.Ge), ("<=", sympy.Le), (">", sympy.Gt), ("<", sympy.Lt)):
-        if f" {op} " in text:
-            lhs, rhs = text.split(f" {op} ", 1)
-            return rel(sympy.sympify(lhs.replace("^", "**"), locals=names), sympy.sympify(rhs.replace("^", "**"), locals=names))
-    raise Error(f"to_sympy: no relation in '{ascii_text}'")
-
-
-@dataclass(frozen=True)
-class Condition:
-    """A condition of an evolution case (paper §4), "P > 0" or "P ≥ 0".
-
-    ``kind``: ``superball`` (U₁⁺ > a), ``evolution`` (an open contact opens,
-    U_i⁺ > U_{i+1}⁺), ``contact`` (a closed contact does not interpenetrate,
-    R ≤ 0) or ``psd`` (a principal minor of M ≥ 0).  ``about`` says which
-    (``"U1 > a"``, ``"2-3"``).  ``text``/``latex``: the exact form (m_n = ∞)
-    as a person writes it (−α₂ > 2m₁ + K₁₂ + K₁₃); ``exact``: the same in
-    GiNaC's ASCII syntax (m1, K12, alpha2, c_12_14, a); ``asymptotic``,
-    ``asymptotic_text``, ``asymptotic_latex``: the dominant balance in the
-    regime (m₁ ~ ε, K₁ₙ ~ 1/ε by default).  ``data``: every field of
-    ``superball derive --format json``.
-    """
-
-    kind: str
-    about: str
-    text: str
-    latex: str
-    exact: str
-    asymptotic: str
-    asymptotic_text: str
-    asymptotic_latex: str
-    verdict: str
-    order: str
-    data: Dict[str, Any] = field(repr=False, compare=False)
-    symbols: Tuple[Any, ...] = field(repr=False, compare=False, default=())
-
-    def _repr_latex_(self) -> str:
-        return f"${self.latex}$"
-
-    def __str__(self) -> str:
-        return self.text
-
-    def to_sympy(self, asymptotic: bool = False) -> Any:
-        """The condition as a SymPy relational (masses, K's and a positive
-        symbols, couplings real); SymPy is imported only when this is called."""
-        return _sympy_relation(self.asymptotic if asymptotic else self.exact, self.symbols)
-
-
-@dataclass(frozen=True)
-class Derivation:
-    """One evolution case solved symbolically (``superball derive``).
-
-    ``velocities``: U₁⁺ … U_n⁺ as GiNaC ASCII text (``velocities_text``,
-    ``velocities_latex`` as a person writes them); ``reactions``: R on each
-    contact (0 where open); ``conditions``: superball, evolution, contact,
-    then psd; ``actual``: whether the case can be the actual evolution
-    (``depends``, ``always``, ``never``); ``data``: the whole JSON.
-    """
-
-    case: str
-    closed_contacts: Tuple[str, ...]
-    velocities: List[str]
-    velocities_text: List[str]
-    velocities_latex: List[str]
-    reactions: List[str]
-    reactions_text: List[str]
-    reactions_latex: List[str]
-    conditions: List[Condition]
-    actual: str
-    report: str = field(repr=False)
-    report_latex: str = field(repr=False)
-    data: Dict[str, Any] = field(repr=False, compare=False)
-
-    def condition(self, about: str) -> Condition:
-        """The condition about ``about`` ("U1 > a", "2-3", …)."""
-        for c in self.conditions:
-            if c.about == about:
-                return c
-        raise KeyError(about)
-
-    def velocity_sympy(self, body: int) -> Any:
-        """U_body⁺ as a SymPy expression."""
-        import sympy
-
-        names = {s["name"]: sympy.Symbol(s["name"], positive=s["positive"]) if s["positive"] else sympy.Symbol(s["name"], real=True)
-                 for s in self.data["symbols"]}
-        return sympy.sympify(self.velocities[body - 1].replace("^", "**"), locals=names)
-
-    def __str__(self) -> str:
-        return self.report
-
-    def _repr_latex_(self) -> str:
-        rows = [f"U_{{{i + 1}}}^{{+}} &= {v}" for i, v in enumerate(self.velocities_latex)]
-        rows += [f"&{c.latex} && \\text{{{c.kind} {c.about}}}" for c in self.conditions]
-        return "$$\\begin{aligned}" + " \\\\ ".join(rows) + "\\end{aligned}$$"
-
-
-def _list_text(value: Any, sep: str = ",") -> Optional[str]:
-    if value is None:
-        return None
-    if isinstance(value, (str, int)):
-        return str(value)
-    return sep.join(str(v) for v in value)
-
-
-def derive(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
-           obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, all: bool = False,
-           scene: Any = None, no_limit: bool = False) -> Union[Derivation, List[Derivation]]:
-    """Solve evolution cases symbolically and give their conditions (paper §4).
-
-    The case: ``case`` (the paper's name for 4 bodies: "1", "2.1", …),
-    ``closed`` (the closed contacts, ``"2-3,3-4"`` or a list, ``"none"``) or
-    ``all=True`` (every case: a list).  The pattern of M: ``alphas`` (the
-    paper's α_k in play, 4 bodies: ``2`` or ``[1, 6]``), ``bodies``,
-    ``pairs`` (``"all"``, ``"near"``, ``"near2"`` or a list of pairs with a
-    diagonal K), ``coupling`` (``"1-2/1-4,…"``, a list, or ``"near2"``), or
-    ``scene`` (a scene file's declared entries).  ``obstacle``: ``"infinite"``
-    (m_n = ∞) or ``"finite"``; ``scaling``: orders in ε (``"m1=1,K14=-1"`` or
-    a dict; default m₁ ~ ε, K₁ₙ ~ 1/ε); ``order``: correction orders kept.
-
-    With Z the cluster incidence of the case, the velocities solve
-    (ZᵀAZ)V = Zᵀ(diag(m)u − Ku) by fraction-free determinants, the
-    reactions are running sums, and everything is substituted back into the
-    equations (a check).  The conditions: U₁⁺ > a, each open contact
-    opening, each closed contact's R ≤ 0, M ⪰ 0.
-    """
-    if isinstance(scaling, Mapping):
-        scaling = ",".join(f"{k}={v}" for k, v in scaling.items())
-    if coupling is not None and not isinstance(coupling, str):
-        coupling = ",".join(c if isinstance(c, str) else "/".join(c) for c in coupling)
-    options = {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": int(bodies),
-               "pairs": _list_text(pairs), "coupling": coupling, "obstacle": obstacle, "scaling": scaling, "order": int(order),
-               "closed": _list_text(closed), "all": bool(all), "scene": None if scene is None else str(scene),
-               "no_limit": bool(no_limit)}
-    out = []
-    for d in _superball.derive(options):
-        data = _json.loads(d["json"])
-        symbols = tuple(data["symbols"])
-        conditions = [Condition(c["kind"], c["about"], c["text"], c["latex"], c["exact"], c["asymptotic"], c["asymptotic_text"],
-                                c["asymptotic_latex"], c["verdict"], c["order"], c, symbols) for c in data["conditions"]]
-        n = len(d["velocities_text"])
-        reactions = [data["reactions"].get(f"{k + 1}-{k + 2}", "0") for k in range(n - 1)]
-        out.append(Derivation(data["case"], tuple(data["closed_contacts"]), [data["velocities_after"][f"U{i + 1}"] for i in range(n)],
-                              list(d["velocities_text"]), list(d["velocities_latex"]), reactions, list(d["reactions_text"]),
-                              list(d["reactions_latex"]), conditions, data["actual"], d["report"], d["report_latex"], data))
-    return out if all else out[0]
-
+from ._derive import Condition, Derivation, derive, derive_all  # noqa: E402
 
 # ---------------------------------------------------------------------------
 # Audit, verification, exploration
-
-
-def _selection(case: Any, alphas: Any, bodies: int, pairs: Any, coupling: Any, obstacle: str, scaling: Any, order: int,
-               closed: Any, all: bool, scene: Any, no_limit: bool) -> Dict[str, Any]:
-    if isinstance(scaling, Mapping):
-        scaling = ",".join(f"{k}={v}" for k, v in scaling.items())
-    if coupling is not None and not isinstance(coupling, str):
-        coupling = ",".join(c if isinstance(c, str) else "/".join(c) for c in coupling)
-    return {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": _int_option(bodies, "bodies"), "pairs": _list_text(pairs),
-            "coupling": coupling, "obstacle": obstacle, "scaling": scaling, "order": _int_option(order, "order"), "closed": _list_text(closed),
-            "all": bool(all), "scene": None if scene is None else str(scene), "no_limit": bool(no_limit)}
 
 
 def _text_html(title: str, text: str) -> str:
@@ -989,7 +814,7 @@ def _verify_result(data: Dict[str, Any], text: str, agrees: bool) -> VerifyResul
 
 def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
            obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, all: bool = False,
-           scene: Any = None, no_limit: bool = False, epsilons: Optional[Sequence[Number]] = None, samples: int = 4000,
+           scene: Any = None, epsilons: Optional[Sequence[Number]] = None, samples: int = 4000,
            boundary_pairs: int = 20, seed: int = 1, threads: int = 0, progress: Any = None) -> Union[VerifyResult, List[VerifyResult]]:
     """Check a case's derived conditions, exact and asymptotic, against exact solutions.
 
@@ -1006,7 +831,7 @@ def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pair
     eps = [] if epsilons is None else [_number_text(e, "epsilons") for e in epsilons]
     out = [_verify_result(j, text, agrees)
            for j, text, agrees in _superball.verify(_selection(case, alphas, bodies, pairs, coupling, obstacle, scaling, order, closed, all,
-                                                               scene, no_limit), eps, _int_option(samples, "samples"), _int_option(boundary_pairs, "boundary_pairs"), _int_option(seed, "seed"), _int_option(threads, "threads"),
+                                                               scene), eps, _int_option(samples, "samples"), _int_option(boundary_pairs, "boundary_pairs"), _int_option(seed, "seed"), _int_option(threads, "threads"),
                                                                _progress.resolve(progress, "verify"))]
     return out if all else out[0]
 
@@ -1081,7 +906,7 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pai
     conditions clash.  ``all_patterns=True`` gives the table of every α_k.
     """
     low, high = box
-    options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene, False)
+    options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene)
     if all_patterns:
         (d, text), = _superball.explore(options, True, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high))
         patterns = [row["cells"][0]["pattern"] if row["cells"] else ",".join(f"alpha{k}" for k in row["alphas"]) for row in d["rows"]]

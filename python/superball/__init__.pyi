@@ -2,7 +2,7 @@
 
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -170,21 +170,29 @@ class SwitchPoint:
 
 def switch_points(scene: Scene, key: str, values: Values, bits: int = ..., threads: int = ...) -> List[SwitchPoint]: ...
 
+Progress = Callable[[int, int], Any]
+
 @dataclass(frozen=True)
 class Condition:
     kind: str
     about: str
     text: str
     latex: str
-    exact: str
-    asymptotic: str
+    exact: Optional[str]
+    asymptotic: Optional[str]
     asymptotic_text: str
     asymptotic_latex: str
     verdict: str
     order: str
+    eliminated: Optional[Dict[str, Any]]
     data: Dict[str, Any]
     symbols: Tuple[Any, ...]
+    definitions: Tuple[Tuple[str, str], ...]
+    small: Tuple[str, ...]
     def _repr_latex_(self) -> str: ...
+    def _repr_html_(self) -> str: ...
+    def evaluate(self, values: Mapping[str, Any], asymptotic: bool = ...) -> Fraction: ...
+    def lambdify(self, asymptotic: bool = ...) -> Callable[..., Any]: ...
     def to_sympy(self, asymptotic: bool = ...) -> Any: ...
 
 @dataclass(frozen=True)
@@ -202,9 +210,11 @@ class Derivation:
     report: str
     report_latex: str
     data: Dict[str, Any]
+    definitions: Tuple[Tuple[str, str], ...]
     def condition(self, about: str) -> Condition: ...
     def velocity_sympy(self, body: int) -> Any: ...
     def _repr_latex_(self) -> str: ...
+    def _repr_html_(self) -> str: ...
 
 def derive(
     case: Optional[str] = ...,
@@ -216,10 +226,24 @@ def derive(
     scaling: Any = ...,
     order: int = ...,
     closed: Any = ...,
-    all: bool = ...,
     scene: Any = ...,
-    no_limit: bool = ...,
-) -> Union[Derivation, List[Derivation]]: ...
+    expanded: bool = ...,
+    progress: Union[None, bool, Progress] = ...,
+) -> Derivation: ...
+
+def derive_all(
+    alphas: Any = ...,
+    bodies: int = ...,
+    pairs: Any = ...,
+    coupling: Any = ...,
+    obstacle: str = ...,
+    scaling: Any = ...,
+    order: int = ...,
+    scene: Any = ...,
+    expanded: bool = ...,
+    jobs: Optional[int] = ...,
+    progress: Union[None, bool, Progress] = ...,
+) -> List[Derivation]: ...
 
 @dataclass(frozen=True)
 class AuditResult:
@@ -255,7 +279,6 @@ def verify(
     closed: Any = ...,
     all: bool = ...,
     scene: Any = ...,
-    no_limit: bool = ...,
     epsilons: Optional[Sequence[Number]] = ...,
     samples: int = ...,
     boundary_pairs: int = ...,

@@ -1,14 +1,20 @@
-"""derive(): the symbolic case against the command's JSON and against exact solves."""
+"""derive() and derive_all(): the symbolic cases against the command's JSON and against exact solves;
+conditions evaluated exactly and over NumPy; the worker processes, their progress and Ctrl-C."""
+import inspect
 import json
+import os
+import signal
 import subprocess
 import sys
+import tempfile
+import time
 from fractions import Fraction
 
 import numpy as np
 import pytest
 
 import superball
-from conftest import cli_json
+from conftest import cli_json, cli_path
 
 
 @pytest.fixture(scope="module")
@@ -33,7 +39,7 @@ def test_condition_fields(case1):
     assert str(s) == s.text
     kinds = {c.kind for c in case1.conditions}
     assert kinds == {"superball", "evolution", "contact", "psd"}
-    with pytest.raises(KeyError):
+    with pytest.raises(superball.InputError, match="no condition about 'nothing' in case 1 .*'U1 > a', '1-2'"):
         case1.condition("nothing")
 
 
@@ -109,7 +115,7 @@ def test_exact_conditions_decide_the_exact_solution(case1):
 
 
 def test_all_cases_and_other_patterns():
-    every = superball.derive(all=True, alphas=[1, 6])
+    every = superball.derive_all(alphas=[1, 6])
     assert isinstance(every, list) and len(every) == 8
     assert sorted(d.case for d in every) == sorted(["0", "1", "2.1", "2.2", "3.1", "3.2", "3.3", "3.4"])
     chain = superball.derive(bodies=5, pairs="near2", coupling="near2", closed=["2-3", "4-5"])
@@ -118,3 +124,155 @@ def test_all_cases_and_other_patterns():
     assert chain.data == j
     finite = superball.derive(case="3.2", alphas=5, obstacle="finite", scaling={"m1": 1, "m4": -1, "K14": -1}, order=1)
     assert finite.data["obstacle"] == "finite" and all(c.data["orders_kept"] == 2 for c in finite.conditions if c.kind != "psd")
+
+
+def test_one_function_per_return_shape():
+    # derive() is one case, derive_all() a list; no parameter shadows a built-in.
+    for f in (superball.derive, superball.derive_all):
+        assert not {"all", "no_limit"} & set(inspect.signature(f).parameters)
+    with pytest.raises(superball.InputError, match="give a case .*derive_all"):
+        superball.derive(alphas=2)
+    assert isinstance(superball.derive(closed="none", alphas=2), superball.Derivation)
+    assert "derive_all" in superball.__all__ and "derive" in superball.__all__
+
+
+@pytest.fixture(scope="module")
+def chain5():
+    """Every case of 5 bodies, near2 with couplings (long cases written through their elimination), in 3 workers."""
+    steps = []
+    every = superball.derive_all(bodies=5, pairs="near2", coupling="near2", jobs=3, progress=lambda done, total: steps.append((done, total)))
+    return every, steps
+
+
+def test_derive_all_equals_the_command_whatever_the_workers(chain5):
+    every, steps = chain5
+    assert steps == [(k, 16) for k in range(17)]
+    j = cli_json("derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--all", "--format", "json")
+    assert [d.data for d in every] == j
+    one = superball.derive_all(bodies=5, pairs="near2", coupling="near2", jobs=1, progress=False)
+    assert [d.data for d in one] == j
+    # The compact JSON has the conditions on M in its first case only; every Derivation shows them.
+    assert not any(c["kind"] == "psd" for c in j[1]["conditions"])
+    psd = [c.about for c in every[0].conditions if c.kind == "psd"]
+    assert psd and all([c.about for c in d.conditions if c.kind == "psd"] == psd for d in every)
+    expanded = superball.derive(bodies=5, pairs="near2", coupling="near2", closed="none", expanded=True)
+    assert expanded.data == cli_json("derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--closed", "none", "--format",
+                                     "json", "--expanded")
+    with pytest.raises(superball.InputError, match="jobs"):
+        superball.derive_all(alphas=2, jobs=0)
+    with pytest.raises(superball.InputError, match="progress"):
+        superball.derive_all(alphas=2, progress="yes")
+
+
+def random_values(d, rng):
+    """Random exact values of a derivation's symbols: masses, K's and a in (0, 10], couplings small and negative
+    (M diagonally dominant, so positive semi-definite)."""
+    v = {}
+    for s in d.data["symbols"]:
+        if s["kind"] == "coupling":
+            v[s["name"]] = -Fraction(int(rng.integers(0, 100)), 1000)
+        else:
+            v[s["name"]] = Fraction(int(rng.integers(1, 1000)), 100)
+    return v
+
+
+def test_evaluate_is_exact(case1):
+    rng = np.random.default_rng(5)
+    s = case1.condition("U1 > a")
+    for _ in range(10):
+        v = random_values(case1, rng)
+        assert s.evaluate(v) == -2 * v["m1"] - v["K12"] - v["K13"] - v["alpha2"]
+        assert s.evaluate(v, asymptotic=True) == -v["K12"] - v["K13"] - v["alpha2"]
+    # Numbers as a scene file reads them; a float exactly as the double it is.
+    v = {"m1": "1/100", "K12": 3, "K13": 0.5, "alpha2": Fraction(-10)}
+    assert s.evaluate(v) == Fraction(648, 100)
+    with pytest.raises(superball.InputError, match="'x' is not a symbol of this derivation"):
+        s.evaluate({**v, "x": 1})
+    with pytest.raises(superball.InputError, match="no value for K13"):
+        s.evaluate({"m1": 1, "K12": 1, "alpha2": 1})
+    with pytest.raises(superball.InputError, match="m1"):
+        s.evaluate({**v, "m1": "one"})
+
+
+def test_evaluate_through_the_elimination_has_the_sign_of_the_expanded_condition(chain5):
+    every, _ = chain5
+    rng = np.random.default_rng(7)
+    compact = every[0]  # {}: every contact open, the longest case
+    expanded = superball.derive(bodies=5, pairs="near2", coupling="near2", closed="none", expanded=True)
+    assert compact.definitions and compact.velocities[0] == "V1" and expanded.velocities[0] != "V1"
+    through = [c for c in compact.conditions if c.exact is None]
+    assert len(through) >= 5
+    for _ in range(5):
+        v = random_values(compact, rng)
+        for c in through:
+            e = expanded.conditions[compact.conditions.index(c)]
+            assert e.about == c.about and e.exact is not None
+            value, reference = c.evaluate(v), e.evaluate(v)
+            assert (value > 0) == (reference > 0) and (value == 0) == (reference == 0), c.about
+
+
+def test_lambdify_is_numpy_without_sympy(case1, chain5):
+    rng = np.random.default_rng(11)
+    for c in list(case1.conditions) + list(chain5[0][0].conditions):
+        f = c.lambdify()
+        points = [random_values(chain5[0][0] if c in chain5[0][0].conditions else case1, rng) for _ in range(6)]
+        arrays = {name: np.array([float(p[name]) for p in points]) for name in f.parameters}
+        got = f(**arrays)
+        assert got.shape == (6,) and got.dtype == np.float64
+        want = np.array([float(c.evaluate({k: p[k] for k in f.parameters})) for p in points])
+        np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-12 * max(1.0, float(np.abs(want).max())))
+    code = ("import sys, superball; c = superball.derive(case='1', alphas=2).condition('U1 > a'); "
+            "print(c.lambdify()(m1=0.01, K12=3.0, K13=0.5, alpha2=-10.0), c.evaluate({'m1': 1, 'K12': 1, 'K13': 1, 'alpha2': -9}), "
+            "'sympy' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.split() == ["6.48", "5", "False"]
+
+
+def test_short_reprs_and_html(case1, chain5):
+    for d in (case1, chain5[0][0]):
+        assert len(repr(d)) < 120 and repr(d).startswith("<Derivation case ")
+        assert "<table>" in d._repr_html_()
+        for c in d.conditions:
+            assert len(repr(c)) < 160 and "<table>" in c._repr_html_()
+    assert repr(case1) == "<Derivation case 1 {2-3,3-4}: 4 bodies, 11 conditions, actual depends>"
+    assert repr(case1.condition("U1 > a")) == "<Condition superball U1 > a: −α₂ > 2m₁ + K₁₂ + K₁₃ (depends)>"
+
+
+SEVEN = dict(bodies=7, pairs="near2", coupling="near2")
+
+
+def test_keyboard_interrupt_stops_the_workers():
+    """Ctrl-C during derive_all() of 7 bodies (about 20 s): KeyboardInterrupt at once, no worker left."""
+    code = ("import os, sys, superball\n"
+            "try:\n"
+            "    superball.derive_all(bodies=7, pairs='near2', coupling='near2', progress=lambda d, t: print('step', d, flush=True))\n"
+            "except KeyboardInterrupt:\n"
+            "    try:\n"
+            "        os.waitpid(-1, os.WNOHANG); print('a worker is left')\n"
+            "    except ChildProcessError:\n"
+            "        print('interrupted, no worker left')\n")
+    p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "step 0"
+    time.sleep(0.5)
+    start = time.monotonic()
+    p.send_signal(signal.SIGINT)
+    out, err = p.communicate(timeout=60)
+    assert time.monotonic() - start < 10, "the interrupt waited for the cases"
+    assert out.strip().splitlines()[-1] == "interrupted, no worker left", (out, err)
+
+
+def test_the_command_stops_on_ctrl_c_writing_nothing():
+    """`superball derive` of 7 bodies: the estimate first, then Ctrl-C: exit 130, one line, no output file left."""
+    with tempfile.TemporaryDirectory() as folder:
+        out = os.path.join(folder, "d7.json")
+        p = subprocess.Popen([cli_path(), "derive", "--bodies", "7", "--pairs", "near2", "--coupling", "near2", "--all", "--format", "json",
+                              "-o", out], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        estimate = p.stderr.readline()
+        assert estimate.startswith("derive: deriving every case of 7 bodies, a pattern of width 3: about "), estimate
+        assert " on one core, " in estimate and "available" in estimate
+        time.sleep(0.5)
+        p.send_signal(signal.SIGINT)
+        rest = p.communicate(timeout=60)[1]
+        assert p.returncode == 130
+        assert rest == "superball: derive: interrupted (Ctrl-C): stopped before the end, nothing written\n"
+        assert os.listdir(folder) == []

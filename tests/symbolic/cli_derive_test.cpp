@@ -112,7 +112,9 @@ TEST(CliDerive, GeneralCouplingNamesAndAllCases) {
   const nlohmann::json cases = nlohmann::json::parse(all.out);
   ASSERT_TRUE(cases.is_array());
   EXPECT_EQ(cases.size(), 8u);
-  EXPECT_TRUE(cases.at(0).at("conditions").at(0).contains("finite"));
+  // The finite-obstacle form: expanded, or (compact JSON) through the elimination when long.
+  const nlohmann::json& first = cases.at(0).at("conditions").at(0);
+  EXPECT_TRUE(first.contains("finite") || first.at("eliminated").contains("finite")) << first.dump();
 }
 
 /// GiNaC's term order depends on the process (symbol serials, hashes); the
@@ -141,22 +143,80 @@ TEST(CliDerive, BadInputIsOneLine) {
   }
 }
 
-// Issue 25: --bodies 64 --no-limit was taken and failed inside with "n <= 20".
+// Issue 25: --bodies 64 was taken and failed inside with "n <= 20".
 TEST(CliDerive, TheBodyCountIsTheEnginesInOneLine) {
   for (const std::string n : {"64", "22"}) {
-    const RunResult r = run({"derive", "--bodies", n, "--pairs", "near", "--closed", "none", "--no-limit"});
+    const RunResult r = run({"derive", "--bodies", n, "--pairs", "near", "--closed", "none"});
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(r.out.empty()) << r.out;
     EXPECT_EQ(r.err, "superball: n = " + n +
                          ": the symbolic derivation takes 2 to 21 bodies with a fixed obstacle, 2 to 20 with a finite one (at most 20 bodies moving "
                          "apart: determinants of up to 20 x 20)\n");
   }
-  const RunResult finite = run({"derive", "--bodies", "21", "--pairs", "near", "--closed", "none", "--no-limit", "--obstacle", "finite"});
+  const RunResult finite = run({"derive", "--bodies", "21", "--pairs", "near", "--closed", "none", "--obstacle", "finite"});
   EXPECT_EQ(finite.exit_code, 2);
   EXPECT_EQ(finite.err.rfind("superball: n = 21: the symbolic derivation takes", 0), 0u) << finite.err;
 }
 
 // Progress on standard error: the case derive is at ("derive: case k of N (...)").
+
+// Issue 26: compact JSON by default, every expanded form with --expanded.
+// The compact JSON is the expanded one without the expanded forms that the
+// case writes through its elimination: every other field equal, each such
+// condition kept by its `eliminated` forms, each such velocity, reaction and
+// determinant written over the names of elimination.definitions.
+TEST(CliDerive, JsonIsCompactUnlessExpanded) {
+  const std::vector<std::string> args = {"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--closed", "none", "--format", "json"};
+  std::vector<std::string> with = args;
+  with.push_back("--expanded");
+  const RunResult compact = run(args), expanded = run(with);
+  ASSERT_EQ(compact.exit_code, 0) << compact.err;
+  ASSERT_EQ(expanded.exit_code, 0) << expanded.err;
+  EXPECT_LT(compact.out.size() * 5, expanded.out.size());
+  const nlohmann::json c = nlohmann::json::parse(compact.out), e = nlohmann::json::parse(expanded.out);
+  ASSERT_TRUE(c.contains("elimination"));
+  EXPECT_EQ(c.at("elimination"), e.at("elimination"));
+  EXPECT_EQ(c.at("velocities_after").at("U1"), "V1");
+  EXPECT_EQ(c.at("determinant"), "p1*p2*p3*p4");
+  EXPECT_GT(e.at("determinant").get<std::string>().size(), 1000u);
+  ASSERT_EQ(c.at("conditions").size(), e.at("conditions").size());
+  int dropped = 0;
+  for (std::size_t k = 0; k < c.at("conditions").size(); ++k) {
+    const nlohmann::json& cc = c.at("conditions").at(k);
+    nlohmann::json ee = e.at("conditions").at(k);
+    for (const char* form : {"exact", "asymptotic"}) {
+      const bool through = cc.contains("eliminated") && cc.at("eliminated").contains(form);
+      EXPECT_EQ(cc.contains(form), !through) << cc.at("about") << " " << form;
+      if (through) {
+        ++dropped;
+        const std::string f = form;
+        for (const std::string key : {f, f == "exact" ? std::string("text") : f + "_text", f == "exact" ? std::string("latex") : f + "_latex"}) ee.erase(key);
+      }
+    }
+    EXPECT_EQ(cc, ee) << cc.at("about");
+  }
+  EXPECT_GE(dropped, 5);
+  // The paper's cases with one alpha have no long form: the same JSON whichever the flag, but for the
+  // conditions on M, which the compact list of cases has in its first case only.
+  const RunResult paper = run({"derive", "--all", "--alphas", "2", "--format", "json"});
+  const RunResult paper_expanded = run({"derive", "--all", "--alphas", "2", "--format", "json", "--expanded"});
+  ASSERT_EQ(paper.exit_code, 0) << paper.err;
+  const nlohmann::json p = nlohmann::json::parse(paper.out);
+  nlohmann::json pe = nlohmann::json::parse(paper_expanded.out);
+  ASSERT_EQ(p.size(), 8u);
+  EXPECT_EQ(p.at(0), pe.at(0));
+  for (std::size_t k = 1; k < pe.size(); ++k) {
+    nlohmann::json kept = nlohmann::json::array();
+    int psd = 0;
+    for (const auto& c : pe.at(k).at("conditions")) {
+      if (c.at("kind") == "psd") ++psd;
+      else kept.push_back(c);
+    }
+    EXPECT_GT(psd, 0);
+    pe.at(k).at("conditions") = kept;
+    EXPECT_EQ(p.at(k), pe.at(k)) << k;
+  }
+}
 
 TEST(CliDerive, TheOutputDoesNotDependOnTheNumberOfWorkers) {
   // Cases are derived in worker processes (GiNaC is not thread-safe) and written in order.

@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "superball/numeric/memory.hpp"
 #include "superball/symbolic/derivation.hpp"
+#include "superball/symbolic/estimate.hpp"
 
 namespace superball::present {
 
@@ -29,7 +31,7 @@ struct SelectionOptions {
   std::vector<int> alphas;       ///< the paper's couplings α_k in play (n = 4; parse_alphas()); empty: none
   std::string coupling, pairs = "all", scene, scaling;
   symbolic::Obstacle obstacle = symbolic::Obstacle::Infinite;  ///< parse_obstacle()
-  bool all = false, no_limit = false;
+  bool all = false;
 
   /// Throws std::invalid_argument("SelectionOptions::check(): ...") naming
   /// the option when order is not from 0 to max_order, or when more than one
@@ -57,20 +59,24 @@ struct Selection {
   std::vector<ContactSet> cases;  ///< --case / --closed: one; --all: every case in mask order; none given: empty
 };
 
-/// Resolve \p o; throws std::invalid_argument naming the option that is wrong,
-/// or, unless --no-limit, when the pattern has more bodies than the
-/// derivation handles in about 10 s (detail::body_limit()).
+/// Resolve \p o; throws std::invalid_argument naming the option that is wrong.
 Selection resolve(const SelectionOptions& o);
 
-namespace detail {
+/// How the derivation of a selection's cases will run (the command's and
+/// the Python module's derive).
+struct DerivePlan {
+  symbolic::Estimate estimate;  ///< symbolic::estimate_derivation()
+  int workers = 1;              ///< worker processes: at most the jobs asked and the cases, as many as the memory holds
+  std::string text;             ///< "deriving every case of 8 bodies, a pattern of width 3: about 4 min 16 s on one core, 2 workers, about 2.7 GB each (22.7 GB available)"
+};
 
-/// The largest n whose derivation was measured to take about 10 s at most
-/// (docs/SYMBOLIC.md, "Limits"), for a pattern of width \p width (the bodies
-/// its widest entry joins are that far apart, plus one with couplings), for
-/// one case or for every case (\p all_cases).
-int body_limit(int width, bool all_cases);
-
-}  // namespace detail
+/// The plan for \p s over at most \p jobs worker processes with \p available
+/// memory (numeric::available_memory()).  Throws std::invalid_argument
+/// ("derive(): deriving every case of 9 bodies, a pattern of width 3 holds
+/// about 24 GB (one process, …); this machine has 22.7 GB available
+/// (MemAvailable); derive fewer bodies or a narrower pattern") when even one
+/// process does not fit: the only size refused.
+DerivePlan plan_derivation(const Selection& s, int jobs, const numeric::Memory& available);
 
 /// Parse "1,6" into {1, 6}: comma-separated indices 1..7; throws
 /// std::invalid_argument("parse_alphas(): alphas: ...") on an empty item, a

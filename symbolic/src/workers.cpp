@@ -1,9 +1,11 @@
-#include "workers.hpp"
-
-#include "commands.hpp"
+// The worker processes of symbolic work (workers.hpp).
+#include "superball/symbolic/workers.hpp"
 
 #include <poll.h>
 #include <signal.h>
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -15,13 +17,13 @@
 #include <stdexcept>
 #include <vector>
 
-namespace superball::cli {
+namespace superball::symbolic {
 namespace {
 
 constexpr std::uint64_t kStop = ~std::uint64_t{0};  ///< the task index that tells a worker to exit
 
 /// What a worker sends back for one task.
-enum class Kind : std::uint8_t { Result = 0, InvalidArgument = 1, LogicError = 2, RuntimeError = 3, OutputError = 4 };
+enum class Kind : std::uint8_t { Result = 0, InvalidArgument = 1, LogicError = 2, RuntimeError = 3, Coded = 4 };
 
 bool write_all(int fd, const void* data, std::size_t size) {
   const char* p = static_cast<const char*>(data);
@@ -48,29 +50,32 @@ bool read_all(int fd, void* data, std::size_t size) {
   return true;
 }
 
-/// A worker's loop: read a task index, run it, send (index, kind, length, text); exit on kStop.
+/// A worker's loop: read a task index, run it, send (index, kind, code, length, text); exit on kStop.
 [[noreturn]] void work(int tasks_fd, int results_fd, const std::function<std::string(std::size_t)>& task) {
   std::uint64_t k = 0;
   while (read_all(tasks_fd, &k, sizeof k) && k != kStop) {
     Kind kind = Kind::Result;
+    std::int32_t code = 0;
     std::string text;
     try {
       text = task(static_cast<std::size_t>(k));
+    } catch (const TaskError& e) {  // e.g. a checkpoint file the task could not write
+      kind = Kind::Coded;
+      code = e.code();
+      text = e.what();
     } catch (const std::invalid_argument& e) {
       kind = Kind::InvalidArgument;
       text = e.what();
     } catch (const std::logic_error& e) {
       kind = Kind::LogicError;
       text = e.what();
-    } catch (const OutputError& e) {  // e.g. a checkpoint file the task could not write
-      kind = Kind::OutputError;
-      text = e.what();
     } catch (const std::exception& e) {
       kind = Kind::RuntimeError;
       text = e.what();
     }
     const std::uint64_t size = text.size();
-    if (!write_all(results_fd, &k, sizeof k) || !write_all(results_fd, &kind, sizeof kind) || !write_all(results_fd, &size, sizeof size) ||
+    if (!write_all(results_fd, &k, sizeof k) || !write_all(results_fd, &kind, sizeof kind) || !write_all(results_fd, &code, sizeof code) ||
+        !write_all(results_fd, &size, sizeof size) ||
         !write_all(results_fd, text.data(), text.size()))
       ::_exit(3);
     if (kind != Kind::Result) ::_exit(1);
@@ -106,8 +111,9 @@ void stop_all(std::vector<Workers::Worker>& workers) {
 }  // namespace
 
 Workers::Workers(std::size_t count, int jobs, Task task) : count_(count), task_(std::move(task)) {
-  if (jobs <= 1 || count <= 1) return;
+  if (jobs <= 0 || count == 0) return;
   workers_.resize(std::min<std::size_t>(static_cast<std::size_t>(jobs), count));
+  const pid_t parent = ::getpid();
   try {
     for (std::size_t i = 0; i < workers_.size(); ++i) {
       int to_worker[2], from_worker[2];
@@ -128,6 +134,12 @@ Workers::Workers(std::size_t count, int jobs, Task task) : count_(count), task_(
         for (std::size_t j = 0; j < i; ++j)  // the ends of the workers made before this one
           for (int fd : {workers_[j].tasks, workers_[j].results}) ::close(fd);
         ::signal(SIGPIPE, SIG_DFL);
+        ::signal(SIGINT, SIG_IGN);  // Ctrl-C is this process's parent's to handle: it stops the workers
+#ifdef __linux__
+        // A parent killed outright (SIGKILL) takes its workers with it: no case goes on being derived.
+        ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+        if (::getppid() != parent) ::_exit(1);
+#endif
         work(to_worker[0], from_worker[1], task_);
       }
       ::close(to_worker[0]);
@@ -144,10 +156,16 @@ Workers::Workers(std::size_t count, int jobs, Task task) : count_(count), task_(
 
 Workers::~Workers() { stop_all(workers_); }
 
-void Workers::run(const Deliver& deliver) {
+void Workers::run(const Deliver& deliver, const Interrupt& interrupted) {
   const std::size_t count = count_;
+  auto check = [&] {
+    if (interrupted && interrupted()) throw Interrupted("interrupted");
+  };
   if (workers_.empty()) {
-    for (std::size_t k = 0; k < count; ++k) deliver(k, task_(k));
+    for (std::size_t k = 0; k < count; ++k) {
+      check();
+      deliver(k, task_(k));
+    }
     return;
   }
   struct Guard {  // every worker stopped however this function is left
@@ -166,16 +184,18 @@ void Workers::run(const Deliver& deliver) {
 
   // A task that fails ends the run, but the failure reported is that of the
   // first failing task in task order, whatever the timing: the tasks before it
-  // are finished and delivered first (as with jobs <= 1, where they ran
+  // are finished and delivered first (as with jobs <= 0, where they ran
   // before it), no task after it is handed out.
   constexpr std::size_t none = ~std::size_t{0};
   std::size_t failed = none;
   Kind failed_kind = Kind::Result;
+  std::int32_t failed_code = 0;
   std::string failed_text;
-  auto fail = [&](std::size_t k, Kind kind, std::string text) {
+  auto fail = [&](std::size_t k, Kind kind, std::int32_t code, std::string text) {
     if (k >= failed) return;
     failed = k;
     failed_kind = kind;
+    failed_code = code;
     failed_text = std::move(text);
   };
   // The worker \p w has ended (it reported a failure, or died): reap it.
@@ -198,6 +218,7 @@ void Workers::run(const Deliver& deliver) {
   };
   for (Worker& w : workers) hand_out(w);
   while (delivered < std::min(count, failed)) {
+    check();
     std::vector<pollfd> fds;
     std::vector<Worker*> owners;
     for (Worker& w : workers)
@@ -205,18 +226,20 @@ void Workers::run(const Deliver& deliver) {
         fds.push_back({w.results, POLLIN, 0});
         owners.push_back(&w);
       }
-    if (fds.empty()) throw std::logic_error("run_in_workers(): no worker is running and results are missing");
-    if (::poll(fds.data(), fds.size(), -1) < 0) {
+    if (fds.empty()) throw std::logic_error("Workers::run(): no worker is running and results are missing");
+    if (::poll(fds.data(), fds.size(), interrupted ? kPollIntervalMs : -1) < 0) {
       if (errno == EINTR) continue;
-      throw std::runtime_error(std::string("run_in_workers(): poll: ") + std::strerror(errno));
+      throw std::runtime_error(std::string("Workers::run(): poll: ") + std::strerror(errno));
     }
     for (std::size_t i = 0; i < fds.size(); ++i) {
       if (!(fds[i].revents & (POLLIN | POLLHUP | POLLERR))) continue;
       Worker& w = *owners[i];
       std::uint64_t k = 0, size = 0;
       Kind kind = Kind::Result;
+      std::int32_t code = 0;
       std::string text;
-      bool ok = read_all(w.results, &k, sizeof k) && read_all(w.results, &kind, sizeof kind) && read_all(w.results, &size, sizeof size);
+      bool ok = read_all(w.results, &k, sizeof k) && read_all(w.results, &kind, sizeof kind) && read_all(w.results, &code, sizeof code) &&
+                read_all(w.results, &size, sizeof size);
       if (ok) {
         text.resize(static_cast<std::size_t>(size));
         ok = read_all(w.results, text.data(), text.size());
@@ -227,12 +250,12 @@ void Workers::run(const Deliver& deliver) {
         retire(w, &status);
         const std::string how = WIFSIGNALED(status) ? std::string("signal ") + std::to_string(WTERMSIG(status)) + " (" + ::strsignal(WTERMSIG(status)) + ")"
                                                     : "exit status " + std::to_string(WEXITSTATUS(status));
-        fail(static_cast<std::size_t>(task), Kind::RuntimeError, "worker for task " + std::to_string(task + 1) + " died: " + how);
+        fail(static_cast<std::size_t>(task), Kind::RuntimeError, 0, "worker for task " + std::to_string(task + 1) + " died: " + how);
         continue;
       }
       if (kind != Kind::Result) {  // the worker exits after sending it
         retire(w, nullptr);
-        fail(static_cast<std::size_t>(k), kind, std::move(text));
+        fail(static_cast<std::size_t>(k), kind, code, std::move(text));
         continue;
       }
       hand_out(w);
@@ -249,7 +272,7 @@ void Workers::run(const Deliver& deliver) {
     case Kind::InvalidArgument: throw std::invalid_argument(failed_text);
     case Kind::LogicError: throw std::logic_error(failed_text);
     case Kind::RuntimeError: throw std::runtime_error(failed_text);
-    case Kind::OutputError: throw OutputError(failed_text);
+    case Kind::Coded: throw TaskError(failed_code, failed_text);
   }
   // Every worker has been told to stop (kStop) or has ended by now; reap them.
   for (Worker& w : workers) {
@@ -264,4 +287,20 @@ void Workers::run(const Deliver& deliver) {
   }
 }
 
-}  // namespace superball::cli
+}  // namespace superball::symbolic
+
+namespace superball::symbolic {
+
+void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
+                  const std::function<std::string(std::size_t, const Derivation&)>& write, const Workers::Deliver& deliver, const DeriveRun& run) {
+  Workers workers(cases.size(), run.jobs, [&](std::size_t k) { return write(k, deriver.derive(cases[k])); });
+  if (run.progress) run.progress(0, cases.size());
+  workers.run(
+      [&](std::size_t k, std::string&& text) {
+        deliver(k, std::move(text));
+        if (run.progress) run.progress(k + 1, cases.size());
+      },
+      run.interrupted);
+}
+
+}  // namespace superball::symbolic

@@ -1,0 +1,100 @@
+#pragma once
+/// \file workers.hpp
+/// Work spread over forked processes, for symbolic work: GiNaC is not
+/// thread-safe, so where numeric work uses threads (numeric/parallel.hpp),
+/// symbolic work uses worker processes, each a copy of this one made after
+/// the shared set-up (the Deriver).  Only text crosses processes.  Shared by
+/// the command (`superball derive`) and the Python module (derive_all()).
+#include <cstddef>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "superball/symbolic/derivation.hpp"
+
+namespace superball::symbolic {
+
+/// A run stopped by its `interrupted` hook (Ctrl-C): the workers are
+/// stopped and nothing more is delivered.
+class Interrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A task's failure that the caller names by a code of its own (the
+/// command's "output cannot be written"), carried across processes with its
+/// message and thrown again as a TaskError of the same code.
+class TaskError : public std::runtime_error {
+ public:
+  TaskError(int code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  int code() const { return code_; }
+
+ private:
+  int code_;
+};
+
+/// Runs task(0) … task(count − 1) in \p jobs worker processes, handing the
+/// tasks out one at a time as workers become free (a long task does not hold
+/// up the others), and calls deliver(k, result) here in task order, so the
+/// output is the same whatever \p jobs is.  \p jobs <= 0: everything runs in
+/// this process, in order, in run(); jobs >= 1: min(jobs, count) workers,
+/// even for one task (so that an interrupt stops it at once).
+///
+/// The workers are forked by the constructor, before anything else starts
+/// a thread (make the pool before a progress line's timer).  They ignore
+/// SIGINT: Ctrl-C reaches this process, whose `interrupted` hook stops them;
+/// on Linux they die with this process however it ends (PR_SET_PDEATHSIG).
+/// A task that throws ends the run: no later task is handed out, the tasks
+/// before it are finished and delivered, the other workers are stopped, and
+/// run() throws the exception again with its message (std::invalid_argument,
+/// std::logic_error, TaskError with its code, or std::runtime_error, by what
+/// it was).  A worker that dies (a signal) makes run() throw
+/// std::runtime_error("worker for task K died: …").  When several tasks
+/// fail, the first of them in task order is the one reported, as with
+/// \p jobs <= 0, whatever the timing.  deliver() runs in this process only;
+/// it may throw (the workers are then stopped before the exception leaves).
+class Workers {
+ public:
+  using Task = std::function<std::string(std::size_t)>;
+  using Deliver = std::function<void(std::size_t, std::string&&)>;
+  /// Polled between results and at least every kPollInterval; true stops
+  /// the run: the workers are killed and run() throws Interrupted.  In this
+  /// process (\p jobs <= 0) it is polled between tasks only.
+  using Interrupt = std::function<bool()>;
+  Workers(std::size_t count, int jobs, Task task);
+  Workers(const Workers&) = delete;
+  Workers& operator=(const Workers&) = delete;
+  /// Stops every worker still running.
+  ~Workers();
+  /// Runs the tasks (once) and delivers their results in order.
+  void run(const Deliver& deliver, const Interrupt& interrupted = {});
+  /// One forked process and its two pipes (workers.cpp).
+  struct Worker;
+
+ private:
+  std::size_t count_;
+  Task task_;
+  std::vector<Worker> workers_;
+};
+
+/// How often a run with an `interrupted` hook polls it while workers compute.
+inline constexpr int kPollIntervalMs = 100;
+
+/// How derive_cases() runs.
+struct DeriveRun {
+  int jobs = 1;  ///< worker processes (Workers); 0: every case in this process, in order
+  /// Called here after each case is delivered, with the cases delivered so far and their number.
+  std::function<void(std::size_t done, std::size_t total)> progress;
+  Workers::Interrupt interrupted;  ///< see Workers::Interrupt
+};
+
+/// Derives \p cases of \p deriver over run.jobs worker processes and calls
+/// deliver(k, write(k, derivation of case k)) here in case order (the same
+/// whatever the number of workers).  \p write runs in the worker: it turns a
+/// Derivation into the text that crosses back (a report, JSON).  Errors and
+/// interrupts as Workers::run().
+void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
+                  const std::function<std::string(std::size_t, const Derivation&)>& write, const Workers::Deliver& deliver, const DeriveRun& run);
+
+}  // namespace superball::symbolic

@@ -1,0 +1,52 @@
+// symbolic::estimate_derivation() (estimate.hpp): the width of a pattern and
+// the estimate against the measured points it is fitted on and the real runs
+// of docs/SYMBOLIC.md ("Limits"), within the factor of 3 it promises.
+#include "superball/symbolic/estimate.hpp"
+
+#include <gtest/gtest.h>
+
+namespace superball::symbolic {
+namespace {
+
+TEST(Estimate, TheWidthOfAPattern) {
+  EXPECT_EQ(pattern_width(Pattern::near(8, 1)), 1);
+  EXPECT_EQ(pattern_width(Pattern::near(8, 2)), 2);
+  EXPECT_EQ(pattern_width(Pattern::nearest_and_next_nearest(8)), 3);
+  EXPECT_EQ(pattern_width(Pattern::all_pairs(6)), 5);
+}
+
+/// Within a factor of 3 of \p measured.
+void near(double estimated, double measured, const char* what) {
+  EXPECT_GT(estimated, measured / 3) << what;
+  EXPECT_LT(estimated, measured * 3) << what;
+}
+
+TEST(Estimate, WithinAFactorOfThreeOfTheMeasuredRuns) {
+  // Wall times on one core and peak resident memory of the real runs (docs/SYMBOLIC.md, Limits).
+  const Estimate w3_all_7 = estimate_derivation(Pattern::nearest_and_next_nearest(7), Obstacle::Infinite, 64, true);
+  near(w3_all_7.seconds, 21.4, "near2 with couplings, every case of 7 bodies: 21.4 s");
+  near(w3_all_7.process_bytes, 343e6, "… 343 MB");
+  const Estimate w3_all_8 = estimate_derivation(Pattern::nearest_and_next_nearest(8), Obstacle::Infinite, 128, true);
+  near(w3_all_8.seconds, 256, "every case of 8 bodies: 256 s");
+  near(w3_all_8.process_bytes, 2.0e9, "… 2.0 GB the largest worker");
+  near(estimate_derivation(Pattern::near(10, 1), Obstacle::Infinite, 1, false).seconds, 3.2, "near, one case of 10 bodies: 3.2 s");
+  near(estimate_derivation(Pattern::near(8, 2), Obstacle::Infinite, 128, true).seconds, 25.4, "near2, every case of 8 bodies: 25.4 s");
+  near(estimate_derivation(Pattern::all_pairs(6), Obstacle::Infinite, 32, true).seconds, 2.4, "all pairs, every case of 6 bodies: 2.4 s");
+  // The steps: a body more costs more, a finite obstacle more, a wider pattern more.
+  const Estimate w3_one_8 = estimate_derivation(Pattern::nearest_and_next_nearest(8), Obstacle::Infinite, 1, false);
+  EXPECT_GT(w3_one_8.seconds, estimate_derivation(Pattern::nearest_and_next_nearest(7), Obstacle::Infinite, 1, false).seconds * 5);
+  EXPECT_GT(estimate_derivation(Pattern::nearest_and_next_nearest(8), Obstacle::Finite, 1, false).seconds, w3_one_8.seconds * 2);
+  EXPECT_GT(w3_one_8.seconds, estimate_derivation(Pattern::near(8, 2), Obstacle::Infinite, 1, false).seconds);
+}
+
+TEST(Estimate, DurationsForPeople) {
+  EXPECT_EQ(duration_text(0.42), "0.4 s");
+  EXPECT_EQ(duration_text(26.2), "26 s");
+  EXPECT_EQ(duration_text(256), "4 min 16 s");
+  EXPECT_EQ(duration_text(3 * 3600 + 300), "3 h 5 min");
+  EXPECT_EQ(duration_text(12 * 86400), "12 days");
+  EXPECT_EQ(duration_text(1e300), "longer than anyone can wait");
+}
+
+}  // namespace
+}  // namespace superball::symbolic

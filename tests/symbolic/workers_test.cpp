@@ -1,0 +1,219 @@
+// symbolic::Workers (workers.hpp): tasks in forked worker processes, results
+// in task order whatever the number of workers, a task's exception thrown
+// again in the parent with its type and message, a dead worker reported, an
+// interrupt that stops the workers at once, and no worker left behind; and
+// derive_cases() over them.
+#include "superball/symbolic/workers.hpp"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace superball::symbolic {
+namespace {
+
+/// No child process is left: every worker was reaped.
+bool no_children() { return ::waitpid(-1, nullptr, WNOHANG) < 0 && errno == ECHILD; }
+
+std::vector<std::string> run(std::size_t count, int jobs, const Workers::Task& task) {
+  std::vector<std::string> out;
+  Workers workers(count, jobs, task);
+  workers.run([&](std::size_t k, std::string&& s) {
+    EXPECT_EQ(k, out.size());  // in task order
+    out.push_back(std::move(s));
+  });
+  return out;
+}
+
+TEST(Workers, ResultsInTaskOrderWhateverTheNumberOfWorkers) {
+  const pid_t parent = ::getpid();
+  // Early tasks take longest, so later ones finish first in the workers.
+  auto task = [&](std::size_t k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(k < 3 ? 30 - 10 * static_cast<int>(k) : 1));
+    return "task " + std::to_string(k) + (::getpid() == parent ? " here" : " in a worker") + std::string(k * 10000, 'x');
+  };
+  for (int jobs : {0, 1, 2, 3, 8}) {
+    const std::vector<std::string> out = run(12, jobs, task);
+    ASSERT_EQ(out.size(), 12u);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      EXPECT_EQ(out[k].substr(0, out[k].find(' ', 5)), "task " + std::to_string(k));
+      EXPECT_EQ(out[k].find(jobs == 0 ? " in a worker" : " here"), std::string::npos) << jobs;
+      EXPECT_EQ(std::count(out[k].begin(), out[k].end(), 'x'), static_cast<long>(k * 10000)) << "a large result crosses whole";
+    }
+    EXPECT_TRUE(no_children()) << jobs;
+  }
+  EXPECT_TRUE(run(0, 4, task).empty());
+}
+
+TEST(Workers, ATaskExceptionComesBackWithItsTypeAndMessage) {
+  auto failing = [](std::size_t k) -> std::string {
+    if (k == 5) throw std::invalid_argument("bad input on task 5");
+    if (k == 7) throw std::logic_error("internal error on task 7");
+    return std::to_string(k);
+  };
+  for (int jobs : {0, 3}) {
+    try {
+      run(10, jobs, failing);
+      ADD_FAILURE() << "no exception, jobs " << jobs;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "bad input on task 5");
+    }
+    EXPECT_TRUE(no_children()) << jobs;
+  }
+  auto logic = [](std::size_t k) -> std::string {
+    if (k == 2) throw std::logic_error("internal error on task 2");
+    return "";
+  };
+  EXPECT_THROW(run(4, 2, logic), std::logic_error);
+  EXPECT_TRUE(no_children());
+}
+
+TEST(Workers, TheFirstFailureInTaskOrderIsReportedWhateverTheTiming) {
+  // Task 1 fails late, task 2 (and a dying worker on task 3) at once: what
+  // is reported is task 1's failure, after task 0 was delivered, as when the
+  // tasks run one after the other here.
+  const pid_t parent = ::getpid();
+  auto failing = [&](std::size_t k) -> std::string {
+    if (k == 1) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      throw std::invalid_argument("task 1 failed late");
+    }
+    if (k == 2) throw std::logic_error("task 2 failed at once");
+    if (k == 3 && ::getpid() != parent) ::raise(SIGKILL);
+    return std::to_string(k);
+  };
+  for (int jobs : {0, 1, 2, 4}) {
+    std::vector<std::size_t> delivered;
+    Workers workers(8, jobs, failing);
+    try {
+      workers.run([&](std::size_t k, std::string&&) { delivered.push_back(k); });
+      ADD_FAILURE() << "no exception, jobs " << jobs;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "task 1 failed late") << jobs;
+    }
+    EXPECT_EQ(delivered, std::vector<std::size_t>{0}) << jobs;
+  }
+  EXPECT_TRUE(no_children());
+}
+
+TEST(Workers, AWorkerThatDiesIsReportedWithItsTask) {
+  const pid_t parent = ::getpid();
+  auto dying = [&](std::size_t k) -> std::string {
+    if (k == 3 && ::getpid() != parent) ::raise(SIGKILL);
+    return std::to_string(k);
+  };
+  try {
+    run(6, 2, dying);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("worker for task 4 died: signal 9"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(no_children());
+}
+
+TEST(Workers, ADeliverThatThrowsStopsTheWorkers) {
+  Workers workers(20, 3, [](std::size_t k) { return std::to_string(k); });
+  EXPECT_THROW(workers.run([](std::size_t k, std::string&&) {
+    if (k == 4) throw std::runtime_error("disk full");
+  }),
+               std::runtime_error);
+  EXPECT_TRUE(no_children());
+}
+
+TEST(Workers, ATaskErrorComesBackWithItsCode) {
+  auto failing = [](std::size_t k) -> std::string {
+    if (k == 2) throw TaskError(3, "out.json: No space left on device");
+    return std::to_string(k);
+  };
+  for (int jobs : {0, 2}) {
+    try {
+      run(5, jobs, failing);
+      ADD_FAILURE() << "no exception, jobs " << jobs;
+    } catch (const TaskError& e) {
+      EXPECT_EQ(e.code(), 3) << jobs;
+      EXPECT_STREQ(e.what(), "out.json: No space left on device") << jobs;
+    }
+  }
+  EXPECT_TRUE(no_children());
+}
+
+TEST(Workers, AnInterruptStopsTheWorkersAtOnce) {
+  // Each task would take 60 s: the interrupt, asked for after 300 ms, ends
+  // the run within a few poll intervals, with the workers killed and reaped.
+  const pid_t parent = ::getpid();
+  auto slow = [&](std::size_t k) -> std::string {
+    if (::getpid() != parent) std::this_thread::sleep_for(std::chrono::seconds(60));
+    return std::to_string(k);
+  };
+  for (std::size_t count : {1u, 4u}) {
+    Workers workers(count, 2, slow);
+    const auto start = std::chrono::steady_clock::now();
+    auto interrupted = [&] { return std::chrono::steady_clock::now() - start > std::chrono::milliseconds(300); };
+    std::vector<std::size_t> delivered;
+    EXPECT_THROW(workers.run([&](std::size_t k, std::string&&) { delivered.push_back(k); }, interrupted), Interrupted);
+    const auto took = std::chrono::steady_clock::now() - start;
+    EXPECT_LT(took, std::chrono::seconds(10)) << count;
+    EXPECT_TRUE(delivered.empty());
+    EXPECT_TRUE(no_children()) << count;
+  }
+  // In this process the interrupt is seen between tasks.
+  Workers here(5, 0, [](std::size_t k) { return std::to_string(k); });
+  std::vector<std::size_t> delivered;
+  EXPECT_THROW(here.run([&](std::size_t k, std::string&&) { delivered.push_back(k); }, [&] { return delivered.size() == 2; }), Interrupted);
+  EXPECT_EQ(delivered, (std::vector<std::size_t>{0, 1}));
+}
+
+TEST(Workers, AWorkerIgnoresSigint) {
+  // Ctrl-C reaches every process of the terminal's group: the workers go on,
+  // and it is this process (its interrupt hook) that decides.
+  const pid_t parent = ::getpid();
+  auto task = [&](std::size_t k) -> std::string {
+    if (::getpid() != parent) {
+      ::raise(SIGINT);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return std::to_string(k);
+  };
+  EXPECT_EQ(run(4, 2, task), (std::vector<std::string>{"0", "1", "2", "3"}));
+  EXPECT_TRUE(no_children());
+}
+
+TEST(DeriveCases, TheSameResultsInCaseOrderWhateverTheWorkers) {
+  const Deriver deriver(Pattern::nearest_and_next_nearest(4), Obstacle::Infinite);
+  std::vector<ContactSet> cases;
+  for (std::uint64_t mask = 0; mask < 8; ++mask) cases.push_back(ContactSet::from_mask(mask, 4));
+  auto write = [](std::size_t k, const Derivation& d) { return std::to_string(k) + " " + d.case_name + ": " + d.conditions.front().about; };
+  std::vector<std::string> first;
+  for (int jobs : {0, 1, 3}) {
+    std::vector<std::string> out;
+    std::vector<std::size_t> progress;
+    DeriveRun run;
+    run.jobs = jobs;
+    run.progress = [&](std::size_t done, std::size_t total) {
+      EXPECT_EQ(total, 8u);
+      progress.push_back(done);
+    };
+    derive_cases(deriver, cases, write, [&](std::size_t k, std::string&& s) {
+      EXPECT_EQ(k, out.size());
+      out.push_back(std::move(s));
+    }, run);
+    EXPECT_EQ(progress, (std::vector<std::size_t>{0, 1, 2, 3, 4, 5, 6, 7, 8})) << jobs;
+    ASSERT_EQ(out.size(), 8u);
+    EXPECT_EQ(out[0], "0 " + deriver.derive(cases[0]).case_name + ": U1 > a");
+    if (first.empty()) first = out;
+    EXPECT_EQ(out, first) << jobs;
+    EXPECT_TRUE(no_children()) << jobs;
+  }
+}
+
+}  // namespace
+}  // namespace superball::symbolic
