@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "superball/cases/number.hpp"
+#include "superball/cases/export.hpp"
+SUPERBALL_CASES_API_BEGIN
 
 namespace superball {
 
@@ -28,3 +30,5 @@ struct PrintedNumbers {
 };
 
 }  // namespace superball
+
+SUPERBALL_CASES_API_END

@@ -9,6 +9,8 @@
 
 #include "superball/cases/error.hpp"
 #include "superball/cases/model.hpp"
+#include "superball/cases/export.hpp"
+SUPERBALL_CASES_API_BEGIN
 
 namespace superball {
 
@@ -68,3 +70,5 @@ Scene parse_scene(const std::string& text, const std::string& origin);
 std::string write_scene(const Scene& scene, const std::string& comment = "");
 
 }  // namespace superball
+
+SUPERBALL_CASES_API_END

@@ -7,6 +7,8 @@
 #include <cln/real.h>
 
 #include <string>
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -38,3 +40,5 @@ decltype(auto) with_scalar(const Precision& p, F&& f) {
 }
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

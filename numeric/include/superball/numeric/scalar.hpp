@@ -14,6 +14,8 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace Eigen {
 
@@ -72,7 +74,7 @@ cln::float_format_t digits_format(int digits);
 /// cln::cl_R so that the integer constants Eigen creates stay exact and
 /// never lower the precision.
 template <>
-struct ScalarTraits<cln::cl_R> {
+struct SUPERBALL_NUMERIC_EXPORT ScalarTraits<cln::cl_R> {
   static constexpr bool exact = false;
   static std::string name() { return "digits"; }
   static cln::cl_R from(const cln::cl_RA& r, int digits);
@@ -82,7 +84,7 @@ struct ScalarTraits<cln::cl_R> {
 };
 
 template <>
-struct ScalarTraits<cln::cl_RA> {
+struct SUPERBALL_NUMERIC_EXPORT ScalarTraits<cln::cl_RA> {
   static constexpr bool exact = true;
   static std::string name() { return "exact"; }
   static cln::cl_RA from(const cln::cl_RA& r, int) { return r; }
@@ -131,3 +133,5 @@ std::string to_decimal(const cln::cl_RA& x, int significant);
 cln::cl_RA parse_rational(const std::string& fraction);
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

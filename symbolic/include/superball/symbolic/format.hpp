@@ -18,6 +18,8 @@
 
 #include "superball/symbolic/derivation.hpp"
 #include "superball/symbolic/symbols.hpp"
+#include "superball/symbolic/export.hpp"
+SUPERBALL_SYMBOLIC_API_BEGIN
 
 namespace superball::symbolic {
 
@@ -109,3 +111,5 @@ std::string report_psd(const Deriver& deriver, Style style);
 std::string latex_document(const std::vector<Derivation>& derivations, const Deriver& deriver);
 
 }  // namespace superball::symbolic
+
+SUPERBALL_SYMBOLIC_API_END

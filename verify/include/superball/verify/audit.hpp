@@ -18,6 +18,8 @@
 
 #include "superball/cases/printed_conditions.hpp"
 #include "superball/verify/space.hpp"
+#include "superball/verify/export.hpp"
+SUPERBALL_VERIFY_API_BEGIN
 
 namespace superball::verify {
 
@@ -94,3 +96,5 @@ Audit audit_paper(const PrintedConditions& data, const AuditOptions& options = {
 std::string to_text(const Audit& audit);
 
 }  // namespace superball::verify
+
+SUPERBALL_VERIFY_API_END

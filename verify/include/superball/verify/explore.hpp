@@ -55,6 +55,8 @@
 
 #include "superball/cases/model.hpp"
 #include "superball/symbolic/derivation.hpp"
+#include "superball/verify/export.hpp"
+SUPERBALL_VERIFY_API_BEGIN
 
 namespace superball::verify {
 
@@ -190,3 +192,5 @@ std::string witness_file(const ExploreResult& r, const std::string& command);
 std::string impossibility_certificate(const GiNaC::ex& s_poly, const symbolic::Symbols& sy);
 
 }  // namespace superball::verify
+
+SUPERBALL_VERIFY_API_END

@@ -25,6 +25,8 @@
 #include "superball/cases/model.hpp"
 #include "superball/numeric/map.hpp"
 #include "superball/symbolic/derivation.hpp"
+#include "superball/verify/export.hpp"
+SUPERBALL_VERIFY_API_BEGIN
 
 namespace superball::verify {
 
@@ -85,3 +87,5 @@ std::string to_text(const Overlay& o, const numeric::Map& map);
 nlohmann::ordered_json to_json(const Overlay& o, const numeric::Map& map);
 
 }  // namespace superball::verify
+
+SUPERBALL_VERIFY_API_END

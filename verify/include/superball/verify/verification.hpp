@@ -33,6 +33,8 @@
 #include "superball/cases/model.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/symbolic/derivation.hpp"
+#include "superball/verify/export.hpp"
+SUPERBALL_VERIFY_API_BEGIN
 
 namespace superball::verify {
 
@@ -177,3 +179,5 @@ std::string describe(const Verification& v, const Disagreement& d);
 std::string epsilon_name(const cln::cl_RA& epsilon);
 
 }  // namespace superball::verify
+
+SUPERBALL_VERIFY_API_END
