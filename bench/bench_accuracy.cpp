@@ -18,7 +18,7 @@ namespace {
 
 using namespace superball;
 
-/// The largest n of CollisionSolver's fixed-size path (numeric/src/detail/small_solver.hpp).
+/// The largest n of CollisionSolver's fixed-size path (numeric/src/collision/small_solver.hpp).
 constexpr int kSmallMaxBodies = 8;
 
 /// Which path of CollisionSolver a row times (double and long double).

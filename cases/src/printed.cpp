@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "superball/cases/paper_data.hpp"
+#include "paper_data.hpp"
 
 namespace superball {
 namespace {

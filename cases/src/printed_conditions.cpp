@@ -5,7 +5,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "superball/cases/paper_data.hpp"
+#include "paper_data.hpp"
 
 namespace superball {
 namespace {

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "superball/cases/error.hpp"
-#include "superball/cases/paper_data.hpp"
+#include "paper_data.hpp"
 
 namespace superball {
 

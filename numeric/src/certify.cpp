@@ -1,6 +1,6 @@
 #include "superball/numeric/certify.hpp"
 
-#include "detail/complete.hpp"
+#include "collision/complete.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -159,9 +159,9 @@ Certificate certify(const Problem<S>& p, const Solution<S>& s) {
   return cert;
 }
 
-template Certificate certify(const Problem<double>&, const Solution<double>&);
-template Certificate certify(const Problem<long double>&, const Solution<long double>&);
-template Certificate certify(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<double>&, const Solution<double>&);
+template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<long double>&, const Solution<long double>&);
+template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
 
 template <class S>
 std::vector<std::string> trust_warnings(const Problem<S>& problem, const Solution<S>& solution) {
@@ -185,10 +185,10 @@ std::vector<std::string> trust_warnings(const Problem<S>& problem, const Solutio
   }
 }
 
-template std::vector<std::string> trust_warnings(const Problem<double>&, const Solution<double>&);
-template std::vector<std::string> trust_warnings(const Problem<long double>&, const Solution<long double>&);
-template std::vector<std::string> trust_warnings(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
-template std::vector<std::string> trust_warnings(const Problem<cln::cl_RA>&, const Solution<cln::cl_RA>&);
+template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<double>&, const Solution<double>&);
+template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<long double>&, const Solution<long double>&);
+template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<cln::cl_RA>&, const Solution<cln::cl_RA>&);
 
 namespace {
 

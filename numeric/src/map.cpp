@@ -1,4 +1,4 @@
-#include "superball/numeric/map.hpp"
+#include "map_internal.hpp"
 
 #include <algorithm>
 #include <cmath>

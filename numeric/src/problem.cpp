@@ -324,10 +324,10 @@ int Problem<S>::check(const char* who) const {
   return b;
 }
 
-template Scaling scaling_of(const Problem<double>&);
-template Scaling scaling_of(const Problem<long double>&);
-template Scaling scaling_of(const Problem<cln::cl_R>&);
-template Scaling scaling_of(const Problem<cln::cl_RA>&);
+template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<double>&);
+template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<long double>&);
+template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<cln::cl_R>&);
+template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<cln::cl_RA>&);
 template struct Problem<double>;
 template struct Problem<long double>;
 template struct Problem<cln::cl_R>;

@@ -14,8 +14,8 @@
 
 #include "superball/cases/error.hpp"
 #include "superball/numeric/certify.hpp"
-#include "superball/numeric/cluster.hpp"
-#include "superball/numeric/map.hpp"
+#include "collision/cluster.hpp"
+#include "map_internal.hpp"
 #include "superball/numeric/parallel.hpp"
 
 namespace superball::numeric {

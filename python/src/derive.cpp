@@ -83,8 +83,8 @@ std::string case_record(const symbolic::Derivation& d, const symbolic::Deriver& 
   x["velocities_latex"] = vl;
   x["reactions_text"] = rt;
   x["reactions_latex"] = rl;
-  x["report"] = symbolic::report(d, deriver, Style::Text);
-  x["report_latex"] = symbolic::report(d, deriver, Style::Latex);
+  x["report"] = present::report(d, deriver, Style::Text);
+  x["report_latex"] = present::report(d, deriver, Style::Latex);
   return x.dump();
 }
 

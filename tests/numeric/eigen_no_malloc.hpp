@@ -1,7 +1,7 @@
 #pragma once
 /// \file eigen_no_malloc.hpp
 /// Force-included (-include) into the translation units of the no-allocation
-/// test, including its own copy of numeric/src/collision.cpp: Eigen checks
+/// test, including its own copy of numeric/src/collision/collision.cpp: Eigen checks
 /// every heap allocation against set_is_malloc_allowed(), and any failed
 /// eigen_assert (a forbidden allocation, or an index out of range) is
 /// recorded instead of aborting or being compiled out by NDEBUG.

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "superball/numeric/certify.hpp"
-#include "superball/numeric/cluster.hpp"
+#include "collision/cluster.hpp"
 #include "support.hpp"
 
 namespace superball::testing {

@@ -19,6 +19,7 @@
 #include "superball/cases/parameter.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/map.hpp"
+#include "map_internal.hpp"
 #include "support.hpp"
 
 namespace superball::testing {

@@ -2,7 +2,7 @@
 // (issue 2: "for n = 4 in double, no heap allocation in the solve").
 //
 // Two detectors, both armed only around the second compute():
-//  - Eigen's own: this executable compiles numeric/src/collision.cpp again
+//  - Eigen's own: this executable compiles numeric/src/collision/collision.cpp again
 //    with EIGEN_RUNTIME_NO_MALLOC (eigen_no_malloc.hpp), and the test calls
 //    Eigen::internal::set_is_malloc_allowed(false);
 //  - a count of every malloc/calloc/realloc of the process (glibc: the

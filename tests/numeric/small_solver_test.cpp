@@ -1,4 +1,4 @@
-// The fixed-size path of CollisionSolver (numeric/src/small_solver.cpp, n <= 8
+// The fixed-size path of CollisionSolver (numeric/src/collision/small_solver.cpp, n <= 8
 // in double and long double) against the general path and against exact
 // rationals, on seeded random scenes of 2 to 8 bodies: the same statuses,
 // cases, pivots, velocities, reactions, energies and residuals bit for bit,
@@ -13,7 +13,7 @@
 #include <tuple>
 #include <string>
 
-#include "detail/small_solver.hpp"
+#include "collision/small_solver.hpp"
 #include "superball/numeric/chain.hpp"
 #include "support.hpp"
 

@@ -12,7 +12,7 @@
 // p* has w = 0 and R = 0 on c.
 //
 // The label at the switch point itself: the exact solver labels a contact
-// whose gap is exactly 0 as closed (numeric/src/complete.cpp), so the case
+// whose gap is exactly 0 as closed (numeric/src/collision/complete.cpp), so the case
 // at p* is the case of the side where c is closed (docs/ACCURACY.md).
 #include <gtest/gtest.h>
 

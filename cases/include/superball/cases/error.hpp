@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include "superball/cases/export.hpp"
+SUPERBALL_CASES_API_BEGIN
 
 namespace superball {
 
@@ -61,3 +63,5 @@ inline std::string without_function_prefix(const std::string& message) {
 }
 
 }  // namespace superball
+
+SUPERBALL_CASES_API_END

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "superball/cases/number.hpp"
+#include "superball/cases/export.hpp"
+SUPERBALL_CASES_API_BEGIN
 
 namespace superball {
 
@@ -121,3 +123,5 @@ struct Scene {
 };
 
 }  // namespace superball
+
+SUPERBALL_CASES_API_END

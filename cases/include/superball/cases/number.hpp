@@ -6,6 +6,8 @@
 
 #include <string>
 #include <string_view>
+#include "superball/cases/export.hpp"
+SUPERBALL_CASES_API_BEGIN
 
 namespace superball {
 
@@ -42,3 +44,5 @@ struct Number {
 inline constexpr int max_decimal_exponent = 4000;
 
 }  // namespace superball
+
+SUPERBALL_CASES_API_END

@@ -5,6 +5,8 @@
 #include <string>
 
 #include "superball/cases/model.hpp"
+#include "superball/cases/export.hpp"
+SUPERBALL_CASES_API_BEGIN
 
 namespace superball {
 
@@ -59,5 +61,9 @@ class Parameter {
   /// The canonical key for a scene of \p bodies bodies.
   std::string canonical(int bodies) const;
 };
+/// Declared here too, not only as a friend, so that the shared library exports it.
+bool operator==(const Parameter& a, const Parameter& b);
 
 }  // namespace superball
+
+SUPERBALL_CASES_API_END

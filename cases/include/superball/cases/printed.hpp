@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "superball/cases/number.hpp"
+#include "superball/cases/export.hpp"
+SUPERBALL_CASES_API_BEGIN
 
 namespace superball {
 
@@ -40,3 +42,5 @@ struct PrintedNumbers {
 };
 
 }  // namespace superball
+
+SUPERBALL_CASES_API_END

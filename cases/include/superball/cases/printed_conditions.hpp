@@ -7,6 +7,8 @@
 
 #include <string>
 #include <vector>
+#include "superball/cases/export.hpp"
+SUPERBALL_CASES_API_BEGIN
 
 namespace superball {
 
@@ -54,3 +56,5 @@ struct PrintedConditions {
 };
 
 }  // namespace superball
+
+SUPERBALL_CASES_API_END

@@ -11,6 +11,8 @@
 
 #include "superball/cases/error.hpp"
 #include "superball/cases/model.hpp"
+#include "superball/cases/export.hpp"
+SUPERBALL_CASES_API_BEGIN
 
 namespace superball {
 
@@ -92,3 +94,5 @@ Scene scene_from_value(const SceneValue& root, const std::string& origin);
 std::string write_scene(const Scene& scene, const std::string& comment = "");
 
 }  // namespace superball
+
+SUPERBALL_CASES_API_END

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "superball/cases/model.hpp"
+#include "superball/cases/export.hpp"
+SUPERBALL_CASES_API_BEGIN
 
 namespace superball {
 
@@ -60,3 +62,5 @@ class Vocabulary {
 };
 
 }  // namespace superball
+
+SUPERBALL_CASES_API_END

@@ -23,6 +23,8 @@
 
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/precision.hpp"
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -72,13 +74,15 @@ AutoChoice choose_precision(const ExactScene& scene, double rtol);
 /// The explicit instantiations of certify() and trust_warnings() compiled into
 /// the library, one per scalar type (certify() has none for exact rationals:
 /// an exact solution needs no certificate).
-extern template Certificate certify(const Problem<double>&, const Solution<double>&);
-extern template Certificate certify(const Problem<long double>&, const Solution<long double>&);
-extern template Certificate certify(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
-extern template std::vector<std::string> trust_warnings(const Problem<double>&, const Solution<double>&);
-extern template std::vector<std::string> trust_warnings(const Problem<long double>&, const Solution<long double>&);
-extern template std::vector<std::string> trust_warnings(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
-extern template std::vector<std::string> trust_warnings(const Problem<cln::cl_RA>&, const Solution<cln::cl_RA>&);
+extern template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<double>&, const Solution<double>&);
+extern template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<long double>&, const Solution<long double>&);
+extern template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+extern template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<double>&, const Solution<double>&);
+extern template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<long double>&, const Solution<long double>&);
+extern template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+extern template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<cln::cl_RA>&, const Solution<cln::cl_RA>&);
 ///@}
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

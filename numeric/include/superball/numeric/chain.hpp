@@ -17,10 +17,11 @@
 /// flips at a time, the smallest index first (Murty's rule, which
 /// terminates because the contact matrix is positive definite).
 
-#include <vector>
+#include <memory>
 
-#include "superball/numeric/cluster.hpp"
 #include "superball/numeric/collision.hpp"
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -29,9 +30,19 @@ namespace superball::numeric {
 template <class S>
 class ChainSolver {
  public:
-  ChainSolver() = default;
+  /// A solver with the default settings.
+  ChainSolver();
   /// A solver with \p settings (tolerances, iteration limit).
-  explicit ChainSolver(const Settings<S>& settings) : settings_(settings) {}
+  explicit ChainSolver(const Settings<S>& settings);
+  ///@{
+  /// Copies and moves (the workspace is copied, or moved, with the solver).
+  ChainSolver(const ChainSolver& other);
+  ChainSolver(ChainSolver&& other) noexcept;
+  ChainSolver& operator=(const ChainSolver& other);
+  ChainSolver& operator=(ChainSolver&& other) noexcept;
+  ///@}
+  /// Frees the workspace.
+  ~ChainSolver();
 
   /// Solve \p problem into \p out; out.pivots counts the active-set
   /// iterations.  Throws std::invalid_argument("ChainSolver::compute(): ...")
@@ -44,14 +55,13 @@ class ChainSolver {
     return out;
   }
   /// The bandwidth b of DᵀMD for the last problem.
-  int bandwidth() const { return system_.bandwidth(); }
+  int bandwidth() const;
 
  private:
-  Settings<S> settings_ = Settings<S>::defaults();
-  detail::ClusterSystem<S> system_;
-  std::vector<S> lambda_;  ///< λ on closed contacts, 0 on open ones
-  std::vector<char> closed_;
-  detail::CheckWorkspace<S> check_;
+  class SUPERBALL_NUMERIC_NO_EXPORT Impl;  ///< the workspace and the steps of a solve (numeric/src/collision/solvers.hpp)
+  template <class T>
+  friend Solution<T> solve(const Problem<T>& problem);
+  std::unique_ptr<Impl> impl_;
 };
 
 /// Whether solve() uses ChainSolver for \p p: when DᵀMD is banded, 2b + 1 < n
@@ -63,9 +73,11 @@ bool solves_as_chain(const Problem<S>& p) {
   return 2 * p.bandwidth() + 1 < p.n;
 }
 
-extern template class ChainSolver<double>;
-extern template class ChainSolver<long double>;
-extern template class ChainSolver<cln::cl_R>;
-extern template class ChainSolver<cln::cl_RA>;
+extern template class SUPERBALL_NUMERIC_EXPORT ChainSolver<double>;
+extern template class SUPERBALL_NUMERIC_EXPORT ChainSolver<long double>;
+extern template class SUPERBALL_NUMERIC_EXPORT ChainSolver<cln::cl_R>;
+extern template class SUPERBALL_NUMERIC_EXPORT ChainSolver<cln::cl_RA>;
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

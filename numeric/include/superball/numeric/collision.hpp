@@ -19,59 +19,15 @@
 /// it is the answer, without forming N.
 
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 #include "superball/cases/model.hpp"
-#include "superball/numeric/cluster.hpp"
 #include "superball/numeric/problem.hpp"
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
-
-namespace detail {
-/// A sum and the sum of the magnitudes of its terms, side by side, so that
-/// adding a term updates both with one store (the residual check scatters
-/// over M's entries, and there the stores are the bottleneck).
-template <class S>
-class Sized {
- public:
-  void add(const S& term, const S& magnitude) { value_ += term, size_ += magnitude; }
-  const S& value() const { return value_; }
-  const S& size() const { return size_; }
-  void set(const S& value, const S& size) { value_ = value, size_ = size; }
-
- private:
-  S value_ = S(0), size_ = S(0);
-};
-/// In double both live in one 16-byte vector (GCC/Clang vector extension).
-template <>
-class Sized<double> {
-  using Pair = double __attribute__((vector_size(16)));
-
- public:
-  void add(double term, double magnitude) { v_ += Pair{term, magnitude}; }
-  double value() const { return v_[0]; }
-  double size() const { return v_[1]; }
-  void set(double value, double size) { v_ = Pair{value, size}; }
-
- private:
-  Pair v_ = {0, 0};
-};
-/// Scratch space of the residual check, kept by a solver between solves so
-/// that a solve does not allocate.
-template <class S>
-struct CheckWorkspace {
-  std::vector<Sized<S>> y;     ///< per body: W + u and |W| + |u|
-  std::vector<Sized<S>> rows;  ///< per body: the residual of its equation of motion and the sum of |terms|
-  std::vector<int> group;      ///< per body: union-find parent over the bodies M and the closed contacts join
-  std::vector<Sized<S>> momentum;  ///< per group: Σ m (W − u) and Σ m (|W| + |u|)
-  /// The union-find after M's joins, which depend only on n and on the
-  /// bodies and zero-ness of M's entries: kept with those (entry_key: i, j,
-  /// k, l and value ≠ 0 per entry) and reused while the next problem has the
-  /// same (a reused solver, a sweep or a map varying values only).
-  std::vector<int> entry_key, entry_group;
-  int entry_bodies = -1;
-};
-}  // namespace detail
 
 /// How a solve ended (Eigen style: numerical outcomes are a status).
 enum class Status {
@@ -131,14 +87,6 @@ struct Solution {
   int pivots = 0;
 };
 
-namespace detail {
-/// A solve of CollisionSolver's fixed-size path for one number of bodies
-/// (problem, bandwidth of DᵀMD, settings, output); false hands the problem
-/// over to the general path.
-template <class S>
-using SmallSolve = bool (*)(const Problem<S>&, int, const Settings<S>&, Solution<S>&);
-}  // namespace detail
-
 /// Reusable solver: construct once per problem size, then compute() any
 /// problem of that size; compute() does not allocate for double and long
 /// double once the workspace has its size.
@@ -150,9 +98,19 @@ class CollisionSolver {
   /// A dense column vector of S.
   using Vector = Eigen::Matrix<S, Eigen::Dynamic, 1>;
 
-  CollisionSolver() = default;
+  /// A solver with the default settings.
+  CollisionSolver();
   /// A solver with \p settings (tolerances, iteration limit).
-  explicit CollisionSolver(const Settings<S>& settings) : settings_(settings) {}
+  explicit CollisionSolver(const Settings<S>& settings);
+  ///@{
+  /// Copies and moves (the workspace is copied, or moved, with the solver).
+  CollisionSolver(const CollisionSolver& other);
+  CollisionSolver(CollisionSolver&& other) noexcept;
+  CollisionSolver& operator=(const CollisionSolver& other);
+  CollisionSolver& operator=(CollisionSolver&& other) noexcept;
+  ///@}
+  /// Frees the workspace.
+  ~CollisionSolver();
 
   /// Solve \p problem into \p out (reusing out's storage).  Throws
   /// std::invalid_argument("CollisionSolver::compute(): ...") on misuse
@@ -172,7 +130,7 @@ class CollisionSolver {
   /// covers the equations of motion and the imposed gaps only.
   void compute_case(const Problem<S>& problem, const ContactSet& closed, Solution<S>& out);
   /// The settings the solver was made with.
-  const Settings<S>& settings() const { return settings_; }
+  const Settings<S>& settings() const;
 
   /// The linear complementarity problem w = q + Nλ of \p problem exactly
   /// as compute() builds it (same operations, same rounding), before any
@@ -194,33 +152,10 @@ class CollisionSolver {
   Lcp lcp(const Problem<S>& problem);
 
  private:
-  void start(const Problem<S>& p, int bandwidth, Solution<S>& out);
-  bool factorize();  ///< false (and singular_) at a pivot of A that is not positive
-  void form_tableau();
-  template <class V>
-  void solve_in_place(V&& x) const;
-  int check(const Problem<S>& p) const;  ///< Problem::check and the size limit; returns the bandwidth
-  int pivot();
-  bool pivot_on(int p);
-  void finish(const Problem<S>& p, Solution<S>& out, bool imposed);
-
-  Settings<S> settings_ = Settings<S>::defaults();
-  int n_ = 0, nf_ = 0, nc_ = 0;
-  Matrix A_;          ///< LDLᵀ factors of diag(m) + DᵀMD on free bodies (lower triangle; formed at the first pivot)
-  Matrix G_;          ///< A⁻¹ C_Fᵀ, nf × nc
-  Vector W0_;         ///< A⁻¹ b̃, b̃ = diag(m)u − K u − K_{·,fixed} u_fixed on free bodies: every contact open
-  Matrix T_;          ///< the pivoting tableau (starts as N; formed at the first pivot)
-  bool factorized_ = false;  ///< whether A_ holds the factors for the current problem
-  bool tableau_ = false;     ///< whether G_ and T_ are formed for the current problem
-  bool answered_ = false;    ///< whether the output holds the cluster answer of the current case
-  bool singular_ = false;    ///< whether factorize() met a pivot that is not positive (no A⁻¹ in S)
-  Vector t_;          ///< its constant column (starts as q)
-  std::vector<char> basic_lambda_;  ///< contact c: λ_c basic (closed)
-  std::vector<S> lambda_;           ///< λ on every contact, 0 where open
-  detail::CheckWorkspace<S> check_;  ///< scratch of the residual check
-  detail::ClusterSystem<S> system_;  ///< A and b̃ (band), and the answer by clusters of a case
-  int small_n_ = 0;                   ///< the n small_ was chosen for (0: none yet)
-  detail::SmallSolve<S> small_ = nullptr;  ///< the fixed-size path for small_n_ bodies, if any
+  class SUPERBALL_NUMERIC_NO_EXPORT Impl;  ///< the workspace and the steps of a solve (numeric/src/collision/solvers.hpp)
+  template <class T>
+  friend Solution<T> solve(const Problem<T>& problem);
+  std::unique_ptr<Impl> impl_;
 };
 
 /// The solution of \p problem with default settings, by the formulation that
@@ -233,20 +168,22 @@ class CollisionSolver {
 template <class S>
 Solution<S> solve(const Problem<S>& problem);
 
-extern template struct Settings<double>;
-extern template struct Settings<long double>;
-extern template struct Settings<cln::cl_R>;
-extern template struct Settings<cln::cl_RA>;
-extern template class CollisionSolver<double>;
-extern template class CollisionSolver<long double>;
-extern template class CollisionSolver<cln::cl_R>;
-extern template class CollisionSolver<cln::cl_RA>;
+extern template struct SUPERBALL_NUMERIC_EXPORT Settings<double>;
+extern template struct SUPERBALL_NUMERIC_EXPORT Settings<long double>;
+extern template struct SUPERBALL_NUMERIC_EXPORT Settings<cln::cl_R>;
+extern template struct SUPERBALL_NUMERIC_EXPORT Settings<cln::cl_RA>;
+extern template class SUPERBALL_NUMERIC_EXPORT CollisionSolver<double>;
+extern template class SUPERBALL_NUMERIC_EXPORT CollisionSolver<long double>;
+extern template class SUPERBALL_NUMERIC_EXPORT CollisionSolver<cln::cl_R>;
+extern template class SUPERBALL_NUMERIC_EXPORT CollisionSolver<cln::cl_RA>;
 ///@{
 /// The explicit instantiations of solve() compiled into the library, one per scalar type.
-extern template Solution<double> solve(const Problem<double>&);
-extern template Solution<long double> solve(const Problem<long double>&);
-extern template Solution<cln::cl_R> solve(const Problem<cln::cl_R>&);
-extern template Solution<cln::cl_RA> solve(const Problem<cln::cl_RA>&);
+extern template SUPERBALL_NUMERIC_EXPORT Solution<double> solve(const Problem<double>&);
+extern template SUPERBALL_NUMERIC_EXPORT Solution<long double> solve(const Problem<long double>&);
+extern template SUPERBALL_NUMERIC_EXPORT Solution<cln::cl_R> solve(const Problem<cln::cl_R>&);
+extern template SUPERBALL_NUMERIC_EXPORT Solution<cln::cl_RA> solve(const Problem<cln::cl_RA>&);
 ///@}
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

@@ -8,6 +8,8 @@
 /// reading and plotting, not part of the exact collision.
 
 #include <vector>
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -28,3 +30,5 @@ std::vector<BodyFlight> free_flight(const std::vector<double>& velocities_after,
 std::vector<double> trajectory(const BodyFlight& flight, double g, double duration, int samples, std::vector<double>* t = nullptr);
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

@@ -6,7 +6,6 @@
 
 #include <cln/rational.h>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <cmath>
@@ -22,6 +21,8 @@
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/precision.hpp"
 #include "superball/numeric/sweep.hpp"
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -147,7 +148,7 @@ struct MapSettings {
   /// grid points and once for the boundaries (when there are any to bisect),
   /// with a number of tasks T (at most map_tasks, consecutive points or
   /// neighbour pairs each, solved on `threads`) and a function computing task
-  /// t as plain text (detail::points_to_text(), detail::boundaries_to_text());
+  /// t as plain text (points_to_text(), boundaries_to_text() of numeric/src/map_internal.hpp);
   /// it must return the T texts in task order, in every process that calls
   /// map().  Each process then reads them back exactly, finds the pairs to
   /// bisect and chains the curves: the map is the same, bit for bit, whoever
@@ -164,7 +165,7 @@ struct MapSettings {
   /// output_bytes_per_point: each point in the map and the heap block of its
   /// contact set, and while the points are solved their slots in
   /// parallel_map() or, with a runner (which solves a task at a time), all
-  /// the tasks' text (detail::points_to_text()).  The boundaries, a few per cell that a region
+  /// the tasks' text (points_to_text()).  The boundaries, a few per cell that a region
   /// edge crosses, are not counted: they grow with the length of the
   /// curves, not with the area of the grid.  Measured against the peak
   /// resident size of 1000 x 1000 maps in docs/MAPS.md.
@@ -244,67 +245,16 @@ void map_points(const Scene& scene, const Axis& x, const Axis& y, const MapSetti
                 const std::function<void(std::size_t first, const std::vector<MapPoint>& points)>& sink);
 
 /// The margin of the floating-point filter of M's positive
-/// semi-definiteness at a map point (detail::psd_by_floating_point()),
+/// semi-definiteness at a map point (psd_by_floating_point() of numeric/src),
 /// relative to M's Frobenius norm: far above the rounding of the entries and
 /// of a Cholesky factorization (about n·u·‖M‖ for n pairs), so the filter
 /// decides only points at least that far inside or outside the cone.
 inline constexpr double map_psd_margin = 1e-9;
-
-namespace detail {
-
-/// The index of the one entry of M in which the scenes \p a and \p b differ
-/// (as ExactScene, M unchecked), nullopt when they differ in anything else
-/// or in more than one entry: the axis of a map that varies that entry only.
-std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b);
-
-/// \p v, a value converted into S, is held as Problem::from() requires: finite,
-/// and not rounded to zero or to a subnormal number unless it is zero
-/// (\p is_zero, the exact value's verdict).
-template <class S>
-bool held(const S& v, bool is_zero) {
-  return std::isfinite(v) && (is_zero || std::fabs(v) >= std::numeric_limits<S>::min());
-}
-
-/// M's positive semi-definiteness from floating point when it is clear:
-/// with τ = map_psd_margin·‖M‖_F, a Cholesky factorization of M − τI that
-/// succeeds proves λ_min(M) >= τ − (its backward error) > 0 (true); one of
-/// M + τI that fails proves λ_min(M) < −τ + (its backward error) < 0
-/// (false); otherwise nullopt, to be decided exactly.  \p work and \p llt
-/// are reused storage.
-std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work, Eigen::LLT<Eigen::MatrixXd>& llt);
-
-/// The grid points of a map whose axes vary the entries \p kx and \p ky of
-/// M of \p corner (the scene at (x_0, y_0)) in S (double or long double):
-/// each thread converts the corner once and then sets only the two entries
-/// at each point, in S for the solve and, when psd_by_floating_point() does
-/// not decide, exactly for positive_semidefinite().  The problem solved is
-/// Problem<S>::from() of the point's scene, bit for bit, so the points are
-/// those of solving each scene from scratch.
-/// Only the grid points first … first + size − 1 (k = j·x.steps + i) are
-/// solved and returned (a task of MapSettings::runner); the defaults: all.
-template <class S>
-std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::size_t ky, const Axis& x, const Axis& y,
-                                   const MapSettings& settings, std::size_t first = 0, std::size_t size = static_cast<std::size_t>(-1));
-
-/// Grid points as plain text, for MapSettings::runner: one line per point,
-/// "ADMISSIBLE STATUS SUPERBALL RATIO CLOSED" with the ratio as a C99
-/// hexadecimal floating literal (exact, NaN as "nan") and CLOSED the
-/// contacts' bits ("." for a set of no contact).  points_from_text() gives
-/// back the same points, field for field.
-std::string points_to_text(const std::vector<MapPoint>& points);
-/// The points of points_to_text(); throws std::invalid_argument("points_from_text(): …") on a damaged text.
-std::vector<MapPoint> points_from_text(const std::string& text);
-/// Boundary points as plain text, one line each: "ALONG_X I J LOW HIGH
-/// BELOW_PSD ABOVE_PSD BELOW_SUPERBALL ABOVE_SUPERBALL BELOW ABOVE", the
-/// bracket's ends exact as p/q and the cases as in points_to_text().
-std::string boundaries_to_text(const std::vector<MapBoundary>& boundaries);
-/// The boundaries of boundaries_to_text(); throws std::invalid_argument("boundaries_from_text(): …") on a damaged text.
-std::vector<MapBoundary> boundaries_from_text(const std::string& text);
-
-}  // namespace detail
 
 /// The point of a boundary in the plane, in double: the middle of its bracket
 /// on the varying axis, the grid value on the other.
 std::pair<double, double> position(const Map& map, const MapBoundary& b);
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

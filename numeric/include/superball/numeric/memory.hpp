@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <string>
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -35,3 +37,5 @@ void check_memory(const std::string& function, const std::string& what, double b
                   const std::string& advice);
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

@@ -25,6 +25,8 @@
 #include <type_traits>
 #include <utility>
 #include <vector>
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -135,3 +137,5 @@ auto parallel_map(std::size_t count, int threads, MakeState make_state, Task tas
 }
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

@@ -8,6 +8,8 @@
 
 #include <optional>
 #include <string>
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -63,3 +65,5 @@ decltype(auto) with_scalar(const Precision& p, F&& f) {
 }
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

@@ -16,6 +16,8 @@
 
 #include "superball/cases/model.hpp"
 #include "superball/numeric/scalar.hpp"
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -194,14 +196,16 @@ bool positive_semidefinite(const ExactScene& scene);
 
 ///@{
 /// The explicit instantiations of scaling_of() compiled into the library, one per scalar type.
-extern template Scaling scaling_of(const Problem<double>&);
-extern template Scaling scaling_of(const Problem<long double>&);
-extern template Scaling scaling_of(const Problem<cln::cl_R>&);
-extern template Scaling scaling_of(const Problem<cln::cl_RA>&);
+extern template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<double>&);
+extern template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<long double>&);
+extern template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<cln::cl_R>&);
+extern template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<cln::cl_RA>&);
 ///@}
-extern template struct Problem<double>;
-extern template struct Problem<long double>;
-extern template struct Problem<cln::cl_R>;
-extern template struct Problem<cln::cl_RA>;
+extern template struct SUPERBALL_NUMERIC_EXPORT Problem<double>;
+extern template struct SUPERBALL_NUMERIC_EXPORT Problem<long double>;
+extern template struct SUPERBALL_NUMERIC_EXPORT Problem<cln::cl_R>;
+extern template struct SUPERBALL_NUMERIC_EXPORT Problem<cln::cl_RA>;
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

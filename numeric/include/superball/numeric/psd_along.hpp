@@ -10,6 +10,9 @@
 
 #include "superball/cases/parameter.hpp"
 
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
+
 namespace superball::numeric {
 
 /// Whether M of \p scene with \p parameter set to each of \p values is
@@ -29,3 +32,5 @@ std::vector<bool> psd_along(const Scene& scene, const Parameter& parameter, cons
 inline constexpr std::size_t psd_along_samples = 1024;
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

@@ -8,6 +8,8 @@
 #include <string>
 
 #include "superball/cases/parameter.hpp"
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -35,3 +37,5 @@ inline constexpr int sweep_max_steps = 10000000;
 Range parse_range(const std::string& option, const std::string& text, const Scene& scene, int max_steps);
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

@@ -14,6 +14,8 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace Eigen {
 
@@ -85,7 +87,7 @@ cln::float_format_t digits_format(int digits);
 /// cln::cl_R so that the integer constants Eigen creates stay exact and
 /// never lower the precision.
 template <>
-struct ScalarTraits<cln::cl_R> {
+struct SUPERBALL_NUMERIC_EXPORT ScalarTraits<cln::cl_R> {
   /// Whether S holds exact values (no rounding).
   static constexpr bool exact = false;
   /// The precision's name, as `--precision` spells it ("digits", the N apart).
@@ -102,7 +104,7 @@ struct ScalarTraits<cln::cl_R> {
 
 template <>
 /// Exact CLN rationals: no rounding at all.
-struct ScalarTraits<cln::cl_RA> {
+struct SUPERBALL_NUMERIC_EXPORT ScalarTraits<cln::cl_RA> {
   /// Whether S holds exact values (no rounding).
   static constexpr bool exact = true;
   /// The precision's name, as `--precision` spells it.
@@ -159,3 +161,5 @@ std::string to_decimal(const cln::cl_RA& x, int significant);
 cln::cl_RA parse_rational(const std::string& fraction);
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

@@ -13,6 +13,8 @@
 #include "superball/cases/parameter.hpp"
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/precision.hpp"
+#include "superball/numeric/export.hpp"
+SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
@@ -190,3 +192,5 @@ std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& para
                                        int bits = 64, int threads = 1);
 
 }  // namespace superball::numeric
+
+SUPERBALL_NUMERIC_API_END

@@ -29,6 +29,8 @@
 #include "superball/cases/model.hpp"
 #include "superball/symbolic/pattern.hpp"
 #include "superball/symbolic/symbols.hpp"
+#include "superball/symbolic/export.hpp"
+SUPERBALL_SYMBOLIC_API_BEGIN
 
 namespace superball::symbolic {
 
@@ -369,3 +371,5 @@ bool same_condition(const GiNaC::ex& p, const GiNaC::ex& q, const Symbols& symbo
 GiNaC::exmap reference_point(const Symbols& symbols);
 
 }  // namespace superball::symbolic
+
+SUPERBALL_SYMBOLIC_API_END

@@ -11,6 +11,9 @@
 #include "superball/symbolic/pattern.hpp"
 #include "superball/symbolic/symbols.hpp"
 
+#include "superball/symbolic/export.hpp"
+SUPERBALL_SYMBOLIC_API_BEGIN
+
 namespace superball::symbolic {
 
 /// The width of \p p: how many bodies apart the widest declared entry joins
@@ -40,3 +43,5 @@ Estimate estimate_derivation(const Pattern& pattern, Obstacle obstacle, std::siz
 std::string duration_text(double seconds);
 
 }  // namespace superball::symbolic
+
+SUPERBALL_SYMBOLIC_API_END

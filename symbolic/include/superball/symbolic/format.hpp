@@ -20,6 +20,8 @@
 
 #include "superball/symbolic/derivation.hpp"
 #include "superball/symbolic/symbols.hpp"
+#include "superball/symbolic/export.hpp"
+SUPERBALL_SYMBOLIC_API_BEGIN
 
 namespace superball::symbolic {
 
@@ -121,3 +123,5 @@ std::string reaction_name(const Pair& contact, Style style);
 std::string condition_title(const Condition& c, Style style);
 
 }  // namespace superball::symbolic
+
+SUPERBALL_SYMBOLIC_API_END

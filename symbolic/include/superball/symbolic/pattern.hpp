@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "superball/cases/model.hpp"
+#include "superball/symbolic/export.hpp"
+SUPERBALL_SYMBOLIC_API_BEGIN
 
 namespace superball::symbolic {
 
@@ -73,3 +75,5 @@ struct Pattern {
 };
 
 }  // namespace superball::symbolic
+
+SUPERBALL_SYMBOLIC_API_END

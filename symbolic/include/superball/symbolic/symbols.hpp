@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "superball/symbolic/pattern.hpp"
+#include "superball/symbolic/export.hpp"
+SUPERBALL_SYMBOLIC_API_BEGIN
 
 namespace superball::symbolic {
 
@@ -108,3 +110,5 @@ class Symbols {
 std::string pair_code(const Pair& p);
 
 }  // namespace superball::symbolic
+
+SUPERBALL_SYMBOLIC_API_END

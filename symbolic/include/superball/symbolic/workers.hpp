@@ -13,6 +13,9 @@
 
 #include "superball/symbolic/derivation.hpp"
 
+#include "superball/symbolic/export.hpp"
+SUPERBALL_SYMBOLIC_API_BEGIN
+
 namespace superball::symbolic {
 
 /// A run stopped by its `interrupted` hook (Ctrl-C): the workers are
@@ -98,3 +101,5 @@ void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
                   const std::function<std::string(std::size_t, const Derivation&)>& write, const Workers::Deliver& deliver, const DeriveRun& run);
 
 }  // namespace superball::symbolic
+
+SUPERBALL_SYMBOLIC_API_END

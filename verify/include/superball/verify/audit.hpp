@@ -19,6 +19,8 @@
 
 #include "superball/cases/printed_conditions.hpp"
 #include "superball/verify/space.hpp"
+#include "superball/verify/export.hpp"
+SUPERBALL_VERIFY_API_BEGIN
 
 namespace superball::verify {
 
@@ -111,3 +113,5 @@ struct Audit {
 Audit audit_paper(const PrintedConditions& data, const AuditOptions& options = {});
 
 }  // namespace superball::verify
+
+SUPERBALL_VERIFY_API_END

@@ -57,6 +57,8 @@
 
 #include "superball/cases/model.hpp"
 #include "superball/symbolic/derivation.hpp"
+#include "superball/verify/export.hpp"
+SUPERBALL_VERIFY_API_BEGIN
 
 namespace superball::verify {
 
@@ -176,3 +178,5 @@ PatternTable explore_all_patterns(const ExploreOptions& options = {});
 std::string impossibility_certificate(const GiNaC::ex& s_poly, const symbolic::Symbols& sy);
 
 }  // namespace superball::verify
+
+SUPERBALL_VERIFY_API_END

@@ -25,6 +25,8 @@
 #include "superball/cases/model.hpp"
 #include "superball/numeric/map.hpp"
 #include "superball/symbolic/derivation.hpp"
+#include "superball/verify/export.hpp"
+SUPERBALL_VERIFY_API_BEGIN
 
 namespace superball::verify {
 
@@ -98,3 +100,5 @@ Overlay overlay(const Scene& scene, const numeric::Map& map, int bits = 64);
 std::pair<cln::cl_RA, cln::cl_RA> position(const numeric::Map& map, const DerivedZero& z);
 
 }  // namespace superball::verify
+
+SUPERBALL_VERIFY_API_END

@@ -26,6 +26,8 @@
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/problem.hpp"
 #include "superball/symbolic/derivation.hpp"
+#include "superball/verify/export.hpp"
+SUPERBALL_VERIFY_API_BEGIN
 
 namespace superball::verify {
 
@@ -191,3 +193,5 @@ Point deep_copy(const Point& x);
 std::string to_string(const cln::cl_RA& x);
 
 }  // namespace superball::verify
+
+SUPERBALL_VERIFY_API_END

@@ -34,6 +34,8 @@
 #include "superball/cases/model.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/symbolic/derivation.hpp"
+#include "superball/verify/export.hpp"
+SUPERBALL_VERIFY_API_BEGIN
 
 namespace superball::verify {
 
@@ -230,3 +232,5 @@ Verification verify_case(const symbolic::Deriver& deriver, const ContactSet& clo
 std::string epsilon_name(const cln::cl_RA& epsilon);
 
 }  // namespace superball::verify
+
+SUPERBALL_VERIFY_API_END

@@ -1,4 +1,4 @@
-#include "detail/complete.hpp"
+#include "collision/complete.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "detail/exact_kernel.hpp"
+#include "collision/exact_kernel.hpp"
 
 #include <cln/integer.h>
 #include <cln/rational.h>

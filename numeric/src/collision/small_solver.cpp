@@ -1,11 +1,14 @@
-// The fixed-size path of CollisionSolver (detail/small_solver.hpp): the
+// The fixed-size path of CollisionSolver (small_solver.hpp): the
 // operations of collision.cpp, cluster.cpp and complete.cpp, in their order,
-// on arrays whose sizes are known at compile time.  Any change to the
+// on arrays whose sizes are known at compile time; the dense LDLᵀ, its
+// solves and the pivoting step are the general path's own templates
+// (dense_steps.hpp).  Any change to the
 // arithmetic of those files must be made here too; the tests compare the two
 // paths bit for bit (tests/numeric/small_solver_test.cpp).
-#include "detail/small_solver.hpp"
+#include "collision/small_solver.hpp"
 
-#include "detail/complete.hpp"
+#include "collision/complete.hpp"
+#include "collision/dense_steps.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -309,26 +312,14 @@ template <class S, int N, bool Full>
 bool Small<S, N, Full>::factorize() {
   for (int i = 0; i < nf_; ++i)
     for (int j = 0; j <= i; ++j) Ad_[i][j] = i - j <= band() ? A(i, i - j) : S(0);
-  for (int k = 0; k < nf_; ++k) {
-    const S d = Ad_[k][k];
-    if (!(d > S(0))) return false;
-    for (int j = k + 1; j < nf_; ++j) {
-      const S ljk = Ad_[j][k] / d;
-      for (int i = j; i < nf_; ++i) Ad_[i][j] -= Ad_[i][k] * ljk;
-    }
-    for (int i = k + 1; i < nf_; ++i) Ad_[i][k] /= d;
-  }
-  return true;
+  auto dense = [this](int i, int j) -> S& { return Ad_[i][j]; };
+  return ldlt_in_place<S>(dense, nf_);
 }
 
 template <class S, int N, bool Full>
 void Small<S, N, Full>::solve_in_place(S* x, int stride) const {
-  auto X = [&](int i) -> S& { return x[i * stride]; };
-  for (int i = 1; i < nf_; ++i)
-    for (int k = 0; k < i; ++k) X(i) -= Ad_[i][k] * X(k);
-  for (int i = 0; i < nf_; ++i) X(i) /= Ad_[i][i];
-  for (int i = nf_ - 2; i >= 0; --i)
-    for (int k = i + 1; k < nf_; ++k) X(i) -= Ad_[k][i] * X(k);
+  const auto dense = [this](int i, int j) -> const S& { return Ad_[i][j]; };
+  ldlt_solve_in_place(dense, nf_, [x, stride](int i) -> S& { return x[i * stride]; });
 }
 
 template <class S, int N, bool Full>
@@ -351,22 +342,9 @@ bool Small<S, N, Full>::pivot_on(int p) {
     if (!factorize()) return false;
     form_tableau();
   }
-  const int nc = nc_;
-  const S piv = T_[p][p];
-  if (!(piv > S(0))) return false;
-  for (int i = 0; i < nc; ++i) {
-    if (i == p) continue;
-    const S f = T_[i][p] / piv;
-    if (f == S(0)) continue;
-    for (int j = 0; j < nc; ++j)
-      if (j != p) T_[i][j] -= f * T_[p][j];
-    t_[i] -= f * t_[p];
-    T_[i][p] = f;
-  }
-  for (int j = 0; j < nc; ++j)
-    if (j != p) T_[p][j] = -T_[p][j] / piv;
-  T_[p][p] = S(1) / piv;
-  t_[p] = -t_[p] / piv;
+  auto T = [this](int i, int j) -> S& { return T_[i][j]; };
+  auto t = [this](int i) -> S& { return t_[i]; };
+  if (!principal_pivot<S>(T, t, nc_, p)) return false;
   basic_[p] ^= 1;
   return true;
 }

@@ -4,8 +4,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "detail/complete.hpp"
-#include "detail/exact_kernel.hpp"
+#include "collision/complete.hpp"
+#include "collision/exact_kernel.hpp"
+#include "collision/solvers.hpp"
 
 namespace superball::numeric {
 namespace {
@@ -15,7 +16,7 @@ constexpr int block_pivot_patience = 10;
 }  // namespace
 
 template <class S>
-void ChainSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
+void ChainSolver<S>::Impl::compute(const Problem<S>& p, Solution<S>& out) {
   const int b = p.check("ChainSolver::compute()");
   const int nc = p.n - 1, nf = p.fixed_bottom ? p.n - 1 : p.n;
   if constexpr (ScalarTraits<S>::exact)  // the integer kernel, the same pivoting (exact_kernel.hpp)
@@ -86,8 +87,16 @@ template <class S>
 Solution<S> solve(const Problem<S>& problem) {
   const Settings<S> settings = Settings<S>::defaults(problem.digits);
   auto solve_as_given = [&settings](const Problem<S>& p) {
-    if (solves_as_chain(p)) return ChainSolver<S>(settings).compute(p);
-    return CollisionSolver<S>(settings).compute(p);
+    // The solvers' workspaces, not the solvers: no allocation for a pimpl.
+    Solution<S> out;
+    if (solves_as_chain(p)) {
+      typename ChainSolver<S>::Impl chain(settings);
+      chain.compute(p, out);
+    } else {
+      typename CollisionSolver<S>::Impl dense(settings);
+      dense.compute(p, out);
+    }
+    return out;
   };
   // Data outside the safe window of S are solved scaled by powers of two
   // (scaling_of()) and the answer scaled back exactly; an answer S cannot
@@ -99,10 +108,36 @@ Solution<S> solve(const Problem<S>& problem) {
   return out;
 }
 
-template Solution<double> solve(const Problem<double>&);
-template Solution<long double> solve(const Problem<long double>&);
-template Solution<cln::cl_R> solve(const Problem<cln::cl_R>&);
-template Solution<cln::cl_RA> solve(const Problem<cln::cl_RA>&);
+template <class S>
+ChainSolver<S>::ChainSolver() : impl_(std::make_unique<Impl>(Settings<S>::defaults())) {}
+template <class S>
+ChainSolver<S>::ChainSolver(const Settings<S>& settings) : impl_(std::make_unique<Impl>(settings)) {}
+template <class S>
+ChainSolver<S>::ChainSolver(const ChainSolver& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+template <class S>
+ChainSolver<S>::ChainSolver(ChainSolver&& other) noexcept = default;
+template <class S>
+ChainSolver<S>& ChainSolver<S>::operator=(const ChainSolver& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+template <class S>
+ChainSolver<S>& ChainSolver<S>::operator=(ChainSolver&& other) noexcept = default;
+template <class S>
+ChainSolver<S>::~ChainSolver() = default;
+template <class S>
+void ChainSolver<S>::compute(const Problem<S>& problem, Solution<S>& out) {
+  impl_->compute(problem, out);
+}
+template <class S>
+int ChainSolver<S>::bandwidth() const {
+  return impl_->bandwidth();
+}
+
+template SUPERBALL_NUMERIC_EXPORT Solution<double> solve(const Problem<double>&);
+template SUPERBALL_NUMERIC_EXPORT Solution<long double> solve(const Problem<long double>&);
+template SUPERBALL_NUMERIC_EXPORT Solution<cln::cl_R> solve(const Problem<cln::cl_R>&);
+template SUPERBALL_NUMERIC_EXPORT Solution<cln::cl_RA> solve(const Problem<cln::cl_RA>&);
 
 template class ChainSolver<double>;
 template class ChainSolver<long double>;

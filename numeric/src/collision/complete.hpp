@@ -6,8 +6,53 @@
 #include <vector>
 
 #include "superball/numeric/collision.hpp"
+#include "collision/cluster.hpp"
 
 namespace superball::numeric::detail {
+
+/// A sum and the sum of the magnitudes of its terms, side by side, so that
+/// adding a term updates both with one store (the residual check scatters
+/// over M's entries, and there the stores are the bottleneck).
+template <class S>
+class Sized {
+ public:
+  void add(const S& term, const S& magnitude) { value_ += term, size_ += magnitude; }
+  const S& value() const { return value_; }
+  const S& size() const { return size_; }
+  void set(const S& value, const S& size) { value_ = value, size_ = size; }
+
+ private:
+  S value_ = S(0), size_ = S(0);
+};
+/// In double both live in one 16-byte vector (GCC/Clang vector extension).
+template <>
+class Sized<double> {
+  using Pair = double __attribute__((vector_size(16)));
+
+ public:
+  void add(double term, double magnitude) { v_ += Pair{term, magnitude}; }
+  double value() const { return v_[0]; }
+  double size() const { return v_[1]; }
+  void set(double value, double size) { v_ = Pair{value, size}; }
+
+ private:
+  Pair v_ = {0, 0};
+};
+/// Scratch space of the residual check, kept by a solver between solves so
+/// that a solve does not allocate.
+template <class S>
+struct CheckWorkspace {
+  std::vector<Sized<S>> y;     ///< per body: W + u and |W| + |u|
+  std::vector<Sized<S>> rows;  ///< per body: the residual of its equation of motion and the sum of |terms|
+  std::vector<int> group;      ///< per body: union-find parent over the bodies M and the closed contacts join
+  std::vector<Sized<S>> momentum;  ///< per group: Σ m (W − u) and Σ m (|W| + |u|)
+  /// The union-find after M's joins, which depend only on n and on the
+  /// bodies and zero-ness of M's entries: kept with those (entry_key: i, j,
+  /// k, l and value ≠ 0 per entry) and reused while the next problem has the
+  /// same (a reused solver, a sweep or a map varying values only).
+  std::vector<int> entry_key, entry_group;
+  int entry_bodies = -1;
+};
 
 template <class S>
 S abs_value(const S& x) {

@@ -1,8 +1,10 @@
 #include "superball/numeric/collision.hpp"
 
-#include "detail/complete.hpp"
-#include "detail/small_solver.hpp"
-#include "detail/exact_kernel.hpp"
+#include "collision/complete.hpp"
+#include "collision/dense_steps.hpp"
+#include "collision/exact_kernel.hpp"
+#include "collision/small_solver.hpp"
+#include "collision/solvers.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +32,7 @@ Settings<S> Settings<S>::defaults(int digits) {
 }
 
 template <class S>
-void CollisionSolver<S>::start(const Problem<S>& p, int bandwidth, Solution<S>& out) {
+void CollisionSolver<S>::Impl::start(const Problem<S>& p, int bandwidth, Solution<S>& out) {
   // A = diag(m) + DᵀMD and b̃, once, in the band storage of the cluster
   // system; then the case with every contact open (one cluster per body,
   // A W = b̃), whose gaps are the constant column q of the LCP.
@@ -50,7 +52,7 @@ void CollisionSolver<S>::start(const Problem<S>& p, int bandwidth, Solution<S>& 
     for (int i = 0; i < nf_; ++i) W0_(i) = out.velocities_after[static_cast<std::size_t>(i)];
   } else if (factorize()) {  // rounding broke the definiteness of A: the dense factors say what they can
     for (int i = 0; i < nf_; ++i) W0_(i) = system_.rhs()[static_cast<std::size_t>(i)];
-    solve_in_place(W0_);
+    detail::ldlt_solve_in_place(A_, nf_, W0_);
   } else {  // a pivot of A is not positive in S: nothing to pivot on (compute() says so)
     W0_.setZero();
   }
@@ -58,41 +60,20 @@ void CollisionSolver<S>::start(const Problem<S>& p, int bandwidth, Solution<S>& 
 }
 
 template <class S>
-template <class V>
-void CollisionSolver<S>::solve_in_place(V&& x) const {
-  // x := A⁻¹x with the LDLᵀ factors held in A_.
-  for (int i = 1; i < nf_; ++i)
-    for (int k = 0; k < i; ++k) x(i) -= A_(i, k) * x(k);
-  for (int i = 0; i < nf_; ++i) x(i) /= A_(i, i);
-  for (int i = nf_ - 2; i >= 0; --i)
-    for (int k = i + 1; k < nf_; ++k) x(i) -= A_(k, i) * x(k);
-}
-
-template <class S>
-bool CollisionSolver<S>::factorize() {
+bool CollisionSolver<S>::Impl::factorize() {
   // The lower triangle of A on the free bodies from the band, then its LDLᵀ
   // in place, no pivoting (A is symmetric positive definite: positive
   // masses plus DᵀMD with M positive semi-definite).
   const int b = system_.bandwidth();
   for (int i = 0; i < nf_; ++i)
     for (int j = 0; j <= i; ++j) A_(i, j) = i - j <= b ? system_.band(i, i - j) : S(0);
-  singular_ = false;
-  for (int k = 0; k < nf_ && !singular_; ++k) {
-    const S d = A_(k, k);
-    singular_ = !(d > S(0));  // no division by it (CLN floats throw on 0)
-    if (singular_) break;
-    for (int j = k + 1; j < nf_; ++j) {
-      const S ljk = A_(j, k) / d;
-      for (int i = j; i < nf_; ++i) A_(i, j) -= A_(i, k) * ljk;
-    }
-    for (int i = k + 1; i < nf_; ++i) A_(i, k) /= d;
-  }
+  singular_ = !detail::ldlt_in_place<S>(A_, nf_);
   factorized_ = true;
   return !singular_;
 }
 
 template <class S>
-void CollisionSolver<S>::form_tableau() {
+void CollisionSolver<S>::Impl::form_tableau() {
   // G = A⁻¹ C_Fᵀ, one solve per contact, and the tableau T = N = C G.
   if (!factorized_) factorize();
   if (singular_) return;  // no A⁻¹ in S: pivot_on() declines
@@ -100,7 +81,7 @@ void CollisionSolver<S>::form_tableau() {
   for (int c = 0; c < nc_; ++c) {
     G_(c, c) = S(1);
     if (c + 1 < nf_) G_(c + 1, c) = S(-1);
-    solve_in_place(G_.col(c));
+    detail::ldlt_solve_in_place(A_, nf_, G_.col(c));
   }
   for (int c = 0; c < nc_; ++c) {
     if (c + 1 < nf_)
@@ -112,7 +93,7 @@ void CollisionSolver<S>::form_tableau() {
 }
 
 template <class S>
-typename CollisionSolver<S>::Lcp CollisionSolver<S>::lcp(const Problem<S>& p) {
+typename CollisionSolver<S>::Lcp CollisionSolver<S>::Impl::lcp(const Problem<S>& p) {
   const int b = check(p);
   Solution<S> open;
   start(p, b, open);
@@ -122,7 +103,7 @@ typename CollisionSolver<S>::Lcp CollisionSolver<S>::lcp(const Problem<S>& p) {
 }
 
 template <class S>
-int CollisionSolver<S>::pivot() {
+int CollisionSolver<S>::Impl::pivot() {
   // Murty's least-index principal pivoting: exchange w_p and λ_p for the
   // smallest p whose basic variable is negative.  Terminates for P-matrices.
   S scale = S(0);
@@ -141,33 +122,19 @@ int CollisionSolver<S>::pivot() {
 }
 
 template <class S>
-bool CollisionSolver<S>::pivot_on(int p) {
+bool CollisionSolver<S>::Impl::pivot_on(int p) {
   // Principal pivot transform on (p, p): exchange the basic and non-basic
   // variables of contact p, an O(nc²) update of the tableau.
-    if (!tableau_) form_tableau();
-    if (singular_) return false;
-    answered_ = false;
-    const S piv = T_(p, p);
-    if (!(piv > S(0))) return false;
-    for (int i = 0; i < nc_; ++i) {
-      if (i == p) continue;
-      const S f = T_(i, p) / piv;
-      if (f == S(0)) continue;
-      for (int j = 0; j < nc_; ++j)
-        if (j != p) T_(i, j) -= f * T_(p, j);
-      t_(i) -= f * t_(p);
-      T_(i, p) = f;
-    }
-    for (int j = 0; j < nc_; ++j)
-      if (j != p) T_(p, j) = -T_(p, j) / piv;
-    T_(p, p) = S(1) / piv;
-    t_(p) = -t_(p) / piv;
-    basic_lambda_[static_cast<std::size_t>(p)] ^= 1;
-    return true;
+  if (!tableau_) form_tableau();
+  if (singular_) return false;
+  answered_ = false;
+  if (!detail::principal_pivot<S>(T_, t_, nc_, p)) return false;
+  basic_lambda_[static_cast<std::size_t>(p)] ^= 1;
+  return true;
 }
 
 template <class S>
-void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out, bool imposed) {
+void CollisionSolver<S>::Impl::finish(const Problem<S>& p, Solution<S>& out, bool imposed) {
   // The pivoting decided the case; the answer comes from the cluster system
   // of that case, so that bodies in contact share one velocity exactly and
   // the accuracy does not depend on the conditioning of the tableau.  With
@@ -177,7 +144,7 @@ void CollisionSolver<S>::finish(const Problem<S>& p, Solution<S>& out, bool impo
 }
 
 template <class S>
-int CollisionSolver<S>::check(const Problem<S>& p) const {
+int CollisionSolver<S>::Impl::check(const Problem<S>& p) const {
   const int b = p.check("CollisionSolver::compute()");
   if (p.n > dense_solver_max_bodies)
     throw std::invalid_argument("CollisionSolver::compute(): " + std::to_string(p.n) + " bodies: the dense solver takes at most " +
@@ -186,7 +153,7 @@ int CollisionSolver<S>::check(const Problem<S>& p) const {
 }
 
 template <class S>
-void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
+void CollisionSolver<S>::Impl::compute(const Problem<S>& p, Solution<S>& out) {
   const int bandwidth = check(p);
   if constexpr (std::is_floating_point<S>::value) {  // n <= 8: sizes known at compile time (small_solver.cpp)
     if (settings_.small_sizes) {
@@ -206,7 +173,7 @@ void CollisionSolver<S>::compute(const Problem<S>& p, Solution<S>& out) {
 }
 
 template <class S>
-void CollisionSolver<S>::compute_case(const Problem<S>& p, const ContactSet& closed, Solution<S>& out) {
+void CollisionSolver<S>::Impl::compute_case(const Problem<S>& p, const ContactSet& closed, Solution<S>& out) {
   const int b = check(p);
   if (closed.bodies() != p.n)
     throw std::invalid_argument("CollisionSolver::compute_case(): the case is for " + std::to_string(closed.bodies()) +
@@ -220,6 +187,41 @@ void CollisionSolver<S>::compute_case(const Problem<S>& p, const ContactSet& clo
       if (!pivot_on(c)) out.status = Status::NumericalIssue;
     }
   finish(p, out, true);
+}
+
+template <class S>
+CollisionSolver<S>::CollisionSolver() : impl_(std::make_unique<Impl>(Settings<S>::defaults())) {}
+template <class S>
+CollisionSolver<S>::CollisionSolver(const Settings<S>& settings) : impl_(std::make_unique<Impl>(settings)) {}
+template <class S>
+CollisionSolver<S>::CollisionSolver(const CollisionSolver& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+template <class S>
+CollisionSolver<S>::CollisionSolver(CollisionSolver&& other) noexcept = default;
+template <class S>
+CollisionSolver<S>& CollisionSolver<S>::operator=(const CollisionSolver& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+template <class S>
+CollisionSolver<S>& CollisionSolver<S>::operator=(CollisionSolver&& other) noexcept = default;
+template <class S>
+CollisionSolver<S>::~CollisionSolver() = default;
+
+template <class S>
+void CollisionSolver<S>::compute(const Problem<S>& problem, Solution<S>& out) {
+  impl_->compute(problem, out);
+}
+template <class S>
+void CollisionSolver<S>::compute_case(const Problem<S>& problem, const ContactSet& closed, Solution<S>& out) {
+  impl_->compute_case(problem, closed, out);
+}
+template <class S>
+const Settings<S>& CollisionSolver<S>::settings() const {
+  return impl_->settings();
+}
+template <class S>
+typename CollisionSolver<S>::Lcp CollisionSolver<S>::lcp(const Problem<S>& problem) {
+  return impl_->lcp(problem);
 }
 
 template struct Settings<double>;

@@ -1,5 +1,5 @@
 #pragma once
-/// \file paper_data.hpp
+/// \file paper_data.hpp (internal)
 /// The files of cases/paper/, compiled into the library.
 
 #include <string>

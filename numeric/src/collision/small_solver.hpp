@@ -6,6 +6,12 @@
 
 namespace superball::numeric::detail {
 
+/// A solve of CollisionSolver's fixed-size path for one number of bodies
+/// (problem, bandwidth of DᵀMD, settings, output); false hands the problem
+/// over to the general path.
+template <class S>
+using SmallSolve = bool (*)(const Problem<S>&, int, const Settings<S>&, Solution<S>&);
+
 /// The largest n that CollisionSolver solves on the fixed-size path.
 inline constexpr int small_max_bodies = 8;
 

@@ -1,4 +1,4 @@
-#include "superball/numeric/cluster.hpp"
+#include "collision/cluster.hpp"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file cluster.hpp
-/// Internal: the velocities after the collision for one evolution case, by
+/// Internal (numeric/src): the velocities after the collision for one evolution case, by
 /// clusters.  Closed contacts tie consecutive bodies into clusters with one
 /// velocity each; with Z the cluster incidence the velocities solve
 ///     Zᵀ A Z V = Zᵀ b̃,   W = Z V,   A = diag(m) + DᵀMD,

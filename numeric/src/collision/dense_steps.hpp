@@ -1,0 +1,65 @@
+#pragma once
+// Internal: the dense steps that CollisionSolver's general path
+// (collision.cpp, Eigen matrices) and its fixed-size path (small_solver.cpp,
+// arrays of compile-time size) share: one template each, over the storage
+// (anything with A(i, j) and x(i) giving the element), so that both paths
+// perform the same operations in the same order and agree bit for bit
+// (tests/numeric/small_solver_test.cpp).
+
+namespace superball::numeric::detail {
+
+/// The LDLᵀ factors of the symmetric \p nf × \p nf matrix whose lower
+/// triangle \p A holds, in place and without pivoting (A = diag(m) + DᵀMD on
+/// the free bodies is positive definite when M is positive semi-definite): L
+/// below the diagonal, D on it.  False at the first pivot that is not
+/// positive, with no division by it (CLN floats throw on 0), the factors
+/// then partial.
+template <class S, class Matrix>
+bool ldlt_in_place(Matrix& A, int nf) {
+  for (int k = 0; k < nf; ++k) {
+    const S d = A(k, k);
+    if (!(d > S(0))) return false;
+    for (int j = k + 1; j < nf; ++j) {
+      const S ljk = A(j, k) / d;
+      for (int i = j; i < nf; ++i) A(i, j) -= A(i, k) * ljk;
+    }
+    for (int i = k + 1; i < nf; ++i) A(i, k) /= d;
+  }
+  return true;
+}
+
+/// x := A⁻¹x for the factors of ldlt_in_place() in \p A (\p nf unknowns).
+template <class Matrix, class Vector>
+void ldlt_solve_in_place(const Matrix& A, int nf, Vector&& x) {
+  for (int i = 1; i < nf; ++i)
+    for (int k = 0; k < i; ++k) x(i) -= A(i, k) * x(k);
+  for (int i = 0; i < nf; ++i) x(i) /= A(i, i);
+  for (int i = nf - 2; i >= 0; --i)
+    for (int k = i + 1; k < nf; ++k) x(i) -= A(k, i) * x(k);
+}
+
+/// The principal pivot transform on (p, p) of the tableau w = t + Tλ of
+/// \p nc contacts: exchanges the basic and the non-basic variable of contact
+/// \p p, an O(nc²) update of \p T and \p t in place (Murty's pivoting step).
+/// False, with both unchanged, when T(p, p) is not positive.
+template <class S, class Tableau, class Column>
+bool principal_pivot(Tableau& T, Column& t, int nc, int p) {
+  const S piv = T(p, p);
+  if (!(piv > S(0))) return false;
+  for (int i = 0; i < nc; ++i) {
+    if (i == p) continue;
+    const S f = T(i, p) / piv;
+    if (f == S(0)) continue;
+    for (int j = 0; j < nc; ++j)
+      if (j != p) T(i, j) -= f * T(p, j);
+    t(i) -= f * t(p);
+    T(i, p) = f;
+  }
+  for (int j = 0; j < nc; ++j)
+    if (j != p) T(p, j) = -T(p, j) / piv;
+  T(p, p) = S(1) / piv;
+  t(p) = -t(p) / piv;
+  return true;
+}
+
+}  // namespace superball::numeric::detail

@@ -1,0 +1,70 @@
+#pragma once
+// Internal: the pieces of map() that sweep() and the tests use too — the
+// entry of M an axis varies, the floating-point filter of M's positive
+// semi-definiteness, the grid points of a map along two entries of M, and
+// the plain text in which a MapSettings::runner's tasks come back.
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "superball/numeric/map.hpp"
+
+namespace superball::numeric::detail {
+
+/// The index of the one entry of M in which the scenes \p a and \p b differ
+/// (as ExactScene, M unchecked), nullopt when they differ in anything else
+/// or in more than one entry: the axis of a map that varies that entry only.
+std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b);
+
+/// \p v, a value converted into S, is held as Problem::from() requires: finite,
+/// and not rounded to zero or to a subnormal number unless it is zero
+/// (\p is_zero, the exact value's verdict).
+template <class S>
+bool held(const S& v, bool is_zero) {
+  return std::isfinite(v) && (is_zero || std::fabs(v) >= std::numeric_limits<S>::min());
+}
+
+/// M's positive semi-definiteness from floating point when it is clear:
+/// with τ = map_psd_margin·‖M‖_F, a Cholesky factorization of M − τI that
+/// succeeds proves λ_min(M) >= τ − (its backward error) > 0 (true); one of
+/// M + τI that fails proves λ_min(M) < −τ + (its backward error) < 0
+/// (false); otherwise nullopt, to be decided exactly.  \p work and \p llt
+/// are reused storage.
+std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work, Eigen::LLT<Eigen::MatrixXd>& llt);
+
+/// The grid points of a map whose axes vary the entries \p kx and \p ky of
+/// M of \p corner (the scene at (x_0, y_0)) in S (double or long double):
+/// each thread converts the corner once and then sets only the two entries
+/// at each point, in S for the solve and, when psd_by_floating_point() does
+/// not decide, exactly for positive_semidefinite().  The problem solved is
+/// Problem<S>::from() of the point's scene, bit for bit, so the points are
+/// those of solving each scene from scratch.
+/// Only the grid points first … first + size − 1 (k = j·x.steps + i) are
+/// solved and returned (a task of MapSettings::runner); the defaults: all.
+template <class S>
+std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::size_t ky, const Axis& x, const Axis& y,
+                                   const MapSettings& settings, std::size_t first = 0, std::size_t size = static_cast<std::size_t>(-1));
+
+/// Grid points as plain text, for MapSettings::runner: one line per point,
+/// "ADMISSIBLE STATUS SUPERBALL RATIO CLOSED" with the ratio as a C99
+/// hexadecimal floating literal (exact, NaN as "nan") and CLOSED the
+/// contacts' bits ("." for a set of no contact).  points_from_text() gives
+/// back the same points, field for field.
+std::string points_to_text(const std::vector<MapPoint>& points);
+/// The points of points_to_text(); throws std::invalid_argument("points_from_text(): …") on a damaged text.
+std::vector<MapPoint> points_from_text(const std::string& text);
+/// Boundary points as plain text, one line each: "ALONG_X I J LOW HIGH
+/// BELOW_PSD ABOVE_PSD BELOW_SUPERBALL ABOVE_SUPERBALL BELOW ABOVE", the
+/// bracket's ends exact as p/q and the cases as in points_to_text().
+std::string boundaries_to_text(const std::vector<MapBoundary>& boundaries);
+/// The boundaries of boundaries_to_text(); throws std::invalid_argument("boundaries_from_text(): …") on a damaged text.
+std::vector<MapBoundary> boundaries_from_text(const std::string& text);
+
+}  // namespace superball::numeric::detail
