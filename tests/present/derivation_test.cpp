@@ -140,7 +140,7 @@ TEST(DerivationJson, Case21KeysAndEveryCondition) {
   const Deriver deriver(Pattern::paper({2}), Obstacle::Infinite);
   const Derivation d = named(deriver, "2.1");
   std::vector<nlohmann::ordered_json> psd;
-  const nlohmann::ordered_json j = derivation_json(d, deriver, psd);
+  const nlohmann::ordered_json j = derivation_json(d, deriver, psd, /*expanded=*/false);
   for (const char* key : {"case", "closed_contacts", "pattern", "obstacle", "scaling", "symbols", "velocities_after", "reactions", "determinant", "check",
                           "named", "actual", "conditions"})
     EXPECT_TRUE(j.contains(key)) << key;
@@ -166,7 +166,7 @@ TEST(DerivationJson, Case21KeysAndEveryCondition) {
   EXPECT_EQ(j["conditions"][0]["exact"], format_condition(superball->exact, superball->relation, *d.symbols, Style::Ascii));
   // The conditions on M are made once and reused by the next case.
   ASSERT_FALSE(psd.empty());
-  const nlohmann::ordered_json again = derivation_json(named(deriver, "1"), deriver, psd);
+  const nlohmann::ordered_json again = derivation_json(named(deriver, "1"), deriver, psd, /*expanded=*/false);
   EXPECT_EQ(again["conditions"].back(), psd.back());
 }
 

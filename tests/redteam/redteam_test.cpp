@@ -651,7 +651,7 @@ Case make_conflict(Rng& rng, int index) {
       {"solve", "@/scene.toml", "--precision", "digits:-5"},
       {"solve", "@/scene.toml", "--precision", "digits:99999999999999999999"},
       {"solve", "@/scene.toml", "--precision", "float"},
-      {"sweep", "@/scene.toml", "--vary", "K.1-2=0:20:5", "--threads", "0"},
+      {"sweep", "@/scene.toml", "--vary", "K.1-2=0:20:5", "--threads", "-1"},
       {"sweep", "@/scene.toml", "--vary", "K.1-2=0:20:1"},
       {"sweep", "@/scene.toml", "--vary", "K.1-2=nan:1:3"},
       {"sweep", "@/scene.toml", "--vary", "K.1-2=0:inf:3"},

@@ -70,8 +70,9 @@ Scene parse_scene(const std::string& text, const std::string& origin);
 /// array of tables, `dissipation.K`, …).  Numbers are strings spelled as a
 /// scene file reads them ("0.001", "1/3", "5e6", "inf"), read exactly.
 struct SceneValue {
+  /// What a value is: a table of named members, an array of items, a string (numbers too) or a boolean.
   enum class Kind { Table, Array, String, Boolean };
-  Kind kind = Kind::Table;
+  Kind kind = Kind::Table;  ///< which of the fields below holds the value
   std::string text;                                         ///< Kind::String
   bool flag = false;                                        ///< Kind::Boolean
   std::vector<std::pair<std::string, SceneValue>> members;  ///< Kind::Table, in order

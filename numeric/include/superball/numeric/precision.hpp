@@ -38,7 +38,7 @@ inline constexpr double default_rtol = 1e-6;
 /// `solve(precision=P, rtol=R)`): auto, the cheapest arithmetic whose answer
 /// is certified to rtol (choose_precision()), or one fixed Precision.
 struct SolvePrecision {
-  bool automatic = true;
+  bool automatic = true;       ///< auto (choose_precision()), else the arithmetic \p fixed
   Precision fixed;             ///< the arithmetic when not automatic
   std::optional<double> rtol;  ///< the certified relative error asked of auto; nullopt: not given (default_rtol)
 

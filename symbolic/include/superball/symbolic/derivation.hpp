@@ -4,7 +4,7 @@
 /// after the collision, reactions on the closed contacts and the conditions
 /// under which the case is the actual evolution and gives the superball.
 ///
-/// Model (numeric/src/collision.cpp is the same model in numbers).  Bodies
+/// Model (numeric/src/collision/collision.cpp is the same model in numbers).  Bodies
 /// 1 (top) … n (bottom); before the collision u_i = −a for i < n and u_n = 0.
 /// With K = DᵀMD (D the pair incidence, M the dissipation matrix of §3) and
 /// A = diag(m) + K, the equations of motion (5) with the constitutive laws

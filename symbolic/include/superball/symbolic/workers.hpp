@@ -30,7 +30,9 @@ class Interrupted : public std::runtime_error {
 /// message and thrown again as a TaskError of the same code.
 class TaskError : public std::runtime_error {
  public:
+  /// A failure of code \p code (the caller's) with \p message.
   TaskError(int code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  /// The caller's code given to the constructor.
   int code() const { return code_; }
 
  private:
@@ -59,12 +61,15 @@ class TaskError : public std::runtime_error {
 /// it may throw (the workers are then stopped before the exception leaves).
 class Workers {
  public:
+  /// Task k: its result as text (only text crosses processes).
   using Task = std::function<std::string(std::size_t)>;
+  /// Takes task k's result, here, in task order.
   using Deliver = std::function<void(std::size_t, std::string&&)>;
   /// Polled between results and at least every kPollInterval; true stops
   /// the run: the workers are killed and run() throws Interrupted.  In this
   /// process (\p jobs <= 0) it is polled between tasks only.
   using Interrupt = std::function<bool()>;
+  /// Forks min(\p jobs, \p count) workers for the tasks 0 … \p count − 1 of \p task (none when \p jobs <= 0).
   Workers(std::size_t count, int jobs, Task task);
   Workers(const Workers&) = delete;
   Workers& operator=(const Workers&) = delete;
