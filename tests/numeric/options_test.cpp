@@ -17,19 +17,12 @@
 #include "superball/numeric/precision.hpp"
 #include "superball/numeric/sweep.hpp"
 
+#include "support/refusal.hpp"
+
 namespace superball::numeric {
 namespace {
 
-/// The message of the std::invalid_argument \p f throws, without its "function(): " prefix; "" when it throws none.
-template <class F>
-std::string refusal(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return without_function_prefix(e.what());
-  }
-  return "";
-}
+using superball::test::refusal;
 
 TEST(SolvePrecision, AutoTakesAnRtolFromZeroToOne) {
   const SolvePrecision automatic = SolvePrecision::parse("auto", std::nullopt);

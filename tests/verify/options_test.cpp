@@ -12,19 +12,12 @@
 #include "superball/verify/explore.hpp"
 #include "superball/verify/verification.hpp"
 
+#include "support/refusal.hpp"
+
 namespace superball::verify {
 namespace {
 
-/// The message of the std::invalid_argument \p f throws, without its "function(): " prefix; "" when it throws none.
-template <class F>
-std::string refusal(F&& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return without_function_prefix(e.what());
-  }
-  return "";
-}
+using superball::test::refusal;
 
 TEST(Options, EpsilonIsReadExactlyAndChecked) {
   EXPECT_EQ(parse_epsilon("epsilon", "1e-3"), cln::cl_RA(1) / 1000);
