@@ -91,6 +91,9 @@ int run(int argc, char** argv) {
     static std::ostream none(nullptr);
     return &none;
   }();
+  // The line in one write: under mpirun, standard error is relayed in the
+  // pieces it was written in, and MPI_Abort's banner may fall between them.
+  auto say = [&err](const std::string& line) { err << ("superball: " + line + "\n") << std::flush; };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -103,7 +106,7 @@ int run(int argc, char** argv) {
       }
       return ok;
     }
-    err << "superball: " << printable(e.what()) << " (see superball --help)\n";
+    say(printable(e.what()) + " (see superball --help)");
     return bad_input;
   }
   // Under MPI only the commands whose work is a task list (cli/distribute.hpp) spread over the ranks;
@@ -111,7 +114,7 @@ int run(int argc, char** argv) {
   if (mpi_size() > 1) {
     const std::string name = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
     if (name != "derive" && name != "sweep" && name != "verify" && name != "explore" && name != "map") {
-      err << "superball: " << name << " does not spread over MPI ranks (derive, sweep, verify, explore and map do); run it in one process, with its --threads\n";
+      say(name + " does not spread over MPI ranks (derive, sweep, verify, explore and map do); run it in one process, with its --threads");
       return bad_input;
     }
   }
@@ -123,20 +126,20 @@ int run(int argc, char** argv) {
     try {
       throw;
     } catch (const superball::InputError& e) {
-      err << "superball: " << printable(e.what()) << '\n';
+      say(printable(e.what()));
       return bad_input;
     } catch (const OutputError& e) {
-      err << "superball: " << printable(e.what()) << '\n';
+      say(printable(e.what()));
       return output_error;
     } catch (const std::invalid_argument& e) {
-      err << "superball: " << printable(superball::without_function_prefix(e.what())) << '\n';
+      say(printable(superball::without_function_prefix(e.what())));
       return bad_input;
     } catch (const std::bad_alloc&) {
-      err << "superball: out of memory: the command needs more than this machine allows (MemAvailable, ulimit -v); ask for less "
-             "(a coarser grid, fewer samples)\n";
+      say("out of memory: the command needs more than this machine allows (MemAvailable, ulimit -v); ask for less "
+          "(a coarser grid, fewer samples)");
       return bad_input;
     } catch (const std::exception& e) {
-      err << "superball: internal error: " << printable(e.what()) << '\n';
+      say("internal error: " + printable(e.what()));
       return internal_error;
     }
   }
