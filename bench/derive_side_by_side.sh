@@ -5,6 +5,10 @@
 #
 #   bench/derive_side_by_side.sh OLD_SUPERBALL NEW_SUPERBALL [RUNS]
 #
+# NEW_ARGS adds options to the new build's command only: a build whose JSON
+# is compact (every build since the elimination forms) is compared with an
+# older one as NEW_ARGS=--expanded.
+#
 # The patterns are those of docs/SYMBOLIC.md ("Representation"): the paper's
 # four bodies with the seven α's, and 4 to 6 bodies with nearest and
 # next-nearest neighbours and their couplings.
@@ -12,6 +16,7 @@ set -euo pipefail
 old="${1:?usage: derive_side_by_side.sh OLD NEW [RUNS]}"
 new="${2:?usage: derive_side_by_side.sh OLD NEW [RUNS]}"
 runs="${3:-3}"
+read -r -a new_args <<< "${NEW_ARGS:-}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 seconds() { local t0 t1; t0=$(date +%s.%N); "$@" > /dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc; }
@@ -20,7 +25,7 @@ measure() {
   for ((r = 1; r <= runs; ++r)); do
     local before after same
     before=$(seconds "$old" derive "$@" --format json -o "$work/old.json")
-    after=$(seconds "$new" derive "$@" --format json -o "$work/new.json")
+    after=$(seconds "$new" derive "$@" "${new_args[@]}" --format json -o "$work/new.json")
     if cmp -s "$work/old.json" "$work/new.json"; then same="same bytes"
     elif python3 - "$work/old.json" "$work/new.json" <<'PY'
 import json, sys
