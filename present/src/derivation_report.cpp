@@ -161,7 +161,7 @@ std::string report(const Derivation& d, const Deriver& deriver, Style style, boo
   // A long case is written through its elimination (Elimination): det(ZᵀAZ) as the product of the pivots,
   // long velocities as cluster velocities V, long reactions as sums over them.
   const Elimination* e = d.elimination ? &*d.elimination : nullptr;
-  auto is_long = [&](const GiNaC::ex& p) { return e && (GiNaC::is_a<GiNaC::add>(p) ? p.nops() : 1) > max_inline_exact_terms; };
+  auto is_long = [&](const GiNaC::ex& p) { return through_elimination(d, p); };
   std::string determinant = format_polynomial(d.determinant, sy, style);
   if (is_long(d.determinant)) determinant = format_pivot_product(*e, style);
   if (tex)
