@@ -14,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "superball/distribute/distribute.hpp"
+
 namespace superball::cli {
 
 /// Exit codes shared by all commands.
@@ -40,11 +42,8 @@ inline const CLI::Validator& non_empty() {
 
 /// An output that cannot be written (full disk, closed pipe, no permission):
 /// the command ends with one line naming the path and the system's reason,
-/// exit code 3.
-class OutputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+/// exit code 3.  The type the task lists' files throw too (a checkpoint, a part).
+using OutputError = distribute::OutputError;
 
 /// Where a command's result goes, written piece by piece; the one way the
 /// commands write anything (model: coreutils' install/mv, moreutils' sponge).

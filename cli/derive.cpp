@@ -214,7 +214,7 @@ void add_derive(CLI::App& app, Action& action) {
             }
             return indented;
           };
-          Distribution run(*cmd, o->distribute, count);
+          Distribution run(run_identity(*cmd), distribute_options(o->distribute), count);
           std::optional<Workers> workers;  // forked before the progress starts its thread
           // A checkpoint the worker cannot write crosses back as a TaskError and is an OutputError again here (exit 3).
           auto in_worker = [&, kept = run.keeping(task)](std::size_t j) {

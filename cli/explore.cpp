@@ -190,7 +190,7 @@ void add_explore(CLI::App& app, Action& action) {
         if (r.scene) j["witness"] = {witness_name(r), present::witness_file(r, command.str())};
         return j.dump() + "\n";
       };
-      Distribution run(*cmd, o->distribute, count);
+      Distribution run(run_identity(*cmd), distribute_options(o->distribute), count);
       std::vector<std::vector<present::RenderedCell>> cells;
       std::vector<nlohmann::ordered_json> results;
       std::string text;

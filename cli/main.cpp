@@ -109,7 +109,7 @@ int run(int argc, char** argv) {
     say(printable(e.what()) + " (see superball --help)");
     return bad_input;
   }
-  // Under MPI only the commands whose work is a task list (cli/distribute.hpp) spread over the ranks;
+  // Under MPI only the commands whose work is a task list (superball/distribute/distribute.hpp) spread over the ranks;
   // any other would run whole on every rank, each writing its output.
   if (mpi_size() > 1) {
     const std::string name = app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name();
@@ -122,7 +122,7 @@ int run(int argc, char** argv) {
     check_outputs(*app.get_subcommands().front());
     return action();
   } catch (...) {
-    abandon_ranks();  // under MPI, ranks waiting for rank 0 are not left hanging
+    superball::distribute::abandon_ranks();  // under MPI, ranks waiting for rank 0 are not left hanging
     try {
       throw;
     } catch (const superball::InputError& e) {
@@ -150,16 +150,16 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   // Started by mpirun or srun as one of several ranks, a superball without MPI
   // would run the whole command on every rank, each writing its output.
-  const std::string ranks = superball::cli::launched_on_ranks();
-  if (!superball::cli::built_with_mpi() && !ranks.empty()) {
-    if (superball::cli::first_launched_rank())
+  const std::string ranks = superball::distribute::launched_on_ranks();
+  if (!superball::distribute::built_with_mpi() && !ranks.empty()) {
+    if (superball::distribute::first_launched_rank())
       std::cerr << "superball: started on several ranks by an MPI launcher (" << superball::printable(ranks)
                 << "), but this superball is built without MPI: every rank would run the whole command; run one process, or build with "
                    "-DSUPERBALL_WITH_MPI=ON\n";
     return superball::cli::bad_input;
   }
-  superball::cli::start_mpi(&argc, &argv);
+  superball::distribute::start_mpi(&argc, &argv);
   const int code = run(argc, argv);
-  superball::cli::stop_mpi(code);
+  superball::distribute::stop_mpi(code);
   return code;
 }

@@ -143,7 +143,7 @@ void add_map(CLI::App& app, Action& action) {
           if (!o->distribute.checkpoint.empty())
             options.checkpoint = (std::filesystem::path(o->distribute.checkpoint) / (stage == 0 ? "points" : "boundaries")).string();
           ++stage;
-          Distribution run(*cmd, options, count);
+          Distribution run(run_identity(*cmd), distribute_options(options), count);
           return run.run_everywhere(task);
         };
       const numeric::Axis ax{rx.parameter, rx.from, rx.to, rx.steps}, ay{ry.parameter, ry.from, ry.to, ry.steps};

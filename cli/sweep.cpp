@@ -275,7 +275,7 @@ void add_sweep(CLI::App& app, Action& action) {
       numeric::check_range(scene, r.parameter, r.from, r.to);  // every value, before any output
       const std::size_t count = sweep_tasks(r, o->switches);
       // A block's text: at most kChunk + 1 lines of a few numbers each.
-      Distribution run(*cmd, o->distribute, count, static_cast<std::uint64_t>(kChunk + 2) * (256 + 64 * static_cast<std::uint64_t>(scene.size())));
+      Distribution run(run_identity(*cmd), distribute_options(o->distribute), count, static_cast<std::uint64_t>(kChunk + 2) * (256 + 64 * static_cast<std::uint64_t>(scene.size())));
       std::optional<Output> out;
       if (run.writes_output()) out.emplace("");
       int failures = 0;

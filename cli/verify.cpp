@@ -172,7 +172,7 @@ void add_verify(CLI::App& app, Action& action) {
         }
         return text;
       };
-      Distribution run(*cmd, o->distribute, count);
+      Distribution run(run_identity(*cmd), distribute_options(o->distribute), count);
       // One case over several ranks: every rank takes part in its verification
       // (its blocks of points handed out as tasks, run_everywhere()), so that
       // the ranks share the one task of the case; the case's text is then the

@@ -1,6 +1,6 @@
 #pragma once
-/// \file distribute_detail.hpp
-/// What distribute.cpp and distribute_mpi.cpp share: the header of part
+/// \file detail.hpp
+/// What distribute.cpp and mpi.cpp share: the header of part
 /// files and checkpoint folders, and the MPI runner.
 #include <cstddef>
 #include <cstdint>
@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "distribute.hpp"
+#include "superball/distribute/distribute.hpp"
 
-namespace superball::cli::detail {
+namespace superball::distribute::detail {
 
 /// The header of a part file or a checkpoint folder's `run` file.
 struct Header {
@@ -95,4 +95,4 @@ void share(std::vector<std::string>& results, bool failed);
 /// by the environment variable SUPERBALL_TEST_FAIL_TASK (see distribute.cpp).
 Distribution::Task with_test_hook(const Distribution::Task& task);
 
-}  // namespace superball::cli::detail
+}  // namespace superball::distribute::detail

@@ -1,4 +1,4 @@
-// The MPI runner of the task lists (distribute.hpp), built with
+// The MPI runner of the task lists (superball/distribute/distribute.hpp), built with
 // SUPERBALL_WITH_MPI.  Rank 0 serves the other ranks on a thread of its own
 // (the only thread of the process that calls MPI after MPI_Init_thread,
 // MPI_THREAD_SERIALIZED) while its main thread computes tasks too and writes
@@ -19,10 +19,10 @@
 #include <stdexcept>
 #include <thread>
 
-#include "distribute_detail.hpp"
+#include "detail.hpp"
 #include "superball/cases/error.hpp"
 
-namespace superball::cli {
+namespace superball::distribute {
 namespace {
 
 bool started = false;
@@ -327,4 +327,4 @@ void share(std::vector<std::string>& results, bool failed) {
 }
 
 }  // namespace detail
-}  // namespace superball::cli
+}  // namespace superball::distribute
