@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "checkpoint.hpp"
 #include "convert.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
@@ -144,14 +145,22 @@ py::dict result(const numeric::Map& m, const Scene& scene, const std::string& pr
 /// on \p threads (0: all cores), boundaries bisected exactly; the GIL is
 /// released while it computes, Ctrl-C stops it between two of its tasks, and
 /// \p progress (None or a callable (phase, done, total)) is told of each.
-py::dict map(const Scene& scene, const std::string& x, const std::string& y, const std::string& precision, int threads, py::object progress) {
+/// With a \p checkpoint folder, the tasks are kept there (kept_runner()).
+py::dict map(const Scene& scene, const std::string& x, const std::string& y, const std::string& precision, int threads, py::object progress,
+             const std::string& checkpoint) {
   const numeric::Axis ax = axis("x", x, scene), ay = axis("y", y, scene);
   numeric::MapSettings settings;
   settings.precision = numeric::Precision::parse(precision);
   settings.threads = numeric::thread_count(threads);
   // The result's arrays and dicts, beside the map at its peak: about what the command's JSON holds.
   settings.output_bytes_per_point = present::map_output_bytes_per_point(present::MapOutput::Json);
-  settings.runner = interruptible_runner(std::move(progress), {"points", "boundaries"});
+  const auto axis_text = [](const numeric::Axis& a) {
+    return a.parameter.key() + "=" + numeric::to_string(a.from) + ":" + numeric::to_string(a.to) + ":" + std::to_string(a.steps);
+  };
+  settings.runner = checkpoint.empty() ? interruptible_runner(std::move(progress), {"points", "boundaries"})
+                                       : kept_runner(std::move(progress), {"points", "boundaries"}, checkpoint,
+                                                     distribute::typed_identity("map", {{"x", axis_text(ax)}, {"y", axis_text(ay)}, {"precision", settings.precision.name()}},
+                                                                                {{"scene", write_scene(scene)}}));
   std::optional<numeric::Map> m;
   {
     py::gil_scoped_release release;
@@ -164,7 +173,8 @@ py::dict map(const Scene& scene, const std::string& x, const std::string& y, con
 }  // namespace
 
 void register_map(py::module_& m) {
-  m.def("map", &map, py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("precision"), py::arg("threads"), py::arg("progress"));
+  m.def("map", &map, py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("precision"), py::arg("threads"), py::arg("progress"),
+        py::arg("checkpoint"));
 }
 
 }  // namespace superball::python

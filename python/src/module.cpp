@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "checkpoint.hpp"
 #include "convert.hpp"
 #include "superball/cases/error.hpp"
 #include "superball/cases/parameter.hpp"
@@ -177,8 +178,9 @@ constexpr std::size_t kSweepChunk = std::size_t{1} << 16;
 
 /// sweep(): values, U (one row per value), case numbers into the table of
 /// distinct cases (names, closed contacts), status codes; the GIL is released while it solves.
+/// With a \p checkpoint folder, each chunk is a task kept there (run_kept()).
 py::tuple sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads,
-                py::object progress) {
+                py::object progress, const std::string& checkpoint) {
   const Parameter parameter = Parameter::parse(key, scene);
   const auto p = numeric::Precision::parse(precision);
   if (values.exact.empty()) (void)numeric::sweep(scene, parameter, {}, p, threads);  // refuses it: no value to solve
@@ -221,20 +223,36 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
     numeric::check_range(scene, parameter, values.exact[*slow], values.exact[*shigh]);
     fill_doubles(values, xd);
     const auto total = solved.size();
-    for (std::size_t first = 0; first < total; first += kSweepChunk) {
-      between_tasks(progress, "values", first, total);
+    auto solve_chunk = [&](std::size_t first) {
       const std::size_t size = std::min(total, first + kSweepChunk) - first;
       std::vector<cln::cl_RA> chunk;
       chunk.reserve(size);
       for (std::size_t j = 0; j < size; ++j) chunk.push_back(values.exact[solved[first + j]]);
-      const auto points = numeric::sweep(scene, parameter, chunk, p, threads);
-      for (std::size_t j = 0; j < points.size(); ++j) {
-        const auto& pt = points[j];
-        const auto k = static_cast<py::ssize_t>(solved[first + j]);
-        for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
-        cd[k] = table.code(pt.closed);
-        sd[k] = static_cast<std::int8_t>(pt.status);
-      }
+      return numeric::sweep(scene, parameter, chunk, p, threads);
+    };
+    auto store = [&](std::size_t at, const std::vector<double>& velocities, const ContactSet& closed, numeric::Status status) {
+      const auto k = static_cast<py::ssize_t>(solved[at]);
+      for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = velocities[static_cast<std::size_t>(i)];
+      cd[k] = table.code(closed);
+      sd[k] = static_cast<std::int8_t>(status);
+    };
+    if (!checkpoint.empty()) {  // the run: the scene, the key, the values exactly, the precision
+      std::string exact;
+      for (const auto& x : values.exact) exact += numeric::to_string(x) + "\n";
+      const auto id = distribute::typed_identity("sweep", {{"key", parameter.key()}, {"precision", p.name()}},
+                                                 {{"scene", write_scene(scene)}, {"values", exact}});
+      run_kept(checkpoint, id, (total + kSweepChunk - 1) / kSweepChunk, distribute::kMaxTaskBytes, progress, "values", kSweepChunk, total,
+               [&](std::size_t t) { return sweep_rows(solve_chunk(t * kSweepChunk)); },
+               [&](std::size_t t, std::string&& text, const std::string& origin) {
+                 const std::size_t first = t * kSweepChunk;
+                 const auto rows = read_sweep_rows(text, std::min(total, first + kSweepChunk) - first, static_cast<int>(n), origin);
+                 for (std::size_t j = 0; j < rows.size(); ++j) store(first + j, rows[j].velocities, rows[j].closed, rows[j].status);
+               });
+    }
+    for (std::size_t first = 0; checkpoint.empty() && first < total; first += kSweepChunk) {
+      between_tasks(progress, "values", first, total);
+      const auto points = solve_chunk(first);
+      for (std::size_t j = 0; j < points.size(); ++j) store(first + j, points[j].velocities_after, points[j].closed, points[j].status);
     }
     between_tasks(progress, "values", total, total);
   }
@@ -442,7 +460,8 @@ PYBIND11_MODULE(_superball, m) {
       .def("to_text", [](const present::Presented& p) { return present::to_text(p); });
 
   m.def("solve", &solve, py::arg("scene"), py::arg("precision"), py::arg("rtol"));
-  m.def("sweep", &sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"), py::arg("progress"));
+  m.def("sweep", &sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"), py::arg("progress"),
+        py::arg("checkpoint"));
   m.def("switch_points", &switch_points, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("bits"), py::arg("threads"));
   register_derive(m);
   m.def("verify", &verify_cases, py::arg("options"), py::arg("epsilons"), py::arg("samples"), py::arg("boundary_pairs"), py::arg("seed"),
@@ -451,6 +470,7 @@ PYBIND11_MODULE(_superball, m) {
   m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
         py::arg("box_low"), py::arg("box_high"));
   register_map(m);
+  register_checkpoint(m);
   register_scene(m);
   m.def("thread_count", &numeric::thread_count, py::arg("requested"));
   m.attr("default_rtol") = numeric::default_rtol;

@@ -45,7 +45,7 @@ from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _progress, _superball
-from ._options import _int_option, _selection, _str_option
+from ._options import _checkpoint_option, _int_option, _selection, _str_option
 
 __all__ = [
     "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "sweep",
@@ -637,7 +637,8 @@ class SweepResult:
         return len(self.values)
 
 
-def sweep(scene: Scene, key: str, values: Any, precision: str = "double", threads: int = 0, progress: Any = None) -> SweepResult:
+def sweep(scene: Scene, key: str, values: Any, precision: str = "double", threads: int = 0, progress: Any = None,
+          checkpoint: Any = None) -> SweepResult:
     """Solve ``scene`` at every value of the parameter ``key`` (``superball sweep``).
 
     ``key`` as in :meth:`Scene.with_value` (``"K.3-4"``).  ``values``: a
@@ -652,11 +653,16 @@ def sweep(scene: Scene, key: str, values: Any, precision: str = "double", thread
     of 2¹⁶ values, True/False, or None (a bar on standard error when it is a
     terminal); Ctrl-C stops the sweep (KeyboardInterrupt) between two blocks.
     ``SweepResult.switch_points()`` bisects its case changes exactly.
+    ``checkpoint``: a folder (``superball sweep --checkpoint``) where each
+    block of values is written as soon as it is solved; the same call made
+    again (same scene, key, values and precision) solves only the blocks
+    not there, and the result is the same.
     """
     _check_scene(scene, "sweep")
     v = _values(values)
     x, u, codes, (names, closed), status, psd = _superball.sweep(scene._scene, _str_option(key, "key"), v, _str_option(precision, "precision"),
-                                                            _int_option(threads, "threads"), _progress.resolve(progress, "sweep"))
+                                                            _int_option(threads, "threads"), _progress.resolve(progress, "sweep"),
+                                                            _checkpoint_option(checkpoint, "sweep"))
     cases = np.array(list(names) + [""], dtype=str)[codes]
     return SweepResult(str(key), str(precision), x, u, cases, codes, tuple(names), tuple(tuple(c) for c in closed), status, psd, scene, v)
 

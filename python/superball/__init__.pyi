@@ -1,5 +1,6 @@
 """Type stubs of superball (collisions of aligned balls in Frémond's theory)."""
 
+import os
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union, overload
@@ -153,7 +154,8 @@ class SweepResult:
     def closed(self, k: int) -> Tuple[str, ...]: ...
     def __len__(self) -> int: ...
 
-def sweep(scene: Scene, key: str, values: Values, precision: str = ..., threads: int = ..., progress: Any = ...) -> SweepResult: ...
+def sweep(scene: Scene, key: str, values: Values, precision: str = ..., threads: int = ..., progress: Any = ...,
+          checkpoint: Union[str, os.PathLike[str], None] = ...) -> SweepResult: ...
 
 @dataclass(frozen=True)
 class SwitchPoint:
@@ -378,4 +380,5 @@ class MapResult:
     def _repr_html_(self) -> str: ...
 
 def map(scene: Scene, x: Union[str, Tuple[str, Number, Number, int]], y: Union[str, Tuple[str, Number, Number, int]],
-        precision: str = ..., threads: Optional[int] = ..., progress: Any = ...) -> MapResult: ...
+        precision: str = ..., threads: Optional[int] = ..., progress: Any = ...,
+        checkpoint: Union[str, os.PathLike[str], None] = ...) -> MapResult: ...

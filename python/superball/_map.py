@@ -11,6 +11,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 
 from . import _progress, _superball
+from ._options import _checkpoint_option
 
 # Distinct colours for the cases (Tableau 10, as the command's figure), grey where M is not PSD.
 _COLOURS = ("#4E79A7", "#F28E2B", "#59A14F", "#E15759", "#B07AA1", "#76B7B2", "#EDC948", "#9C755F", "#FF9DA7", "#3B3B98")
@@ -198,7 +199,8 @@ def _axis_text(axis: Any, name: str) -> str:
     raise InputError(f"{name}: expected KEY=FROM:TO:STEPS (e.g. 'K.3-4=0:20:201') or a tuple (key, from, to, steps), got {axis!r}")
 
 
-def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional[int] = None, progress: Any = None) -> MapResult:
+def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional[int] = None, progress: Any = None,
+        checkpoint: Any = None) -> MapResult:
     """Solve ``scene`` over a grid of two parameters and locate the boundaries
     between its regions exactly (``superball map``).
 
@@ -215,6 +217,9 @@ def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional
     "boundaries"), True/False, or None (a bar on standard error when it is a
     terminal).  The GIL is released while it computes; Ctrl-C stops it
     (KeyboardInterrupt) between two of its 64 tasks per phase.
+    ``checkpoint``: a folder (``superball map --checkpoint``) where each task
+    is written as soon as it is done; the same call made again computes only
+    the tasks not there, and the result is the same.
     """
     from . import InputError, Scene
 
@@ -229,5 +234,5 @@ def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional
     if not isinstance(precision, str):
         raise InputError(f"map: precision: expected a string ('double', 'long-double', 'digits:N', 'exact'), got {precision!r}")
     callback = _progress.resolve(progress, "map")
-    d = _superball.map(scene._scene, _axis_text(x, "x"), _axis_text(y, "y"), precision, threads, callback)
+    d = _superball.map(scene._scene, _axis_text(x, "x"), _axis_text(y, "y"), precision, threads, callback, _checkpoint_option(checkpoint, "map"))
     return MapResult(d)

@@ -41,3 +41,17 @@ def _selection(case: Any, alphas: Any, bodies: int, pairs: Any, coupling: Any, o
     return {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": _int_option(bodies, "bodies"), "pairs": _list_text(pairs),
             "coupling": coupling, "obstacle": obstacle, "scaling": scaling, "order": _int_option(order, "order"), "closed": _list_text(closed),
             "all": bool(all), "scene": None if scene is None else str(scene)}
+
+
+def _checkpoint_option(value: Any, name: str) -> str:
+    """The folder of ``checkpoint=`` (a str or a path-like) as the library takes it; None: "" (no checkpoint)."""
+    import os
+
+    if value is None:
+        return ""
+    if not isinstance(value, (str, os.PathLike)):
+        raise InputError(f"{name}: checkpoint: expected a folder (a str or a path), got {value!r}")
+    folder = os.fspath(value)
+    if not isinstance(folder, str) or not folder:
+        raise InputError(f"{name}: checkpoint: expected a folder name, got {value!r}")
+    return folder

@@ -1,0 +1,63 @@
+#pragma once
+// Python's checkpoint=: the tasks of a long call kept in a folder by the
+// library of the command's --checkpoint (superball/distribute), with the
+// same file format, the same checks and the same messages.
+#include <pybind11/pybind11.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "superball/distribute/distribute.hpp"
+#include "superball/numeric/parallel.hpp"
+#include "superball/numeric/sweep.hpp"
+
+namespace superball::python {
+
+/// Takes task k's result and where it came from (Distribution::origin(),
+/// to name it in a message when it does not read back).
+using KeptDeliver = std::function<void(std::size_t k, std::string&& text, const std::string& origin)>;
+
+/// Runs tasks 0 … count−1 of the run \p id kept in the folder \p folder (a
+/// folder of another run refused, a damaged task file said through
+/// warnings.warn, removed and computed again; each result written as soon
+/// as it is computed) and calls deliver(k, text, origin) for every k in
+/// order, those found in the folder without computing them.  Before the
+/// first task computed and after each, progress(phase, done, items) and
+/// Ctrl-C as between_tasks(), done counting \p per items a task (at most
+/// \p items).  Call with the GIL released.
+void run_kept(const std::string& folder, const distribute::RunIdentity& id, std::size_t count, std::uint64_t max_task_bytes,
+              const pybind11::object& progress, const std::string& phase, std::size_t per, std::size_t items,
+              const distribute::Distribution::Task& task, const KeptDeliver& deliver);
+
+/// interruptible_runner() whose tasks are kept by run_kept(): call p of the
+/// runner (phase \p phases[p], the last one past the end) in the folder
+/// FOLDER/PHASE when there are several phases, FOLDER itself otherwise (as
+/// the command's map keeps FOLDER/points and FOLDER/boundaries).
+numeric::TaskRunner kept_runner(pybind11::object progress, std::vector<std::string> phases, std::string folder, distribute::RunIdentity id);
+
+/// The text of a task of sweep(): one line per point, "U1 … Un CLOSED
+/// STATUS" (each velocity in 17 significant digits, which read back to the
+/// same double; CLOSED the closed contacts "2-3,3-4" or "none"; STATUS as
+/// numeric::to_string(Status)).
+std::string sweep_rows(const std::vector<numeric::SweepPoint>& points);
+
+/// A point of a sweep read back from sweep_rows(): what the result holds.
+struct SweptRow {
+  std::vector<double> velocities;  ///< U⁺
+  ContactSet closed;               ///< the evolution case
+  numeric::Status status = numeric::Status::Success;
+};
+
+/// Reads back sweep_rows()' text of \p rows points of a scene of \p bodies
+/// bodies; std::invalid_argument("WHERE: a damaged result (…)") when it is
+/// not that (\p where: Distribution::origin()).
+std::vector<SweptRow> read_sweep_rows(const std::string& text, std::size_t rows, int bodies, const std::string& where);
+
+/// Translates distribute::OutputError (a checkpoint file that cannot be
+/// written) into OSError with its message.
+void register_checkpoint(pybind11::module_& m);
+
+}  // namespace superball::python

@@ -1,0 +1,161 @@
+"""checkpoint=: a folder kept by the library of the command's --checkpoint (same files, same checks, same messages);
+the result is the same with it, without it, and interrupted then resumed."""
+import os
+import re
+
+import numpy as np
+import pytest
+
+import superball
+from conftest import PAPER, run_cli
+
+# Three tasks of sweep() (blocks of 2**16 values), the last one short.
+VALUES = superball.linspace(0, 20, 2 * 65536 + 1000)
+X, Y = "K.3-4=0:20:9", "alpha.2=-110:0:9"
+
+
+def same_sweep(a, b):
+    assert np.array_equal(a.values, b.values)
+    assert np.array_equal(a.velocities, b.velocities, equal_nan=True)
+    assert np.array_equal(a.case_codes, b.case_codes) and a.case_list == b.case_list and a.closed_list == b.closed_list
+    assert np.array_equal(a.status_codes, b.status_codes) and np.array_equal(a.psd, b.psd)
+
+
+def same_map(a, b):
+    for name in ("cases", "superball", "psd"):
+        assert np.array_equal(getattr(a, name), getattr(b, name)), name
+    assert np.array_equal(a.ratio, b.ratio, equal_nan=True)
+    assert a.case_list == b.case_list and a.boundary_points == b.boundary_points
+    assert a.curves == b.curves
+    for c, d in zip(a.curves, b.curves):
+        assert np.array_equal(c.points, d.points)
+
+
+def tasks(folder):
+    return sorted(f for f in os.listdir(folder) if f.startswith("task-"))
+
+
+@pytest.fixture(scope="module")
+def plain(paper):
+    return superball.sweep(paper, "K.3-4", VALUES, progress=False)
+
+
+def test_sweep_with_a_checkpoint_is_the_same_and_keeps_every_block(paper, plain, tmp_path):
+    kept = superball.sweep(paper, "K.3-4", VALUES, progress=False, checkpoint=tmp_path / "c")
+    same_sweep(kept, plain)
+    assert tasks(tmp_path / "c") == ["task-00000000", "task-00000001", "task-00000002"]
+    with open(tmp_path / "c" / "run") as f:
+        assert f.readline() == "superball checkpoint 2\n"
+    again = superball.sweep(paper, "K.3-4", VALUES, progress=False, checkpoint=str(tmp_path / "c"))  # all read back
+    same_sweep(again, plain)
+
+
+def test_sweep_interrupted_then_resumed_computes_only_the_missing_blocks(paper, plain, tmp_path):
+    folder = tmp_path / "c"
+
+    def stop(phase, done, total):
+        if done >= 65536:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        superball.sweep(paper, "K.3-4", VALUES, progress=stop, checkpoint=folder)
+    assert tasks(folder) == ["task-00000000"]
+    told = []
+    resumed = superball.sweep(paper, "K.3-4", VALUES, progress=lambda *a: told.append(a), checkpoint=folder)
+    same_sweep(resumed, plain)
+    assert told[0] == ("values", 65536, len(VALUES))  # block 0 read back, not solved again
+    assert told[-1] == ("values", len(VALUES), len(VALUES))
+
+
+def test_a_tampered_task_file_is_said_removed_and_computed_again(paper, plain, tmp_path):
+    folder = tmp_path / "c"
+    superball.sweep(paper, "K.3-4", VALUES, progress=False, checkpoint=folder)
+    path = folder / "task-00000001"
+    text = path.read_bytes()
+    at = text.index(b"\n") + 5
+    path.write_bytes(text[:at] + (b"7" if text[at:at + 1] != b"7" else b"8") + text[at + 1:])
+    with pytest.warns(UserWarning) as said:
+        again = superball.sweep(paper, "K.3-4", VALUES, progress=False, checkpoint=folder)
+    messages = [str(w.message) for w in said]
+    assert messages == [f"--checkpoint {folder}: task-00000001: task 1: fails its checksum (changed or damaged since it was written); "
+                        "task 1 computed again"]
+    same_sweep(again, plain)
+    assert path.read_bytes() == text  # written again, whole
+
+
+@pytest.mark.parametrize("kind", ["fifo", "symlink"])
+def test_a_fifo_or_a_link_in_place_of_a_task_file_is_not_read(paper, plain, tmp_path, kind):
+    folder = tmp_path / "c"
+    superball.sweep(paper, "K.3-4", VALUES, progress=False, checkpoint=folder)
+    path = folder / "task-00000002"
+    kept = path.read_bytes()
+    os.rename(path, tmp_path / "elsewhere")
+    if kind == "fifo":
+        os.mkfifo(path)
+        said = "a FIFO, not a regular file: not read"
+    else:
+        os.symlink(tmp_path / "elsewhere", path)
+        said = "a symbolic link, not read"
+    with pytest.warns(UserWarning, match=re.escape(f"--checkpoint {folder}: task-00000002: {said}; task 2 computed again")):
+        again = superball.sweep(paper, "K.3-4", VALUES, progress=False, checkpoint=folder)
+    same_sweep(again, plain)
+    assert not os.path.islink(path) and path.read_bytes() == kept
+
+
+def test_a_folder_of_another_run_is_refused(paper, tmp_path):
+    folder = tmp_path / "c"
+    few = superball.linspace(0, 20, 11)
+    superball.sweep(paper, "K.3-4", few, progress=False, checkpoint=folder)
+    for other in (dict(precision="long-double"), dict(key="K.2-3"), dict(values=superball.linspace(0, 20, 12))):
+        args = dict(key="K.3-4", values=few)
+        args.update(other)
+        with pytest.raises(superball.InputError, match=re.escape(f"--checkpoint {folder}: holds run ") + ".*give another folder$"):
+            superball.sweep(paper, progress=False, checkpoint=folder, **args)
+    # The same run whatever the spelling of the key, and the scene by its content, not its name.
+    again = superball.sweep(superball.Scene.from_toml(paper.to_toml(), "elsewhere"), "K.03-4", few, progress=False, checkpoint=folder)
+    assert np.array_equal(again.velocities, superball.sweep(paper, "K.3-4", few, progress=False).velocities)
+
+
+def test_a_folder_of_the_command_is_refused_with_the_command_s_message(paper, tmp_path):
+    folder = tmp_path / "c"
+    run_cli("sweep", PAPER, "--vary", "K.3-4=0:20:11", "--checkpoint", folder)
+    with pytest.raises(superball.InputError) as python:
+        superball.sweep(paper, "K.3-4", superball.linspace(0, 20, 11), progress=False, checkpoint=folder)
+    m = re.fullmatch(r"--checkpoint (.*): holds run ([0-9a-f]{16}) \(superball sweep (.*)\), and this command is run ([0-9a-f]{16}) "
+                     r"\(superball sweep (.*)\); give another folder", str(python.value))
+    assert m and m.group(1) == str(folder) and m.group(2) != m.group(4), str(python.value)
+    # The command refuses Python's folder the same way.
+    superball.sweep(paper, "K.3-4", superball.linspace(0, 20, 11), progress=False, checkpoint=tmp_path / "p")
+    code, out, err = run_cli("sweep", PAPER, "--vary", "K.3-4=0:20:11", "--checkpoint", tmp_path / "p", check=False)
+    assert code == 2 and out == ""
+    assert re.fullmatch(r"superball: --checkpoint .*: holds run [0-9a-f]{16} \(superball sweep --key=K.3-4 --precision=double --scene --values\), "
+                        r"and this command is run [0-9a-f]{16} \(superball sweep .*\); give another folder\n", err), err
+
+
+def test_checkpoint_must_name_a_folder(paper):
+    for bad in ("", 3, b"folder"):
+        with pytest.raises(superball.InputError, match="sweep: checkpoint: expected a folder"):
+            superball.sweep(paper, "K.3-4", [1.0], checkpoint=bad)
+
+
+def test_map_with_a_checkpoint_is_the_same_interrupted_then_resumed(paper, tmp_path):
+    plain = superball.map(paper, X, Y, progress=False)
+    folder = tmp_path / "m"
+
+    def stop(phase, done, total):
+        if phase == "boundaries" and done >= 3:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        superball.map(paper, X, Y, progress=stop, checkpoint=folder)
+    assert sorted(os.listdir(folder)) == ["boundaries", "points"]
+    points, boundaries = tasks(folder / "points"), tasks(folder / "boundaries")
+    assert len(points) > 3 and len(boundaries) == 3
+    told = []
+    resumed = superball.map(paper, X, Y, progress=lambda *a: told.append(a), checkpoint=folder)
+    same_map(resumed, plain)
+    assert told[0] == ("points", len(points), len(points))  # every point read back
+    assert ("boundaries", 3, told[-1][2]) in told and ("boundaries", 0, told[-1][2]) not in told
+    same_map(superball.map(paper, X, Y, progress=False, checkpoint=folder), plain)
+    with pytest.raises(superball.InputError, match=re.escape(f"--checkpoint {folder / 'points'}: holds run ")):
+        superball.map(paper, X, "alpha.2=-110:0:10", progress=False, checkpoint=folder)
