@@ -127,6 +127,28 @@ std::vector<SweptRow> read_sweep_rows(const std::string& text, std::size_t rows,
   return out;
 }
 
+std::string verification_text(const nlohmann::ordered_json& json, const std::string& report, bool agrees) {
+  const std::string j = json.dump();
+  return std::string(agrees ? "A" : "D") + "\n" + std::to_string(j.size()) + "\n" + j + "\n" + report;
+}
+
+py::tuple read_verification(const std::string& text, const std::string& where) {
+  auto damaged = [&](const std::string& what) { return std::invalid_argument(where + ": a damaged result (" + what + ")"); };
+  if (text.size() < 2 || (text[0] != 'A' && text[0] != 'D') || text[1] != '\n') throw damaged("no verdict of the exact conditions");
+  const std::size_t eol = text.find('\n', 2);
+  if (eol == std::string::npos || eol == 2 || eol - 2 > 12 || text.find_first_not_of("0123456789", 2) != eol) throw damaged("no length of its JSON");
+  const std::size_t size = std::stoull(text.substr(2, eol - 2));
+  if (size > text.size() - eol - 1 || text.size() == eol + 1 + size || text[eol + 1 + size] != '\n') throw damaged("its JSON cut short");
+  nlohmann::ordered_json json;
+  try {
+    json = nlohmann::ordered_json::parse(text.substr(eol + 1, size));
+  } catch (const nlohmann::json::exception&) {
+    throw damaged("its JSON does not read");
+  }
+  if (!json.is_object()) throw damaged("its JSON is not an object");
+  return py::make_tuple(to_python(json), text.substr(eol + 2 + size), text[0] == 'A');
+}
+
 void register_checkpoint(py::module_&) {
   // Registered after the module's own translator, so tried before it.
   py::register_exception_translator([](std::exception_ptr p) {

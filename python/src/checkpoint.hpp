@@ -4,6 +4,8 @@
 // same file format, the same checks and the same messages.
 #include <pybind11/pybind11.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -55,6 +57,17 @@ struct SweptRow {
 /// bodies; std::invalid_argument("WHERE: a damaged result (…)") when it is
 /// not that (\p where: Distribution::origin()).
 std::vector<SweptRow> read_sweep_rows(const std::string& text, std::size_t rows, int bodies, const std::string& where);
+
+/// The text of a task of verify(): "A" or "D" (the exact conditions agree
+/// or disagree), the length of the JSON (present::to_json()), the JSON,
+/// then the report, each after a newline.
+std::string verification_text(const nlohmann::ordered_json& json, const std::string& report, bool agrees);
+
+/// Reads back verification_text(): (the JSON as Python objects, the report,
+/// whether the exact conditions agree), as verify() gives them;
+/// std::invalid_argument("WHERE: a damaged result (…)") when it is not that.
+/// Call with the GIL held.
+pybind11::tuple read_verification(const std::string& text, const std::string& where);
 
 /// Translates distribute::OutputError (a checkpoint file that cannot be
 /// written) into OSError with its message.

@@ -305,8 +305,9 @@ present::SelectionOptions selection(const py::dict& o) {
 namespace {
 
 /// verify(): per case, to_json(Verification) as Python objects, its report, and whether the exact conditions agree.
+/// With a \p checkpoint folder, each case is a task kept there (run_kept()).
 std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<std::string>& epsilons, int samples, int boundary_pairs,
-                                    std::uint64_t seed, int threads, const py::object& progress) {
+                                    std::uint64_t seed, int threads, const py::object& progress, const std::string& checkpoint) {
   verify::VerifyOptions o;
   if (!epsilons.empty()) {
     o.epsilons.clear();
@@ -321,10 +322,26 @@ std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<s
   present::require_case(chosen);
   const present::Selection sel = present::resolve(chosen);
   std::vector<py::tuple> out;
-  for (const ContactSet& c : sel.cases) {
+  for (std::size_t k = 0; checkpoint.empty() && k < sel.cases.size(); ++k) {
     o.runner = interruptible_runner(progress, {"drawn points", "boundaries"});  // progress and Ctrl-C between tasks
-    const verify::Verification v = verify::verify_case(*sel.deriver, c, o);
+    const verify::Verification v = verify::verify_case(*sel.deriver, sel.cases[k], o);
     out.push_back(py::make_tuple(to_python(present::to_json(v)), present::to_text(v), v.exact_agrees()));
+  }
+  if (!checkpoint.empty()) {  // the run: the selection as given, the scene's content, the options of the verification
+    std::map<std::string, std::string> named, inputs;
+    for (const auto& [key, value] : options)
+      if (!value.is_none()) named["selection." + key.cast<std::string>()] = py::str(value).cast<std::string>();
+    if (!chosen.scene.empty()) inputs["scene"] = write_scene(load_scene(chosen.scene));
+    for (const cln::cl_RA& e : o.epsilons) named["epsilons"] += (named["epsilons"].empty() ? "" : ",") + verify::epsilon_name(e);
+    named["samples"] = std::to_string(samples), named["boundary-pairs"] = std::to_string(boundary_pairs), named["seed"] = std::to_string(seed);
+    run_kept(checkpoint, distribute::typed_identity("verify", named, inputs), sel.cases.size(), distribute::kMaxTaskBytes, progress, "cases", 1,
+             sel.cases.size(),
+             [&](std::size_t k) {
+               o.runner = interruptible_runner(progress, {"drawn points", "boundaries"});
+               const verify::Verification v = verify::verify_case(*sel.deriver, sel.cases[k], o);
+               return verification_text(present::to_json(v), present::to_text(v), v.exact_agrees());
+             },
+             [&](std::size_t, std::string&& text, const std::string& origin) { out.push_back(read_verification(text, origin)); });
   }
   return out;
 }
@@ -465,7 +482,7 @@ PYBIND11_MODULE(_superball, m) {
   m.def("switch_points", &switch_points, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("bits"), py::arg("threads"));
   register_derive(m);
   m.def("verify", &verify_cases, py::arg("options"), py::arg("epsilons"), py::arg("samples"), py::arg("boundary_pairs"), py::arg("seed"),
-        py::arg("threads"), py::arg("progress"));
+        py::arg("threads"), py::arg("progress"), py::arg("checkpoint"));
   m.def("audit", &audit, py::arg("epsilon"), py::arg("samples"), py::arg("seed"));
   m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
         py::arg("box_low"), py::arg("box_high"));

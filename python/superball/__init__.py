@@ -821,7 +821,8 @@ def _verify_result(data: Dict[str, Any], text: str, agrees: bool) -> VerifyResul
 def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
            obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, all: bool = False,
            scene: Any = None, epsilons: Optional[Sequence[Number]] = None, samples: int = 4000,
-           boundary_pairs: int = 20, seed: int = 1, threads: int = 0, progress: Any = None) -> Union[VerifyResult, List[VerifyResult]]:
+           boundary_pairs: int = 20, seed: int = 1, threads: int = 0, progress: Any = None,
+           checkpoint: Any = None) -> Union[VerifyResult, List[VerifyResult]]:
     """Check a case's derived conditions, exact and asymptotic, against exact solutions.
 
     Points of the regime (m₁ ~ ε, K₁ₙ ~ 1/ε; M ⪰ 0) are drawn for each ε of
@@ -833,12 +834,16 @@ def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pair
     ``progress``: a callable ``(phase, done, total)`` ("drawn points", then
     "boundaries", per case), True/False, or None (a bar on standard error
     when it is a terminal); Ctrl-C stops it (KeyboardInterrupt) between tasks.
+    ``checkpoint``: a folder (``superball verify --checkpoint``) where each
+    case is written as soon as it is verified; the same call made again
+    verifies only the cases not there (``progress`` is then told of the
+    cases too, phase "cases"), and the result is the same.
     """
     eps = [] if epsilons is None else [_number_text(e, "epsilons") for e in epsilons]
     out = [_verify_result(j, text, agrees)
            for j, text, agrees in _superball.verify(_selection(case, alphas, bodies, pairs, coupling, obstacle, scaling, order, closed, all,
                                                                scene), eps, _int_option(samples, "samples"), _int_option(boundary_pairs, "boundary_pairs"), _int_option(seed, "seed"), _int_option(threads, "threads"),
-                                                               _progress.resolve(progress, "verify"))]
+                                                               _progress.resolve(progress, "verify"), _checkpoint_option(checkpoint, "verify"))]
     return out if all else out[0]
 
 

@@ -287,6 +287,7 @@ def verify(
     seed: int = ...,
     threads: int = ...,
     progress: Any = ...,
+    checkpoint: Union[str, os.PathLike[str], None] = ...,
 ) -> Union[VerifyResult, List[VerifyResult]]: ...
 
 @dataclass(frozen=True)

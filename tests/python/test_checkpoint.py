@@ -159,3 +159,29 @@ def test_map_with_a_checkpoint_is_the_same_interrupted_then_resumed(paper, tmp_p
     same_map(superball.map(paper, X, Y, progress=False, checkpoint=folder), plain)
     with pytest.raises(superball.InputError, match=re.escape(f"--checkpoint {folder / 'points'}: holds run ")):
         superball.map(paper, X, "alpha.2=-110:0:10", progress=False, checkpoint=folder)
+
+
+def test_verify_with_a_checkpoint_interrupted_then_resumed_is_the_same(tmp_path):
+    kw = dict(all=True, alphas=2, epsilons=["1/100"], samples=20, boundary_pairs=1)
+    plain = superball.verify(**kw, progress=False)
+    folder = tmp_path / "v"
+
+    def stop(phase, done, total):
+        if phase == "cases" and done >= 2:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        superball.verify(**kw, progress=stop, checkpoint=folder)
+    assert tasks(folder) == ["task-00000000", "task-00000001"]
+    told = []
+    resumed = superball.verify(**kw, progress=lambda *a: told.append(a), checkpoint=folder)
+    assert told[0] == ("cases", 2, len(plain))
+    assert [(r.data, r.text, r.exact_agrees) for r in resumed] == [(r.data, r.text, r.exact_agrees) for r in plain]
+    path = folder / "task-00000000"
+    text = path.read_bytes()
+    path.write_bytes(text.replace(b"\nA\n", b"\nX\n", 1))  # a record whose checksum no longer holds
+    with pytest.warns(UserWarning, match=re.escape(f"--checkpoint {folder}: task-00000000: task 0: fails its checksum")):
+        again = superball.verify(**kw, progress=False, checkpoint=folder)
+    assert [r.data for r in again] == [r.data for r in plain]
+    with pytest.raises(superball.InputError, match=re.escape(f"--checkpoint {folder}: holds run ")):
+        superball.verify(**dict(kw, seed=2), progress=False, checkpoint=folder)
