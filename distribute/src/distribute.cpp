@@ -342,7 +342,7 @@ struct Distribution::Impl {
 /// Reads the checkpoint folder: its run file (refused when of another run),
 /// then every task file, checked (a regular file, not a link, of a size its
 /// task can have, its record whole and its checksum right); a task file that
-/// fails is said in one line, removed, and its task computed again.
+/// fails is told to warn in one line, removed, and its task computed again.
 void Distribution::Impl::read_checkpoint() {
   namespace fs = std::filesystem;
   std::error_code error;

@@ -56,7 +56,7 @@ void expect_refused(const RunResult& r, const std::vector<std::string>& says, in
   for (const std::string& s : says) EXPECT_NE(r.err.find(s), std::string::npos) << "'" << s << "' not in: " << r.err;
 }
 
-/// The checksum of a record (cli/distribute.cpp): FNV-1a over the run, the
+/// The checksum of a record (distribute/src/distribute.cpp): FNV-1a over the run, the
 /// task and the text, each followed by its length; what a forger computes.
 std::string checksum(const std::string& run, std::size_t k, const std::string& text) {
   std::uint64_t h = 0xcbf29ce484222325ULL;

@@ -1,4 +1,4 @@
-// The task lists of the long commands (issue 17, cli/distribute.hpp): the
+// The task lists of the long commands (issue 17, superball/distribute/distribute.hpp): the
 // output of a run split into shards and merged, resumed from a checkpoint
 // after a kill, or run over MPI ranks, is byte for byte that of the run in
 // one process; merges of parts that do not make one run are refused with one
@@ -270,7 +270,7 @@ TEST(Distribute, AMapResumesFromItsCheckpointInBothStages) {
   const std::vector<std::string> args = with(kMap, {"--json", "--threads", "1"});
   const RunResult whole = run(args);
   ASSERT_EQ(whole.exit_code, 0) << describe(whole);
-  // Task 5 of the grid points fails (the test hook of cli/distribute.cpp): no
+  // Task 5 of the grid points fails (the test hook of distribute/src/distribute.cpp): no
   // output, the four before it kept, no bisection begun.
   ::setenv("SUPERBALL_TEST_FAIL_TASK", "5", 1);
   const RunResult failed = run(with(args, {"--checkpoint", ck}));
@@ -483,7 +483,7 @@ TEST(DistributeMpi, AMapOverRanksResumesFromItsCheckpoint) {
 
 TEST(DistributeMpi, ATaskThatFailsOnARankIsOneLineNamingItAndNoOutput) {
   // No task of these commands fails on valid input: the test hook
-  // SUPERBALL_TEST_FAIL_TASK=K (cli/distribute.cpp) makes task K throw on
+  // SUPERBALL_TEST_FAIL_TASK=K (distribute/src/distribute.cpp) makes task K throw on
   // whichever rank runs it.
   const std::string dir = folder("mpi-failing");
   const std::vector<std::string> hook = {"SUPERBALL_TEST_FAIL_TASK=5"};
