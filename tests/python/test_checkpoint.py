@@ -185,3 +185,20 @@ def test_verify_with_a_checkpoint_interrupted_then_resumed_is_the_same(tmp_path)
     assert [r.data for r in again] == [r.data for r in plain]
     with pytest.raises(superball.InputError, match=re.escape(f"--checkpoint {folder}: holds run ")):
         superball.verify(**dict(kw, seed=2), progress=False, checkpoint=folder)
+
+
+def test_a_run_file_that_is_a_link_or_a_fifo_is_refused(paper, tmp_path):
+    few = superball.linspace(0, 20, 11)
+    for kind in ("symlink", "fifo"):
+        folder = tmp_path / kind
+        superball.sweep(paper, "K.3-4", few, progress=False, checkpoint=folder)
+        run = folder / "run"
+        os.rename(run, tmp_path / f"{kind}-run")
+        if kind == "fifo":
+            os.mkfifo(run)
+            said = "a FIFO, not a regular file: not read"
+        else:
+            os.symlink(tmp_path / f"{kind}-run", run)
+            said = "a symbolic link, not read"
+        with pytest.raises(superball.InputError, match=re.escape(f"--checkpoint {folder}: its run file: {said}; give another folder")):
+            superball.sweep(paper, "K.3-4", few, progress=False, checkpoint=folder)
