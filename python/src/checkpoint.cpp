@@ -24,7 +24,8 @@ void run_kept(const std::string& folder, const distribute::RunIdentity& id, std:
   options.checkpoint = folder;
   options.warn = [](const std::string& line) {  // what the command says on standard error
     py::gil_scoped_acquire gil;
-    if (PyErr_WarnEx(PyExc_UserWarning, printable(line).c_str(), 1) != 0) throw py::error_already_set();
+    // Stack level 2: the caller of the module's function (sweep(), map(), verify() call the extension).
+    if (PyErr_WarnEx(PyExc_UserWarning, printable(line).c_str(), 2) != 0) throw py::error_already_set();
   };
   distribute::Distribution run(id, options, count, max_task_bytes);
   std::size_t done = count - run.todo().size();
