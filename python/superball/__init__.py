@@ -166,7 +166,7 @@ def _scene_value(d: Mapping[str, Any], what: str) -> Dict[str, Any]:
             dissipation[key] = {p: _scene_number(x) for p, x in m.items()} if isinstance(m, Mapping) else m
     if d.get("coupling"):
         c = d["coupling"]
-        dissipation["coupling"] = [_coupling_value(x) for x in c] if isinstance(c, (list, tuple)) else c
+        dissipation["coupling"] = [_coupling_value(x) for x in c] if isinstance(c, (list, tuple)) and len(c) <= _superball.max_scene_bodies else c
     if dissipation:
         v["dissipation"] = dissipation
     flight = d.get("flight")

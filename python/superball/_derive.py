@@ -298,7 +298,7 @@ def _run(name: str, options: Dict[str, Any], expanded: bool, jobs: Optional[int]
             raise InputError(f"{name}: progress must be None, False or a callable (done, total), got {progress!r}")
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise InputError(f"{name}: jobs must be a number of worker processes >= 1 or None (all cores), got {jobs!r}")
-    out = [_derivation(d) for d in _superball.derive(options, bool(expanded), 0 if jobs is None else jobs, step, notice)]
+    out = [_derivation(d) for d in _superball.derive(options, bool(expanded), 0 if jobs is None else min(jobs, 2**31 - 1), step, notice)]
     # Compact JSON of several cases has the conditions on M in the first case only: every Derivation shows them.
     psd = [c for c in out[0].conditions if c.kind == "psd"] if out else []
     return [d if any(c.kind == "psd" for c in d.conditions) else _with_conditions(d, d.conditions + psd) for d in out]
