@@ -32,7 +32,9 @@ SolvePrecision SolvePrecision::parse(const std::string& precision, std::optional
   p.rtol = rtol;
   if (!p.automatic) {
     // The rule of rtol first: it names what was asked, whatever the spelling of the precision.
-    if (rtol) throw std::invalid_argument("SolvePrecision::check(): rtol is the certified error of precision auto; precision " + printable(precision) + " has none");
+    if (rtol)
+      throw std::invalid_argument("SolvePrecision::check(): rtol is the certified error of precision auto; precision " + printable(precision) +
+                                  " has none");
     p.fixed = Precision::parse(precision);
   }
   p.check();
