@@ -4,11 +4,13 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "superball/cases/error.hpp"
+
 namespace superball {
 namespace {
 
 [[noreturn]] void fail(std::string_view text, const std::string& why) {
-  throw std::invalid_argument("Number::parse(): '" + std::string(text) + "' " + why);
+  throw std::invalid_argument("Number::parse(): " + printable("'" + std::string(text) + "' " + why));
 }
 
 bool all_digits(std::string_view s) {

@@ -10,7 +10,7 @@ namespace superball {
 namespace {
 
 [[noreturn]] void bad(const std::string& key, const std::string& why) {
-  throw std::invalid_argument("Parameter::parse(): '" + key + "': " + why);
+  throw std::invalid_argument("Parameter::parse(): " + printable("'" + key + "': " + why));
 }
 
 Pair pair_of(const std::string& key, const std::string& text, int n) {

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "superball/cases/error.hpp"
 #include "superball/numeric/scalar.hpp"
 
 namespace superball::numeric {
@@ -17,11 +18,11 @@ Precision Precision::parse(const std::string& text) {
     for (char c : d) ok = ok && std::isdigit(static_cast<unsigned char>(c));
     const int digits = ok ? std::stoi(d) : 0;
     if (!ok || digits < min_digits || digits > max_digits)
-      throw std::invalid_argument("Precision::parse(): '" + text + "': N in digits:N must be a whole number from " +
+      throw std::invalid_argument("Precision::parse(): '" + printable(text) + "': N in digits:N must be a whole number from " +
                                   std::to_string(min_digits) + " to " + std::to_string(max_digits));
     return {Kind::Digits, digits};
   }
-  throw std::invalid_argument("Precision::parse(): unknown precision '" + text +
+  throw std::invalid_argument("Precision::parse(): unknown precision '" + printable(text) +
                               "' (expected double, long-double, digits:N or exact)");
 }
 
@@ -31,7 +32,9 @@ SolvePrecision SolvePrecision::parse(const std::string& precision, std::optional
   p.rtol = rtol;
   if (!p.automatic) {
     // The rule of rtol first: it names what was asked, whatever the spelling of the precision.
-    if (rtol) throw std::invalid_argument("SolvePrecision::check(): rtol is the certified error of precision auto; precision " + precision + " has none");
+    if (rtol)
+      throw std::invalid_argument("SolvePrecision::check(): rtol is the certified error of precision auto; precision " + printable(precision) +
+                                  " has none");
     p.fixed = Precision::parse(precision);
   }
   p.check();

@@ -11,7 +11,7 @@ namespace superball::numeric {
 Range parse_range(const std::string& option, const std::string& text, const Scene& scene, int max_steps) {
   const auto eq = text.find('=');
   auto bad = [&](const std::string& why) -> std::invalid_argument {
-    return std::invalid_argument(option + " " + text + ": " + why + " (expected KEY=FROM:TO:STEPS, e.g. K.3-4=0:20:401)");
+    return std::invalid_argument(option + " " + printable(text) + ": " + why + " (expected KEY=FROM:TO:STEPS, e.g. K.3-4=0:20:401)");
   };
   if (eq == std::string::npos) throw bad("no '='");
   const std::string key = text.substr(0, eq), rest = text.substr(eq + 1);

@@ -1,19 +1,24 @@
 #include "convert.hpp"
 
-#include "superball/numeric/scalar.hpp"
+#include <cln/integer_io.h>
 
 #include <algorithm>
 #include <memory>
+#include <sstream>
 #include <utility>
 #include <vector>
 
 namespace superball::python {
 namespace {
 
-/// The Python int of the CLN integer \p n, through its decimal digits.
+/// The Python int of the CLN integer \p n, through its hexadecimal digits: Python
+/// refuses decimal text of more than 4300 digits (sys.get_int_max_str_digits()),
+/// not a power-of-two base, and an exact result may be longer.
 py::object integer(const cln::cl_I& n) {
-  const std::string text = numeric::to_string(cln::cl_RA(n));
-  PyObject* p = PyLong_FromString(text.c_str(), nullptr, 10);
+  std::ostringstream hex;
+  cln::print_integer(hex, 16, n);
+  const std::string text = hex.str();
+  PyObject* p = PyLong_FromString(text.c_str(), nullptr, 16);
   if (!p) throw py::error_already_set();
   return py::reinterpret_steal<py::object>(p);
 }

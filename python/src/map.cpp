@@ -142,16 +142,18 @@ py::dict result(const numeric::Map& m, const Scene& scene, const std::string& pr
 }
 
 /// map(): the grid of \p x by \p y (KEY=FROM:TO:STEPS) solved in \p precision
-/// on \p threads (0: all cores), boundaries bisected exactly; the GIL is
+/// on \p threads (0: all cores; check_threads() refuses any other value
+/// out of range, wider than int too), boundaries bisected exactly; the GIL is
 /// released while it computes, Ctrl-C stops it between two of its tasks, and
 /// \p progress (None or a callable (phase, done, total)) is told of each.
 /// With a \p checkpoint folder, the tasks are kept there (kept_runner()).
-py::dict map(const Scene& scene, const std::string& x, const std::string& y, const std::string& precision, int threads, py::object progress,
+py::dict map(const Scene& scene, const std::string& x, const std::string& y, const std::string& precision, long long threads, py::object progress,
              const std::string& checkpoint) {
+  numeric::check_threads(threads);
   const numeric::Axis ax = axis("x", x, scene), ay = axis("y", y, scene);
   numeric::MapSettings settings;
   settings.precision = numeric::Precision::parse(precision);
-  settings.threads = numeric::thread_count(threads);
+  settings.threads = static_cast<int>(threads);
   // The result's arrays and dicts, beside the map at its peak: about what the command's JSON holds.
   settings.output_bytes_per_point = present::map_output_bytes_per_point(present::MapOutput::Json);
   const auto axis_text = [](const numeric::Axis& a) {

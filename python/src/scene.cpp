@@ -17,8 +17,29 @@
 namespace superball::python {
 namespace {
 
+/// The name of \p v's type, as Python spells it ("numpy.bool_", "complex").
+std::string type_name(py::handle v) {
+  const py::handle t = py::type::handle_of(v);
+  const std::string module = py::str(t.attr("__module__")), name = py::str(t.attr("__qualname__"));
+  return module == "builtins" ? name : module + "." + name;
+}
+
+/// str(\p v), or repr(\p v) with \p repr; an int past Python's limit of int
+/// to decimal text (sys.get_int_max_str_digits()) is refused naming \p field.
+std::string text(py::handle v, bool repr, const std::string& origin, const std::string& field) {
+  try {
+    return (repr ? py::repr(v) : py::str(v)).cast<std::string>();
+  } catch (const py::error_already_set& e) {
+    if (!e.matches(PyExc_ValueError)) throw;
+    throw InputError(printable(origin + ": " + field + ": a number of more digits than Python writes as text (sys.get_int_max_str_digits(): " +
+                               py::str(py::module_::import("sys").attr("get_int_max_str_digits")()).cast<std::string>() + ")"));
+  }
+}
+
 /// \p v (dicts, lists and tuples, strings, booleans, ints) as a SceneValue;
-/// \p field names it in the message of a value of another type.
+/// \p field names it in the message of a value of another type.  A list
+/// longer than max_scene_bodies (no array of a scene file can hold more) is
+/// refused before one item is read: a scene never costs more than that.
 SceneValue scene_value(py::handle v, const std::string& origin, const std::string& field, int depth) {
   SceneValue out;
   if (depth > max_scene_nesting)
@@ -32,7 +53,7 @@ SceneValue scene_value(py::handle v, const std::string& origin, const std::strin
     out.text = v.cast<std::string>();
   } else if (py::isinstance<py::int_>(v)) {
     out.kind = SceneValue::Kind::String;
-    out.text = py::str(v).cast<std::string>();
+    out.text = text(v, false, origin, field);
   } else if (py::isinstance<py::dict>(v)) {
     out.kind = SceneValue::Kind::Table;
     for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(v)) {
@@ -41,6 +62,10 @@ SceneValue scene_value(py::handle v, const std::string& origin, const std::strin
     }
   } else if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) {
     out.kind = SceneValue::Kind::Array;
+    if (const std::size_t n = py::len(v); n > static_cast<std::size_t>(max_scene_bodies))
+      throw InputError(printable(origin + ": " + field + ": at most " + std::to_string(max_scene_bodies) + (field == "body" ? " bodies" : " items") +
+                                 " (got " + std::to_string(n) + ")"));
+    out.items.reserve(py::len(v));
     std::size_t k = 0;
     for (py::handle item : v) {
       ++k;
@@ -48,7 +73,7 @@ SceneValue scene_value(py::handle v, const std::string& origin, const std::strin
     }
   } else {
     throw InputError(printable(origin + ": " + field + ": expected a number, a string, a list or a dict, got " +
-                               py::str(py::repr(v)).cast<std::string>()));
+                               text(v, true, origin, field) + " (" + type_name(v) + ")"));
   }
   return out;
 }
@@ -126,6 +151,7 @@ py::list velocities_before(const Scene& s) {
 
 void register_scene(py::module_& m) {
   auto scene = py::reinterpret_borrow<py::class_<Scene>>(m.attr("Scene"));
+  m.attr("max_scene_bodies") = max_scene_bodies;
   scene.def_static("from_value", &from_value, py::arg("value"), py::arg("origin"))
       .def_property_readonly("matrix", &matrix)
       .def_property_readonly("keys", &keys)

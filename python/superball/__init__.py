@@ -38,9 +38,10 @@ from __future__ import annotations
 import html as _html
 import json as _json
 import numbers as _numbers
+import sys as _sys
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import AbstractSet, Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -81,10 +82,14 @@ def _number_text(value: Any, what: str) -> str:
         raise InputError(f"{what}: expected a number, got {value!r}")
     if isinstance(value, str):
         return value
-    if isinstance(value, Fraction):
-        return f"{value.numerator}/{value.denominator}"
-    if isinstance(value, _numbers.Integral):
-        return str(int(value))
+    try:
+        if isinstance(value, Fraction):
+            return f"{value.numerator}/{value.denominator}"
+        if isinstance(value, _numbers.Integral):
+            return str(int(value))
+    except ValueError:  # Python's own limit on int to decimal text
+        raise InputError(f"{what}: a number of more digits than Python writes as text "
+                         f"(sys.get_int_max_str_digits(): {_sys.get_int_max_str_digits()})") from None
     if isinstance(value, _numbers.Real):
         x = float(value)
         if x == float("inf"):
@@ -107,7 +112,10 @@ def _scene_number(value: Any) -> Any:
     if isinstance(value, (bool, str, list, tuple, dict)) or value is None:
         return value
     if isinstance(value, (_numbers.Number, Fraction)) or hasattr(value, "as_integer_ratio"):
-        return _number_text(value, "number")
+        try:
+            return _number_text(value, "number")
+        except InputError:  # not a real number (complex), or too long: refused by the reader, naming the field
+            return value
     return value
 
 
@@ -145,17 +153,20 @@ def _scene_value(d: Mapping[str, Any], what: str) -> Dict[str, Any]:
             v[key] = _scene_number(d[key])
     bodies = d.get("bodies")
     if bodies is not None:
-        if isinstance(bodies, (str, Mapping)) or not isinstance(bodies, Iterable):
+        if isinstance(bodies, (str, Mapping, AbstractSet)) or not isinstance(bodies, Iterable):  # a set has no order
             raise InputError(f"{what}: bodies: expected a list of masses, or of {{'mass': …, 'velocity': …}}, got {bodies!r}")
-        v["body"] = [{k: _scene_number(x) for k, x in b.items()} if isinstance(b, Mapping) else {"mass": _scene_number(b)} for b in bodies]
+        bodies = list(bodies)
+        v["body"] = bodies if len(bodies) > _superball.max_scene_bodies else [  # too many: refused before one is read
+            {k: _scene_number(x) for k, x in b.items()} if isinstance(b, Mapping) else {"mass": _scene_number(b)} for b in bodies]
     dissipation: Dict[str, Any] = {}
     for key in ("K", "alpha"):
         if d.get(key):
             m = d[key]
-            dissipation[key] = {str(p): _scene_number(x) for p, x in m.items()} if isinstance(m, Mapping) else m
+            # keys as given: two spellings of one key (2 and "2") are refused by the reader as given twice
+            dissipation[key] = {p: _scene_number(x) for p, x in m.items()} if isinstance(m, Mapping) else m
     if d.get("coupling"):
         c = d["coupling"]
-        dissipation["coupling"] = [_coupling_value(x) for x in c] if isinstance(c, (list, tuple)) else c
+        dissipation["coupling"] = [_coupling_value(x) for x in c] if isinstance(c, (list, tuple)) and len(c) <= _superball.max_scene_bodies else c
     if dissipation:
         v["dissipation"] = dissipation
     flight = d.get("flight")

@@ -131,6 +131,8 @@ class Condition:
         Σ ℓ_c V_c + β: the expanded P − Q divided by det(ZᵀAZ) > 0, so with the same sign.
         Raises InputError for a name that is not a symbol of the derivation or a symbol without value."""
         names = self._symbol_names()
+        if not isinstance(values, Mapping):
+            raise InputError(f"evaluate: values: expected a dict of symbol name to number, got {type(values).__name__}")
         exact: Dict[str, Tuple[str, str]] = {}
         for key, value in values.items():
             if key not in names:
@@ -138,10 +140,15 @@ class Condition:
             if isinstance(value, bool):
                 raise InputError(f"evaluate: {key}: expected a number, got {value!r}")
             try:
-                f = Fraction(value)
-            except (TypeError, ValueError) as e:
-                raise InputError(f"evaluate: {key}: {value!r} is not a number ({e})") from None
-            exact[key] = (str(f.numerator), str(f.denominator))
+                # text by the library's number reader (its exponent bound: Fraction("1e999999999") would not end)
+                f = Fraction(_superball.Values.from_text([value]).as_text()[0]) if isinstance(value, str) else Fraction(value)
+                exact[key] = (str(f.numerator), str(f.denominator))
+            except (TypeError, ValueError, OverflowError) as e:  # InputError is a ValueError
+                try:
+                    shown = repr(value)
+                except ValueError:  # an int past Python's limit of int to text
+                    shown = f"an int of more than {_sys.get_int_max_str_digits()} digits"
+                raise InputError(f"evaluate: {key}: {shown} is not a number ({e})") from None
         form, definitions, zero = self._form(asymptotic)
         return _superball.evaluate(form, list(definitions), exact, list(zero))
 
@@ -291,7 +298,7 @@ def _run(name: str, options: Dict[str, Any], expanded: bool, jobs: Optional[int]
             raise InputError(f"{name}: progress must be None, False or a callable (done, total), got {progress!r}")
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise InputError(f"{name}: jobs must be a number of worker processes >= 1 or None (all cores), got {jobs!r}")
-    out = [_derivation(d) for d in _superball.derive(options, bool(expanded), 0 if jobs is None else jobs, step, notice)]
+    out = [_derivation(d) for d in _superball.derive(options, bool(expanded), 0 if jobs is None else min(jobs, 2**31 - 1), step, notice)]
     # Compact JSON of several cases has the conditions on M in the first case only: every Derivation shows them.
     psd = [c for c in out[0].conditions if c.kind == "psd"] if out else []
     return [d if any(c.kind == "psd" for c in d.conditions) else _with_conditions(d, d.conditions + psd) for d in out]

@@ -152,9 +152,12 @@ class MapResult:
         colour, the rest pale; M not PSD in grey) and, with ``curves``, the
         exact boundary curves (superball edge thick black, case changes
         thin white, PSD edge dashed).  Returns ``ax``."""
-        import matplotlib.colors as mcolors  # optional: imported only here
-        import matplotlib.patches as mpatches
-        import matplotlib.pyplot as plt
+        try:  # optional: imported only here
+            import matplotlib.colors as mcolors
+            import matplotlib.patches as mpatches
+            import matplotlib.pyplot as plt
+        except ImportError as e:
+            raise ImportError(f"MapResult.plot() needs matplotlib (python3-matplotlib, or pip install matplotlib): {e}") from e
 
         if ax is None:
             _, ax = plt.subplots(figsize=(7, 5))
@@ -222,15 +225,12 @@ def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional
     the tasks not there, and the result is the same.
     """
     from . import InputError, Scene
+    from ._options import _int_option
 
     if not isinstance(scene, Scene):
         raise InputError(f"map: expected a superball.Scene, got {type(scene).__name__}")
-    if threads is None:
-        threads = 0
-    if isinstance(threads, bool) or not isinstance(threads, int):
-        raise InputError(f"map: threads: expected an int (0 or None: all cores), got {threads!r}")
-    if threads < 0:
-        raise InputError(f"map: threads must be >= 0 (0: all cores), got {threads}")
+    threads = 0 if threads is None else _int_option(threads, "threads")
+    threads = max(min(threads, 2**63 - 1), -2**63)  # the library refuses it, as a long long
     if not isinstance(precision, str):
         raise InputError(f"map: precision: expected a string ('double', 'long-double', 'digits:N', 'exact'), got {precision!r}")
     callback = _progress.resolve(progress, "map")

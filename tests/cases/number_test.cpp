@@ -53,6 +53,17 @@ TEST(Number, KeepsTheSpellingForMessages) {
   EXPECT_EQ(Number::parse("1/3").text, "1/3");
 }
 
+// A NUL (a scene file's "\u0000", a Python string's "\x00") is escaped in
+// the message itself: what() is a C string, a raw NUL would end the line there.
+TEST(Number, AControlByteInTheTextIsEscapedInTheWholeMessage) {
+  try {
+    (void)Number::parse(std::string("1\0" "2\x1b", 4));
+    FAIL() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "Number::parse(): '1\\02\\e' is not a number (unexpected '\\0')");
+  }
+}
+
 TEST(Number, DecimalsAreKeptAsPowersOfTen) {
   // 0.001 is 1/1000 exactly; the fraction is not reduced (the cases library
   // has no big integers), but it is a decimal fraction.

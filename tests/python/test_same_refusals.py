@@ -89,6 +89,13 @@ CASES = [
     (SOLVE + ("--precision", "quad"), lambda: superball.solve(scene(), "quad"), None),
     (SOLVE + ("--precision", "digits:3"), lambda: superball.solve(scene(), "digits:3"), None),
     (SWEEP + ("--precision", "quad"), lambda: sweep(precision="quad"), None),
+    # map's threads: MapSettings::check() (Python's map had a rule and a message of its own)
+    (("map", PAPER, "--x", "K.3-4=0:20:3", "--y", "alpha.2=-110:0:3", "--threads", "-1"),
+     lambda: superball.map(scene(), "K.3-4=0:20:3", "alpha.2=-110:0:3", threads=-1, progress=False),
+     "threads must be a whole number from 0 (all cores) to 1024, got -1"),
+    (("map", PAPER, "--x", "K.3-4=0:20:3", "--y", "alpha.2=-110:0:3", "--threads", "1025"),
+     lambda: superball.map(scene(), "K.3-4=0:20:3", "alpha.2=-110:0:3", threads=1025, progress=False),
+     "threads must be a whole number from 0 (all cores) to 1024, got 1025"),
 ]
 
 

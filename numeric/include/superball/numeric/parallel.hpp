@@ -69,8 +69,9 @@ inline constexpr int max_threads = 1024;
 
 /// The rule of every `threads` setting (`--threads`, Python's threads=):
 /// throws std::invalid_argument("check_threads(): threads must be a whole
-/// number from 0 (all cores) to 1024, got T") unless 0 <= \p threads <= max_threads.
-inline void check_threads(int threads) {
+/// number from 0 (all cores) to 1024, got T") unless 0 <= \p threads <= max_threads
+/// (a long long: a front's integer wider than int is refused, not cut).
+inline void check_threads(long long threads) {
   if (threads < 0 || threads > max_threads)
     throw std::invalid_argument("check_threads(): threads must be a whole number from 0 (all cores) to " + std::to_string(max_threads) + ", got " +
                                 std::to_string(threads));
