@@ -26,13 +26,13 @@ string(JOIN "\n" CPACK_DEBIAN_PACKAGE_DESCRIPTION
   "long double, CLN floats, exact rationals) and derives, with GiNaC, each"
   "evolution case's admissibility conditions symbolically, after M. Fremond's"
   "theory of collisions.  The package holds the command, its manual page, the"
-  "paper's scenes, the four shared libraries with their headers, CMake package"
+  "paper's scenes, the shared libraries with their headers, CMake package"
   "and pkg-config file, and the Python module when it was built.")
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # The package's own libraries, which dpkg-shlibdeps must not look for in
 # another package.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS ${CMAKE_BINARY_DIR}/cases ${CMAKE_BINARY_DIR}/numeric
-    ${CMAKE_BINARY_DIR}/symbolic ${CMAKE_BINARY_DIR}/verify)
+    ${CMAKE_BINARY_DIR}/symbolic ${CMAKE_BINARY_DIR}/verify ${CMAKE_BINARY_DIR}/present)
 set(SUPERBALL_DEB_RECOMMENDS "libginac-dev, libcln-dev, libeigen3-dev, nlohmann-json3-dev, pkg-config")
 if(SUPERBALL_BUILD_PYTHON)
   # dpkg-shlibdeps sees libpython's symbols as the interpreter's; the module needs NumPy at import.

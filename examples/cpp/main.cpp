@@ -1,6 +1,7 @@
-// Solve a scene numerically (double and exact rationals) and derive the
-// paper's case 1 with the coupling α₂ symbolically, with superball's
-// installed libraries.  Usage: superball_example [SCENE]
+// Solve a scene numerically (double and exact rationals), print the report
+// `superball solve` prints, and derive the paper's case 1 with the coupling
+// α₂ symbolically, with superball's installed libraries.
+// Usage: superball_example [SCENE]
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/problem.hpp"
 #include "superball/numeric/scalar.hpp"
+#include "superball/present/solution.hpp"
 #include "superball/symbolic/derivation.hpp"
 #include "superball/symbolic/format.hpp"
 
@@ -36,6 +38,9 @@ int main(int argc, char** argv) {
     if (rational.unit_exact) {
       std::cout << "  U1+ exactly " << numeric::to_string(cln::cl_RA(exact_solution.velocities_after[0] * rational.unit)) << "\n";
     }
+
+    // The report `superball solve SCENE --precision double` prints (superball::present).
+    std::cout << "\n" << present::to_text(present::solve_scene(scene, numeric::Precision{})) << "\n";
 
     // Symbolically: case 1 of the paper with α₂, the superball condition.
     const symbolic::Deriver deriver(symbolic::Pattern::paper({2}), symbolic::Obstacle::Infinite);

@@ -88,6 +88,68 @@ bool connected_sets(const std::vector<std::vector<int>>& adjacent, std::size_t c
   return true;
 }
 
+using detail::Poly;
+
+/// The parts a case's readable forms name, in the order of first use, and
+/// the candidates they may group by (the diagonal entries of ZᵀAZ).
+struct Naming {
+  std::vector<Poly> named, candidates;
+  /// The k of S_k for \p s, naming it when it is new.
+  int name(const Poly& s) {
+    const auto k = static_cast<std::size_t>(std::find(named.begin(), named.end(), s) - named.begin());
+    if (k == named.size()) named.push_back(s);
+    return static_cast<int>(k) + 1;
+  }
+};
+
+/// A Deriver's rules on polynomials (poly.hpp): the same rules as
+/// certainly_nonnegative(), certainly_positive(), strip_positive_factors()
+/// and Deriver::asymptotic(), and the conditions made with them, for
+/// Deriver::derive().  Reads the deriver's ε-order of each symbol and its
+/// couplings (by index in Symbols::all()): it must not outlive the deriver.
+class Rules {
+ public:
+  Rules(const Deriver& deriver, const std::vector<GiNaC::numeric>& orders, const std::vector<int>& couplings)
+      : deriver_(deriver), sy_(deriver.symbols()), orders_(orders), couplings_(couplings) {}
+
+  /// The condition "raw / determinant REL 0" in its exact, finite and
+  /// asymptotic forms (\p parts: the polynomials whose leading orders may
+  /// cancel in raw; \p eliminated: its form through the case's elimination,
+  /// \p limit: whether that form gives the ε⁰ part).
+  Condition make_condition(ConditionKind kind, const std::string& about, Relation relation, const Poly& raw,
+                           const detail::Denominator& determinant, const std::vector<const Poly*>& parts, Naming& naming,
+                           const EliminatedForm* eliminated = nullptr, bool limit = false) const;
+  /// The isolated or grouped form of \p p, naming the part it divides by.
+  std::optional<Readable> readable(const Poly& p, Naming& naming) const;
+  /// The lowest ε-order of the terms of \p p (throws for p = 0).
+  GiNaC::numeric epsilon_order(const Poly& p) const;
+  /// Every term has a positive coefficient and even powers of couplings.
+  bool nonnegative_terms(const Poly& p) const;
+  /// nonnegative_terms(), and a term has no coupling.
+  bool positive_terms(const Poly& p) const;
+  /// Whether "p REL 0" holds always, never, or depending on the parameters.
+  Verdict verdict(const Poly& p, Relation rel) const;
+  /// \p p with its positive factors divided out (\p removed receives them).
+  Poly strip(const Poly& p, GiNaC::ex* removed = nullptr) const;
+  /// The terms of the lowest 1 + order() ε-orders of \p p, stripped;
+  /// \p leading receives the lowest order.
+  Poly dominant(const Poly& p, GiNaC::numeric* leading) const;
+  /// The ε-order of term \p t of \p p.
+  GiNaC::numeric term_order(const Poly& p, std::size_t t) const;
+  /// \p p divided by g, the positive integer content times the monomial of
+  /// positive symbols common to its terms (g receives it).
+  Poly without_positive_monomial(const Poly& p, Poly& g) const;
+
+ private:
+  const Deriver& deriver_;
+  const Symbols& sy_;
+  const std::vector<GiNaC::numeric>& orders_;
+  const std::vector<int>& couplings_;
+};
+
+/// M's positive semi-definiteness conditions for \p deriver's pattern (Deriver::psd()).
+std::vector<Condition> psd_conditions(const Deriver& deriver);
+
 }  // namespace
 
 const char* to_string(ConditionKind kind) {
@@ -191,7 +253,7 @@ Deriver::Deriver(const Pattern& pattern, Obstacle obstacle, std::optional<Scalin
     orders_.push_back(scaling_.order(*symbols_, info.symbol));
     if (info.kind == SymbolKind::Coupling) couplings_.push_back(info.rank);
   }
-  build_psd();
+  psd_ = psd_conditions(*this);
 }
 
 GiNaC::ex Deriver::asymptotic(const GiNaC::ex& p, GiNaC::numeric* leading) const {
@@ -214,7 +276,7 @@ GiNaC::ex Deriver::asymptotic(const GiNaC::ex& p, GiNaC::numeric* leading) const
   return GiNaC::expand(kept * denominators / content);
 }
 
-bool Deriver::nonnegative_terms(const detail::Poly& p) const {
+bool Rules::nonnegative_terms(const detail::Poly& p) const {
   for (std::size_t t = 0; t < p.size(); ++t) {
     if (cln::minusp(p.coefficient(t))) return false;
     for (int k : couplings_)
@@ -223,7 +285,7 @@ bool Deriver::nonnegative_terms(const detail::Poly& p) const {
   return true;
 }
 
-bool Deriver::positive_terms(const detail::Poly& p) const {
+bool Rules::positive_terms(const detail::Poly& p) const {
   if (p.is_zero() || !nonnegative_terms(p)) return false;
   for (std::size_t t = 0; t < p.size(); ++t) {
     bool free = true;
@@ -233,15 +295,15 @@ bool Deriver::positive_terms(const detail::Poly& p) const {
   return false;
 }
 
-Verdict Deriver::verdict(const detail::Poly& p, Relation rel) const {
+Verdict Rules::verdict(const detail::Poly& p, Relation rel) const {
   if (p.is_zero()) return rel == Relation::GreaterEqual ? Verdict::Always : Verdict::Never;
   if (rel == Relation::Greater ? positive_terms(p) : nonnegative_terms(p)) return Verdict::Always;
   if (rel == Relation::Greater ? nonnegative_terms(-p) : positive_terms(-p)) return Verdict::Never;
   return Verdict::Depends;
 }
 
-detail::Poly Deriver::strip(const detail::Poly& p, GiNaC::ex* removed) const {
-  const Symbols& sy = *symbols_;
+detail::Poly Rules::strip(const detail::Poly& p, GiNaC::ex* removed) const {
+  const Symbols& sy = sy_;
   if (p.is_zero() || p.size() <= max_factor_terms) {  // small: the factorisation too (strip_positive_factors)
     GiNaC::ex gone = 1;
     const detail::Poly out = detail::Poly::from_ex(strip_positive_factors(p.to_ex(sy), sy, &gone), sy);
@@ -255,7 +317,7 @@ detail::Poly Deriver::strip(const detail::Poly& p, GiNaC::ex* removed) const {
   return rest;
 }
 
-detail::Poly Deriver::without_positive_monomial(const detail::Poly& p, detail::Poly& g) const {
+detail::Poly Rules::without_positive_monomial(const detail::Poly& p, detail::Poly& g) const {
   const cln::cl_I content = p.content();
   std::vector<int> common = p.common_exponents();
   for (int k : couplings_) common[static_cast<std::size_t>(k)] = 0;
@@ -265,7 +327,7 @@ detail::Poly Deriver::without_positive_monomial(const detail::Poly& p, detail::P
   return p.divided(content).divided_by_monomial(common);
 }
 
-detail::Poly Deriver::dominant(const detail::Poly& p, GiNaC::numeric* leading) const {
+detail::Poly Rules::dominant(const detail::Poly& p, GiNaC::numeric* leading) const {
   if (p.is_zero()) {
     if (leading) *leading = 0;
     return p;
@@ -278,7 +340,7 @@ detail::Poly Deriver::dominant(const detail::Poly& p, GiNaC::numeric* leading) c
   }
   std::sort(levels.begin(), levels.end(), [](const GiNaC::numeric& x, const GiNaC::numeric& y) { return x < y; });
   if (leading) *leading = levels.front();
-  const GiNaC::numeric& last = levels[std::min(levels.size() - 1, static_cast<std::size_t>(order_))];
+  const GiNaC::numeric& last = levels[std::min(levels.size() - 1, static_cast<std::size_t>(deriver_.order()))];
   std::vector<std::size_t> terms;
   for (std::size_t t = 0; t < p.size(); ++t)
     if (weight[t] <= last) terms.push_back(t);
@@ -289,22 +351,6 @@ detail::Poly Deriver::dominant(const detail::Poly& p, GiNaC::numeric* leading) c
   // A constant says "always" (or "never"); the dominant terms say why (K₁₄ > 0).
   return kept.divided(kept.content());
 }
-
-namespace detail {
-
-/// The parts a case's readable forms name, in the order of first use, and
-/// the candidates they may group by (the diagonal entries of ZᵀAZ).
-struct Naming {
-  std::vector<Poly> named, candidates;
-  /// The k of S_k for \p s, naming it when it is new.
-  int name(const Poly& s) {
-    const auto k = static_cast<std::size_t>(std::find(named.begin(), named.end(), s) - named.begin());
-    if (k == named.size()) named.push_back(s);
-    return static_cast<int>(k) + 1;
-  }
-};
-
-}  // namespace detail
 
 namespace {
 
@@ -343,9 +389,9 @@ constexpr double grouped_gain = 0.6;
 
 }  // namespace
 
-std::optional<Readable> Deriver::readable(const detail::Poly& p, detail::Naming& naming) const {
+std::optional<Readable> Rules::readable(const detail::Poly& p, Naming& naming) const {
   if (p.size() > max_readable_terms) return std::nullopt;  // neither shape makes such a polynomial readable; it costs
-  const Symbols& sy = *symbols_;
+  const Symbols& sy = sy_;
   const int vars = p.vars();
   // Isolated: the coupling whose coefficient has a proved sign and that gives the fewest terms.
   struct Choice {
@@ -381,7 +427,7 @@ std::optional<Readable> Deriver::readable(const detail::Poly& p, detail::Naming&
     const Choice& c = *best;
     const Poly x = Poly::variable(vars, c.x);
     if ((c.g * c.S * x).scaled(c.sigma) - (c.Q * c.S + c.R) != p)
-      throw std::logic_error("Deriver::readable(): the isolated form of a condition is not the condition (P != sigma g S x - (Q S + R))");
+      throw std::logic_error("Deriver::derive(): the isolated form of a condition is not the condition (P != sigma g S x - (Q S + R))");
     Readable r;
     r.subject = (c.g * x).scaled(c.sigma).to_ex(sy);
     r.quotient = c.Q.to_ex(sy);
@@ -400,7 +446,7 @@ std::optional<Readable> Deriver::readable(const detail::Poly& p, detail::Naming&
   if (!group) return std::nullopt;
   const auto& [S, qr] = *group;
   if (qr.first * S + qr.second != p)
-    throw std::logic_error("Deriver::readable(): the grouped form of a condition is not the condition (P != Q S + R)");
+    throw std::logic_error("Deriver::derive(): the grouped form of a condition is not the condition (P != Q S + R)");
   Readable r;
   r.quotient = qr.first.to_ex(sy);
   r.remainder = qr.second.to_ex(sy);
@@ -408,7 +454,7 @@ std::optional<Readable> Deriver::readable(const detail::Poly& p, detail::Naming&
   return r;
 }
 
-GiNaC::numeric Deriver::epsilon_order(const detail::Poly& p) const {
+GiNaC::numeric Rules::epsilon_order(const detail::Poly& p) const {
   if (p.is_zero()) throw std::invalid_argument("epsilon_order(): the zero polynomial has no order");
   GiNaC::numeric lowest = 0;
   for (std::size_t t = 0; t < p.size(); ++t) {
@@ -418,7 +464,7 @@ GiNaC::numeric Deriver::epsilon_order(const detail::Poly& p) const {
   return lowest;
 }
 
-GiNaC::numeric Deriver::term_order(const detail::Poly& p, std::size_t t) const {
+GiNaC::numeric Rules::term_order(const detail::Poly& p, std::size_t t) const {
   GiNaC::numeric w = 0;
   for (int k = 0; k < p.vars(); ++k)
     if (const int e = p.exponent(t, k); e && !orders_[static_cast<std::size_t>(k)].is_zero()) w += orders_[static_cast<std::size_t>(k)] * e;
@@ -493,10 +539,10 @@ std::size_t terms_of(const GiNaC::ex& p) { return GiNaC::is_a<GiNaC::add>(p) ? p
 
 }  // namespace
 
-Condition Deriver::make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
+Condition Rules::make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
                                   const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts,
-                                  detail::Naming& naming, const EliminatedForm* eliminated, bool limit) const {
-  const Symbols& sy = *symbols_;
+                                  Naming& naming, const EliminatedForm* eliminated, bool limit) const {
+  const Symbols& sy = sy_;
   Condition c;
   c.kind = kind;
   c.about = about;
@@ -552,14 +598,14 @@ Condition Deriver::make_condition(ConditionKind kind, const std::string& about, 
   // (either way the regime's numerator is `kept`).  An unproved denominator
   // gets its own dominant balance.
   const ConditionForm& regime = c.finite ? *c.finite : c.exact;
-  c.asymptotic.denominator = regime.denominator.is_equal(1) ? GiNaC::ex(1) : asymptotic(regime.denominator);
+  c.asymptotic.denominator = regime.denominator.is_equal(1) ? GiNaC::ex(1) : deriver_.asymptotic(regime.denominator);
   const detail::Poly dominant_balance = dominant(kept, &c.leading_order);
   const bool same = dominant_balance == kept && regime.sign_proved();  // every term is of the leading order: the regime's form again
   c.asymptotic.numerator = same ? regime.numerator : dominant_balance.to_ex(sy);
   c.asymptotic.verdict = c.asymptotic.sign_proved() ? (same ? regime.verdict : verdict(dominant_balance, relation)) : Verdict::Depends;
   if (c.asymptotic.verdict == Verdict::Depends && c.asymptotic.sign_proved())
     c.asymptotic.readable = same ? regime.readable : readable(dominant_balance, naming);
-  c.orders_kept = 1 + order_;
+  c.orders_kept = 1 + deriver_.order();
   // Long forms through the case's elimination (the expanded ones stay).
   if (eliminated) {
     auto is_long = [&](const ConditionForm& f, std::size_t most) {
@@ -590,8 +636,10 @@ Condition Deriver::make_condition(ConditionKind kind, const std::string& about, 
   return c;
 }
 
-void Deriver::build_psd() {
-  const Symbols& sy = *symbols_;
+namespace {
+
+std::vector<Condition> psd_conditions(const Deriver& deriver) {
+  const Symbols& sy = deriver.symbols();
   const std::vector<Pair> pairs = sy.pattern().pairs();
   const int v = static_cast<int>(pairs.size());
   auto index = [&](const Pair& p) { return static_cast<int>(std::find(pairs.begin(), pairs.end(), p) - pairs.begin()); };
@@ -606,6 +654,7 @@ void Deriver::build_psd() {
     throw std::invalid_argument("Deriver::Deriver(): the coupling graph has more than " + std::to_string(cap) +
                                 " connected sets of pairs; too many principal minors to list");
   std::sort(sets.begin(), sets.end(), [](const auto& x, const auto& y) { return x.size() != y.size() ? x.size() < y.size() : x < y; });
+  std::vector<Condition> out;
   for (const auto& set : sets) {
     const auto k = static_cast<unsigned>(set.size());
     GiNaC::matrix m(k, k);
@@ -624,13 +673,16 @@ void Deriver::build_psd() {
     c.exact.numerator = minor;
     c.exact.verdict = verdict_of(minor, rel, sy);
     c.proof = k == 1 ? "K is a positive symbol (the paper's K > 0)" : "principal minor of M on the pairs " + about + ", no denominator";
-    c.asymptotic.numerator = asymptotic(minor, &c.leading_order);
+    c.asymptotic.numerator = deriver.asymptotic(minor, &c.leading_order);
     c.asymptotic.verdict = verdict_of(c.asymptotic.numerator, rel, sy);
-    c.orders_kept = 1 + order_;
+    c.orders_kept = 1 + deriver.order();
     if (sy.obstacle() == Obstacle::Finite) c.finite = c.exact;
-    psd_.push_back(std::move(c));
+    out.push_back(std::move(c));
   }
+  return out;
 }
+
+}  // namespace
 
 // ---------------------------------------------------------------------------
 // Deriver::derive(), phase by phase: the clusters of the case, its equations
@@ -1080,19 +1132,20 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   const Conditions conditions = conditions_of(s, closed, x);  // phase 6
   const std::vector<Pending>& pending = conditions.pending;
   std::vector<char> limit(pending.size(), 0);
-  out.elimination = eliminate(s, closed, x, pending, orders_, order_, [this](const Poly& p) { return epsilon_order(p); }, limit);  // phase 7
+  const Rules rules(*this, orders_, couplings_);
+  out.elimination = eliminate(s, closed, x, pending, orders_, order_, [&rules](const Poly& p) { return rules.epsilon_order(p); }, limit);  // phase 7
   if (out.elimination)
     for (const Linear& f : conditions.reaction_forms) out.reactions_eliminated.push_back(eliminated_form(f, sy));
 
   // Phase 8: the conditions' forms, the named parts, the case's verdict.
-  detail::Naming naming;  // the case's named parts, and the diagonal of ZᵀAZ as candidates
+  Naming naming;  // the case's named parts, and the diagonal of ZᵀAZ as candidates
   const std::size_t Kc = s.k();
   for (std::size_t c = 0; c < Kc; ++c)
     if (!s.B[c * Kc + c].is_constant()) naming.candidates.push_back(s.B[c * Kc + c]);
   for (std::size_t q = 0; q < pending.size(); ++q) {
     const Pending& p = pending[q];
     const EliminatedForm form = out.elimination ? eliminated_form(p.form, sy) : EliminatedForm{};
-    out.conditions.push_back(make_condition(p.kind, p.about, p.relation, p.raw, denominator, p.parts, naming,
+    out.conditions.push_back(rules.make_condition(p.kind, p.about, p.relation, p.raw, denominator, p.parts, naming,
                                             out.elimination ? &form : nullptr, limit[q] != 0));
   }
   if (out.elimination && !elimination_used(out)) {  // the elimination is kept only when something is written through it
@@ -1100,7 +1153,7 @@ Derivation Deriver::derive(const ContactSet& closed) const {
     out.reactions_eliminated.clear();
   }
   for (std::size_t k = 0; k < naming.named.size(); ++k)
-    out.named.push_back(NamedPart{static_cast<int>(k) + 1, naming.named[k].to_ex(sy), positive_terms(naming.named[k])});
+    out.named.push_back(NamedPart{static_cast<int>(k) + 1, naming.named[k].to_ex(sy), rules.positive_terms(naming.named[k])});
   set_actual(out);
   out.conditions.insert(out.conditions.end(), psd_.begin(), psd_.end());
   return out;

@@ -2,9 +2,12 @@
 # check_exports.sh LIBRARY BOUND: the dynamic symbols LIBRARY defines are its
 # public API and nothing else.  Each must be named in namespace superball
 # (functions, data, and the vtables, typeinfo and thunks of its classes),
-# none in a namespace `detail` or an anonymous namespace, and there must be
-# fewer than BOUND of them.  Prints every offending symbol (demangled) and
-# exits 1 when there is one; exits 0 with a count otherwise.
+# none in a namespace `detail` or an anonymous namespace, none whose
+# demangled name mentions a `::detail::` or anonymous-namespace name anywhere
+# (a parameter or template argument: a public class's private member taking
+# an internal type), and there must be fewer than BOUND of them.  Prints
+# every offending symbol (demangled) and exits 1 when there is one; exits 0
+# with a count otherwise.
 set -eu
 lib=$1
 bound=$2
@@ -33,6 +36,14 @@ bad=$(printf '%s\n' "$paths" | awk '
   $2 !~ /^superball(::|$)/ { print $1 " (not in namespace superball)"; next }
   $2 ~ /(^|::)detail(::|$)/ { print $1 " (in a namespace detail)"; next }
   $2 ~ /_GLOBAL__N/ { print $1 " (in an anonymous namespace)"; next }')
+# Symbols in namespace superball whose whole demangled name (parameters and
+# template arguments included) names an internal type.
+named=$(printf '%s\n' "$paths" | awk '$2 ~ /^superball(::|$)/ && $2 !~ /(^|::)detail(::|$)/ && $2 !~ /_GLOBAL__N/ { print $1 }')
+for n in $(printf '%s\n' "$named" | c++filt | grep -n -e '::detail::' -e '(anonymous namespace)' | cut -d: -f1); do
+  bad="$bad
+$(printf '%s\n' "$named" | sed -n "${n}p") (names a type of a namespace detail or an anonymous namespace)"
+done
+bad=$(printf '%s\n' "$bad" | grep . || true)
 status=0
 if [ -n "$bad" ]; then
   printf '%s\n' "$bad" | while read -r mangled why; do
@@ -45,5 +56,5 @@ if [ "$count" -ge "$bound" ]; then
   echo "$(basename "$lib"): $count exported symbols, the bound is $bound"
   status=1
 fi
-[ "$status" -eq 0 ] && echo "$(basename "$lib"): $count exported symbols (bound $bound), all in namespace superball, none in detail or an anonymous namespace"
+[ "$status" -eq 0 ] && echo "$(basename "$lib"): $count exported symbols (bound $bound), all in namespace superball, none in detail or an anonymous namespace nor naming a type there"
 exit $status

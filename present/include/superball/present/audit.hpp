@@ -2,13 +2,15 @@
 /// \file audit.hpp
 /// The audit of the paper's printed conditions (verify/audit.hpp) as people
 /// and programs read it: the report of `superball audit` and its JSON.
-/// Shared by the command and the Python module; not installed.
+/// Shared by the command and the Python module.
 
 #include <nlohmann/json.hpp>
 
 #include <string>
 
 #include "superball/verify/audit.hpp"
+#include "superball/present/export.hpp"
+SUPERBALL_PRESENT_API_BEGIN
 
 namespace superball::present {
 
@@ -21,3 +23,5 @@ nlohmann::ordered_json audit_json(const verify::Audit& a);
 std::string to_text(const verify::Audit& audit);
 
 }  // namespace superball::present
+
+SUPERBALL_PRESENT_API_END

@@ -3,7 +3,7 @@
 /// A derivation as people and programs read it: the report in text and
 /// LaTeX (`superball derive`, `--format latex`), a standalone LaTeX document,
 /// and the JSON of `--format json`.  Shared by the command and the Python
-/// module; not installed.  The formulas themselves are symbolic/format.hpp's.
+/// module.  The formulas themselves are symbolic/format.hpp's.
 
 #include <nlohmann/json.hpp>
 
@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "superball/symbolic/derivation.hpp"
+#include "superball/present/export.hpp"
+SUPERBALL_PRESENT_API_BEGIN
 
 namespace superball::present {
 
@@ -61,3 +63,5 @@ std::string report_psd(const symbolic::Deriver& deriver, symbolic::Style style);
 std::string latex_document(const std::vector<symbolic::Derivation>& derivations, const symbolic::Deriver& deriver);
 
 }  // namespace superball::present
+
+SUPERBALL_PRESENT_API_END

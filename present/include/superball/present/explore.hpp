@@ -3,7 +3,7 @@
 /// The exploration of a pattern (verify/explore.hpp) as people and programs
 /// read it: one result, the table of `--all-patterns` (also from cells
 /// explored one at a time elsewhere), and the witness scene file.  Shared by
-/// the command and the Python module; not installed.
+/// the command and the Python module.
 
 #include <nlohmann/json.hpp>
 
@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "superball/verify/explore.hpp"
+#include "superball/present/export.hpp"
+SUPERBALL_PRESENT_API_BEGIN
 
 namespace superball::present {
 
@@ -32,6 +34,7 @@ struct RenderedCell {
   std::string text;             ///< cell_text()
   nlohmann::ordered_json json;  ///< to_json() of the result
 };
+/// The cell of \p r as the table prints it (cell_text() and to_json()).
 RenderedCell render(const verify::ExploreResult& r);
 
 /// The table as Markdown (rows patterns, columns cases) with the box and budget.
@@ -42,6 +45,7 @@ nlohmann::ordered_json to_json(const verify::PatternTable& t);
 /// (its cells left empty) and its cells rendered: \p cells[row][column].
 /// The same text as from the table with its cells filled.
 std::string to_text(const verify::PatternTable& t, const std::vector<std::vector<RenderedCell>>& cells);
+/// The same JSON as to_json() of the table with its cells filled.
 nlohmann::ordered_json to_json(const verify::PatternTable& t, const std::vector<std::vector<RenderedCell>>& cells);
 
 /// The TOML text of the witness scene of \p r (write_scene) with a comment
@@ -50,3 +54,5 @@ nlohmann::ordered_json to_json(const verify::PatternTable& t, const std::vector<
 std::string witness_file(const verify::ExploreResult& r, const std::string& command);
 
 }  // namespace superball::present
+
+SUPERBALL_PRESENT_API_END

@@ -3,7 +3,7 @@
 /// A map over two parameters (numeric/map.hpp) as people and programs read
 /// it: the grid and the boundary points as CSV, everything as JSON, a
 /// summary as text, and the gnuplot data and script of its figure.  Shared by
-/// the `superball` command and the Python module; not installed.
+/// the `superball` command and the Python module.
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "superball/numeric/map.hpp"
+#include "superball/present/export.hpp"
+SUPERBALL_PRESENT_API_BEGIN
 
 namespace superball::present {
 
@@ -59,7 +61,11 @@ std::string map_summary(const numeric::Map& m, const Scene& scene, const std::st
 
 /// A point to mark on the figure (e.g. the paper's values).
 struct MapMark {
+  ///@{
+  /// The point's coordinates, in the map's x and y parameters.
   double x = 0, y = 0;
+  ///@}
+  /// The text written beside it.
   std::string label;
 };
 
@@ -86,3 +92,5 @@ std::string map_figure_script(const numeric::Map& m, const std::vector<MapMark>&
 std::string axis_label(const std::string& key);
 
 }  // namespace superball::present
+
+SUPERBALL_PRESENT_API_END

@@ -2,7 +2,7 @@
 /// \file overlay.hpp
 /// The overlay of a map (verify/overlay.hpp) as people and programs read
 /// it: the summary of `superball map --overlay` and its JSON.  Shared by the
-/// command and the Python module; not installed.
+/// command and the Python module.
 
 #include <nlohmann/json.hpp>
 
@@ -10,6 +10,8 @@
 
 #include "superball/numeric/map.hpp"
 #include "superball/verify/overlay.hpp"
+#include "superball/present/export.hpp"
+SUPERBALL_PRESENT_API_BEGIN
 
 namespace superball::present {
 
@@ -21,3 +23,5 @@ std::string to_text(const verify::Overlay& o, const numeric::Map& map);
 nlohmann::ordered_json to_json(const verify::Overlay& o, const numeric::Map& map);
 
 }  // namespace superball::present
+
+SUPERBALL_PRESENT_API_END

@@ -3,7 +3,7 @@
 /// A pattern of M, an obstacle, an asymptotic regime and evolution cases
 /// chosen by name, as the commands that work on derivations (`derive`,
 /// `verify`, `explore`) and the Python module take them.  Shared by the two
-/// fronts; not installed.
+/// fronts.
 
 #include <memory>
 #include <string>
@@ -12,6 +12,8 @@
 #include "superball/numeric/memory.hpp"
 #include "superball/symbolic/derivation.hpp"
 #include "superball/symbolic/estimate.hpp"
+#include "superball/present/export.hpp"
+SUPERBALL_PRESENT_API_BEGIN
 
 namespace superball::present {
 
@@ -25,12 +27,23 @@ inline constexpr int max_order = 20;
 /// Pattern::parse_couplings(), scaling by Scaling::parse(), closed by
 /// ContactSet::parse(), case_name by the paper's vocabulary.
 struct SelectionOptions {
+  /// The number of bodies n.
   int bodies = 4;
   int order = 0;                 ///< correction orders kept, 0 to max_order
+  ///@{
+  /// The chosen case.
   std::string case_name, closed;  ///< the paper's case name (n = 4), or the closed contacts ("2-3,3-4", "none")
+  ///@}
   std::vector<int> alphas;       ///< the paper's couplings α_k in play (n = 4; parse_alphas()); empty: none
+  ///@{
+  /// The couplings of M in play ("1-2/1-4,1-3/1-4" or "near2"), the pairs
+  /// with a K ("all", "near", "near2" or "1-2,2-3"), a scene file whose
+  /// pattern of M is taken,
+  /// the asymptotic regime ("m1=1,m4=-1" or "none"; empty: the paper's).
   std::string coupling, pairs = "all", scene, scaling;
+  ///@}
   symbolic::Obstacle obstacle = symbolic::Obstacle::Infinite;  ///< parse_obstacle()
+  /// Every case of the pattern.
   bool all = false;
 
   /// Throws std::invalid_argument("SelectionOptions::check(): ...") naming
@@ -55,6 +68,7 @@ symbolic::Obstacle parse_obstacle(const std::string& text);
 
 /// A pattern, obstacle and regime resolved, with the chosen cases.
 struct Selection {
+  /// The pattern, obstacle and regime, ready to derive.
   std::unique_ptr<symbolic::Deriver> deriver;
   std::vector<ContactSet> cases;  ///< --case / --closed: one; --all: every case in mask order; none given: empty
 };
@@ -84,3 +98,5 @@ DerivePlan plan_derivation(const Selection& s, int jobs, const numeric::Memory& 
 std::vector<int> parse_alphas(const std::string& text);
 
 }  // namespace superball::present
+
+SUPERBALL_PRESENT_API_END

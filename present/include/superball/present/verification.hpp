@@ -3,13 +3,15 @@
 /// The verification of a case (verify/verification.hpp) as people and
 /// programs read it: the tables of `superball verify`, its JSON, and the
 /// comment of a disagreement's scene file.  Shared by the command and the
-/// Python module; not installed.
+/// Python module.
 
 #include <nlohmann/json.hpp>
 
 #include <string>
 
 #include "superball/verify/verification.hpp"
+#include "superball/present/export.hpp"
+SUPERBALL_PRESENT_API_BEGIN
 
 namespace superball::present {
 
@@ -26,3 +28,5 @@ nlohmann::ordered_json to_json(const verify::Verification& v);
 std::string describe(const verify::Verification& v, const verify::Disagreement& d);
 
 }  // namespace superball::present
+
+SUPERBALL_PRESENT_API_END

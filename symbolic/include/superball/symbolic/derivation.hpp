@@ -34,12 +34,6 @@ SUPERBALL_SYMBOLIC_API_BEGIN
 
 namespace superball::symbolic {
 
-namespace detail {
-class Denominator;
-class Poly;
-struct Naming;
-}  // namespace detail
-
 /// The order in a small ε of each parameter (paper §4: m₁ very small, m₄ and
 /// K₁₄ very large): parameter p behaves like ε^order(p); unlisted ones are O(1).
 class Scaling {
@@ -282,25 +276,8 @@ class Deriver {
   GiNaC::ex asymptotic(const GiNaC::ex& p, GiNaC::numeric* leading = nullptr) const;
 
  private:
-  Condition make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
-                           const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts,
-                           detail::Naming& naming, const EliminatedForm* eliminated = nullptr, bool limit = false) const;
-  std::optional<Readable> readable(const detail::Poly& p, detail::Naming& naming) const;
-  GiNaC::numeric epsilon_order(const detail::Poly& p) const;
-  // The same rules as certainly_nonnegative(), certainly_positive(),
-  // strip_positive_factors() and asymptotic(), on polynomials (poly.hpp).
-  bool nonnegative_terms(const detail::Poly& p) const;
-  bool positive_terms(const detail::Poly& p) const;
-  Verdict verdict(const detail::Poly& p, Relation rel) const;
-  detail::Poly strip(const detail::Poly& p, GiNaC::ex* removed = nullptr) const;
-  detail::Poly dominant(const detail::Poly& p, GiNaC::numeric* leading) const;
-  /// The ε-order of term \p t of \p p.
-  GiNaC::numeric term_order(const detail::Poly& p, std::size_t t) const;
-  /// \p p divided by g, the positive integer content times the monomial of
-  /// positive symbols common to its terms (g receives it).
-  detail::Poly without_positive_monomial(const detail::Poly& p, detail::Poly& g) const;
-  void build_psd();
-
+  // The rules on polynomials (conditions, verdicts, readable forms) live in
+  // the implementation; they read the ε-orders and couplings below.
   std::shared_ptr<const Symbols> symbols_;
   Scaling scaling_;
   int order_ = 0;
