@@ -3,7 +3,6 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
-#include <csignal>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -29,48 +28,6 @@ using present::derivation_json;
 using present::latex_document;
 using present::report;
 using present::report_psd;
-
-namespace {
-
-/// The exit code of a run stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
-constexpr int kInterruptedExit = 128 + SIGINT;
-
-volatile std::sig_atomic_t interrupt_requested = 0;
-struct sigaction interrupt_previous {};
-
-/// The first SIGINT asks the run to stop (Workers polls interrupt_requested);
-/// a second one does what SIGINT did before (Output's: remove its temporary
-/// and end the process).
-extern "C" void request_interrupt(int signal) {
-  if (interrupt_requested) {
-    ::sigaction(signal, &interrupt_previous, nullptr);
-    std::raise(signal);
-    return;
-  }
-  interrupt_requested = 1;
-}
-
-/// SIGINT handled by request_interrupt() while this object lives (not where
-/// the caller ignores it, e.g. a background job of a shell without job control).
-struct InterruptHandler {
-  bool installed = false;
-  InterruptHandler() {
-    interrupt_requested = 0;
-    if (::sigaction(SIGINT, nullptr, &interrupt_previous) != 0 || interrupt_previous.sa_handler == SIG_IGN) return;
-    struct sigaction act {};
-    act.sa_handler = request_interrupt;
-    sigemptyset(&act.sa_mask);
-    installed = ::sigaction(SIGINT, &act, nullptr) == 0;
-  }
-  ~InterruptHandler() {
-    if (installed) ::sigaction(SIGINT, &interrupt_previous, nullptr);
-  }
-  InterruptHandler(const InterruptHandler&) = delete;
-  InterruptHandler& operator=(const InterruptHandler&) = delete;
-  static bool requested() { return interrupt_requested != 0; }
-};
-
-}  // namespace
 
 void add_derive(CLI::App& app, Action& action) {
   struct Options {

@@ -323,8 +323,10 @@ py::tuple audit(const std::string& epsilon, int samples, std::uint64_t seed) {
 }
 
 /// explore(): per case (or per cell of the table), to_json as Python objects, the report and the witness scene.
+/// progress(phase, done, total) ("case NAME", or "cells" for the table) and Ctrl-C as the search goes
+/// (ExploreOptions::progress; the GIL is held: GiNaC is not thread-safe).
 std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::uint64_t seed, int starts, int evaluations, double box_low,
-                               double box_high) {
+                               double box_high, const py::object& progress) {
   verify::ExploreOptions o;
   o.seed = seed;
   o.starts = starts;
@@ -332,10 +334,16 @@ std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::
   o.box_low = box_low;
   o.box_high = box_high;
   o.check();
+  auto told = [&progress](const std::string& phase) {
+    return [&progress, phase](long long done, long long planned) {
+      between_tasks(progress, phase, static_cast<std::size_t>(done), static_cast<std::size_t>(planned));
+    };
+  };
   const present::SelectionOptions chosen = selection(options);
   std::vector<py::tuple> out;
   if (all_patterns) {
     present::check_all_patterns(chosen);
+    o.progress = told("cells");
     const verify::PatternTable t = verify::explore_all_patterns(o);
     out.push_back(py::make_tuple(to_python(present::to_json(t)), present::to_text(t)));
     return out;
@@ -343,6 +351,7 @@ std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::
   present::require_case(chosen, true);
   const present::Selection sel = present::resolve(chosen);
   for (const ContactSet& c : sel.cases) {
+    o.progress = told("case " + Vocabulary::paper().case_name(c));
     const verify::ExploreResult r = verify::explore_case(*sel.deriver, c, o);
     out.push_back(py::make_tuple(to_python(present::to_json(r)), present::to_text(r), r.scene ? py::cast(*r.scene) : py::none()));
   }
@@ -449,7 +458,7 @@ PYBIND11_MODULE(_superball, m) {
         py::arg("threads"), py::arg("progress"));
   m.def("audit", &audit, py::arg("epsilon"), py::arg("samples"), py::arg("seed"));
   m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
-        py::arg("box_low"), py::arg("box_high"));
+        py::arg("box_low"), py::arg("box_high"), py::arg("progress"));
   register_map(m);
   register_scene(m);
   m.def("thread_count", &numeric::thread_count, py::arg("requested"));

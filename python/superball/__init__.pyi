@@ -321,6 +321,7 @@ def explore(
     starts: int = ...,
     evaluations: int = ...,
     box: Tuple[float, float] = ...,
+    progress: Any = ...,
 ) -> Union[ExploreResult, List[ExploreResult], PatternTable]: ...
 
 # map(): python/superball/_map.py
