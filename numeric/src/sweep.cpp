@@ -17,6 +17,7 @@
 #include "collision/cluster.hpp"
 #include "map_internal.hpp"
 #include "superball/numeric/parallel.hpp"
+#include "superball/numeric/psd_along.hpp"
 
 namespace superball::numeric {
 namespace {
@@ -484,6 +485,37 @@ std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, co
       return p;
     });
   });
+}
+
+std::vector<bool> sweep_marking_psd(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
+                                    const Precision& precision, int threads,
+                                    const std::function<void(std::size_t, const SweepPoint&)>& deliver,
+                                    const std::function<void(std::size_t, std::size_t)>& progress) {
+  check_threads(threads);
+  if (values.empty()) throw std::invalid_argument("sweep(): no value to solve");
+  const std::vector<bool> psd = psd_along(scene, parameter, values);
+  std::vector<std::size_t> solved;
+  for (std::size_t k = 0; k < psd.size(); ++k)
+    if (psd[k]) solved.push_back(k);
+  if (solved.empty()) {
+    const auto [low, high] = std::minmax_element(values.begin(), values.end());
+    throw InputError(scene.origin + ": M is not positive semi-definite at any value of the sweep (" + parameter.key() + " from " +
+                     to_string(*low) + " to " + to_string(*high) + "): nothing to solve");
+  }
+  const auto [low, high] = std::minmax_element(solved.begin(), solved.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  check_range(scene, parameter, values[*low], values[*high]);
+  const std::size_t total = solved.size();
+  for (std::size_t first = 0; first < total; first += sweep_chunk_values) {
+    if (progress) progress(first, total);
+    const std::size_t size = std::min(total, first + sweep_chunk_values) - first;
+    std::vector<cln::cl_RA> chunk;
+    chunk.reserve(size);
+    for (std::size_t j = 0; j < size; ++j) chunk.push_back(values[solved[first + j]]);
+    const std::vector<SweepPoint> points = sweep(scene, parameter, chunk, precision, threads);
+    for (std::size_t j = 0; j < size; ++j) deliver(solved[first + j], points[j]);
+  }
+  if (progress) progress(total, total);
+  return psd;
 }
 
 std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<SweepPoint>& points,

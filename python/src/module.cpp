@@ -33,7 +33,6 @@
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/certify.hpp"
 #include "superball/numeric/parallel.hpp"
-#include "superball/numeric/psd_along.hpp"
 #include "superball/numeric/sweep.hpp"
 #include "superball/present/audit.hpp"
 #include "superball/present/derivation.hpp"
@@ -172,16 +171,14 @@ present::Presented solve(const Scene& scene, const std::string& precision, std::
   return p.automatic ? present::solve_scene_auto(scene, p.tolerance()) : present::solve_scene(scene, p.fixed);
 }
 
-/// Values solved by one library call in sweep().
-constexpr std::size_t kSweepChunk = std::size_t{1} << 16;
-
 /// sweep(): values, U (one row per value), case numbers into the table of
-/// distinct cases (names, closed contacts), status codes; the GIL is released while it solves.
+/// distinct cases (names, closed contacts), status codes, and M PSD per value:
+/// numeric::sweep_marking_psd(), which marks the values where M is not PSD
+/// (here NaN velocities, case and status −1); the GIL is released while it solves.
 py::tuple sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads,
                 py::object progress) {
   const Parameter parameter = Parameter::parse(key, scene);
   const auto p = numeric::Precision::parse(precision);
-  if (values.exact.empty()) (void)numeric::sweep(scene, parameter, {}, p, threads);  // refuses it: no value to solve
   const auto n = static_cast<py::ssize_t>(scene.size());
   const auto count = static_cast<py::ssize_t>(values.exact.size());
   py::array_t<double> x(count);
@@ -196,47 +193,22 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
     std::int32_t* cd = codes.mutable_data();
     std::int8_t* sd = status.mutable_data();
     bool* pd = psd.mutable_data();
+    std::fill(ud, ud + count * n, std::numeric_limits<double>::quiet_NaN());
+    std::fill(cd, cd + count, -1);
+    std::fill(sd, sd + count, -1);
     py::gil_scoped_release release;
     const std::lock_guard<std::mutex> hold(*values.lock);
-    // The values where M is positive semi-definite are solved, the others marked (NaN, case -1, status -1),
-    // as a map marks its points; every value solved is admissible before anything is solved (check_range() of
-    // the smallest and largest of them), then the values are solved a chunk at a time, so that the library's
-    // per-value results (a few hundred bytes each) never exceed a chunk's.
-    const std::vector<bool> marked = numeric::psd_along(scene, parameter, values.exact);
-    std::vector<std::size_t> solved;
-    for (std::size_t k = 0; k < marked.size(); ++k) {
-      pd[k] = marked[k];
-      if (marked[k]) solved.push_back(k);
-      else cd[k] = -1, sd[k] = -1;
-      if (!marked[k])
-        for (py::ssize_t i = 0; i < n; ++i) ud[static_cast<py::ssize_t>(k) * n + i] = std::numeric_limits<double>::quiet_NaN();
-    }
-    const auto [low, high] = std::minmax_element(values.exact.begin(), values.exact.end(),
-                                                 [](const cln::cl_RA& a, const cln::cl_RA& b) { return a < b; });
-    if (solved.empty())
-      throw InputError(scene.origin + ": M is not positive semi-definite at any value of the sweep (" + parameter.key() + " from " +
-                       numeric::to_string(*low) + " to " + numeric::to_string(*high) + "): nothing to solve");
-    const auto [slow, shigh] = std::minmax_element(solved.begin(), solved.end(),
-                                                   [&](std::size_t a, std::size_t b) { return values.exact[a] < values.exact[b]; });
-    numeric::check_range(scene, parameter, values.exact[*slow], values.exact[*shigh]);
+    const std::vector<bool> marked = numeric::sweep_marking_psd(
+        scene, parameter, values.exact, p, threads,
+        [&](std::size_t k, const numeric::SweepPoint& pt) {
+          const auto row = static_cast<py::ssize_t>(k);
+          for (py::ssize_t i = 0; i < n; ++i) ud[row * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
+          cd[row] = table.code(pt.closed);
+          sd[row] = static_cast<std::int8_t>(pt.status);
+        },
+        [&](std::size_t done, std::size_t total) { between_tasks(progress, "values", done, total); });
+    std::copy(marked.begin(), marked.end(), pd);
     fill_doubles(values, xd);
-    const auto total = solved.size();
-    for (std::size_t first = 0; first < total; first += kSweepChunk) {
-      between_tasks(progress, "values", first, total);
-      const std::size_t size = std::min(total, first + kSweepChunk) - first;
-      std::vector<cln::cl_RA> chunk;
-      chunk.reserve(size);
-      for (std::size_t j = 0; j < size; ++j) chunk.push_back(values.exact[solved[first + j]]);
-      const auto points = numeric::sweep(scene, parameter, chunk, p, threads);
-      for (std::size_t j = 0; j < points.size(); ++j) {
-        const auto& pt = points[j];
-        const auto k = static_cast<py::ssize_t>(solved[first + j]);
-        for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
-        cd[k] = table.code(pt.closed);
-        sd[k] = static_cast<std::int8_t>(pt.status);
-      }
-    }
-    between_tasks(progress, "values", total, total);
   }
   return py::make_tuple(x, u, codes, table.names(), status, psd);
 }

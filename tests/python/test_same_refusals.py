@@ -89,6 +89,11 @@ CASES = [
     (SOLVE + ("--precision", "quad"), lambda: superball.solve(scene(), "quad"), None),
     (SOLVE + ("--precision", "digits:3"), lambda: superball.solve(scene(), "digits:3"), None),
     (SWEEP + ("--precision", "quad"), lambda: sweep(precision="quad"), None),
+    # switch points through M's PSD bound: refused by check_range() (a sweep marks such values instead)
+    (("sweep", PAPER, "--vary", "alpha.2=-110:0:12", "--switch-points"),
+     lambda: superball.switch_points(scene(), "alpha.2", superball.linspace(-110, 0, 12)), None),
+    (("sweep", PAPER, "--vary", "alpha.2=-110:0:12", "--switch-points"),
+     lambda: superball.sweep(scene(), "alpha.2", superball.linspace(-110, 0, 12)).switch_points(), None),
 ]
 
 

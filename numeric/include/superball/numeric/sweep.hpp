@@ -69,6 +69,30 @@ struct SweepPoint {
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads = 1);
 
+/// The most values sweep_marking_psd() solves by one call of sweep(): the
+/// library's per-value results (a few hundred bytes each) held at once.
+inline constexpr std::size_t sweep_chunk_values = std::size_t{1} << 16;
+
+/// sweep() that marks the values where M is not positive semi-definite
+/// instead of refusing the range, as a map marks its points (Python's
+/// sweep; the command's `sweep`, which prints rows as it goes, refuses).
+/// M's verdict at each value is psd_along()'s, exact.  Before anything is
+/// solved: \p threads passes check_threads(), there is a value
+/// (std::invalid_argument otherwise), M is PSD at one of them at least
+/// (else InputError("ORIGIN: M is not positive semi-definite at any value of
+/// the sweep (KEY from LOW to HIGH): nothing to solve")), and check_range()
+/// passes from the smallest to the largest PSD value.  Then the PSD values
+/// are solved as sweep() solves them, sweep_chunk_values at a time, and
+/// deliver(k, point) is called for each in increasing k (the index into
+/// \p values), here; progress(done, total) (may be empty), in PSD values,
+/// before each chunk and at the end.  Either may throw to stop the sweep.
+/// The points are those of sweep() over the PSD values alone, bit for bit.
+/// Returns the verdict at each value.
+std::vector<bool> sweep_marking_psd(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
+                                    const Precision& precision, int threads,
+                                    const std::function<void(std::size_t, const SweepPoint&)>& deliver,
+                                    const std::function<void(std::size_t, std::size_t)>& progress = {});
+
 /// The exact solution (CLN rationals) of a scene at one parameter value.
 struct ExactPoint {
   /// The scene at the value, as an exact problem.
