@@ -233,8 +233,8 @@ std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key,
 
 }  // namespace
 
-/// The library's selection options from derive()'s keywords (None: the
-/// default); alphas and obstacle read by the library's parsers, as the command reads its options.
+/// The library's selection options from derive()'s keywords (None: not
+/// given); alphas and obstacle read by the library's parsers, as the command reads its options.
 present::SelectionOptions selection(const py::dict& o) {
   present::SelectionOptions s;
   for (const auto& [k, v] : o) {

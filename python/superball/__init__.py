@@ -812,7 +812,7 @@ def _verify_result(data: Dict[str, Any], text: str, agrees: bool) -> VerifyResul
                         np.array(exact, dtype=np.float64), np.array(asym, dtype=np.float64), data, text)
 
 
-def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
+def verify(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int] = None, pairs: Any = None, coupling: Any = None,
            obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, all: bool = False,
            scene: Any = None, epsilons: Optional[Sequence[Number]] = None, samples: int = 4000,
            boundary_pairs: int = 20, seed: int = 1, threads: int = 0, progress: Any = None) -> Union[VerifyResult, List[VerifyResult]]:
@@ -892,7 +892,7 @@ class PatternTable:
         return f"<div><b>superball explore --all-patterns</b><table><tr><th></th>{head}</tr>{rows}</table></div>"
 
 
-def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
+def explore(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int] = None, pairs: Any = None, coupling: Any = None,
             closed: Any = None, all: bool = False, scene: Any = None, all_patterns: bool = False, seed: int = 1, starts: int = 24,
             evaluations: int = 1000, box: Tuple[float, float] = (1e-3, 1e3),
             progress: Any = None) -> Union[ExploreResult, List[ExploreResult], PatternTable]:

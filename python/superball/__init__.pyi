@@ -219,7 +219,7 @@ class Derivation:
 def derive(
     case: Optional[str] = ...,
     alphas: Any = ...,
-    bodies: int = ...,
+    bodies: Optional[int] = ...,
     pairs: Any = ...,
     coupling: Any = ...,
     obstacle: str = ...,
@@ -233,7 +233,7 @@ def derive(
 
 def derive_all(
     alphas: Any = ...,
-    bodies: int = ...,
+    bodies: Optional[int] = ...,
     pairs: Any = ...,
     coupling: Any = ...,
     obstacle: str = ...,
@@ -270,7 +270,7 @@ class VerifyResult:
 def verify(
     case: Optional[str] = ...,
     alphas: Any = ...,
-    bodies: int = ...,
+    bodies: Optional[int] = ...,
     pairs: Any = ...,
     coupling: Any = ...,
     obstacle: str = ...,
@@ -310,7 +310,7 @@ class PatternTable:
 def explore(
     case: Optional[str] = ...,
     alphas: Any = ...,
-    bodies: int = ...,
+    bodies: Optional[int] = ...,
     pairs: Any = ...,
     coupling: Any = ...,
     closed: Any = ...,

@@ -301,7 +301,7 @@ def _with_conditions(d: Derivation, conditions: List[Condition]) -> Derivation:
     return _replace(d, conditions=conditions)
 
 
-def derive(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
+def derive(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int] = None, pairs: Any = None, coupling: Any = None,
            obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, scene: Any = None,
            expanded: bool = False, progress: Union[None, bool, Progress] = None) -> Derivation:
     """Solve one evolution case symbolically and give its conditions (paper §4).
@@ -309,10 +309,11 @@ def derive(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pair
     The case: ``case`` (the paper's name for 4 bodies: "1", "2.1", …) or
     ``closed`` (the closed contacts, ``"2-3,3-4"`` or a list, ``"none"``);
     every case: :func:`derive_all`.  The pattern of M: ``alphas`` (the
-    paper's α_k in play, 4 bodies: ``2`` or ``[1, 6]``), ``bodies``,
-    ``pairs`` (``"all"``, ``"near"``, ``"near2"`` or a list of pairs with a
-    diagonal K), ``coupling`` (``"1-2/1-4,…"``, a list, or ``"near2"``), or
-    ``scene`` (a scene file's declared entries).  ``obstacle``: ``"infinite"``
+    paper's α_k in play, 4 bodies: ``2`` or ``[1, 6]``), ``bodies`` (None:
+    4), ``pairs`` (``"all"``, the default, ``"near"``, ``"near2"`` or a list
+    of pairs with a diagonal K), ``coupling`` (``"1-2/1-4,…"``, a list, or
+    ``"near2"``), or ``scene`` (a scene file's declared entries: not with
+    bodies, alphas, coupling or pairs).  ``obstacle``: ``"infinite"``
     (m_n = ∞) or ``"finite"``; ``scaling``: orders in ε (``"m1=1,K14=-1"`` or
     a dict; default m₁ ~ ε, K₁ₙ ~ 1/ε); ``order``: correction orders kept.
     ``expanded``: keep every expanded form of a long case too (as
@@ -336,7 +337,7 @@ def derive(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pair
     return _run("derive", options, expanded, 1, progress)[0]
 
 
-def derive_all(alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None, obstacle: str = "infinite",
+def derive_all(alphas: Any = None, bodies: Optional[int] = None, pairs: Any = None, coupling: Any = None, obstacle: str = "infinite",
                scaling: Any = None, order: int = 0, scene: Any = None, expanded: bool = False, jobs: Optional[int] = None,
                progress: Union[None, bool, Progress] = None) -> List[Derivation]:
     """Every evolution case of a pattern (2ⁿ⁻¹ of them, in mask order: the

@@ -31,13 +31,13 @@ def _list_text(value: Any, sep: str = ",") -> Optional[str]:
     return sep.join(str(v) for v in value)
 
 
-def _selection(case: Any, alphas: Any, bodies: int, pairs: Any, coupling: Any, obstacle: str, scaling: Any, order: int,
+def _selection(case: Any, alphas: Any, bodies: Optional[int], pairs: Any, coupling: Any, obstacle: str, scaling: Any, order: int,
                closed: Any, all: bool, scene: Any) -> Dict[str, Any]:
-    """The keywords of derive, verify and explore as the C++ selection options take them."""
+    """The keywords of derive, verify and explore as the C++ selection options take them (None: not given)."""
     if isinstance(scaling, Mapping):
         scaling = ",".join(f"{k}={v}" for k, v in scaling.items())
     if coupling is not None and not isinstance(coupling, str):
         coupling = ",".join(c if isinstance(c, str) else "/".join(c) for c in coupling)
-    return {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": _int_option(bodies, "bodies"), "pairs": _list_text(pairs),
+    return {"case": None if case is None else str(case), "alphas": _list_text(alphas), "bodies": None if bodies is None else _int_option(bodies, "bodies"), "pairs": _list_text(pairs),
             "coupling": coupling, "obstacle": obstacle, "scaling": scaling, "order": _int_option(order, "order"), "closed": _list_text(closed),
             "all": bool(all), "scene": None if scene is None else str(scene)}

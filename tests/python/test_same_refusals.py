@@ -77,6 +77,15 @@ CASES = [
     (("explore", "--alphas", "2"), lambda: superball.explore(alphas=2), "give a case: case, closed or all, or all_patterns"),
     (("explore", "--all-patterns", "--case", "1"), lambda: superball.explore(all_patterns=True, case="1"),
      "all_patterns chooses the patterns and cases: drop case, closed, all, alphas, coupling and scene"),
+    # scene gives the pattern: SelectionOptions::check() (bodies and pairs given differ from their defaults)
+    *[(VERIFY[:3] + ("--scene", PAPER) + args, (lambda kw=kw: superball.verify(case="1", scene=str(PAPER), **kw)),
+       "scene gives the number of bodies and the pattern: drop bodies, alphas, coupling and pairs")
+      for args, kw in ((("--bodies", "4"), {"bodies": 4}), (("--pairs", "all"), {"pairs": "all"}), (("--alphas", "2"), {"alphas": 2}),
+                       (("--coupling", "1-2/1-3"), {"coupling": "1-2/1-3"}))],
+    (("derive", "--closed", "none", "--scene", PAPER, "--bodies", "5"), lambda: superball.derive(closed="none", scene=str(PAPER), bodies=5),
+     "scene gives the number of bodies and the pattern: drop bodies, alphas, coupling and pairs"),
+    (("explore", "--case", "1", "--scene", PAPER, "--alphas", "2"), lambda: superball.explore(case="1", scene=str(PAPER), alphas=2),
+     "scene gives the number of bodies and the pattern: drop bodies, alphas, coupling and pairs"),
     # explore: ExploreOptions::check(), parse_box()
     (EXPLORE + ("--starts", "0"), lambda: explore(starts=0), "starts must be a whole number from 1 to 100000, got 0"),
     (EXPLORE + ("--evaluations", "5"), lambda: explore(evaluations=5), "evaluations must be a whole number from 10 to 10000000, got 5"),

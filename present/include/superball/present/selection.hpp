@@ -6,6 +6,7 @@
 /// fronts; not installed.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,24 +19,36 @@ namespace superball::present {
 /// The most correction orders kept beyond the dominant balance (SelectionOptions::order).
 inline constexpr int max_order = 20;
 
+/// The number of bodies of a selection that gives none (SelectionOptions::bodies).
+inline constexpr int default_bodies = 4;
+/// The pairs with a diagonal K of a selection that gives none (SelectionOptions::pairs).
+inline constexpr const char* default_pairs = "all";
+
 /// The choice of a pattern, an obstacle, a regime and cases (the command's
 /// --bodies, --case, … and Python's keywords of the same names).  The text
 /// fields are read against the number of bodies by the library when the
 /// choice is resolved: pairs by symbolic::Pattern::parse_pairs(), coupling by
 /// Pattern::parse_couplings(), scaling by Scaling::parse(), closed by
-/// ContactSet::parse(), case_name by the paper's vocabulary.
+/// ContactSet::parse(), case_name by the paper's vocabulary.  An option not
+/// given is empty (nullopt, "" or no alpha), so that a scene's pattern can
+/// refuse one given with it.
 struct SelectionOptions {
-  int bodies = 4;
+  std::optional<int> bodies;     ///< n; not given: default_bodies (with scene: the scene's)
   int order = 0;                 ///< correction orders kept, 0 to max_order
   std::string case_name, closed;  ///< the paper's case name (n = 4), or the closed contacts ("2-3,3-4", "none")
   std::vector<int> alphas;       ///< the paper's couplings α_k in play (n = 4; parse_alphas()); empty: none
-  std::string coupling, pairs = "all", scene, scaling;
+  std::string coupling;          ///< couplings of pairs ("1-2/1-4,2-3/2-4", "near2"); empty: none
+  std::optional<std::string> pairs;  ///< the pairs with a diagonal K; not given: default_pairs
+  std::string scene;             ///< a scene file whose declared entries of M are the pattern; empty: none
+  std::string scaling;           ///< orders in ε ("m1=1,K14=-1"); empty: the default regime
   symbolic::Obstacle obstacle = symbolic::Obstacle::Infinite;  ///< parse_obstacle()
-  bool all = false;
+  bool all = false;              ///< every case
 
   /// Throws std::invalid_argument("SelectionOptions::check(): ...") naming
-  /// the option when order is not from 0 to max_order, or when more than one
-  /// of case_name, closed and all is given.  resolve() calls it.
+  /// the option when order is not from 0 to max_order, when more than one
+  /// of case_name, closed and all is given, or when scene is given with
+  /// bodies, alphas, coupling or pairs (the scene's pattern is the whole
+  /// pattern).  resolve() calls it.
   void check() const;
 };
 
