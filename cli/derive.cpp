@@ -95,23 +95,22 @@ void add_derive(CLI::App& app, Action& action) {
       "Names (JSON and --scaling): m1..mn, K12 (K1_10 past 9 bodies), alpha1..alpha7 (n = 4), c_12_14 for a\n"
       "coupling of the pairs 1-2 and 1-4, a for the fall speed, U1.. for the velocities after.");
   add_selection_options(cmd, o->selection);
-  cmd->add_option("--format,-f", o->format, "text, latex (a complete document) or json")
-      ->check(CLI::IsMember({"text", "latex", "json"}))
-      ->capture_default_str();
+  cmd->add_option("--format,-f", o->format, "text, latex (a complete document) or json")->capture_default_str();
   cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output")->check(non_empty());
   cmd->add_flag("--expanded", o->expanded,
                 "JSON: every form expanded too, also those written through the elimination, and the conditions on M in every case (1.7 GB at 8 bodies against about 12 MB)");
   add_progress_options(cmd, o->progress, "case");
   add_distribute_options(cmd, o->distribute, "case");
-  cmd->add_option("--jobs,-j", o->jobs, "Worker processes (default: all cores); the output does not depend on it")
-      ->check(CLI::Range(0, 1024))
+  cmd->add_option("--jobs,-j", o->jobs,
+                  "Worker processes (default 0: all cores; at most " + std::to_string(numeric::max_threads) + "); the output does not depend on it")
       ->capture_default_str();
   cmd->callback([o, cmd, &action] {
     action = [o, cmd]() -> int {
+      const present::DeriveFormat format = present::parse_derive_format(o->format);
       const Selection selection = resolve(o->selection);
       const Deriver& deriver = *selection.deriver;
       // Refuse only what cannot fit in memory; say the estimate before a long run.
-      const present::DerivePlan plan = present::plan_derivation(selection, numeric::thread_count(o->jobs), numeric::available_memory());
+      const present::DerivePlan plan = present::plan_derivation(selection, o->jobs, numeric::available_memory());
       const ProgressMode mode = o->progress.mode();
       if (mpi_rank() == 0 && mode != ProgressMode::Quiet && plan.estimate.seconds * 1000 >= kProgressDelay.count())
         std::cerr << "derive: " << plan.text << "; Ctrl-C stops it\n";
@@ -132,7 +131,7 @@ void add_derive(CLI::App& app, Action& action) {
             text += piece;
         };
         const std::size_t count = selection.cases.size();
-        const bool json = o->format == "json", latex = o->format == "latex";
+        const bool json = format == present::DeriveFormat::Json, latex = format == present::DeriveFormat::Latex;
         const bool shared = count > 1;  // text: the conditions on M, the same in every case, once before them
         auto name = [&](std::size_t k) {
           const ContactSet& c = selection.cases[k];

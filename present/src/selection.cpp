@@ -9,6 +9,7 @@
 #include "superball/cases/error.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/parallel.hpp"
 #include "superball/symbolic/estimate.hpp"
 
 namespace superball::present {
@@ -115,7 +116,16 @@ Selection resolve(const SelectionOptions& o) {
   return s;
 }
 
-DerivePlan plan_derivation(const Selection& s, int jobs, const numeric::Memory& available) {
+DeriveFormat parse_derive_format(const std::string& text) {
+  if (text == "text") return DeriveFormat::Text;
+  if (text == "latex") return DeriveFormat::Latex;
+  if (text == "json") return DeriveFormat::Json;
+  throw std::invalid_argument("parse_derive_format(): format must be text, latex or json, got '" + text + "'");
+}
+
+DerivePlan plan_derivation(const Selection& s, int asked, const numeric::Memory& available) {
+  numeric::check_threads(asked, "jobs");
+  const int jobs = numeric::thread_count(asked);
   const Deriver& d = *s.deriver;
   const int n = d.symbols().bodies();
   const std::size_t count = s.cases.size();

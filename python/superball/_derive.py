@@ -17,7 +17,7 @@ from fractions import Fraction
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _superball
-from ._options import _selection
+from ._options import _int_option, _selection
 
 InputError = _superball.InputError
 Error = _superball.Error
@@ -289,9 +289,7 @@ def _run(name: str, options: Dict[str, Any], expanded: bool, jobs: Optional[int]
         notice, step = None, (progress if callable(progress) else None)
         if progress is not False and not callable(progress):
             raise InputError(f"{name}: progress must be None, False or a callable (done, total), got {progress!r}")
-    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
-        raise InputError(f"{name}: jobs must be a number of worker processes >= 1 or None (all cores), got {jobs!r}")
-    out = [_derivation(d) for d in _superball.derive(options, bool(expanded), 0 if jobs is None else jobs, step, notice)]
+    out = [_derivation(d) for d in _superball.derive(options, bool(expanded), 0 if jobs is None else _int_option(jobs, "jobs"), step, notice)]
     # Compact JSON of several cases has the conditions on M in the first case only: every Derivation shows them.
     psd = [c for c in out[0].conditions if c.kind == "psd"] if out else []
     return [d if any(c.kind == "psd" for c in d.conditions) else _with_conditions(d, d.conditions + psd) for d in out]
@@ -343,8 +341,8 @@ def derive_all(alphas: Any = None, bodies: Optional[int] = None, pairs: Any = No
     """Every evolution case of a pattern (2ⁿ⁻¹ of them, in mask order: the
     contact (c, c+1) closed for bit c − 1), as :func:`derive` gives one.
 
-    The cases are derived in parallel in ``jobs`` worker processes (None:
-    one per core; fewer when their memory would not fit), the ones
+    The cases are derived in parallel in ``jobs`` worker processes (None or
+    0: one per core, at most 1024; fewer when their memory would not fit), the ones
     ``superball derive --all`` uses (GiNaC is not thread-safe, so processes);
     the result does not depend on their number.  ``progress``: None shows
     the estimate and "derive_all: k of N cases" on standard error when it is

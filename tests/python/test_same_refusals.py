@@ -86,6 +86,11 @@ CASES = [
      "scene gives the number of bodies and the pattern: drop bodies, alphas, coupling and pairs"),
     (("explore", "--case", "1", "--scene", PAPER, "--alphas", "2"), lambda: superball.explore(case="1", scene=str(PAPER), alphas=2),
      "scene gives the number of bodies and the pattern: drop bodies, alphas, coupling and pairs"),
+    # derive: parse_derive_format(), plan_derivation()'s jobs (numeric::check_threads())
+    (("derive", "--case", "1", "--format", "pdf"), None, "format must be text, latex or json, got 'pdf'"),
+    (("derive", "--all", "--jobs=-1"), lambda: superball.derive_all(jobs=-1), "jobs must be a whole number from 0 (all cores) to 1024, got -1"),
+    (("derive", "--all", "--jobs", "2000"), lambda: superball.derive_all(jobs=2000),
+     "jobs must be a whole number from 0 (all cores) to 1024, got 2000"),
     # explore: ExploreOptions::check(), parse_box()
     (EXPLORE + ("--starts", "0"), lambda: explore(starts=0), "starts must be a whole number from 1 to 100000, got 0"),
     (EXPLORE + ("--evaluations", "5"), lambda: explore(evaluations=5), "evaluations must be a whole number from 10 to 10000000, got 5"),
@@ -113,6 +118,9 @@ def test_the_command_and_the_module_refuse_with_the_same_line(args, call, messag
     code, out, err = run_cli(*args, check=False)
     assert code == 2 and out == "", f"superball {' '.join(map(str, args))}: exit {code}: {err}"
     assert err.startswith("superball: ") and err.endswith("\n") and err.count("\n") == 1, err
+    if call is None:  # the command only (Python's derive returns objects: it has no format)
+        assert err == f"superball: {message}\n"
+        return
     with pytest.raises(superball.InputError) as e:
         call()
     assert str(e.value) == err[len("superball: "):-1]

@@ -75,6 +75,13 @@ struct Selection {
 /// Resolve \p o; throws std::invalid_argument naming the option that is wrong.
 Selection resolve(const SelectionOptions& o);
 
+/// What `superball derive` writes (--format).
+enum class DeriveFormat { Text, Latex, Json };
+
+/// "text", "latex" or "json"; throws std::invalid_argument
+/// ("parse_derive_format(): format must be text, latex or json, got 'TEXT'").
+DeriveFormat parse_derive_format(const std::string& text);
+
 /// How the derivation of a selection's cases will run (the command's and
 /// the Python module's derive).
 struct DerivePlan {
@@ -83,8 +90,9 @@ struct DerivePlan {
   std::string text;             ///< "deriving every case of 8 bodies, a pattern of width 3: about 4 min 16 s on one core, 2 workers, about 2.7 GB each (22.7 GB available)"
 };
 
-/// The plan for \p s over at most \p jobs worker processes with \p available
-/// memory (numeric::available_memory()).  Throws std::invalid_argument
+/// The plan for \p s over at most \p jobs worker processes (0: one per
+/// core; numeric::check_threads(jobs, "jobs") refuses the others) with
+/// \p available memory (numeric::available_memory()).  Throws std::invalid_argument
 /// ("derive(): deriving every case of 9 bodies, a pattern of width 3 holds
 /// about 24 GB (one process, …); this machine has 22.7 GB available
 /// (MemAvailable); derive fewer bodies or a narrower pattern") when even one
