@@ -3,7 +3,6 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
-#include <csignal>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -29,48 +28,6 @@ using present::derivation_json;
 using present::latex_document;
 using present::report;
 using present::report_psd;
-
-namespace {
-
-/// The exit code of a run stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
-constexpr int kInterruptedExit = 128 + SIGINT;
-
-volatile std::sig_atomic_t interrupt_requested = 0;
-struct sigaction interrupt_previous {};
-
-/// The first SIGINT asks the run to stop (Workers polls interrupt_requested);
-/// a second one does what SIGINT did before (Output's: remove its temporary
-/// and end the process).
-extern "C" void request_interrupt(int signal) {
-  if (interrupt_requested) {
-    ::sigaction(signal, &interrupt_previous, nullptr);
-    std::raise(signal);
-    return;
-  }
-  interrupt_requested = 1;
-}
-
-/// SIGINT handled by request_interrupt() while this object lives (not where
-/// the caller ignores it, e.g. a background job of a shell without job control).
-struct InterruptHandler {
-  bool installed = false;
-  InterruptHandler() {
-    interrupt_requested = 0;
-    if (::sigaction(SIGINT, nullptr, &interrupt_previous) != 0 || interrupt_previous.sa_handler == SIG_IGN) return;
-    struct sigaction act {};
-    act.sa_handler = request_interrupt;
-    sigemptyset(&act.sa_mask);
-    installed = ::sigaction(SIGINT, &act, nullptr) == 0;
-  }
-  ~InterruptHandler() {
-    if (installed) ::sigaction(SIGINT, &interrupt_previous, nullptr);
-  }
-  InterruptHandler(const InterruptHandler&) = delete;
-  InterruptHandler& operator=(const InterruptHandler&) = delete;
-  static bool requested() { return interrupt_requested != 0; }
-};
-
-}  // namespace
 
 void add_derive(CLI::App& app, Action& action) {
   struct Options {
@@ -138,23 +95,22 @@ void add_derive(CLI::App& app, Action& action) {
       "Names (JSON and --scaling): m1..mn, K12 (K1_10 past 9 bodies), alpha1..alpha7 (n = 4), c_12_14 for a\n"
       "coupling of the pairs 1-2 and 1-4, a for the fall speed, U1.. for the velocities after.");
   add_selection_options(cmd, o->selection);
-  cmd->add_option("--format,-f", o->format, "text, latex (a complete document) or json")
-      ->check(CLI::IsMember({"text", "latex", "json"}))
-      ->capture_default_str();
+  cmd->add_option("--format,-f", o->format, "text, latex (a complete document) or json")->capture_default_str();
   cmd->add_option("--output,-o", o->output, "Write to this file instead of standard output")->check(non_empty());
   cmd->add_flag("--expanded", o->expanded,
                 "JSON: every form expanded too, also those written through the elimination, and the conditions on M in every case (1.7 GB at 8 bodies against about 12 MB)");
   add_progress_options(cmd, o->progress, "case");
   add_distribute_options(cmd, o->distribute, "case");
-  cmd->add_option("--jobs,-j", o->jobs, "Worker processes (default: all cores); the output does not depend on it")
-      ->check(CLI::Range(0, 1024))
+  cmd->add_option("--jobs,-j", o->jobs,
+                  "Worker processes (default 0: all cores; at most " + std::to_string(numeric::max_threads) + "); the output does not depend on it")
       ->capture_default_str();
   cmd->callback([o, cmd, &action] {
     action = [o, cmd]() -> int {
+      const present::DeriveFormat format = present::parse_derive_format(o->format);
       const Selection selection = resolve(o->selection);
       const Deriver& deriver = *selection.deriver;
       // Refuse only what cannot fit in memory; say the estimate before a long run.
-      const present::DerivePlan plan = present::plan_derivation(selection, numeric::thread_count(o->jobs), numeric::available_memory());
+      const present::DerivePlan plan = present::plan_derivation(selection, o->jobs, numeric::available_memory());
       const ProgressMode mode = o->progress.mode();
       if (mpi_rank() == 0 && mode != ProgressMode::Quiet && plan.estimate.seconds * 1000 >= kProgressDelay.count())
         std::cerr << "derive: " << plan.text << "; Ctrl-C stops it\n";
@@ -175,7 +131,7 @@ void add_derive(CLI::App& app, Action& action) {
             text += piece;
         };
         const std::size_t count = selection.cases.size();
-        const bool json = o->format == "json", latex = o->format == "latex";
+        const bool json = format == present::DeriveFormat::Json, latex = format == present::DeriveFormat::Latex;
         const bool shared = count > 1;  // text: the conditions on M, the same in every case, once before them
         auto name = [&](std::size_t k) {
           const ContactSet& c = selection.cases[k];

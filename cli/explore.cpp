@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -13,10 +14,12 @@
 
 #include "commands.hpp"
 #include "distribute.hpp"
+#include "progress.hpp"
 #include "selection.hpp"
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/scalar.hpp"
 #include "superball/present/explore.hpp"
+#include "superball/symbolic/workers.hpp"
 #include "superball/verify/explore.hpp"
 
 namespace superball::cli {
@@ -82,7 +85,7 @@ nlohmann::ordered_json read_result(std::size_t k, const std::string& text, const
 void add_explore(CLI::App& app, Action& action) {
   struct Options {
     SelectionOptions selection;
-    bool all_patterns = false, json = false;
+    bool all_patterns = false, json = false, quiet = false;
     std::string box = "1e-3:1e3", out, output;
     verify::ExploreOptions explore;
     DistributeOptions distribute;
@@ -116,6 +119,8 @@ void add_explore(CLI::App& app, Action& action) {
       "Verdicts: yes (a witness), no (proved), case impossible (the case is never actual, proved), not found\n"
       "(with the best U1+/a seen where the case is actual, and whether the leading-order conditions clash).\n"
       "--all-patterns (64 cells) takes about 10 s with the default budget.\n\n"
+      "Progress.  A progress bar is shown on standard error when it is a terminal, for runs longer than a second\n"
+      "(not with --quiet).  Ctrl-C stops the search and exits with 130 and one line, writing nothing.\n\n"
       "Examples:\n"
       "  superball explore --alphas 3 --case 1                the §4.1 remark: alpha_3 alone, like alpha_2\n"
       "  superball explore --alphas 1,6 --case 1              proved impossible, with the clash\n"
@@ -138,9 +143,10 @@ void add_explore(CLI::App& app, Action& action) {
   cmd->add_option("--out", o->out, "Write each witness scene file into this folder (created if missing)")->check(non_empty());
   cmd->add_flag("--json", o->json, "Print JSON for programs");
   cmd->add_option("--output,-o", o->output, "Write the report to this file instead of standard output")->check(non_empty());
+  cmd->add_flag("--quiet,-q", o->quiet, "No progress bar on standard error");
   add_distribute_options(cmd, o->distribute, "case (with --all-patterns: cell)");
   cmd->callback([o, cmd, &action] {
-    action = [o, cmd] {
+    action = [o, cmd]() -> int {
       std::tie(o->explore.box_low, o->explore.box_high) = verify::parse_box(o->box);
       o->explore.check();
       const SelectionOptions& sel = o->selection;
@@ -178,9 +184,25 @@ void add_explore(CLI::App& app, Action& action) {
         if (!d) d = std::make_unique<symbolic::Deriver>(symbolic::Pattern::paper(table.patterns[row]), symbolic::Obstacle::Infinite);
         return *d;
       };
+      // Ctrl-C is polled as the search goes (its progress) and stops it.
+      const InterruptHandler interrupt;
+      std::optional<TaskProgress> bar;
+      auto label = [&](std::size_t k) {
+        const std::string name = "case " + Vocabulary::paper().case_name(cases[k % columns]);
+        if (!o->all_patterns) return name;
+        std::string pattern;
+        for (int a : table.patterns[k / columns]) pattern += (pattern.empty() ? "alpha" : ",alpha") + std::to_string(a);
+        return pattern + " " + name;
+      };
       // A task's text: the result rendered every way the output may need it (JSON).
       auto task = [&](std::size_t k) {
-        const verify::ExploreResult r = verify::explore_case(deriver(k / columns), cases[k % columns], o->explore);
+        verify::ExploreOptions options = o->explore;
+        const auto shown = bar ? bar->for_task(static_cast<int>(k), label(k)) : nullptr;
+        options.progress = [&shown](long long done, long long planned) {
+          if (InterruptHandler::requested()) throw symbolic::Interrupted("interrupted");
+          if (shown) shown(done, planned);
+        };
+        const verify::ExploreResult r = verify::explore_case(deriver(k / columns), cases[k % columns], options);
         const present::RenderedCell cell = present::render(r);
         nlohmann::ordered_json j;
         j["pattern"] = cell.pattern;
@@ -191,22 +213,30 @@ void add_explore(CLI::App& app, Action& action) {
         return j.dump() + "\n";
       };
       Distribution run(run_identity(*cmd), distribute_options(o->distribute), count);
+      if (run.local()) bar.emplace("explore", static_cast<int>(count), !o->quiet && run.writes_output());
       std::vector<std::vector<present::RenderedCell>> cells;
       std::vector<nlohmann::ordered_json> results;
       std::string text;
       std::vector<std::pair<std::string, std::string>> witnesses;
-      run.run(task, [&](std::size_t k, std::string&& piece) {
-        nlohmann::ordered_json j = read_result(k, piece, Vocabulary::paper().case_name(cases[k % columns]), run);
-        if (j.contains("witness")) witnesses.emplace_back(j["witness"][0].get<std::string>(), j["witness"][1].get<std::string>());
-        if (o->all_patterns) {
-          if (k % columns == 0) cells.emplace_back();
-          cells.back().push_back({j["pattern"].get<std::string>(), j["cell"].get<std::string>(), j["json"]});
-        } else if (o->json) {
-          results.push_back(j["json"]);
-        } else {
-          text += j["text"].get<std::string>() + "\n";
-        }
-      });
+      try {
+        run.run(task, [&](std::size_t k, std::string&& piece) {
+          nlohmann::ordered_json j = read_result(k, piece, Vocabulary::paper().case_name(cases[k % columns]), run);
+          if (j.contains("witness")) witnesses.emplace_back(j["witness"][0].get<std::string>(), j["witness"][1].get<std::string>());
+          if (o->all_patterns) {
+            if (k % columns == 0) cells.emplace_back();
+            cells.back().push_back({j["pattern"].get<std::string>(), j["cell"].get<std::string>(), j["json"]});
+          } else if (o->json) {
+            results.push_back(j["json"]);
+          } else {
+            text += j["text"].get<std::string>() + "\n";
+          }
+        });
+      } catch (const symbolic::Interrupted&) {
+        bar.reset();  // the bar erased before the line
+        std::cerr << "superball: explore: interrupted (Ctrl-C): stopped before the end, nothing written\n";
+        return kInterruptedExit;
+      }
+      bar.reset();
       if (!run.writes_output()) return ok;  // a part file, or a rank other than 0
       if (o->all_patterns) {
         text = o->json ? present::to_json(table, cells).dump(2) + "\n" : present::to_text(table, cells);

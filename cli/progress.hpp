@@ -1,17 +1,21 @@
 #pragma once
 /// \file progress.hpp
-/// Progress of a long command on standard error, step by step ("derive: case
-/// 3 of 16 ({2-3,4-5})"), the way `verify` shows its bar: on a terminal, one
-/// line redrawn in place, shown only once the command has run for
-/// kProgressDelay and erased at the end; nothing when standard error is not
-/// a terminal or with --quiet.  With --progress, from the first step
-/// whatever standard error is: one line per step when it is not a terminal
-/// (a log file), the redrawn line on a terminal.
+/// Progress of a long command on standard error, and Ctrl-C.  Step by step
+/// ("derive: case 3 of 16 ({2-3,4-5})"): on a terminal, one line redrawn in
+/// place, shown only once the command has run for kProgressDelay and erased
+/// at the end; nothing when standard error is not a terminal or with
+/// --quiet.  With --progress, from the first step whatever standard error
+/// is: one line per step when it is not a terminal (a log file), the redrawn
+/// line on a terminal.  Or as a bar over tasks (`verify`, `explore`), on a
+/// terminal only.  InterruptHandler turns Ctrl-C into a request the command
+/// polls, so that it stops cleanly and exits with kInterruptedExit.
 
 #include <CLI/CLI.hpp>
 
 #include <chrono>
 #include <condition_variable>
+#include <csignal>
+#include <functional>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -61,6 +65,52 @@ class StepProgress {
   std::mutex lock_;
   std::condition_variable wake_;
   std::thread timer_;
+};
+
+/// The bar of a command whose tasks report (done, planned) as they go
+/// (`verify`, `explore`): "COMMAND LABEL [#####     ] 42%" on standard
+/// error, drawn only when \p shown (not --quiet), standard error is a
+/// terminal and the run has lasted kBarDelay; redrawn at most every
+/// kBarPeriod, erased at the end.
+class TaskProgress {
+ public:
+  /// The bar is drawn only after this long, and redrawn at most this often.
+  static constexpr std::chrono::milliseconds kBarDelay{1000}, kBarPeriod{100};
+  /// A bar for \p tasks tasks of \p command ("verify").
+  TaskProgress(std::string command, int tasks, bool shown);
+  TaskProgress(const TaskProgress&) = delete;
+  TaskProgress& operator=(const TaskProgress&) = delete;
+  /// Erases the bar, if drawn.
+  ~TaskProgress();
+  /// The progress of task \p task (0-based), shown as \p label; empty when no bar is drawn.
+  std::function<void(long long, long long)> for_task(int task, const std::string& label);
+
+ private:
+  std::string command_;
+  int tasks_;
+  bool terminal_, drawn_ = false;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
+};
+
+/// The exit code of a run stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
+inline constexpr int kInterruptedExit = 128 + SIGINT;
+
+/// SIGINT handled while this object lives (not where the caller ignores it,
+/// e.g. a background job of a shell without job control): the first one
+/// asks the run to stop (requested() becomes true; the command polls it,
+/// stops and exits with kInterruptedExit); a second one does what SIGINT did
+/// before (Output's: remove its temporary and end the process).
+class InterruptHandler {
+ public:
+  InterruptHandler();
+  ~InterruptHandler();
+  InterruptHandler(const InterruptHandler&) = delete;
+  InterruptHandler& operator=(const InterruptHandler&) = delete;
+  /// Whether Ctrl-C asked the run to stop.
+  static bool requested();
+
+ private:
+  bool installed_ = false;
 };
 
 }  // namespace superball::cli

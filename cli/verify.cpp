@@ -1,9 +1,7 @@
 // `superball verify`: the derived conditions of evolution cases against
 // exact solutions over the asymptotic regime (superball::verify), with the
 // points where they disagree written as scene files.
-#include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -13,6 +11,7 @@
 
 #include "commands.hpp"
 #include "distribute.hpp"
+#include "progress.hpp"
 #include "selection.hpp"
 #include "superball/cases/number.hpp"
 #include "superball/cases/scene_file.hpp"
@@ -22,9 +21,6 @@
 
 namespace superball::cli {
 namespace {
-
-/// The progress bar is drawn only after this long, and redrawn at most this often.
-constexpr std::chrono::milliseconds progress_delay{1000}, progress_period{100};
 
 /// A file name for a case name ("3.2", "{2-3,3-4}").
 std::string file_part(const std::string& name) {
@@ -40,35 +36,6 @@ std::string numbered(std::size_t k) {
   std::string s = std::to_string(k);
   return std::string(s.size() < 4 ? 4 - s.size() : 0, '0') + s;
 }
-
-/// A progress bar on stderr, drawn only when \p shown (not --quiet), stderr
-/// is a terminal and the run has lasted progress_delay; erased at the end.
-class Progress {
- public:
-  Progress(int tasks, bool shown) : tasks_(tasks), terminal_(shown && ::isatty(STDERR_FILENO) == 1) {}
-  ~Progress() {
-    if (drawn_) std::cerr << "\r\033[K" << std::flush;
-  }
-  std::function<void(long long, long long)> for_task(int task, const std::string& label) {
-    if (!terminal_) return {};
-    return [this, task, label](long long done, long long planned) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - start_ < progress_delay || (drawn_ && now - last_ < progress_period && done < planned)) return;
-      last_ = now;
-      drawn_ = true;
-      const double f = (task + static_cast<double>(done) / static_cast<double>(std::max(planned, 1LL))) / tasks_;
-      constexpr int width = 30;
-      const int full = static_cast<int>(f * width);
-      std::cerr << "\rverify " << label << " [" << std::string(static_cast<std::size_t>(full), '#')
-                << std::string(static_cast<std::size_t>(width - full), ' ') << "] " << static_cast<int>(100 * f) << "%\033[K" << std::flush;
-    };
-  }
-
- private:
-  int tasks_;
-  bool terminal_, drawn_ = false;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
-};
 
 }  // namespace
 
@@ -187,7 +154,7 @@ void add_verify(CLI::App& app, Action& action) {
       int written = 0;
       std::string text = o->json && count != 1 ? (count ? "[\n" : "[]\n") : "";
       {
-        Progress progress(static_cast<int>(count), !o->quiet && writes);
+        TaskProgress progress("verify", static_cast<int>(count), !o->quiet && writes);
         auto label = [&](std::size_t k) {
           return "case " + Vocabulary::paper().case_name(selection.cases[k]) + (count > 1 ? " (" + std::to_string(k + 1) + "/" + std::to_string(count) + ")" : "");
         };

@@ -3,6 +3,8 @@
 #include <cln/integer.h>
 #include <cln/rational_io.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -17,6 +19,7 @@
 #include "collision/cluster.hpp"
 #include "map_internal.hpp"
 #include "superball/numeric/parallel.hpp"
+#include "superball/numeric/psd_along.hpp"
 
 namespace superball::numeric {
 namespace {
@@ -486,6 +489,52 @@ std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, co
   });
 }
 
+std::vector<bool> sweep_marking_psd(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
+                                    const Precision& precision, int threads,
+                                    const std::function<void(std::size_t, const SweepPoint&)>& deliver,
+                                    const std::function<void(std::size_t, std::size_t)>& progress, const TaskRunner& runner) {
+  check_threads(threads);
+  if (values.empty()) throw std::invalid_argument("sweep(): no value to solve");
+  const std::vector<bool> psd = psd_along(scene, parameter, values);
+  std::vector<std::size_t> solved;
+  for (std::size_t k = 0; k < psd.size(); ++k)
+    if (psd[k]) solved.push_back(k);
+  if (solved.empty()) {
+    const auto [low, high] = std::minmax_element(values.begin(), values.end());
+    throw InputError(scene.origin + ": M is not positive semi-definite at any value of the sweep (" + parameter.key() + " from " +
+                     to_string(*low) + " to " + to_string(*high) + "): nothing to solve");
+  }
+  const auto [low, high] = std::minmax_element(solved.begin(), solved.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  check_range(scene, parameter, values[*low], values[*high]);
+  const std::size_t total = solved.size();
+  auto solve = [&](std::size_t first, std::size_t size) {
+    std::vector<cln::cl_RA> chunk;
+    chunk.reserve(size);
+    for (std::size_t j = 0; j < size; ++j) chunk.push_back(values[solved[first + j]]);
+    return sweep(scene, parameter, chunk, precision, threads);
+  };
+  if (runner) {
+    const std::vector<SweepPoint> points = in_tasks<SweepPoint>(
+        runner, total, sweep_chunk_values, "sweep_marking_psd()", solve, write_sweep_points,
+        [&](const std::string& text) { return read_sweep_points(text, scene.size()); });
+    if (points.size() != total) throw std::invalid_argument("sweep_marking_psd(): a damaged result (not the rows of its values)");
+    for (std::size_t j = 0; j < total; ++j) {
+      SweepPoint p = points[j];
+      p.value = values[solved[j]];
+      deliver(solved[j], p);
+    }
+    return psd;
+  }
+  for (std::size_t first = 0; first < total; first += sweep_chunk_values) {
+    if (progress) progress(first, total);
+    const std::size_t size = std::min(total, first + sweep_chunk_values) - first;
+    const std::vector<SweepPoint> points = solve(first, size);
+    for (std::size_t j = 0; j < size; ++j) deliver(solved[first + j], points[j]);
+  }
+  if (progress) progress(total, total);
+  return psd;
+}
+
 std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<SweepPoint>& points,
                                        int bits, int threads) {
   std::vector<cln::cl_RA> values;
@@ -503,6 +552,65 @@ std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& para
   std::vector<SwitchPoint> out;
   for (const auto& c : label_changes(scene, parameter, values, by_case, bits, threads, proven_case))
     out.push_back({c.low, c.high, as_case(c.below), as_case(c.above)});
+  return out;
+}
+
+std::string write_sweep_points(const std::vector<SweepPoint>& points) {
+  std::string text;
+  char number[40];
+  for (const SweepPoint& p : points) {
+    for (double w : p.velocities_after) {
+      std::snprintf(number, sizeof number, "%.17g ", w);
+      text += number;
+    }
+    const std::vector<std::string> closed = p.closed.closed_names();
+    std::string names;
+    for (const std::string& c : closed) names += (names.empty() ? "" : ",") + c;
+    text += (names.empty() ? "none" : names) + " " + to_string(p.status) + "\n";
+  }
+  return text;
+}
+
+std::vector<SweepPoint> read_sweep_points(const std::string& text, int bodies) {
+  auto damaged = [&](const std::string& what) { return std::invalid_argument("read_sweep_points(): a damaged result (" + what + ")"); };
+  static const Status statuses[] = {Status::Success, Status::NumericalIssue, Status::NoConvergence};
+  std::vector<SweepPoint> out;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t eol = text.find('\n', at);
+    if (eol == std::string::npos) throw damaged("its last line is cut");
+    std::vector<std::string> f;
+    for (std::size_t from = at;;) {
+      const std::size_t space = text.find(' ', from);
+      const std::size_t end = space == std::string::npos || space > eol ? eol : space;
+      f.push_back(text.substr(from, end - from));
+      if (end == eol) break;
+      from = end + 1;
+    }
+    at = eol + 1;
+    if (f.size() != static_cast<std::size_t>(bodies) + 2) throw damaged("a row of the wrong fields");
+    SweepPoint row;
+    for (int i = 0; i < bodies; ++i) {
+      const std::string& w = f[static_cast<std::size_t>(i)];
+      char* end = nullptr;
+      const double v = w.empty() ? 0 : std::strtod(w.c_str(), &end);
+      if (w.empty() || *end) throw damaged("'" + printable(w.substr(0, 40)) + "' is not a number");
+      row.velocities_after.push_back(v);
+    }
+    try {
+      const std::string& c = f[static_cast<std::size_t>(bodies)];
+      if (c.empty()) throw std::invalid_argument("empty");
+      row.closed = ContactSet::parse(c, bodies);
+    } catch (const std::invalid_argument&) {
+      throw damaged("'" + printable(f[static_cast<std::size_t>(bodies)].substr(0, 40)) + "' is not a case of this scene");
+    }
+    const std::string& s = f.back();
+    bool known = false;
+    for (Status st : statuses)
+      if (s == to_string(st)) row.status = st, known = true;
+    if (!known) throw damaged("'" + printable(s.substr(0, 40)) + "' is not a status");
+    out.push_back(std::move(row));
+  }
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include "superball/cases/error.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/parallel.hpp"
 #include "superball/symbolic/estimate.hpp"
 
 namespace superball::present {
@@ -54,6 +55,8 @@ void SelectionOptions::check() const {
                                 std::to_string(order));
   if ((!case_name.empty()) + (!closed.empty()) + all > 1)
     throw std::invalid_argument("SelectionOptions::check(): case, closed and all each choose the cases: give one of them");
+  if (!scene.empty() && (bodies || !alphas.empty() || !coupling.empty() || pairs))
+    throw std::invalid_argument("SelectionOptions::check(): scene gives the number of bodies and the pattern: drop bodies, alphas, coupling and pairs");
 }
 
 namespace {
@@ -78,17 +81,19 @@ Selection resolve(const SelectionOptions& o) {
   if (!o.scene.empty()) {
     pattern = Pattern::from_scene(load_scene(o.scene));
   } else {
-    check_bodies(o.bodies, obstacle);
+    const int bodies = o.bodies.value_or(default_bodies);
+    const std::string pairs = o.pairs.value_or(default_pairs);
+    check_bodies(bodies, obstacle);
     if (!o.alphas.empty()) {
-      if (o.bodies != Vocabulary::paper().bodies())
-        throw std::invalid_argument("--alphas names the paper's couplings of 4 bodies; use --coupling for " + std::to_string(o.bodies));
+      if (bodies != Vocabulary::paper().bodies())
+        throw std::invalid_argument("--alphas names the paper's couplings of 4 bodies; use --coupling for " + std::to_string(bodies));
       pattern = Pattern::paper(o.alphas);
     } else {
-      pattern.bodies = o.bodies;
+      pattern.bodies = bodies;
     }
-    pattern.diagonal = named("pairs", o.pairs, [&] { return Pattern::parse_pairs(o.pairs, o.bodies); });
+    pattern.diagonal = named("pairs", pairs, [&] { return Pattern::parse_pairs(pairs, bodies); });
     if (!o.coupling.empty()) {
-      const auto more = named("coupling", o.coupling, [&] { return Pattern::parse_couplings(o.coupling, o.bodies); });
+      const auto more = named("coupling", o.coupling, [&] { return Pattern::parse_couplings(o.coupling, bodies); });
       pattern.couplings.insert(pattern.couplings.end(), more.begin(), more.end());
     }
     pattern.check();
@@ -111,7 +116,16 @@ Selection resolve(const SelectionOptions& o) {
   return s;
 }
 
-DerivePlan plan_derivation(const Selection& s, int jobs, const numeric::Memory& available) {
+DeriveFormat parse_derive_format(const std::string& text) {
+  if (text == "text") return DeriveFormat::Text;
+  if (text == "latex") return DeriveFormat::Latex;
+  if (text == "json") return DeriveFormat::Json;
+  throw std::invalid_argument("parse_derive_format(): format must be text, latex or json, got '" + text + "'");
+}
+
+DerivePlan plan_derivation(const Selection& s, int asked, const numeric::Memory& available) {
+  numeric::check_threads(asked, "jobs");
+  const int jobs = numeric::thread_count(asked);
   const Deriver& d = *s.deriver;
   const int n = d.symbols().bodies();
   const std::size_t count = s.cases.size();

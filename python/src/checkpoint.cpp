@@ -66,68 +66,6 @@ numeric::TaskRunner kept_runner(py::object progress, std::vector<std::string> ph
   };
 }
 
-std::string sweep_rows(const std::vector<numeric::SweepPoint>& points) {
-  std::string text;
-  char number[40];
-  for (const numeric::SweepPoint& p : points) {
-    for (double w : p.velocities_after) {
-      std::snprintf(number, sizeof number, "%.17g ", w);
-      text += number;
-    }
-    const std::vector<std::string> closed = p.closed.closed_names();
-    std::string names;
-    for (const std::string& c : closed) names += (names.empty() ? "" : ",") + c;
-    text += (names.empty() ? "none" : names) + " " + numeric::to_string(p.status) + "\n";
-  }
-  return text;
-}
-
-std::vector<SweptRow> read_sweep_rows(const std::string& text, std::size_t rows, int bodies, const std::string& where) {
-  auto damaged = [&](const std::string& what) { return std::invalid_argument(where + ": a damaged result (" + what + ")"); };
-  static const numeric::Status statuses[] = {numeric::Status::Success, numeric::Status::NumericalIssue, numeric::Status::NoConvergence};
-  std::vector<SweptRow> out;
-  out.reserve(rows);
-  std::size_t at = 0;
-  while (at < text.size()) {
-    const std::size_t eol = text.find('\n', at);
-    if (eol == std::string::npos) throw damaged("its last line is cut");
-    if (out.size() == rows) throw damaged("more rows than its values");
-    std::vector<std::string> f;
-    for (std::size_t from = at;;) {
-      const std::size_t space = text.find(' ', from);
-      const std::size_t end = space == std::string::npos || space > eol ? eol : space;
-      f.push_back(text.substr(from, end - from));
-      if (end == eol) break;
-      from = end + 1;
-    }
-    at = eol + 1;
-    if (f.size() != static_cast<std::size_t>(bodies) + 2) throw damaged("a row of the wrong fields");
-    SweptRow row;
-    for (int i = 0; i < bodies; ++i) {
-      const std::string& w = f[static_cast<std::size_t>(i)];
-      char* end = nullptr;
-      const double v = w.empty() ? 0 : std::strtod(w.c_str(), &end);
-      if (w.empty() || *end) throw damaged("'" + printable(w.substr(0, 40)) + "' is not a number");
-      row.velocities.push_back(v);
-    }
-    try {
-      const std::string& c = f[static_cast<std::size_t>(bodies)];
-      if (c.empty()) throw std::invalid_argument("empty");
-      row.closed = ContactSet::parse(c, bodies);
-    } catch (const std::invalid_argument&) {
-      throw damaged("'" + printable(f[static_cast<std::size_t>(bodies)].substr(0, 40)) + "' is not a case of this scene");
-    }
-    const std::string& s = f.back();
-    bool known = false;
-    for (numeric::Status st : statuses)
-      if (s == numeric::to_string(st)) row.status = st, known = true;
-    if (!known) throw damaged("'" + printable(s.substr(0, 40)) + "' is not a status");
-    out.push_back(std::move(row));
-  }
-  if (out.size() != rows) throw damaged("not the rows of its values");
-  return out;
-}
-
 std::string verification_text(const nlohmann::ordered_json& json, const std::string& report, bool agrees) {
   const std::string j = json.dump();
   return std::string(agrees ? "A" : "D") + "\n" + std::to_string(j.size()) + "\n" + j + "\n" + report;

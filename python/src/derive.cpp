@@ -99,7 +99,7 @@ py::list derive(const py::dict& options, bool expanded, int jobs, const py::obje
   const present::Selection sel = present::resolve(selection(options));
   if (sel.cases.empty()) throw std::invalid_argument("derive: give a case (case= or closed=), or use derive_all()");
   const symbolic::Deriver& deriver = *sel.deriver;
-  const present::DerivePlan plan = present::plan_derivation(sel, numeric::thread_count(jobs), numeric::available_memory());
+  const present::DerivePlan plan = present::plan_derivation(sel, jobs, numeric::available_memory());
   if (!notice.is_none()) notice(plan.text, plan.estimate.seconds);
   py::list out;
   std::vector<nlohmann::ordered_json> psd;  // in each worker: the conditions on M, made once

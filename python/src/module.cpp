@@ -34,7 +34,6 @@
 #include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/certify.hpp"
 #include "superball/numeric/parallel.hpp"
-#include "superball/numeric/psd_along.hpp"
 #include "superball/numeric/sweep.hpp"
 #include "superball/present/audit.hpp"
 #include "superball/present/derivation.hpp"
@@ -173,17 +172,15 @@ present::Presented solve(const Scene& scene, const std::string& precision, std::
   return p.automatic ? present::solve_scene_auto(scene, p.tolerance()) : present::solve_scene(scene, p.fixed);
 }
 
-/// Values solved by one library call in sweep().
-constexpr std::size_t kSweepChunk = std::size_t{1} << 16;
-
 /// sweep(): values, U (one row per value), case numbers into the table of
-/// distinct cases (names, closed contacts), status codes; the GIL is released while it solves.
-/// With a \p checkpoint folder, each chunk is a task kept there (run_kept()).
+/// distinct cases (names, closed contacts), status codes, and M PSD per value:
+/// numeric::sweep_marking_psd(), which marks the values where M is not PSD
+/// (here NaN velocities, case and status −1); the GIL is released while it solves.
+/// With a \p checkpoint folder, each chunk is a task kept there (kept_runner()).
 py::tuple sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads,
                 py::object progress, const std::string& checkpoint) {
   const Parameter parameter = Parameter::parse(key, scene);
   const auto p = numeric::Precision::parse(precision);
-  if (values.exact.empty()) (void)numeric::sweep(scene, parameter, {}, p, threads);  // refuses it: no value to solve
   const auto n = static_cast<py::ssize_t>(scene.size());
   const auto count = static_cast<py::ssize_t>(values.exact.size());
   py::array_t<double> x(count);
@@ -198,63 +195,31 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
     std::int32_t* cd = codes.mutable_data();
     std::int8_t* sd = status.mutable_data();
     bool* pd = psd.mutable_data();
+    std::fill(ud, ud + count * n, std::numeric_limits<double>::quiet_NaN());
+    std::fill(cd, cd + count, -1);
+    std::fill(sd, sd + count, -1);
     py::gil_scoped_release release;
     const std::lock_guard<std::mutex> hold(*values.lock);
-    // The values where M is positive semi-definite are solved, the others marked (NaN, case -1, status -1),
-    // as a map marks its points; every value solved is admissible before anything is solved (check_range() of
-    // the smallest and largest of them), then the values are solved a chunk at a time, so that the library's
-    // per-value results (a few hundred bytes each) never exceed a chunk's.
-    const std::vector<bool> marked = numeric::psd_along(scene, parameter, values.exact);
-    std::vector<std::size_t> solved;
-    for (std::size_t k = 0; k < marked.size(); ++k) {
-      pd[k] = marked[k];
-      if (marked[k]) solved.push_back(k);
-      else cd[k] = -1, sd[k] = -1;
-      if (!marked[k])
-        for (py::ssize_t i = 0; i < n; ++i) ud[static_cast<py::ssize_t>(k) * n + i] = std::numeric_limits<double>::quiet_NaN();
-    }
-    const auto [low, high] = std::minmax_element(values.exact.begin(), values.exact.end(),
-                                                 [](const cln::cl_RA& a, const cln::cl_RA& b) { return a < b; });
-    if (solved.empty())
-      throw InputError(scene.origin + ": M is not positive semi-definite at any value of the sweep (" + parameter.key() + " from " +
-                       numeric::to_string(*low) + " to " + numeric::to_string(*high) + "): nothing to solve");
-    const auto [slow, shigh] = std::minmax_element(solved.begin(), solved.end(),
-                                                   [&](std::size_t a, std::size_t b) { return values.exact[a] < values.exact[b]; });
-    numeric::check_range(scene, parameter, values.exact[*slow], values.exact[*shigh]);
-    fill_doubles(values, xd);
-    const auto total = solved.size();
-    auto solve_chunk = [&](std::size_t first) {
-      const std::size_t size = std::min(total, first + kSweepChunk) - first;
-      std::vector<cln::cl_RA> chunk;
-      chunk.reserve(size);
-      for (std::size_t j = 0; j < size; ++j) chunk.push_back(values.exact[solved[first + j]]);
-      return numeric::sweep(scene, parameter, chunk, p, threads);
-    };
-    auto store = [&](std::size_t at, const std::vector<double>& velocities, const ContactSet& closed, numeric::Status status) {
-      const auto k = static_cast<py::ssize_t>(solved[at]);
-      for (py::ssize_t i = 0; i < n; ++i) ud[k * n + i] = velocities[static_cast<std::size_t>(i)];
-      cd[k] = table.code(closed);
-      sd[k] = static_cast<std::int8_t>(status);
-    };
+    numeric::TaskRunner runner;
     if (!checkpoint.empty()) {  // the run: the scene, the key, the values exactly, the precision
       std::string exact;
-      for (const auto& x : values.exact) exact += numeric::to_string(x) + "\n";
+      for (const auto& v : values.exact) exact += numeric::to_string(v) + "\n";
       const auto id = distribute::typed_identity("sweep", {{"key", parameter.key()}, {"precision", p.name()}},
                                                  {{"scene", write_scene(scene)}, {"values", exact}});
-      run_kept(checkpoint, id, (total + kSweepChunk - 1) / kSweepChunk, distribute::kMaxTaskBytes, progress, "values", kSweepChunk, total,
-               [&](std::size_t t) { return sweep_rows(solve_chunk(t * kSweepChunk)); },
-               [&](std::size_t t, std::string&& text, const std::string& origin) {
-                 const std::size_t first = t * kSweepChunk;
-                 const auto rows = read_sweep_rows(text, std::min(total, first + kSweepChunk) - first, static_cast<int>(n), origin);
-                 for (std::size_t j = 0; j < rows.size(); ++j) store(first + j, rows[j].velocities, rows[j].closed, rows[j].status);
-               });
+      const py::gil_scoped_acquire gil;
+      runner = kept_runner(progress, {"values"}, checkpoint, id);
     }
-    for (std::size_t first = 0; checkpoint.empty() && first < total; first += kSweepChunk) {
-      between_tasks(progress, "values", first, total);
-      const auto points = solve_chunk(first);
-      for (std::size_t j = 0; j < points.size(); ++j) store(first + j, points[j].velocities_after, points[j].closed, points[j].status);
-    }
-    between_tasks(progress, "values", total, total);
+    const std::vector<bool> marked = numeric::sweep_marking_psd(
+        scene, parameter, values.exact, p, threads,
+        [&](std::size_t k, const numeric::SweepPoint& pt) {
+          const auto row = static_cast<py::ssize_t>(k);
+          for (py::ssize_t i = 0; i < n; ++i) ud[row * n + i] = pt.velocities_after[static_cast<std::size_t>(i)];
+          cd[row] = table.code(pt.closed);
+          sd[row] = static_cast<std::int8_t>(pt.status);
+        },
+        [&](std::size_t done, std::size_t total) { between_tasks(progress, "values", done, total); }, runner);
+    std::copy(marked.begin(), marked.end(), pd);
+    fill_doubles(values, xd);
   }
   return py::make_tuple(x, u, codes, table.names(), status, psd);
 }
@@ -279,8 +244,8 @@ std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key,
 
 }  // namespace
 
-/// The library's selection options from derive()'s keywords (None: the
-/// default); alphas and obstacle read by the library's parsers, as the command reads its options.
+/// The library's selection options from derive()'s keywords (None: not
+/// given); alphas and obstacle read by the library's parsers, as the command reads its options.
 present::SelectionOptions selection(const py::dict& o) {
   present::SelectionOptions s;
   for (const auto& [k, v] : o) {
@@ -358,8 +323,10 @@ py::tuple audit(const std::string& epsilon, int samples, std::uint64_t seed) {
 }
 
 /// explore(): per case (or per cell of the table), to_json as Python objects, the report and the witness scene.
+/// progress(phase, done, total) ("case NAME", or "cells" for the table) and Ctrl-C as the search goes
+/// (ExploreOptions::progress; the GIL is held: GiNaC is not thread-safe).
 std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::uint64_t seed, int starts, int evaluations, double box_low,
-                               double box_high) {
+                               double box_high, const py::object& progress) {
   verify::ExploreOptions o;
   o.seed = seed;
   o.starts = starts;
@@ -367,10 +334,16 @@ std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::
   o.box_low = box_low;
   o.box_high = box_high;
   o.check();
+  auto told = [&progress](const std::string& phase) {
+    return [&progress, phase](long long done, long long planned) {
+      between_tasks(progress, phase, static_cast<std::size_t>(done), static_cast<std::size_t>(planned));
+    };
+  };
   const present::SelectionOptions chosen = selection(options);
   std::vector<py::tuple> out;
   if (all_patterns) {
     present::check_all_patterns(chosen);
+    o.progress = told("cells");
     const verify::PatternTable t = verify::explore_all_patterns(o);
     out.push_back(py::make_tuple(to_python(present::to_json(t)), present::to_text(t)));
     return out;
@@ -378,6 +351,7 @@ std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::
   present::require_case(chosen, true);
   const present::Selection sel = present::resolve(chosen);
   for (const ContactSet& c : sel.cases) {
+    o.progress = told("case " + Vocabulary::paper().case_name(c));
     const verify::ExploreResult r = verify::explore_case(*sel.deriver, c, o);
     out.push_back(py::make_tuple(to_python(present::to_json(r)), present::to_text(r), r.scene ? py::cast(*r.scene) : py::none()));
   }
@@ -485,7 +459,7 @@ PYBIND11_MODULE(_superball, m) {
         py::arg("threads"), py::arg("progress"), py::arg("checkpoint"));
   m.def("audit", &audit, py::arg("epsilon"), py::arg("samples"), py::arg("seed"));
   m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
-        py::arg("box_low"), py::arg("box_high"));
+        py::arg("box_low"), py::arg("box_high"), py::arg("progress"));
   register_map(m);
   register_checkpoint(m);
   register_scene(m);

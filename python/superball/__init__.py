@@ -829,7 +829,7 @@ def _verify_result(data: Dict[str, Any], text: str, agrees: bool) -> VerifyResul
                         np.array(exact, dtype=np.float64), np.array(asym, dtype=np.float64), data, text)
 
 
-def verify(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
+def verify(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int] = None, pairs: Any = None, coupling: Any = None,
            obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, all: bool = False,
            scene: Any = None, epsilons: Optional[Sequence[Number]] = None, samples: int = 4000,
            boundary_pairs: int = 20, seed: int = 1, threads: int = 0, progress: Any = None,
@@ -914,9 +914,10 @@ class PatternTable:
         return f"<div><b>superball explore --all-patterns</b><table><tr><th></th>{head}</tr>{rows}</table></div>"
 
 
-def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
+def explore(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int] = None, pairs: Any = None, coupling: Any = None,
             closed: Any = None, all: bool = False, scene: Any = None, all_patterns: bool = False, seed: int = 1, starts: int = 24,
-            evaluations: int = 1000, box: Tuple[float, float] = (1e-3, 1e3)) -> Union[ExploreResult, List[ExploreResult], PatternTable]:
+            evaluations: int = 1000, box: Tuple[float, float] = (1e-3, 1e3),
+            progress: Any = None) -> Union[ExploreResult, List[ExploreResult], PatternTable]:
     """Search a witness of the superball in a case (fixed obstacle, a = 1), or prove it impossible.
 
     The derived exact conditions of the case and the minors of M bound the
@@ -926,16 +927,23 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pai
     exactly.  Without a witness, it looks for weights w with
     −Σ wᵢNᵢ = Q + (terms ≥ 0), Q ≥ 0 wherever M ⪰ 0: a proof that the
     conditions clash.  ``all_patterns=True`` gives the table of every α_k.
+    ``progress``: a callable ``(phase, done, total)`` (phase ``"case 2.2"``
+    per case, or ``"cells"`` for the table; the steps are the objective
+    evaluations, then one for the exact confirmation and the proofs), told at
+    least every 1024 evaluations, True/False, or None (a bar on standard
+    error when it is a terminal); Ctrl-C stops it (KeyboardInterrupt) within
+    as many evaluations.  The result does not depend on it.
     """
     low, high = box
     options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene)
+    told = _progress.resolve(progress, "explore")
     if all_patterns:
-        (d, text), = _superball.explore(options, True, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high))
+        (d, text), = _superball.explore(options, True, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high), told)
         patterns = [row["cells"][0]["pattern"] if row["cells"] else ",".join(f"alpha{k}" for k in row["alphas"]) for row in d["rows"]]
         reach = np.array([[cell["reach"] for cell in row["cells"]] for row in d["rows"]], dtype=str)
         return PatternTable(patterns, list(d["cases"]), reach, d, text)
     out = []
-    for d, text, witness_scene in _superball.explore(options, False, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high)):
+    for d, text, witness_scene in _superball.explore(options, False, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high), told):
         witness = {k: Fraction(v) for k, v in (d.get("witness") or {}).items()}
         ratio = Fraction(d["ratio"]) if d.get("ratio") is not None and witness else None
         out.append(ExploreResult(d["case"], d["reach"], ratio, witness, None if witness_scene is None else Scene(_scene=witness_scene), d, text))

@@ -221,7 +221,7 @@ class Derivation:
 def derive(
     case: Optional[str] = ...,
     alphas: Any = ...,
-    bodies: int = ...,
+    bodies: Optional[int] = ...,
     pairs: Any = ...,
     coupling: Any = ...,
     obstacle: str = ...,
@@ -235,7 +235,7 @@ def derive(
 
 def derive_all(
     alphas: Any = ...,
-    bodies: int = ...,
+    bodies: Optional[int] = ...,
     pairs: Any = ...,
     coupling: Any = ...,
     obstacle: str = ...,
@@ -272,7 +272,7 @@ class VerifyResult:
 def verify(
     case: Optional[str] = ...,
     alphas: Any = ...,
-    bodies: int = ...,
+    bodies: Optional[int] = ...,
     pairs: Any = ...,
     coupling: Any = ...,
     obstacle: str = ...,
@@ -313,7 +313,7 @@ class PatternTable:
 def explore(
     case: Optional[str] = ...,
     alphas: Any = ...,
-    bodies: int = ...,
+    bodies: Optional[int] = ...,
     pairs: Any = ...,
     coupling: Any = ...,
     closed: Any = ...,
@@ -324,6 +324,7 @@ def explore(
     starts: int = ...,
     evaluations: int = ...,
     box: Tuple[float, float] = ...,
+    progress: Any = ...,
 ) -> Union[ExploreResult, List[ExploreResult], PatternTable]: ...
 
 # map(): python/superball/_map.py

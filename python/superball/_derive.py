@@ -17,7 +17,7 @@ from fractions import Fraction
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _superball
-from ._options import _selection
+from ._options import _int_option, _selection
 
 InputError = _superball.InputError
 Error = _superball.Error
@@ -296,9 +296,7 @@ def _run(name: str, options: Dict[str, Any], expanded: bool, jobs: Optional[int]
         notice, step = None, (progress if callable(progress) else None)
         if progress is not False and not callable(progress):
             raise InputError(f"{name}: progress must be None, False or a callable (done, total), got {progress!r}")
-    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
-        raise InputError(f"{name}: jobs must be a number of worker processes >= 1 or None (all cores), got {jobs!r}")
-    out = [_derivation(d) for d in _superball.derive(options, bool(expanded), 0 if jobs is None else min(jobs, 2**31 - 1), step, notice)]
+    out = [_derivation(d) for d in _superball.derive(options, bool(expanded), 0 if jobs is None else _int_option(jobs, "jobs"), step, notice)]
     # Compact JSON of several cases has the conditions on M in the first case only: every Derivation shows them.
     psd = [c for c in out[0].conditions if c.kind == "psd"] if out else []
     return [d if any(c.kind == "psd" for c in d.conditions) else _with_conditions(d, d.conditions + psd) for d in out]
@@ -308,7 +306,7 @@ def _with_conditions(d: Derivation, conditions: List[Condition]) -> Derivation:
     return _replace(d, conditions=conditions)
 
 
-def derive(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None,
+def derive(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int] = None, pairs: Any = None, coupling: Any = None,
            obstacle: str = "infinite", scaling: Any = None, order: int = 0, closed: Any = None, scene: Any = None,
            expanded: bool = False, progress: Union[None, bool, Progress] = None) -> Derivation:
     """Solve one evolution case symbolically and give its conditions (paper §4).
@@ -316,10 +314,11 @@ def derive(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pair
     The case: ``case`` (the paper's name for 4 bodies: "1", "2.1", …) or
     ``closed`` (the closed contacts, ``"2-3,3-4"`` or a list, ``"none"``);
     every case: :func:`derive_all`.  The pattern of M: ``alphas`` (the
-    paper's α_k in play, 4 bodies: ``2`` or ``[1, 6]``), ``bodies``,
-    ``pairs`` (``"all"``, ``"near"``, ``"near2"`` or a list of pairs with a
-    diagonal K), ``coupling`` (``"1-2/1-4,…"``, a list, or ``"near2"``), or
-    ``scene`` (a scene file's declared entries).  ``obstacle``: ``"infinite"``
+    paper's α_k in play, 4 bodies: ``2`` or ``[1, 6]``), ``bodies`` (None:
+    4), ``pairs`` (``"all"``, the default, ``"near"``, ``"near2"`` or a list
+    of pairs with a diagonal K), ``coupling`` (``"1-2/1-4,…"``, a list, or
+    ``"near2"``), or ``scene`` (a scene file's declared entries: not with
+    bodies, alphas, coupling or pairs).  ``obstacle``: ``"infinite"``
     (m_n = ∞) or ``"finite"``; ``scaling``: orders in ε (``"m1=1,K14=-1"`` or
     a dict; default m₁ ~ ε, K₁ₙ ~ 1/ε); ``order``: correction orders kept.
     ``expanded``: keep every expanded form of a long case too (as
@@ -343,14 +342,14 @@ def derive(case: Optional[str] = None, alphas: Any = None, bodies: int = 4, pair
     return _run("derive", options, expanded, 1, progress)[0]
 
 
-def derive_all(alphas: Any = None, bodies: int = 4, pairs: Any = "all", coupling: Any = None, obstacle: str = "infinite",
+def derive_all(alphas: Any = None, bodies: Optional[int] = None, pairs: Any = None, coupling: Any = None, obstacle: str = "infinite",
                scaling: Any = None, order: int = 0, scene: Any = None, expanded: bool = False, jobs: Optional[int] = None,
                progress: Union[None, bool, Progress] = None) -> List[Derivation]:
     """Every evolution case of a pattern (2ⁿ⁻¹ of them, in mask order: the
     contact (c, c+1) closed for bit c − 1), as :func:`derive` gives one.
 
-    The cases are derived in parallel in ``jobs`` worker processes (None:
-    one per core; fewer when their memory would not fit), the ones
+    The cases are derived in parallel in ``jobs`` worker processes (None or
+    0: one per core, at most 1024; fewer when their memory would not fit), the ones
     ``superball derive --all`` uses (GiNaC is not thread-safe, so processes);
     the result does not depend on their number.  ``progress``: None shows
     the estimate and "derive_all: k of N cases" on standard error when it is

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "superball/cases/error.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/numeric/problem.hpp"
 #include "superball/numeric/psd_along.hpp"
@@ -51,6 +53,68 @@ TEST(PsdAlong, NotAnEntryOfMKeepsTheScenesVerdict) {
   const auto values = linspace(cln::cl_RA(1), cln::cl_RA(50), 9);
   const auto marked = psd_along(scene, Parameter::parse("mass.2", scene), values);
   EXPECT_EQ(marked, std::vector<bool>(9, true));
+}
+
+// Issue 26: a sweep through M's PSD bound marks exactly the values where M is
+// not PSD (each value's verdict on its own) and solves the others as a sweep
+// of those alone, bit for bit, in chunks of sweep_chunk_values.
+TEST(SweepMarkingPsd, MarksTheNonPsdValuesAndSolvesTheOthersAsSweep) {
+  const Scene scene = load_scene(kPaper);
+  const Parameter alpha = Parameter::parse("alpha.2", scene);
+  for (int steps : {221, 140001}) {  // alpha2 from -110 to 0: M is PSD from about -102.47
+    const auto values = linspace(cln::cl_RA(-110), cln::cl_RA(0), steps);
+    std::vector<std::size_t> delivered;
+    std::vector<SweepPoint> points;
+    std::vector<std::pair<std::size_t, std::size_t>> told;
+    const std::vector<bool> psd = sweep_marking_psd(
+        scene, alpha, values, Precision::parse("double"), 2,
+        [&](std::size_t k, const SweepPoint& p) {
+          delivered.push_back(k);
+          points.push_back(p);
+        },
+        [&](std::size_t done, std::size_t total) { told.emplace_back(done, total); });
+    if (steps == 221) EXPECT_EQ(psd, one_by_one(scene, alpha, values));
+    std::vector<cln::cl_RA> only;
+    std::vector<std::size_t> expected;
+    for (std::size_t k = 0; k < values.size(); ++k)
+      if (psd[k]) expected.push_back(k), only.push_back(values[k]);
+    ASSERT_FALSE(only.empty());
+    ASSERT_LT(only.size(), values.size());
+    EXPECT_FALSE(psd.front());
+    EXPECT_TRUE(psd.back());
+    EXPECT_EQ(delivered, expected);
+    const std::vector<SweepPoint> alone = sweep(scene, alpha, only, Precision::parse("double"), 1);
+    ASSERT_EQ(points.size(), alone.size());
+    for (std::size_t j = 0; j < alone.size(); ++j) {
+      EXPECT_EQ(points[j].value, alone[j].value);
+      EXPECT_EQ(points[j].velocities_after, alone[j].velocities_after) << j;  // bit for bit (no NaN among them)
+      EXPECT_EQ(points[j].closed, alone[j].closed);
+      EXPECT_EQ(points[j].status, alone[j].status);
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> chunks;
+    for (std::size_t first = 0; first < only.size(); first += sweep_chunk_values) chunks.emplace_back(first, only.size());
+    chunks.emplace_back(only.size(), only.size());
+    EXPECT_EQ(told, chunks);
+  }
+}
+
+TEST(SweepMarkingPsd, RefusesWhatItCannotSolveBeforeSolving) {
+  const Scene scene = load_scene(kPaper);
+  const Parameter alpha = Parameter::parse("alpha.2", scene);
+  int delivered = 0;
+  auto count = [&](std::size_t, const SweepPoint&) { ++delivered; };
+  const Precision dbl = Precision::parse("double");
+  try {
+    sweep_marking_psd(scene, alpha, linspace(cln::cl_RA(-300), cln::cl_RA(-200), 5), dbl, 1, count);
+    ADD_FAILURE() << "no PSD value accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), kPaper + ": M is not positive semi-definite at any value of the sweep (alpha.2 from -300 to -200): nothing to solve");
+  }
+  EXPECT_THROW(sweep_marking_psd(scene, alpha, {}, dbl, 1, count), std::invalid_argument);
+  EXPECT_THROW(sweep_marking_psd(scene, alpha, {cln::cl_RA(-50)}, dbl, -1, count), std::invalid_argument);
+  // another inadmissible value among the PSD ones: check_range()'s refusal (a mass <= 0)
+  EXPECT_THROW(sweep_marking_psd(scene, Parameter::parse("mass.2", scene), linspace(cln::cl_RA(-1), cln::cl_RA(1), 3), dbl, 1, count), InputError);
+  EXPECT_EQ(delivered, 0);
 }
 
 }  // namespace

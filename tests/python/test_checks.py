@@ -108,7 +108,10 @@ def test_version_is_the_command_s():
 
 
 def test_explore_every_pattern():
-    t = superball.explore(all_patterns=True, starts=1, evaluations=10)
+    told = []
+    t = superball.explore(all_patterns=True, starts=1, evaluations=10, progress=lambda *a: told.append(a))
+    # its progress is over the 64 cells, each of 1 × 10 evaluations and one step for the rest
+    assert {x[0] for x in told} == {"cells"} and told[-1] == ("cells", 64 * 11, 64 * 11)
     # each cell is explore() of its pattern and case (the command's --all-patterns JSON is the same library call)
     cell = t.data["rows"][2]["cells"][0]
     assert cell == superball.explore(case="1", alphas=3, starts=1, evaluations=10).data

@@ -159,7 +159,7 @@ def test_derive_all_equals_the_command_whatever_the_workers(chain5):
     assert expanded.data == cli_json("derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--closed", "none", "--format",
                                      "json", "--expanded")
     with pytest.raises(superball.InputError, match="jobs"):
-        superball.derive_all(alphas=2, jobs=0)
+        superball.derive_all(alphas=2, jobs=-1)
     with pytest.raises(superball.InputError, match="progress"):
         superball.derive_all(alphas=2, progress="yes")
 

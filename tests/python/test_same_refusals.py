@@ -77,6 +77,20 @@ CASES = [
     (("explore", "--alphas", "2"), lambda: superball.explore(alphas=2), "give a case: case, closed or all, or all_patterns"),
     (("explore", "--all-patterns", "--case", "1"), lambda: superball.explore(all_patterns=True, case="1"),
      "all_patterns chooses the patterns and cases: drop case, closed, all, alphas, coupling and scene"),
+    # scene gives the pattern: SelectionOptions::check() (bodies and pairs given differ from their defaults)
+    *[(VERIFY[:3] + ("--scene", PAPER) + args, (lambda kw=kw: superball.verify(case="1", scene=str(PAPER), **kw)),
+       "scene gives the number of bodies and the pattern: drop bodies, alphas, coupling and pairs")
+      for args, kw in ((("--bodies", "4"), {"bodies": 4}), (("--pairs", "all"), {"pairs": "all"}), (("--alphas", "2"), {"alphas": 2}),
+                       (("--coupling", "1-2/1-3"), {"coupling": "1-2/1-3"}))],
+    (("derive", "--closed", "none", "--scene", PAPER, "--bodies", "5"), lambda: superball.derive(closed="none", scene=str(PAPER), bodies=5),
+     "scene gives the number of bodies and the pattern: drop bodies, alphas, coupling and pairs"),
+    (("explore", "--case", "1", "--scene", PAPER, "--alphas", "2"), lambda: superball.explore(case="1", scene=str(PAPER), alphas=2),
+     "scene gives the number of bodies and the pattern: drop bodies, alphas, coupling and pairs"),
+    # derive: parse_derive_format(), plan_derivation()'s jobs (numeric::check_threads())
+    (("derive", "--case", "1", "--format", "pdf"), None, "format must be text, latex or json, got 'pdf'"),
+    (("derive", "--all", "--jobs=-1"), lambda: superball.derive_all(jobs=-1), "jobs must be a whole number from 0 (all cores) to 1024, got -1"),
+    (("derive", "--all", "--jobs", "2000"), lambda: superball.derive_all(jobs=2000),
+     "jobs must be a whole number from 0 (all cores) to 1024, got 2000"),
     # explore: ExploreOptions::check(), parse_box()
     (EXPLORE + ("--starts", "0"), lambda: explore(starts=0), "starts must be a whole number from 1 to 100000, got 0"),
     (EXPLORE + ("--evaluations", "5"), lambda: explore(evaluations=5), "evaluations must be a whole number from 10 to 10000000, got 5"),
@@ -96,6 +110,11 @@ CASES = [
     (("map", PAPER, "--x", "K.3-4=0:20:3", "--y", "alpha.2=-110:0:3", "--threads", "1025"),
      lambda: superball.map(scene(), "K.3-4=0:20:3", "alpha.2=-110:0:3", threads=1025, progress=False),
      "threads must be a whole number from 0 (all cores) to 1024, got 1025"),
+    # switch points through M's PSD bound: refused by check_range() (a sweep marks such values instead)
+    (("sweep", PAPER, "--vary", "alpha.2=-110:0:12", "--switch-points"),
+     lambda: superball.switch_points(scene(), "alpha.2", superball.linspace(-110, 0, 12)), None),
+    (("sweep", PAPER, "--vary", "alpha.2=-110:0:12", "--switch-points"),
+     lambda: superball.sweep(scene(), "alpha.2", superball.linspace(-110, 0, 12)).switch_points(), None),
 ]
 
 
@@ -106,6 +125,9 @@ def test_the_command_and_the_module_refuse_with_the_same_line(args, call, messag
     code, out, err = run_cli(*args, check=False)
     assert code == 2 and out == "", f"superball {' '.join(map(str, args))}: exit {code}: {err}"
     assert err.startswith("superball: ") and err.endswith("\n") and err.count("\n") == 1, err
+    if call is None:  # the command only (Python's derive returns objects: it has no format)
+        assert err == f"superball: {message}\n"
+        return
     with pytest.raises(superball.InputError) as e:
         call()
     assert str(e.value) == err[len("superball: "):-1]

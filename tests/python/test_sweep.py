@@ -85,6 +85,40 @@ def test_a_sweep_longer_than_a_chunk(paper):
     assert s.case_list == ("2.2", "3.3", "3.2")
 
 
+def test_a_sweep_through_the_psd_bound_marks_the_values_where_m_is_not_psd(paper):
+    """Issue 26: alpha.2 from -110 to 0 crosses M's PSD bound (about -102.47): the values where M is not PSD
+    are marked, exactly where the exact PSD test of each value's scene says so, and every other value is
+    solved bit for bit as a sweep of those values alone; the command's sweep refuses the range."""
+    values = superball.linspace(-110, 0, 111)
+    s = superball.sweep(paper, "alpha.2", values)
+    fractions = values.fractions()
+
+    def psd_at(v):
+        try:
+            superball.solve(paper.with_value("alpha.2", v), "double")
+            return True
+        except superball.InputError as e:
+            assert "M is not positive semi-definite" in str(e)
+            return False
+
+    assert s.psd.dtype == np.bool_ and s.psd.tolist() == [psd_at(v) for v in fractions]
+    assert 0 < int(np.sum(s.psd)) < len(s)
+    off = ~s.psd
+    assert np.isnan(s.velocities[off]).all() and (s.cases[off] == "").all()
+    assert (s.case_codes[off] == -1).all() and (s.status_codes[off] == -1).all() and s.closed(0) == ()
+    only = superball.sweep(paper, "alpha.2", [v for v, ok in zip(fractions, s.psd) if ok])
+    assert only.psd.all()
+    assert s.velocities[s.psd].tobytes() == only.velocities.tobytes()
+    assert s.cases[s.psd].tolist() == only.cases.tolist()
+    assert s.status_codes[s.psd].tobytes() == only.status_codes.tobytes()
+    assert s.values.tobytes() == np.asarray(values).tobytes()
+    code, out, err = run_cli("sweep", PAPER, "--vary", "alpha.2=-110:0:111", check=False)
+    assert code == 2 and out == "" and err.count("\n") == 1 and "alpha.2 = -110: dissipation: M is not positive semi-definite" in err
+    # a range where M is PSD nowhere: nothing to solve
+    with pytest.raises(superball.InputError, match=r"M is not positive semi-definite at any value of the sweep \(alpha.2 from -300 to -200\)"):
+        superball.sweep(paper, "alpha.2", superball.linspace(-300, -200, 5))
+
+
 def test_result_does_not_depend_on_threads(paper):
     r = superball.linspace(0, 20, 2001)
     one, two = superball.sweep(paper, "K.3-4", r, threads=1), superball.sweep(paper, "K.3-4", r, threads=2)

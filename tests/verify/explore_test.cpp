@@ -8,6 +8,8 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
@@ -156,12 +158,22 @@ TEST(Explore, exam_Alpha7Case2_1NeedsPolynomialMultipliers) {
 
 /// The table's shape (rows: α₁..α₇ and {α₁, α₆}; columns: the paper's 8
 /// cases) and its cells: a proof wherever it says so, a witness wherever it
-/// says yes, whatever the (here tiny) budget.
+/// says yes, whatever the (here tiny) budget; its progress counts every cell.
 TEST(Explore, exam_TableOfAllPatterns) {
   ExploreOptions o;
   o.starts = 2;
   o.evaluations = 60;
+  std::vector<std::pair<long long, long long>> calls;  // the table's progress: every cell's steps, one after the other
+  o.progress = [&](long long done, long long planned) { calls.emplace_back(done, planned); };
   const PatternTable t = explore_all_patterns(o);
+  EXPECT_FALSE(t.options.progress);
+  const long long planned = 64 * (2 * 60 + 1);
+  ASSERT_FALSE(calls.empty());
+  for (std::size_t k = 1; k < calls.size(); ++k) {
+    EXPECT_EQ(calls[k].second, planned);
+    EXPECT_GE(calls[k].first, calls[k - 1].first);
+  }
+  EXPECT_EQ(calls.back(), std::make_pair(planned, planned));
   ASSERT_EQ(t.patterns.size(), 8u);
   EXPECT_EQ(t.patterns.back(), (std::vector<int>{1, 6}));
   ASSERT_EQ(t.cases.size(), 8u);
@@ -190,6 +202,47 @@ TEST(Explore, exam_SameSeedSameResult) {
   const ExploreResult a = explore_case(d, named("3.2"), quick()), b = explore_case(d, named("3.2"), quick());
   EXPECT_EQ(to_json(a).dump(), to_json(b).dump());
   EXPECT_EQ(to_text(a), to_text(b));
+}
+
+// Issue 26: the search reports its steps through ExploreOptions::progress,
+// from 0 to starts × evaluations + 1, and the result is the same with it.
+TEST(Explore, ProgressCountsTheStepsAndChangesNothing) {
+  const Deriver d(Pattern::paper({5}), Obstacle::Infinite);
+  for (const char* name : {"3.2", "1"}) {  // a witness; no witness, then the proofs
+    ExploreOptions o = quick();
+    std::vector<std::pair<long long, long long>> calls;
+    o.progress = [&](long long done, long long planned) { calls.emplace_back(done, planned); };
+    const ExploreResult with = explore_case(d, named(name), o), without = explore_case(d, named(name), quick());
+    EXPECT_EQ(to_json(with).dump(), to_json(without).dump()) << name;
+    EXPECT_EQ(to_text(with), to_text(without)) << name;
+    const long long planned = 6LL * 300 + 1;
+    ASSERT_GE(calls.size(), 7u) << name;  // one after each local search, and the end
+    for (std::size_t k = 0; k < calls.size(); ++k) {
+      EXPECT_EQ(calls[k].second, planned);
+      EXPECT_LE(calls[k].first, k + 1 < calls.size() ? planned - 1 : planned);
+      if (k) EXPECT_GE(calls[k].first, calls[k - 1].first) << name << ", call " << k;
+    }
+    EXPECT_EQ(calls.back().first, planned) << name;
+  }
+}
+
+// A progress that throws (Ctrl-C) stops the search: the exception leaves
+// explore_case() at once, within explore_progress_evaluations evaluations.
+TEST(Explore, ProgressThatThrowsStopsTheSearch) {
+  struct Stop {};
+  const Deriver d(Pattern::paper({2}), Obstacle::Infinite);
+  ExploreOptions o;
+  o.evaluations = 1000000;  // one local search alone would take seconds
+  long long last = 0;
+  int calls = 0;
+  o.progress = [&](long long done, long long) {
+    ++calls;
+    last = done;
+    throw Stop{};
+  };
+  EXPECT_THROW(explore_case(d, named("1"), o), Stop);
+  EXPECT_EQ(calls, 1);
+  EXPECT_LE(last, explore_progress_evaluations);
 }
 
 TEST(Explore, exam_BadOptionsAreRejected) {

@@ -97,6 +97,15 @@ ExploreResult explore_case(const symbolic::Deriver& deriver, const ContactSet& c
   const detail::explore::Box box(space, o);
   detail::explore::Objective f{box, constraints, u1_numerator, u1_denominator};
 
+  // Progress (ExploreOptions::progress): the local searches' evaluations, then one step for the rest.
+  const long long planned = static_cast<long long>(o.starts) * o.evaluations + 1;
+  long long searched = 0;  // the steps of the local searches ended, each at its full budget
+  int search_start = 0;    // f.evaluations when the current local search started
+  auto report = [&](long long done) {
+    if (o.progress) o.progress(std::min(done, planned - 1), planned);
+  };
+  f.poll = [&] { report(searched + std::min(f.evaluations - search_start, o.evaluations)); };
+
   // Multi-start local search.
   RegimeSampler sampler(space, cl_RA(1) / detail::explore::regime_inverse_epsilon, o.seed);
   std::mt19937_64 rng(o.seed);
@@ -110,7 +119,10 @@ ExploreResult explore_case(const symbolic::Deriver& deriver, const ContactSet& c
     } else {
       for (int v = 0; v < box.size(); ++v) y[static_cast<std::size_t>(v)] = std::uniform_real_distribution<double>(box.lower(v), box.upper(v))(rng);
     }
+    search_start = f.evaluations;
     ends.push_back(detail::explore::nelder_mead(f, box, y, o.evaluations));
+    searched += o.evaluations;
+    report(searched);
     ++out.stats.starts;
     if (ends.back().second < detail::explore::infeasible_floor) {
       ++out.stats.feasible_starts;
@@ -132,6 +144,7 @@ ExploreResult explore_case(const symbolic::Deriver& deriver, const ContactSet& c
       if (margin > detail::explore::margins[0]) {
         ++out.stats.inward_steps;
         detail::explore::Objective inward{box, constraints, u1_numerator, u1_denominator, margin};
+        inward.poll = [&] { report(searched); };
         y = detail::explore::nelder_mead(inward, box, y, o.evaluations / 2).first;
         f.evaluations += inward.evaluations;
       }
@@ -152,13 +165,16 @@ ExploreResult explore_case(const symbolic::Deriver& deriver, const ContactSet& c
     }
   }
   out.stats.evaluations = f.evaluations;
+  report(searched);
   if (!out.witness.empty() && out.ratio > 1) {
     out.reach = Reach::Yes;
-    return out;
+  } else {
+    out.clash = detail::explore::find_clash(d, sy, false);
+    report(searched);
+    out.asymptotic_clash = detail::explore::find_clash(d, sy, true);
+    if (out.clash) out.reach = out.clash->superball ? Reach::Impossible : Reach::CaseImpossible;
   }
-  out.clash = detail::explore::find_clash(d, sy, false);
-  out.asymptotic_clash = detail::explore::find_clash(d, sy, true);
-  if (out.clash) out.reach = out.clash->superball ? Reach::Impossible : Reach::CaseImpossible;
+  if (o.progress) o.progress(planned, planned);
   return out;
 }
 
@@ -168,12 +184,22 @@ PatternTable explore_all_patterns(const ExploreOptions& options) {
   options.check();
   PatternTable t;
   t.options = options;
+  t.options.progress = nullptr;  // the caller's, not the table's
   t.patterns = table_patterns();
   for (const NamedCase& c : Vocabulary::paper().cases()) t.cases.push_back(c.name);
+  // Each cell's progress as a part of the table's: every cell plans the same steps.
+  const long long cells = static_cast<long long>(t.patterns.size() * t.cases.size());
+  long long cell = 0;
+  ExploreOptions each = options;
+  if (options.progress)
+    each.progress = [&](long long done, long long planned) { options.progress(cell * planned + done, cells * planned); };
   for (const std::vector<int>& alphas : t.patterns) {
     const symbolic::Deriver deriver(symbolic::Pattern::paper(alphas), symbolic::Obstacle::Infinite);
     std::vector<ExploreResult> row;
-    for (const NamedCase& c : Vocabulary::paper().cases()) row.push_back(explore_case(deriver, c.closed, options));
+    for (const NamedCase& c : Vocabulary::paper().cases()) {
+      row.push_back(explore_case(deriver, c.closed, each));
+      ++cell;
+    }
     t.cells.push_back(std::move(row));
   }
   return t;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -129,6 +130,8 @@ class Box {
 /// The function the local searches minimise: infeasible_floor plus the
 /// total violation where a condition fails (normalised value below the
 /// margin), else h(U₁⁺/a) = −log r (r >= 1) or 1 − r (r < 1), decreasing in r.
+/// \p poll (may be empty) is called every explore_progress_evaluations
+/// evaluations: ExploreOptions::progress, which may throw.
 struct Objective {
   const Box& box;
   const std::vector<Constraint>& constraints;
@@ -136,10 +139,11 @@ struct Objective {
   const Polynomial& u1_denominator;
   double margin = margins[0];
   int evaluations = 0;
+  std::function<void()> poll;
 
   double ratio(const std::vector<double>& x) const { return u1_numerator(x) / u1_denominator(x); }
   double operator()(const std::vector<double>& y) {
-    ++evaluations;
+    if (++evaluations % explore_progress_evaluations == 0 && poll) poll();
     const std::vector<double> x = box.point(y);
     double violation = 0;
     for (const Constraint& c : constraints) violation += std::max(0.0, margin - c.normalised(x));

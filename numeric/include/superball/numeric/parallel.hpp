@@ -67,14 +67,15 @@ std::vector<R> in_tasks(const TaskRunner& runner, std::size_t count, std::size_t
 /// The most worker threads a caller may ask for.
 inline constexpr int max_threads = 1024;
 
-/// The rule of every `threads` setting (`--threads`, Python's threads=):
-/// throws std::invalid_argument("check_threads(): threads must be a whole
+/// The rule of every `threads` setting (`--threads`, Python's threads=),
+/// and of derive's worker processes (`--jobs`, jobs=, \p name "jobs"):
+/// throws std::invalid_argument("check_threads(): NAME must be a whole
 /// number from 0 (all cores) to 1024, got T") unless 0 <= \p threads <= max_threads
 /// (a long long: a front's integer wider than int is refused, not cut).
-inline void check_threads(long long threads) {
+inline void check_threads(long long threads, const char* name = "threads") {
   if (threads < 0 || threads > max_threads)
-    throw std::invalid_argument("check_threads(): threads must be a whole number from 0 (all cores) to " + std::to_string(max_threads) + ", got " +
-                                std::to_string(threads));
+    throw std::invalid_argument(std::string("check_threads(): ") + name + " must be a whole number from 0 (all cores) to " +
+                                std::to_string(max_threads) + ", got " + std::to_string(threads));
 }
 
 /// The number of threads for a request: \p requested when it is positive,

@@ -12,6 +12,7 @@
 
 #include "superball/cases/parameter.hpp"
 #include "superball/numeric/collision.hpp"
+#include "superball/numeric/parallel.hpp"
 #include "superball/numeric/precision.hpp"
 #include "superball/numeric/export.hpp"
 SUPERBALL_NUMERIC_API_BEGIN
@@ -68,6 +69,43 @@ struct SweepPoint {
 /// or \p threads refused by check_threads(), throws std::invalid_argument.
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads = 1);
+
+/// The most values sweep_marking_psd() solves by one call of sweep(): the
+/// library's per-value results (a few hundred bytes each) held at once.
+inline constexpr std::size_t sweep_chunk_values = std::size_t{1} << 16;
+
+/// sweep() that marks the values where M is not positive semi-definite
+/// instead of refusing the range, as a map marks its points (Python's
+/// sweep; the command's `sweep`, which prints rows as it goes, refuses).
+/// M's verdict at each value is psd_along()'s, exact.  Before anything is
+/// solved: \p threads passes check_threads(), there is a value
+/// (std::invalid_argument otherwise), M is PSD at one of them at least
+/// (else InputError("ORIGIN: M is not positive semi-definite at any value of
+/// the sweep (KEY from LOW to HIGH): nothing to solve")), and check_range()
+/// passes from the smallest to the largest PSD value.  Then the PSD values
+/// are solved as sweep() solves them, sweep_chunk_values at a time, and
+/// deliver(k, point) is called for each in increasing k (the index into
+/// \p values), here; progress(done, total) (may be empty), in PSD values,
+/// before each chunk and at the end.  Either may throw to stop the sweep.
+/// The points are those of sweep() over the PSD values alone, bit for bit.
+/// Returns the verdict at each value.  With a \p runner (a checkpoint,
+/// parallel.hpp), each chunk is one of its tasks, its points sent as
+/// write_sweep_points() text, and \p progress is the runner's business.
+std::vector<bool> sweep_marking_psd(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
+                                    const Precision& precision, int threads,
+                                    const std::function<void(std::size_t, const SweepPoint&)>& deliver,
+                                    const std::function<void(std::size_t, std::size_t)>& progress = {}, const TaskRunner& runner = {});
+
+/// The points of a sweep as text, one line each: "U1 … Un CLOSED STATUS"
+/// (each velocity in 17 significant digits, which read back to the same
+/// double; CLOSED the closed contacts "2-3,3-4" or "none"; STATUS as
+/// to_string(Status)).  The values are not written: the reader knows them.
+std::string write_sweep_points(const std::vector<SweepPoint>& points);
+
+/// Reads back write_sweep_points()' text of a scene of \p bodies bodies
+/// (values left 0); std::invalid_argument("read_sweep_points(): a damaged
+/// result (…)") when it is not that.
+std::vector<SweepPoint> read_sweep_points(const std::string& text, int bodies);
 
 /// The exact solution (CLN rationals) of a scene at one parameter value.
 struct ExactPoint {

@@ -6,6 +6,7 @@
 /// fronts.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,35 +21,39 @@ namespace superball::present {
 /// The most correction orders kept beyond the dominant balance (SelectionOptions::order).
 inline constexpr int max_order = 20;
 
+/// The number of bodies of a selection that gives none (SelectionOptions::bodies).
+inline constexpr int default_bodies = 4;
+/// The pairs with a diagonal K of a selection that gives none (SelectionOptions::pairs).
+inline constexpr const char* default_pairs = "all";
+
 /// The choice of a pattern, an obstacle, a regime and cases (the command's
 /// --bodies, --case, … and Python's keywords of the same names).  The text
 /// fields are read against the number of bodies by the library when the
 /// choice is resolved: pairs by symbolic::Pattern::parse_pairs(), coupling by
 /// Pattern::parse_couplings(), scaling by Scaling::parse(), closed by
-/// ContactSet::parse(), case_name by the paper's vocabulary.
+/// ContactSet::parse(), case_name by the paper's vocabulary.  An option not
+/// given is empty (nullopt, "" or no alpha), so that a scene's pattern can
+/// refuse one given with it.
 struct SelectionOptions {
-  /// The number of bodies n.
-  int bodies = 4;
+  std::optional<int> bodies;     ///< n; not given: default_bodies (with scene: the scene's)
   int order = 0;                 ///< correction orders kept, 0 to max_order
   ///@{
   /// The chosen case.
   std::string case_name, closed;  ///< the paper's case name (n = 4), or the closed contacts ("2-3,3-4", "none")
   ///@}
   std::vector<int> alphas;       ///< the paper's couplings α_k in play (n = 4; parse_alphas()); empty: none
-  ///@{
-  /// The couplings of M in play ("1-2/1-4,1-3/1-4" or "near2"), the pairs
-  /// with a K ("all", "near", "near2" or "1-2,2-3"), a scene file whose
-  /// pattern of M is taken,
-  /// the asymptotic regime ("m1=1,m4=-1" or "none"; empty: the paper's).
-  std::string coupling, pairs = "all", scene, scaling;
-  ///@}
+  std::string coupling;          ///< couplings of pairs ("1-2/1-4,2-3/2-4", "near2"); empty: none
+  std::optional<std::string> pairs;  ///< the pairs with a diagonal K; not given: default_pairs
+  std::string scene;             ///< a scene file whose declared entries of M are the pattern; empty: none
+  std::string scaling;           ///< orders in ε ("m1=1,K14=-1"); empty: the default regime
   symbolic::Obstacle obstacle = symbolic::Obstacle::Infinite;  ///< parse_obstacle()
-  /// Every case of the pattern.
-  bool all = false;
+  bool all = false;              ///< every case
 
   /// Throws std::invalid_argument("SelectionOptions::check(): ...") naming
-  /// the option when order is not from 0 to max_order, or when more than one
-  /// of case_name, closed and all is given.  resolve() calls it.
+  /// the option when order is not from 0 to max_order, when more than one
+  /// of case_name, closed and all is given, or when scene is given with
+  /// bodies, alphas, coupling or pairs (the scene's pattern is the whole
+  /// pattern).  resolve() calls it.
   void check() const;
 };
 
@@ -76,6 +81,13 @@ struct Selection {
 /// Resolve \p o; throws std::invalid_argument naming the option that is wrong.
 Selection resolve(const SelectionOptions& o);
 
+/// What `superball derive` writes (--format).
+enum class DeriveFormat { Text, Latex, Json };
+
+/// "text", "latex" or "json"; throws std::invalid_argument
+/// ("parse_derive_format(): format must be text, latex or json, got 'TEXT'").
+DeriveFormat parse_derive_format(const std::string& text);
+
 /// How the derivation of a selection's cases will run (the command's and
 /// the Python module's derive).
 struct DerivePlan {
@@ -84,8 +96,9 @@ struct DerivePlan {
   std::string text;             ///< "deriving every case of 8 bodies, a pattern of width 3: about 4 min 16 s on one core, 2 workers, about 2.7 GB each (22.7 GB available)"
 };
 
-/// The plan for \p s over at most \p jobs worker processes with \p available
-/// memory (numeric::available_memory()).  Throws std::invalid_argument
+/// The plan for \p s over at most \p jobs worker processes (0: one per
+/// core; numeric::check_threads(jobs, "jobs") refuses the others) with
+/// \p available memory (numeric::available_memory()).  Throws std::invalid_argument
 /// ("derive(): deriving every case of 9 bodies, a pattern of width 3 holds
 /// about 24 GB (one process, …); this machine has 22.7 GB available
 /// (MemAvailable); derive fewer bodies or a narrower pattern") when even one

@@ -50,6 +50,7 @@
 #include <cln/rational.h>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -70,6 +71,17 @@ struct ExploreOptions {
   double box_low = 1e-3;   ///< every mass and K in [box_low, box_high]
   /// The upper end of the box (see box_low).
   double box_high = 1e3;
+  /// Called with (steps done, steps planned) as explore_case() goes; may be
+  /// empty.  A step is an objective evaluation of the local searches, each
+  /// search counted at its full budget once it ends, and one step more for
+  /// the exact confirmation and the proofs: planned = starts × evaluations
+  /// + 1.  It is called at least every explore_progress_evaluations
+  /// evaluations (the confirmation's steps inward included, then with done
+  /// unchanged), between the confirmation and each proof, and with (planned,
+  /// planned) at the end.  It may throw to stop the exploration (Ctrl-C): the
+  /// exception leaves explore_case() as it is.  The result does not depend
+  /// on it.  explore_all_patterns() counts the steps of every cell.
+  std::function<void(long long, long long)> progress;
 
   /// Throws std::invalid_argument("ExploreOptions::check(): ...") naming
   /// the option unless starts is from 1 to max_starts, evaluations from 10
@@ -80,6 +92,9 @@ struct ExploreOptions {
   /// confirmed exactly.
   void check() const;
 };
+
+/// ExploreOptions::progress is called at least this often (objective evaluations).
+inline constexpr int explore_progress_evaluations = 1024;
 
 /// The most local searches per case (ExploreOptions::starts).
 inline constexpr int max_starts = 100000;
@@ -157,7 +172,7 @@ ExploreResult explore_case(const symbolic::Deriver& deriver, const ContactSet& c
 /// The table of `--all-patterns`: each single α_k (k = 1..7) and the pair
 /// {α₁, α₆} of §4.1's remark against every case of n = 4 (fixed obstacle).
 struct PatternTable {
-  /// The options every cell was explored with.
+  /// The options every cell was explored with (without their progress).
   ExploreOptions options;
   std::vector<std::vector<int>> patterns;       ///< rows
   std::vector<std::string> cases;               ///< columns: the paper's case names
