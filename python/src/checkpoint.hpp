@@ -40,24 +40,6 @@ void run_kept(const std::string& folder, const distribute::RunIdentity& id, std:
 /// the command's map keeps FOLDER/points and FOLDER/boundaries).
 numeric::TaskRunner kept_runner(pybind11::object progress, std::vector<std::string> phases, std::string folder, distribute::RunIdentity id);
 
-/// The text of a task of sweep(): one line per point, "U1 … Un CLOSED
-/// STATUS" (each velocity in 17 significant digits, which read back to the
-/// same double; CLOSED the closed contacts "2-3,3-4" or "none"; STATUS as
-/// numeric::to_string(Status)).
-std::string sweep_rows(const std::vector<numeric::SweepPoint>& points);
-
-/// A point of a sweep read back from sweep_rows(): what the result holds.
-struct SweptRow {
-  std::vector<double> velocities;  ///< U⁺
-  ContactSet closed;               ///< the evolution case
-  numeric::Status status = numeric::Status::Success;
-};
-
-/// Reads back sweep_rows()' text of \p rows points of a scene of \p bodies
-/// bodies; std::invalid_argument("WHERE: a damaged result (…)") when it is
-/// not that (\p where: Distribution::origin()).
-std::vector<SweptRow> read_sweep_rows(const std::string& text, std::size_t rows, int bodies, const std::string& where);
-
 /// The text of a task of verify(): "A" or "D" (the exact conditions agree
 /// or disagree), the length of the JSON (present::to_json()), the JSON,
 /// then the report, each after a newline.
