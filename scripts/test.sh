@@ -5,7 +5,8 @@
 #      examples/cpp built and run against it (CMake and pkg-config), the Python module
 #      imported from it and the notebook run against it, and the Debian package
 #      (cpack), installed with apt-get, used, purged
-#   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer
+#   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer, where the tests
+#      whose work is repetition of one code path run fewer repetitions (SUPERBALL_TEST_SCALE=small)
 #   3. the libFuzzer target over scene parsing and solving, 60 s from tests/fuzz/corpus
 #   4. the red-team suite (tests/redteam), hostile scenes and command lines for 60 s
 # STAGES="1" (or "1 2", …) runs a subset; FUZZ_SECONDS changes stage 3's length, FUZZ_SEED its seed;
@@ -21,12 +22,14 @@ export LSAN_OPTIONS="suppressions=$ROOT/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
 summary="$(mktemp)"
 trap 'rm -f "$summary"' EXIT
-# run_ctest DIR LABEL: the suite in DIR; its closing line goes to the summary.
+# run_ctest DIR LABEL [FILTER [ctest options…]]: the suite in DIR, its output through FILTER
+# (default cat); its closing line goes to the summary.
 run_ctest() {
-  local log
+  local dir="$1" label="$2" filter="${3:-cat}" log
+  shift $(($# < 3 ? $# : 3))
   log="$(mktemp)"
-  (cd "$1" && ctest --output-on-failure -j "$(nproc)") 2>&1 | tee "$log"
-  grep -E "tests passed, [0-9]+ tests failed out of" "$log" | sed "s/^/$2: /" >> "$summary"
+  (cd "$dir" && ctest --output-on-failure -j "$(nproc)" "$@") 2>&1 | $filter | tee "$log"
+  grep -E "tests passed, [0-9]+ tests failed out of" "$log" | sed "s/^/$label: /" >> "$summary"
   rm -f "$log"
 }
 
@@ -123,12 +126,27 @@ for stage in $STAGES; do
       echo "== stage 2: test suite under AddressSanitizer + UndefinedBehaviorSanitizer"
       # Line tables (-g1) are all a sanitizer's report needs, and the headers' compile-alone
       # tests (stage 1) find nothing a sanitizer could: both only cost build time here.
-      # -O1, as AddressSanitizer's documentation advises: on 2 cores it builds in 611 s
-      # against about 1,040 s at -O2, and the suite under it ran in 258 s against 276 s.
+      # -O1, as AddressSanitizer's documentation advises: on 2 cores it built in 611 s
+      # against about 1,040 s at -O2 (the tree has grown since: about 920 s in a fresh clone).
       BUILD_DIR="$ROOT/build-asan" configure_and_build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUPERBALL_BUILD_TESTS=ON \
         -DSUPERBALL_BUILD_BENCH=OFF -DSUPERBALL_SANITIZE=address,undefined -DSUPERBALL_BUILD_HEADER_TESTS=OFF \
         -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG"
-      run_ctest "$ROOT/build-asan" "suite under ASan+UBSan"
+      # Every process that loads CLN ends with a leak that tests/lsan.supp suppresses, and matching
+      # the suppression started a symbolizer (llvm-symbolizer or addr2line): 0.3 s of CPU in each of
+      # the thousands of processes of the suite (test programs, and every superball they start;
+      # a sanitized superball took 0.71 s of CPU on a bad scene, 0.42 s without).  So the processes
+      # print raw addresses (symbolize=0), and the output goes through clang's asan_symbolize,
+      # which names the frames of a report (function, file:line) as they are printed.
+      # The tests whose work is repetition of one code path (randomized cross-checks, one check
+      # under every spelling, worker count or catalogue variant) run fewer repetitions
+      # (SUPERBALL_TEST_SCALE=small, tests/support/scale.hpp), the property tests 100 random
+      # and 100 extreme scenes, their coverage checks included; no assertion is dropped.
+      # Side by side on 2 cores at load 4: the 69 tests BadSceneCli and OutputOverInput.Every…
+      # took 273 s, 161 s with symbolize=0, 88 s with the small scale too; the 68 in-process
+      # bad-scene tests 49 s and 23 s.  The last fresh-clone run before these changes: the
+      # build 920 s, the suite 940 s (1,876 s of test time over 856 tests).
+      ASAN_OPTIONS="symbolize=0" SUPERBALL_TEST_SCALE=small SUPERBALL_PROPERTY_SCENES=100 SUPERBALL_EXTREME_SCENES=100 \
+        run_ctest "$ROOT/build-asan" "suite under ASan+UBSan" "env PYTHONUNBUFFERED=1 asan_symbolize -d"
       ;;
     3)
       echo "== stage 3: libFuzzer, ${FUZZ_SECONDS} s"

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "support/run.hpp"
+#include "support/scale.hpp"
 
 namespace {
 
@@ -254,6 +255,9 @@ TEST_P(BadSceneCli, ExitTwoOneLineNothingOnStdout) {
   const std::string expected = first.substr(10);
   const std::vector<std::vector<std::string>> variants = {{}, {"--json"}, {"--precision", "exact"}};
   for (const auto& extra : variants) {
+    // At a small scale (scripts/test.sh under the sanitizers) the plain solve only: the other two
+    // refuse the scene through the same reader and the same error line.
+    if (superball::test::small_scale() && !extra.empty()) continue;
     std::vector<std::string> args = {"solve", path};
     args.insert(args.end(), extra.begin(), extra.end());
     expect_bad_input(run(args), {path, expected});
