@@ -29,7 +29,7 @@ void run_kept(const std::string& folder, const distribute::RunIdentity& id, std:
   };
   distribute::Distribution run(id, options, count, max_task_bytes);
   std::size_t done = count - run.todo().size();
-  auto between = [&] { between_tasks(progress, phase, std::min(done * per, items), items); };
+  auto between = [&] { between_tasks(progress, phase, done == count ? items : std::min(done * per, items), items); };
   between();
   run.run(
       task, [&](std::size_t k, std::string&& text) { deliver(k, std::move(text), run.origin(k)); },
@@ -42,7 +42,8 @@ void run_kept(const std::string& folder, const distribute::RunIdentity& id, std:
       });
 }
 
-numeric::TaskRunner kept_runner(py::object progress, std::vector<std::string> phases, std::string folder, distribute::RunIdentity id) {
+numeric::TaskRunner kept_runner(py::object progress, std::vector<std::string> phases, std::string folder, distribute::RunIdentity id, std::size_t per,
+                                std::size_t items) {
   // The runner is copied into the library's settings: its state is shared.
   struct State {
     py::object progress;
@@ -55,12 +56,12 @@ numeric::TaskRunner kept_runner(py::object progress, std::vector<std::string> ph
     py::gil_scoped_acquire gil;  // the callable's reference is dropped with the GIL held
     delete s;
   });
-  return [state](std::size_t count, const std::function<std::string(std::size_t)>& task) {
+  return [state, per, items](std::size_t count, const std::function<std::string(std::size_t)>& task) {
     const std::string phase = state->phases.empty() ? std::string("tasks") : state->phases[std::min(state->call, state->phases.size() - 1)];
     ++state->call;
     const std::string folder = state->phases.size() > 1 ? (std::filesystem::path(state->folder) / phase).string() : state->folder;
     std::vector<std::string> texts(count);
-    run_kept(folder, state->id, count, distribute::kMaxTaskBytes, state->progress, phase, 1, count, task,
+    run_kept(folder, state->id, count, distribute::kMaxTaskBytes, state->progress, phase, per, items ? items : count, task,
              [&](std::size_t k, std::string&& text, const std::string&) { texts[k] = std::move(text); });
     return texts;
   };

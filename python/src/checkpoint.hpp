@@ -38,7 +38,9 @@ void run_kept(const std::string& folder, const distribute::RunIdentity& id, std:
 /// runner (phase \p phases[p], the last one past the end) in the folder
 /// FOLDER/PHASE when there are several phases, FOLDER itself otherwise (as
 /// the command's map keeps FOLDER/points and FOLDER/boundaries).
-numeric::TaskRunner kept_runner(pybind11::object progress, std::vector<std::string> phases, std::string folder, distribute::RunIdentity id);
+/// Progress counts \p per items a task, \p items in all (0: the tasks themselves).
+numeric::TaskRunner kept_runner(pybind11::object progress, std::vector<std::string> phases, std::string folder, distribute::RunIdentity id,
+                                std::size_t per = 1, std::size_t items = 0);
 
 /// The text of a task of verify(): "A" or "D" (the exact conditions agree
 /// or disagree), the length of the JSON (present::to_json()), the JSON,

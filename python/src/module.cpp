@@ -207,7 +207,7 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
       const auto id = distribute::typed_identity("sweep", {{"key", parameter.key()}, {"precision", p.name()}},
                                                  {{"scene", write_scene(scene)}, {"values", exact}});
       const py::gil_scoped_acquire gil;
-      runner = kept_runner(progress, {"values"}, checkpoint, id);
+      runner = kept_runner(progress, {"values"}, checkpoint, id, numeric::sweep_chunk_values, values.exact.size());
     }
     const std::vector<bool> marked = numeric::sweep_marking_psd(
         scene, parameter, values.exact, p, threads,

@@ -230,7 +230,6 @@ def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional
     if not isinstance(scene, Scene):
         raise InputError(f"map: expected a superball.Scene, got {type(scene).__name__}")
     threads = 0 if threads is None else _int_option(threads, "threads")
-    threads = max(min(threads, 2**63 - 1), -2**63)  # the library refuses it, as a long long
     if not isinstance(precision, str):
         raise InputError(f"map: precision: expected a string ('double', 'long-double', 'digits:N', 'exact'), got {precision!r}")
     callback = _progress.resolve(progress, "map")

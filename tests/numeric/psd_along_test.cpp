@@ -98,6 +98,48 @@ TEST(SweepMarkingPsd, MarksTheNonPsdValuesAndSolvesTheOthersAsSweep) {
   }
 }
 
+// Through a runner (a checkpoint), each chunk crosses as write_sweep_points() text: the points read back are
+// the points solved here, bit for bit; a damaged text is refused.
+TEST(SweepMarkingPsd, ThroughARunnerTheTextReadsBackBitForBit) {
+  const Scene scene = load_scene(kPaper);
+  const Parameter alpha = Parameter::parse("alpha.2", scene);
+  const auto values = linspace(cln::cl_RA(-110), cln::cl_RA(0), 80001);  // about 74,500 PSD values
+  const Precision dbl = Precision::parse("double");
+  auto collect = [&](const TaskRunner& runner) {
+    std::vector<std::pair<std::size_t, SweepPoint>> got;
+    sweep_marking_psd(scene, alpha, values, dbl, 2, [&](std::size_t k, const SweepPoint& p) { got.emplace_back(k, p); }, {}, runner);
+    return got;
+  };
+  std::size_t tasks = 0;
+  const TaskRunner local = [&](std::size_t count, const std::function<std::string(std::size_t)>& task) {
+    tasks = count;
+    std::vector<std::string> texts;
+    for (std::size_t t = 0; t < count; ++t) texts.push_back(task(t));
+    return texts;
+  };
+  const auto direct = collect({}), through = collect(local);
+  EXPECT_EQ(tasks, 2u);  // the PSD values (more than one chunk) in chunks of sweep_chunk_values
+  ASSERT_EQ(direct.size(), through.size());
+  for (std::size_t j = 0; j < direct.size(); ++j) {
+    EXPECT_EQ(direct[j].first, through[j].first);
+    EXPECT_EQ(direct[j].second.value, through[j].second.value);
+    EXPECT_EQ(direct[j].second.velocities_after, through[j].second.velocities_after) << j;
+    EXPECT_EQ(direct[j].second.closed, through[j].second.closed);
+    EXPECT_EQ(direct[j].second.status, through[j].second.status);
+  }
+  const TaskRunner cut = [&](std::size_t count, const std::function<std::string(std::size_t)>& task) {
+    std::vector<std::string> texts = local(count, task);
+    texts.back().pop_back();  // its last line cut
+    return texts;
+  };
+  EXPECT_THROW(collect(cut), std::invalid_argument);
+  EXPECT_THROW(read_sweep_points("1 2 3 4 none success\n", 3), std::invalid_argument);  // a row of the wrong fields
+  EXPECT_THROW(read_sweep_points("1 2 x 4 none success\n", 4), std::invalid_argument);
+  EXPECT_THROW(read_sweep_points("1 2 3 4 9-9 success\n", 4), std::invalid_argument);
+  EXPECT_THROW(read_sweep_points("1 2 3 4 none fine\n", 4), std::invalid_argument);
+  EXPECT_EQ(read_sweep_points("1 2 3 4 2-3 success\n", 4).size(), 1u);
+}
+
 TEST(SweepMarkingPsd, RefusesWhatItCannotSolveBeforeSolving) {
   const Scene scene = load_scene(kPaper);
   const Parameter alpha = Parameter::parse("alpha.2", scene);
