@@ -2,8 +2,6 @@
 // kept by the same library (superball/distribute).
 #include "checkpoint.hpp"
 
-#include <cstdio>
-#include <cstdlib>
 #include <algorithm>
 #include <filesystem>
 #include <memory>

@@ -286,10 +286,13 @@ std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<s
   const present::SelectionOptions chosen = selection(options);
   present::require_case(chosen);
   const present::Selection sel = present::resolve(chosen);
+  auto verify_at = [&](std::size_t k) {
+    o.runner = interruptible_runner(progress, {"drawn points", "boundaries"});  // progress and Ctrl-C between tasks
+    return verify::verify_case(*sel.deriver, sel.cases[k], o);
+  };
   std::vector<py::tuple> out;
   for (std::size_t k = 0; checkpoint.empty() && k < sel.cases.size(); ++k) {
-    o.runner = interruptible_runner(progress, {"drawn points", "boundaries"});  // progress and Ctrl-C between tasks
-    const verify::Verification v = verify::verify_case(*sel.deriver, sel.cases[k], o);
+    const verify::Verification v = verify_at(k);
     out.push_back(py::make_tuple(to_python(present::to_json(v)), present::to_text(v), v.exact_agrees()));
   }
   if (!checkpoint.empty()) {  // the run: the selection as given, the scene's content, the options of the verification
@@ -302,8 +305,7 @@ std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<s
     run_kept(checkpoint, distribute::typed_identity("verify", named, inputs), sel.cases.size(), distribute::kMaxTaskBytes, progress, "cases", 1,
              sel.cases.size(),
              [&](std::size_t k) {
-               o.runner = interruptible_runner(progress, {"drawn points", "boundaries"});
-               const verify::Verification v = verify::verify_case(*sel.deriver, sel.cases[k], o);
+               const verify::Verification v = verify_at(k);
                return verification_text(present::to_json(v), present::to_text(v), v.exact_agrees());
              },
              [&](std::size_t, std::string&& text, const std::string& origin) { out.push_back(read_verification(text, origin)); });
