@@ -73,7 +73,9 @@ TEST(SweepMarkingPsd, MarksTheNonPsdValuesAndSolvesTheOthersAsSweep) {
           points.push_back(p);
         },
         [&](std::size_t done, std::size_t total) { told.emplace_back(done, total); });
-    if (steps == 221) EXPECT_EQ(psd, one_by_one(scene, alpha, values));
+    if (steps == 221) {
+      EXPECT_EQ(psd, one_by_one(scene, alpha, values));
+    }
     std::vector<cln::cl_RA> only;
     std::vector<std::size_t> expected;
     for (std::size_t k = 0; k < values.size(); ++k)

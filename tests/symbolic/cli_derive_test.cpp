@@ -191,7 +191,7 @@ TEST(CliDerive, JsonIsCompactUnlessExpanded) {
       if (through) {
         ++dropped;
         const std::string f = form;
-        for (const std::string key : {f, f == "exact" ? std::string("text") : f + "_text", f == "exact" ? std::string("latex") : f + "_latex"}) ee.erase(key);
+        for (const std::string& key : {f, f == "exact" ? std::string("text") : f + "_text", f == "exact" ? std::string("latex") : f + "_latex"}) ee.erase(key);
       }
     }
     EXPECT_EQ(cc, ee) << cc.at("about");

@@ -220,7 +220,9 @@ TEST(Explore, ProgressCountsTheStepsAndChangesNothing) {
     for (std::size_t k = 0; k < calls.size(); ++k) {
       EXPECT_EQ(calls[k].second, planned);
       EXPECT_LE(calls[k].first, k + 1 < calls.size() ? planned - 1 : planned);
-      if (k) EXPECT_GE(calls[k].first, calls[k - 1].first) << name << ", call " << k;
+      if (k) {
+        EXPECT_GE(calls[k].first, calls[k - 1].first) << name << ", call " << k;
+      }
     }
     EXPECT_EQ(calls.back().first, planned) << name;
   }

@@ -139,7 +139,7 @@ struct Objective {
   const Polynomial& u1_denominator;
   double margin = margins[0];
   int evaluations = 0;
-  std::function<void()> poll;
+  std::function<void()> poll{};  ///< called every explore_progress_evaluations evaluations, when set
 
   double ratio(const std::vector<double>& x) const { return u1_numerator(x) / u1_denominator(x); }
   double operator()(const std::vector<double>& y) {
