@@ -29,6 +29,7 @@
 #include "superball/verify/audit.hpp"
 #include "superball/verify/explore.hpp"
 #include "superball/verify/overlay.hpp"
+#include "superball/verify/reproduce.hpp"
 #include "superball/verify/verification.hpp"
 
 #ifndef SUPERBALL_SCENES_DIR
@@ -64,13 +65,10 @@ std::string fixed(double x, int decimals) {
 std::string decimal(const cln::cl_RA& x, int digits) { return numeric::to_decimal(x, digits); }
 std::string decimal(double x, int digits) { return numeric::to_string(x, digits); }
 
-/// A report run: where the scenes are, where the report goes, how many points the audit tries.
+/// A report run: where the scenes are, where the report goes, how much each of its runs computes.
 struct Run {
   std::string scenes, out;
-  int samples = verify::AuditOptions{}.samples;
-  int verify_samples = verify::VerifyOptions{}.samples;  ///< drawn points per ε of each verification run
-  int explore_starts = verify::ExploreOptions{}.starts;  ///< local searches per cell of the pattern table
-  int threads = 0;                                        ///< of the verification runs (0: all cores)
+  verify::ReproduceOptions options;
   Scene scene(const std::string& file) const { return load_scene(scenes + "/" + file); }
 };
 
@@ -258,7 +256,7 @@ void fig7(const Run& run, Document& doc) {
 void report_map(const Run& run, const Scene& scene, const std::string& stem, const std::string& title, const numeric::Axis& x,
                      const numeric::Axis& y, const std::function<std::vector<present::MapMark>(const numeric::Map&)>& marks, Document& doc) {
   numeric::MapSettings settings;
-  settings.threads = run.threads;
+  settings.threads = run.options.threads;
   struct {
     numeric::Map map;
     verify::Overlay overlay;
@@ -671,18 +669,17 @@ void add_reproduce(CLI::App& app, Action& action) {
       "Examples:\n  superball reproduce --out report\n  superball reproduce --out report-quick --samples 500 --verify-samples 200 --explore-starts 4");
   cmd->add_option("--out,-o", o->out, "Report folder (created if missing)")->capture_default_str()->check(non_empty());
   cmd->add_option("--scenes", o->scenes, "Folder of the paper's scene files")->capture_default_str();
-  cmd->add_option("--samples", o->samples, "Points tried per search of the audit of the printed conditions")
-      ->check(CLI::Range(1, 10000000))
+  verify::ReproduceOptions& options = o->options;
+  cmd->add_option("--samples", options.samples, "Points tried per search of the audit of the printed conditions (as superball audit --samples)")
       ->capture_default_str();
-  cmd->add_option("--verify-samples", o->verify_samples, "Drawn points per eps of each verification run (as superball verify --samples)")
-      ->check(CLI::Range(10, 10000000))
+  cmd->add_option("--verify-samples", options.verify_samples, "Drawn points per eps of each verification run (as superball verify --samples)")
       ->capture_default_str();
-  cmd->add_option("--explore-starts", o->explore_starts, "Local searches per cell of the pattern table (as superball explore --starts)")
-      ->check(CLI::Range(1, 100000))
+  cmd->add_option("--explore-starts", options.explore_starts, "Local searches per cell of the pattern table (as superball explore --starts)")
       ->capture_default_str();
-  cmd->add_option("--threads,-j", o->threads, "Threads of the verification runs (0: all cores)")->check(CLI::Range(0, 1024))->capture_default_str();
+  cmd->add_option("--threads,-j", options.threads, "Threads of the verification runs (0: all cores)")->capture_default_str();
   cmd->callback([o, &action] {
     action = [o] {
+      o->options.check();
       prepare_folder(o->out);
       Document doc("superball reproduce: the paper's numbers recomputed");
       doc.paragraph("Paper: Collision of four balls aligned (Fremond's theory of collisions).  Scenes: `" + o->scenes + "`.");
@@ -691,20 +688,14 @@ void add_reproduce(CLI::App& app, Action& action) {
       fig7(*o, doc);
       maps(*o, doc);
       epsilon_family(*o, doc);
-      verify::AuditOptions audit;
-      audit.samples = o->samples;
-      printed_conditions(verify::audit_paper(PrintedConditions::paper(), audit), doc);
+      printed_conditions(verify::audit_paper(PrintedConditions::paper(), o->options.audit()), doc);
       std::vector<verify::Verification> runs;
-      verify::VerifyOptions verification;
-      verification.samples = o->verify_samples;
-      verification.threads = o->threads;
+      const verify::VerifyOptions verification = o->options.verification();
       for (const auto& [name, alphas] : paper_cases()) {
         const symbolic::Deriver deriver(symbolic::Pattern::paper(alphas), symbolic::Obstacle::Infinite);
         runs.push_back(verify::verify_case(deriver, Vocabulary::paper().named_case(name).closed, verification));
       }
-      verify::ExploreOptions explore;
-      explore.starts = o->explore_starts;
-      verification_and_patterns(runs, verify::explore_all_patterns(explore), doc);
+      verification_and_patterns(runs, verify::explore_all_patterns(o->options.exploration()), doc);
       write_output(o->out + "/report.tex", doc.latex());
       write_output(o->out + "/report.md", doc.markdown());
       write_output("", doc.markdown() + "(written to " + o->out + "/report.md and report.tex)\n");

@@ -169,4 +169,17 @@ TEST(Reproduce, ReadOnlyOutIsOneLineExitThreeAndNothingWritten) {
   EXPECT_TRUE(files_in(locked).empty());
 }
 
+TEST(Reproduce, BadCountsAreRefusedByTheLibraryBeforeAnythingIsWritten) {
+  // ReproduceOptions::check() (verify/reproduce.hpp) says what a bad count is; the command adds no rule.
+  const TempFolder tmp;
+  ASSERT_FALSE(tmp.path().empty());
+  const std::string out = tmp.path() + "/report";
+  expect_bad_input(run({"reproduce", "--out", out, "--samples", "0"}), {"samples must be a whole number from 1 to 10000000, got 0"});
+  expect_bad_input(run({"reproduce", "--out", out, "--verify-samples", "100000001"}),
+                   {"verify_samples must be a whole number from 1 to 100000000, got 100000001"});
+  expect_bad_input(run({"reproduce", "--out", out, "--explore-starts", "-1"}), {"explore_starts must be a whole number from 1 to 100000, got -1"});
+  expect_bad_input(run({"reproduce", "--out", out, "--threads", "2000"}), {"threads must be a whole number from 0 (all cores) to 1024, got 2000"});
+  EXPECT_TRUE(files_in(tmp.path()).empty());
+}
+
 }  // namespace

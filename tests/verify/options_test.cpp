@@ -1,5 +1,5 @@
 // The rules of verify's options, each in its type: VerifyOptions::check(),
-// AuditOptions::check(), ExploreOptions::check(), and the text forms read by
+// AuditOptions::check(), ExploreOptions::check(), ReproduceOptions::check(), and the text forms read by
 // parse_epsilon(), parse_epsilons() and parse_box().  The command and the
 // Python module add no rule of their own (tests/python/test_same_refusals.py).
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include "superball/cases/error.hpp"
 #include "superball/verify/audit.hpp"
 #include "superball/verify/explore.hpp"
+#include "superball/verify/reproduce.hpp"
 #include "superball/verify/verification.hpp"
 
 #include "support/refusal.hpp"
@@ -62,6 +63,35 @@ TEST(Options, CountsAndThreads) {
   e.starts = 1;
   e.evaluations = 9;
   EXPECT_EQ(refusal([&] { e.check(); }), "evaluations must be a whole number from 10 to 10000000, got 9");
+}
+
+TEST(Options, TheReproductionChecksEachRunsCountsUnderItsOwnName) {
+  ReproduceOptions r;
+  EXPECT_EQ(refusal([&] { r.check(); }), "");
+  EXPECT_EQ(r.audit().samples, AuditOptions{}.samples);
+  EXPECT_EQ(r.verification().samples, VerifyOptions{}.samples);
+  EXPECT_EQ(r.exploration().starts, ExploreOptions{}.starts);
+  r.samples = 0;
+  EXPECT_EQ(refusal([&] { r.check(); }), "samples must be a whole number from 1 to 10000000, got 0");
+  r.samples = max_audit_samples;
+  r.verify_samples = max_verify_samples + 1;
+  EXPECT_EQ(refusal([&] { r.check(); }), "verify_samples must be a whole number from 1 to 100000000, got 100000001");
+  r.verify_samples = 1;
+  r.explore_starts = -5;
+  EXPECT_EQ(refusal([&] { r.check(); }), "explore_starts must be a whole number from 1 to 100000, got -5");
+  r.explore_starts = max_starts;
+  r.threads = 1025;
+  EXPECT_EQ(refusal([&] { r.check(); }), "threads must be a whole number from 0 (all cores) to 1024, got 1025");
+  r.threads = 3;
+  EXPECT_EQ(refusal([&] { r.check(); }), "");
+  // Each run receives exactly what the reproduction was given, and its own check agrees.
+  EXPECT_EQ(r.audit().samples, max_audit_samples);
+  EXPECT_EQ(r.verification().samples, 1);
+  EXPECT_EQ(r.verification().threads, 3);
+  EXPECT_EQ(r.exploration().starts, max_starts);
+  EXPECT_EQ(refusal([&] { r.audit().check(); }), "");
+  EXPECT_EQ(refusal([&] { r.verification().check(); }), "");
+  EXPECT_EQ(refusal([&] { r.exploration().check(); }), "");
 }
 
 TEST(Options, TheBoxAsText) {

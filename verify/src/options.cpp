@@ -1,5 +1,5 @@
-// The rules of the options of verify_case(), audit_paper() and
-// explore_case(), and the parsing of their text forms: the one place where
+// The rules of the options of verify_case(), audit_paper(),
+// explore_case() and the paper's reproduction, and the parsing of their text forms: the one place where
 // the command and the Python module learn what a bad value is.
 #include <cctype>
 #include <cmath>
@@ -15,6 +15,7 @@
 #include "superball/numeric/scalar.hpp"
 #include "superball/verify/audit.hpp"
 #include "superball/verify/explore.hpp"
+#include "superball/verify/reproduce.hpp"
 #include "superball/verify/verification.hpp"
 
 namespace superball::verify {
@@ -71,6 +72,32 @@ void ExploreOptions::check() const {
     throw std::invalid_argument("ExploreOptions::check(): box " + numeric::to_string(box_low, 6) + ":" + numeric::to_string(box_high, 6) +
                                 ": needs 0 < LOW < HIGH with LOW >= " + numeric::to_string(std::numeric_limits<double>::min(), 17) +
                                 " and HIGH finite (normal doubles)");
+}
+
+void ReproduceOptions::check() const {
+  check_whole("ReproduceOptions::check", "samples", samples, 1, max_audit_samples);
+  check_whole("ReproduceOptions::check", "verify_samples", verify_samples, 1, max_verify_samples);
+  check_whole("ReproduceOptions::check", "explore_starts", explore_starts, 1, max_starts);
+  numeric::check_threads(threads);
+}
+
+AuditOptions ReproduceOptions::audit() const {
+  AuditOptions options;
+  options.samples = samples;
+  return options;
+}
+
+VerifyOptions ReproduceOptions::verification() const {
+  VerifyOptions options;
+  options.samples = verify_samples;
+  options.threads = threads;
+  return options;
+}
+
+ExploreOptions ReproduceOptions::exploration() const {
+  ExploreOptions options;
+  options.starts = explore_starts;
+  return options;
 }
 
 std::pair<double, double> parse_box(const std::string& text) {
