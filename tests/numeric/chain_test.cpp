@@ -6,6 +6,7 @@
 #include <random>
 
 #include "superball/numeric/chain.hpp"
+#include "support/falling_chain.hpp"
 
 namespace superball::testing {
 namespace {
@@ -63,20 +64,7 @@ TEST(ChainSolver, LongChainInDoublePassesTheResidualCheck) {
   // 2000 light bodies falling at 1.9 … 1.0 m/s (the top fastest) onto a fixed
   // obstacle (the chain of bench/bench_chain.cpp): solve() picks the banded solver.
   const int n = 2000;
-  Problem<double> p;
-  p.n = n;
-  p.fixed_bottom = true;
-  for (int i = 0; i < n; ++i) {
-    p.mass.push_back(i + 1 == n ? 0.0 : 0.001 * (1 + i % 7));
-    p.u.push_back(i + 1 == n ? 0.0 : -1.9 + (10 * i / (n - 1)) / 10.0);  // the top falls fastest
-  }
-  for (int i = 0; i + 1 < n; ++i) {
-    p.entries.push_back({i, i + 1, i, i + 1, 1.0});
-    if (i + 2 < n) {
-      p.entries.push_back({i, i + 2, i, i + 2, 0.5});
-      p.entries.push_back({i, i + 1, i + 1, i + 2, 0.25});
-    }
-  }
+  const Problem<double> p = test::falling_chain(n);
   const auto s = numeric::solve(p);
   EXPECT_EQ(s.status, numeric::Status::Success) << s.residual_motion << " " << s.residual_complementarity;
   EXPECT_LE(s.pivots, 10) << "active-set iterations";
