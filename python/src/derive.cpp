@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "convert.hpp"
 #include "module.hpp"
 #include "superball/cases/error.hpp"
 #include "superball/numeric/memory.hpp"
@@ -29,28 +30,6 @@ namespace py = pybind11;
 
 namespace superball::python {
 namespace {
-
-/// A JSON value as the Python object json.loads would make of it (objects keep their order).
-py::object to_python(const nlohmann::ordered_json& j) {
-  switch (j.type()) {
-    case nlohmann::ordered_json::value_t::object: {
-      py::dict d;
-      for (const auto& [key, value] : j.items()) d[py::str(key)] = to_python(value);
-      return std::move(d);
-    }
-    case nlohmann::ordered_json::value_t::array: {
-      py::list l;
-      for (const auto& value : j) l.append(to_python(value));
-      return std::move(l);
-    }
-    case nlohmann::ordered_json::value_t::string: return py::str(j.get_ref<const std::string&>());
-    case nlohmann::ordered_json::value_t::boolean: return py::bool_(j.get<bool>());
-    case nlohmann::ordered_json::value_t::number_integer: return py::int_(j.get<std::int64_t>());
-    case nlohmann::ordered_json::value_t::number_unsigned: return py::int_(j.get<std::uint64_t>());
-    case nlohmann::ordered_json::value_t::number_float: return py::float_(j.get<double>());
-    default: return py::none();
-  }
-}
 
 /// One case as it crosses from its worker: the command's JSON of the case
 /// (present::derivation_json) and the text and LaTeX of its velocities,

@@ -1,5 +1,6 @@
 // map(): numeric::map() for Python, its result as NumPy arrays, Fractions and
-// dicts (the numbers of `superball map --json`, built from the same Map).
+// dicts (the numbers of `superball map --json`, built from the same Map), with
+// the overlay of the derived conditions when asked (verify::overlay()).
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -20,6 +21,8 @@
 #include "superball/numeric/map.hpp"
 #include "superball/numeric/range.hpp"
 #include "superball/present/map.hpp"
+#include "superball/present/overlay.hpp"
+#include "superball/verify/overlay.hpp"
 
 namespace superball::python {
 namespace {
@@ -141,14 +144,28 @@ py::dict result(const numeric::Map& m, const Scene& scene, const std::string& pr
   return out;
 }
 
+/// The overlay as the command's JSON has it (present::to_json()), its brackets
+/// as Fractions, and its text (present::to_text()) under "text".
+py::dict overlay_dict(const verify::Overlay& o, const numeric::Map& m) {
+  py::dict d = to_python(present::to_json(o, m));
+  for (py::handle zero : d["zeros"].cast<py::list>()) {
+    py::dict z = py::reinterpret_borrow<py::dict>(zero);
+    for (const char* end : {"low", "high"}) z[end] = fraction(numeric::parse_rational(z[end].cast<std::string>()));
+  }
+  d["text"] = present::to_text(o, m);
+  return d;
+}
+
 /// map(): the grid of \p x by \p y (KEY=FROM:TO:STEPS) solved in \p precision
 /// on \p threads (0: all cores; check_threads() refuses any other value
 /// out of range, wider than int too), boundaries bisected exactly; the GIL is
 /// released while it computes, Ctrl-C stops it between two of its tasks, and
 /// \p progress (None or a callable (phase, done, total)) is told of each.
 /// With a \p checkpoint folder, the tasks are kept there (kept_runner()).
+/// With \p overlay, the derived conditions of the cases present are located
+/// on the grid lines and compared with the boundaries (verify::overlay()).
 py::dict map(const Scene& scene, const std::string& x, const std::string& y, const std::string& precision, long long threads, py::object progress,
-             const std::string& checkpoint) {
+             const std::string& checkpoint, bool overlay) {
   numeric::check_threads(threads);
   const numeric::Axis ax = axis("x", x, scene), ay = axis("y", y, scene);
   numeric::MapSettings settings;
@@ -164,19 +181,23 @@ py::dict map(const Scene& scene, const std::string& x, const std::string& y, con
                                                      distribute::typed_identity("map", {{"x", axis_text(ax)}, {"y", axis_text(ay)}, {"precision", settings.precision.name()}},
                                                                                 {{"scene", write_scene(scene)}}));
   std::optional<numeric::Map> m;
+  std::optional<verify::Overlay> o;
   {
     py::gil_scoped_release release;
     m = numeric::map(scene, ax, ay, settings);
+    if (overlay) o = verify::overlay(scene, *m, settings.bits);
   }
   settings.runner = nullptr;  // drops the progress callable with the GIL held
-  return result(*m, scene, settings.precision.name());
+  py::dict out = result(*m, scene, settings.precision.name());
+  if (o) out["overlay"] = overlay_dict(*o, *m);
+  return out;
 }
 
 }  // namespace
 
 void register_map(py::module_& m) {
   m.def("map", &map, py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("precision"), py::arg("threads"), py::arg("progress"),
-        py::arg("checkpoint"));
+        py::arg("checkpoint"), py::arg("overlay"));
 }
 
 }  // namespace superball::python

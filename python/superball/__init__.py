@@ -51,7 +51,7 @@ from ._options import _checkpoint_option, _int_option, _selection, _str_option
 __all__ = [
     "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "sweep",
     "SwitchPoint", "switch_points", "Condition", "Derivation", "derive", "derive_all", "audit", "verify", "explore",
-    "DEFAULT_RTOL", "STATUSES", "map", "MapResult", "BoundaryPoint", "MapCurve", "MapAxis",
+    "DEFAULT_RTOL", "STATUSES", "map", "MapResult", "BoundaryPoint", "MapCurve", "MapAxis", "Overlay", "DerivedZero", "OverlayMatch",
 ]
 
 Error = _superball.Error
@@ -954,4 +954,4 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int
 # ---------------------------------------------------------------------------
 # Maps over two parameters (python/superball/_map.py)
 
-from ._map import BoundaryPoint, MapAxis, MapCurve, MapResult, map  # noqa: E402  (uses Scene, defined above)
+from ._map import BoundaryPoint, DerivedZero, MapAxis, MapCurve, MapResult, Overlay, OverlayMatch, map  # noqa: E402  (uses Scene, defined above)

@@ -360,6 +360,37 @@ class MapCurve:
     points: npt.NDArray[np.float64]
     brackets: List[Tuple[Fraction, Fraction]]
 
+@dataclass(frozen=True)
+class DerivedZero:
+    case: str
+    condition: str
+    along: str
+    x: float
+    y: float
+    low: Fraction
+    high: Fraction
+    holds_low: bool
+    next_to_case: bool
+
+@dataclass(frozen=True)
+class OverlayMatch:
+    boundary: int
+    found: bool
+    zero: Optional[int]
+    distance: Optional[float]
+    allowed: Optional[float]
+    agrees: bool
+
+class Overlay:
+    cases: Tuple[str, ...]
+    conditions: int
+    agrees: bool
+    largest_distance_in_steps: float
+    largest_allowed_in_steps: float
+    zeros: List[DerivedZero]
+    matches: List[OverlayMatch]
+    def _repr_html_(self) -> str: ...
+
 class MapResult:
     scene: str
     title: str
@@ -376,6 +407,7 @@ class MapResult:
     status_codes: npt.NDArray[np.int8]
     boundary_points: List[BoundaryPoint]
     curves: List[MapCurve]
+    overlay: Optional[Overlay]
     @property
     def shape(self) -> Tuple[int, int]: ...
     def plot(self, ax: Any = ..., curves: bool = ..., legend: bool = ...) -> Any: ...
@@ -383,4 +415,4 @@ class MapResult:
 
 def map(scene: Scene, x: Union[str, Tuple[str, Number, Number, int]], y: Union[str, Tuple[str, Number, Number, int]],
         precision: str = ..., threads: Optional[int] = ..., progress: Any = ...,
-        checkpoint: Union[str, os.PathLike[str], None] = ...) -> MapResult: ...
+        checkpoint: Union[str, os.PathLike[str], None] = ..., overlay: bool = ...) -> MapResult: ...

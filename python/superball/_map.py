@@ -74,6 +74,77 @@ class MapCurve:
     brackets: List[Tuple[Fraction, Fraction]] = field(repr=False, compare=False)
 
 
+@dataclass(frozen=True)
+class DerivedZero:
+    """A zero of one derived condition of ``case`` on a grid segment (as a
+    :class:`BoundaryPoint`'s: along ``along``), bracketed by [``low``,
+    ``high``] (Fractions); ``x``, ``y``: the bracket's middle in float;
+    ``condition``: what it is (``"superball U1 > a"``, ``"contact 2-3 ..."``);
+    ``holds_low``: the condition holds at ``low``'s end; ``next_to_case``: one
+    end of the segment is a grid point of ``case`` (elsewhere the case is not
+    actual and its conditions say nothing)."""
+
+    case: str
+    condition: str
+    along: str
+    x: float
+    y: float
+    low: Fraction
+    high: Fraction
+    holds_low: bool
+    next_to_case: bool
+
+
+@dataclass(frozen=True)
+class OverlayMatch:
+    """How boundary point ``boundary`` (an index into ``MapResult.boundary_points``)
+    compares with the derived zeros: ``found`` one on its segment, ``zero`` the
+    nearest (an index into ``Overlay.zeros``), ``distance`` between the
+    brackets' middles and ``allowed`` (the two brackets' widths); ``agrees``
+    when found within the allowed distance."""
+
+    boundary: int
+    found: bool
+    zero: Optional[int]
+    distance: Optional[float]
+    allowed: Optional[float]
+    agrees: bool
+
+
+class Overlay:
+    """The derived conditions of the cases of a map located on its grid lines
+    and compared with its exact boundaries (``superball map --overlay``):
+    ``cases`` whose conditions were derived, ``conditions`` (how many, PSD
+    left out), ``zeros`` (:class:`DerivedZero`), ``matches``
+    (:class:`OverlayMatch`, one per boundary point between solved points),
+    ``agrees`` (every boundary point has a derived zero within its allowed
+    distance), ``largest_distance_in_steps`` and ``largest_allowed_in_steps``
+    (in grid steps of the axis).  ``str()`` is the command's overlay text."""
+
+    def __init__(self, d: Dict[str, Any]) -> None:
+        self.cases: Tuple[str, ...] = tuple(d["cases"])
+        self.conditions: int = d["conditions"]
+        self.agrees: bool = d["agrees"]
+        self.largest_distance_in_steps: float = d["largest_distance_in_steps"]
+        self.largest_allowed_in_steps: float = d["largest_allowed_in_steps"]
+        self.zeros: List[DerivedZero] = [
+            DerivedZero(z["case"], z["condition"], z["along"], z["x"], z["y"], z["low"], z["high"], z["holds_low"], z["next_to_case"])
+            for z in d["zeros"]]
+        self.matches: List[OverlayMatch] = [
+            OverlayMatch(m["boundary"], m["found"], m.get("zero"), m.get("distance"), m.get("allowed"), m["agrees"]) for m in d["matches"]]
+        self._text: str = d["text"]
+
+    def __str__(self) -> str:
+        return self._text
+
+    def __repr__(self) -> str:
+        return (f"<superball.Overlay cases {', '.join(self.cases) or 'none'}: {self.conditions} conditions, {len(self.zeros)} zeros, "
+                f"{len(self.matches)} boundary points compared: {'agree' if self.agrees else 'DISAGREE'}>")
+
+    def _repr_html_(self) -> str:
+        return f"<pre>{_html.escape(self._text)}</pre>"
+
+
 class MapResult:
     """A map over two parameters (``superball map``).
 
@@ -84,7 +155,9 @@ class MapResult:
     ``superball``: U₁⁺ > a (bool); ``psd``: M positive semi-definite, the point
     solved (bool); ``status_codes`` (int8, −1 where not solved, see
     :data:`STATUSES`); ``boundary_points``: :class:`BoundaryPoint` (exact
-    brackets); ``curves``: :class:`MapCurve`.  ``str()`` is the command's summary.
+    brackets); ``curves``: :class:`MapCurve`; ``overlay``: the :class:`Overlay`
+    of the derived conditions when ``map(..., overlay=True)``, else None.
+    ``str()`` is the command's summary (and overlay).
     """
 
     def __init__(self, d: Dict[str, Any]) -> None:
@@ -107,6 +180,7 @@ class MapResult:
         self.curves: List[MapCurve] = [
             MapCurve(c["kind"], tuple(c.get("cases", ())), c["closed"], list(c["boundaries"]), c["points"],
                      [(self.boundary_points[k].low, self.boundary_points[k].high) for k in c["boundaries"]]) for c in d["curves"]]
+        self.overlay: Optional[Overlay] = Overlay(d["overlay"]) if "overlay" in d else None
         self._summary: str = d["summary"]
 
     @property
@@ -115,7 +189,7 @@ class MapResult:
         return self.case_codes.shape
 
     def __str__(self) -> str:
-        return self._summary
+        return self._summary + (str(self.overlay) if self.overlay else "")
 
     def _shares(self) -> List[Tuple[str, float, float]]:
         """(case, share of the solved points, share of it superball) per case present."""
@@ -132,7 +206,8 @@ class MapResult:
         share = float(self.superball.sum()) / solved if solved else 0.0
         return (f"<superball.MapResult {self.scene!r} {self.x.key} x {self.y.key} ({self.x.steps} x {self.y.steps}, {self.precision}): "
                 f"cases {', '.join(self.case_list) or 'none'}; superball {share:.1%} of {solved} solved points; "
-                f"{len(self.boundary_points)} boundary points, {len(self.curves)} curves>")
+                f"{len(self.boundary_points)} boundary points, {len(self.curves)} curves"
+                f"{'; overlay ' + ('agrees' if self.overlay.agrees else 'DISAGREES') if self.overlay else ''}>")
 
     def _repr_html_(self) -> str:
         e = _html.escape
@@ -144,14 +219,16 @@ class MapResult:
                 f"{solved} of {self.psd.size} points solved (M positive semi-definite); superball at "
                 f"{float(self.superball.sum()) / solved if solved else 0:.1%}<table><tr><th>case</th><th>share</th>"
                 f"<th>of it superball</th></tr>{rows}</table>{len(self.boundary_points)} boundary points, "
-                f"{len(self.curves)} curves</div>")
+                f"{len(self.curves)} curves{self.overlay._repr_html_() if self.overlay else ''}</div>")
 
     def plot(self, ax: Any = None, curves: bool = True, legend: bool = True) -> Any:
         """Draw the map on ``ax`` (a new figure's when None) with matplotlib:
         the case regions in distinct colours (the superball part in full
         colour, the rest pale; M not PSD in grey) and, with ``curves``, the
         exact boundary curves (superball edge thick black, case changes
-        thin white, PSD edge dashed).  Returns ``ax``."""
+        thin white, PSD edge dashed) and, with an overlay, the derived
+        zeros next to their case as small black dots (as the command's
+        ``--plot`` with ``--overlay``).  Returns ``ax``."""
         try:  # optional: imported only here
             import matplotlib.colors as mcolors
             import matplotlib.patches as mpatches
@@ -178,6 +255,10 @@ class MapResult:
                     ax.plot(p[:, 0], p[:, 1], color="dimgrey", linewidth=1, linestyle="--")
                 else:
                     ax.plot(p[:, 0], p[:, 1], color="white", linewidth=1)
+            if self.overlay:
+                near = [(z.x, z.y) for z in self.overlay.zeros if z.next_to_case]
+                if near:
+                    ax.plot([p[0] for p in near], [p[1] for p in near], linestyle="none", marker=".", markersize=3, color="black")
         if legend:
             handles = [mpatches.Patch(color=colours[k], label=f"case {name}") for k, name in enumerate(self.case_list)]
             if not self.psd.all():
@@ -203,7 +284,7 @@ def _axis_text(axis: Any, name: str) -> str:
 
 
 def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional[int] = None, progress: Any = None,
-        checkpoint: Any = None) -> MapResult:
+        checkpoint: Any = None, overlay: bool = False) -> MapResult:
     """Solve ``scene`` over a grid of two parameters and locate the boundaries
     between its regions exactly (``superball map``).
 
@@ -223,6 +304,11 @@ def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional
     ``checkpoint``: a folder (``superball map --checkpoint``) where each task
     is written as soon as it is done; the same call made again computes only
     the tasks not there, and the result is the same.
+    ``overlay``: also derive the conditions of every case present (superball,
+    each contact's opening, each reaction's sign), locate their zeros on the
+    grid lines exactly and compare them with the boundary points
+    (``superball map --overlay``): ``MapResult.overlay``.  A disagreement is
+    ``overlay.agrees`` false, not an exception.
     """
     from . import InputError, Scene
     from ._options import _int_option
@@ -233,5 +319,8 @@ def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional
     if not isinstance(precision, str):
         raise InputError(f"map: precision: expected a string ('double', 'long-double', 'digits:N', 'exact'), got {precision!r}")
     callback = _progress.resolve(progress, "map")
-    d = _superball.map(scene._scene, _axis_text(x, "x"), _axis_text(y, "y"), precision, threads, callback, _checkpoint_option(checkpoint, "map"))
+    if not isinstance(overlay, bool):
+        raise InputError(f"map: overlay: expected True or False, got {overlay!r}")
+    d = _superball.map(scene._scene, _axis_text(x, "x"), _axis_text(y, "y"), precision, threads, callback, _checkpoint_option(checkpoint, "map"),
+                       overlay)
     return MapResult(d)

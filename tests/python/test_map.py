@@ -138,7 +138,8 @@ def test_bad_axes_say_what_the_library_says(paper, x, y, message):
 
 def test_wrong_types_are_input_errors(paper):
     for call in (lambda: superball.map("paper.toml", X, Y), lambda: superball.map(paper, 3, Y), lambda: superball.map(paper, X, Y, threads="2"),
-                 lambda: superball.map(paper, X, Y, progress=3)):
+                 lambda: superball.map(paper, X, Y, progress=3), lambda: superball.map(paper, X, Y, overlay="yes"),
+                 lambda: superball.map(paper, X, Y, overlay=1)):
         with pytest.raises(superball.InputError):
             call()
 
@@ -151,4 +152,38 @@ def test_plot(paper_map):
     ax = paper_map.plot()
     assert ax.get_xlabel() == "K.3-4" and ax.get_ylabel() == "alpha.2"
     assert len(ax.images) == 1 and len(ax.lines) == len(paper_map.curves)
+    plt.close(ax.figure)
+
+
+def test_the_overlay_is_the_command_s(paper):
+    """map(overlay=True): the derived conditions' zeros and their matches, as `superball map --overlay --json`."""
+    m = superball.map(paper, X, Y, progress=False, overlay=True)
+    j = cli_json("map", PAPER, "--x", X, "--y", Y, "--overlay", "--json")["overlay"]
+    o = m.overlay
+    assert o is not None and superball.map(paper, X, Y, progress=False).overlay is None
+    assert (list(o.cases), o.conditions, o.agrees) == (j["cases"], j["conditions"], j["agrees"])
+    assert (o.largest_distance_in_steps, o.largest_allowed_in_steps) == (j["largest_distance_in_steps"], j["largest_allowed_in_steps"])
+    assert len(o.zeros) == len(j["zeros"]) > 0 and len(o.matches) == len(j["matches"]) > 0
+    for z, c in zip(o.zeros, j["zeros"]):
+        assert isinstance(z.low, Fraction) and z.low < z.high and (z.low, z.high) == (Fraction(c["low"]), Fraction(c["high"]))
+        assert (z.case, z.condition, z.along, z.x, z.y, z.holds_low, z.next_to_case) == (
+            c["case"], c["condition"], c["along"], c["x"], c["y"], c["holds_low"], c["next_to_case"])
+    for a, c in zip(o.matches, j["matches"]):
+        assert (a.boundary, a.found, a.zero, a.distance, a.allowed, a.agrees) == (
+            c["boundary"], c["found"], c.get("zero"), c.get("distance"), c.get("allowed"), c["agrees"])
+    # Every boundary point between solved points has a derived zero on its segment within the allowed distance.
+    assert o.agrees and all(a.agrees for a in o.matches)
+    for a in o.matches:
+        b, z = m.boundary_points[a.boundary], o.zeros[a.zero]
+        assert z.along == b.along and abs((z.low + z.high) / 2 - (b.low + b.high) / 2) <= (z.high - z.low) + (b.high - b.low)
+    text = run_cli("map", PAPER, "--x", X, "--y", Y, "--overlay")[1]
+    assert str(m) == text and str(o) in text and "overlay" in repr(m) and "agree" in repr(o)
+    assert "<pre>" in m._repr_html_()
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    ax = m.plot()  # the curves, then the derived zeros next to their case as dots
+    assert len(ax.lines) == len(m.curves) + 1
+    assert len(ax.lines[-1].get_xdata()) == sum(z.next_to_case for z in o.zeros) > 0
     plt.close(ax.figure)
