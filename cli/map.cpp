@@ -8,6 +8,7 @@
 #include "distribute.hpp"
 #include "gnuplot.hpp"
 #include "superball/cases/scene_file.hpp"
+#include "superball/distribute/identities.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/range.hpp"
 #include "superball/present/overlay.hpp"
@@ -136,6 +137,7 @@ void add_map(CLI::App& app, Action& action) {
       // bisections, handed out as tasks) and holds the whole map after it;
       // rank 0 alone goes on (overlay, output, figures).  Each of the two
       // stages is a task list of its own, with its checkpoint subfolder.
+      const numeric::Axis ax{rx.parameter, rx.from, rx.to, rx.steps}, ay{ry.parameter, ry.from, ry.to, ry.steps};
       int stage = 0;
       if (mpi_size() > 1 || !o->distribute.checkpoint.empty())
         settings.runner = [&](std::size_t count, const Distribution::Task& task) {
@@ -143,10 +145,10 @@ void add_map(CLI::App& app, Action& action) {
           if (!o->distribute.checkpoint.empty())
             options.checkpoint = (std::filesystem::path(o->distribute.checkpoint) / (stage == 0 ? "points" : "boundaries")).string();
           ++stage;
-          Distribution run(run_identity(*cmd), distribute_options(options), count);
+          // The run as both fronts name it: Python's map(checkpoint=) takes this folder, and this command Python's.
+          Distribution run(distribute::map_identity(scene, ax, ay, settings.precision), distribute_options(options), count);
           return run.run_everywhere(task);
         };
-      const numeric::Axis ax{rx.parameter, rx.from, rx.to, rx.steps}, ay{ry.parameter, ry.from, ry.to, ry.steps};
       // What the output holds beside the map, in the estimate of map(), which refuses a map that would not fit.
       using present::MapOutput;
       settings.output_bytes_per_point =

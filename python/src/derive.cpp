@@ -9,6 +9,7 @@
 #include <ginac/ginac.h>
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -18,6 +19,8 @@
 
 #include "convert.hpp"
 #include "module.hpp"
+#include "superball/cases/scene_file.hpp"
+#include "superball/distribute/distribute.hpp"
 #include "superball/cases/error.hpp"
 #include "superball/numeric/memory.hpp"
 #include "superball/numeric/parallel.hpp"
@@ -67,14 +70,68 @@ std::string case_record(const symbolic::Derivation& d, const symbolic::Deriver& 
   return x.dump();
 }
 
+/// derive_all() with a checkpoint \p folder: each case is a task kept there
+/// (the run: the selection as given, the scene's content, \p expanded), run
+/// by the worker processes, each writing its case to the folder as soon as
+/// it has it (Distribution::keeping(), as the command's derive); only the
+/// cases not there are derived.  deliver(k, text) for every case in order;
+/// progress(done, total) once with the cases found in the folder, then after
+/// each case derived.
+void derive_kept(const std::string& folder, const py::dict& options, const present::Selection& sel, bool expanded, int workers,
+                 const std::function<std::string(std::size_t)>& task,
+                 const std::function<void(std::size_t, std::string&&, const std::string& origin)>& deliver,
+                 const std::function<void(std::size_t, std::size_t)>& progress, const symbolic::Workers::Interrupt& interrupted) {
+  std::map<std::string, std::string> named, inputs;
+  for (const auto& [key, value] : options)
+    if (!value.is_none()) named["selection." + key.cast<std::string>()] = py::str(value).cast<std::string>();
+  if (const std::string scene = selection(options).scene; !scene.empty()) inputs["scene"] = write_scene(load_scene(scene));
+  named["expanded"] = expanded ? "true" : "false";
+  distribute::Options o;
+  o.checkpoint = folder;
+  o.warn = [](const std::string& line) {  // what the command says on standard error
+    py::gil_scoped_acquire gil;
+    if (PyErr_WarnEx(PyExc_UserWarning, printable(line).c_str(), 2) != 0) throw py::error_already_set();
+  };
+  const std::size_t count = sel.cases.size();
+  distribute::Distribution run(distribute::typed_identity("derive", named, inputs), o, count);
+  std::vector<bool> computed(count, false);
+  for (std::size_t k : run.todo()) computed[k] = true;
+  std::size_t done = count - run.todo().size();
+  progress(done, count);
+  const py::gil_scoped_release release;
+  // Forked before anything here starts a thread; a task file the worker cannot write crosses back as a TaskError.
+  constexpr int kCannotWrite = 3;
+  symbolic::Workers pool(run.todo().size(), workers, [&, kept = run.keeping(task)](std::size_t j) {
+    try {
+      return kept(run.todo()[j]);
+    } catch (const distribute::OutputError& e) {
+      throw symbolic::TaskError(kCannotWrite, e.what());
+    }
+  });
+  run.run(
+      task,
+      [&](std::size_t k, std::string&& text) {
+        deliver(k, std::move(text), run.origin(k));
+        if (computed[k]) progress(++done, count);
+      },
+      [&](const std::vector<std::size_t>&, const distribute::Distribution::Task&, const distribute::Distribution::Deliver& give) {
+        try {
+          pool.run(give, interrupted);
+        } catch (const symbolic::TaskError& e) {
+          throw distribute::OutputError(e.what());
+        }
+      });
+}
+
 /// derive(): every case of the selection \p options, in case order, each a
 /// dict {data, velocities_text, velocities_latex, reactions_text,
 /// reactions_latex, report, report_latex}.  \p jobs worker processes at most
 /// (0: all cores), fewer when their memory would not fit; \p notice(text)
 /// is called once with the estimate (present::plan_derivation()) and
 /// \p progress(done, total) after each case, both with the GIL held; Ctrl-C
-/// (a pending KeyboardInterrupt) stops the workers at once.
-py::list derive(const py::dict& options, bool expanded, int jobs, const py::object& progress, const py::object& notice) {
+/// (a pending KeyboardInterrupt) stops the workers at once.  With a
+/// \p checkpoint folder: derive_kept().
+py::list derive(const py::dict& options, bool expanded, int jobs, const py::object& progress, const py::object& notice, const std::string& checkpoint) {
   const present::Selection sel = present::resolve(selection(options));
   if (sel.cases.empty()) throw std::invalid_argument("derive: give a case (case= or closed=), or use derive_all()");
   const symbolic::Deriver& deriver = *sel.deriver;
@@ -93,7 +150,27 @@ py::list derive(const py::dict& options, bool expanded, int jobs, const py::obje
     const py::gil_scoped_acquire gil;
     return PyErr_CheckSignals() != 0;  // KeyboardInterrupt (or another signal handler's exception) now pending
   };
+  auto deliver = [&](std::size_t, std::string&& text) {
+    const nlohmann::ordered_json j = nlohmann::ordered_json::parse(text, nullptr, false);
+    text.clear();
+    const py::gil_scoped_acquire gil;
+    out.append(to_python(j));
+  };
   try {
+    if (!checkpoint.empty()) {
+      // As the command's JSON: compact with several cases, the conditions on M in the first case only.
+      auto task = [&](std::size_t k) {
+        return case_record(deriver.derive(sel.cases[k]), deriver, expanded, expanded || sel.cases.size() == 1 || k == 0, psd);
+      };
+      derive_kept(checkpoint, options, sel, expanded, plan.workers, task,
+                  [&](std::size_t k, std::string&& text, const std::string& origin) {
+                    if (!nlohmann::ordered_json::accept(text))  // a task file edited so that its checksum holds
+                      throw std::invalid_argument(origin + ": a damaged result (its JSON does not read)");
+                    deliver(k, std::move(text));
+                  },
+                  run.progress, run.interrupted);
+      return out;
+    }
     const py::gil_scoped_release release;
     symbolic::derive_cases(
         deriver, sel.cases,
@@ -101,13 +178,7 @@ py::list derive(const py::dict& options, bool expanded, int jobs, const py::obje
           // As the command's JSON: compact with several cases, the conditions on M in the first case only.
           return case_record(d, deriver, expanded, expanded || sel.cases.size() == 1 || k == 0, psd);
         },
-        [&](std::size_t, std::string&& text) {
-          const nlohmann::ordered_json j = nlohmann::ordered_json::parse(text);
-          text.clear();
-          const py::gil_scoped_acquire gil;
-          out.append(to_python(j));
-        },
-        run);
+        deliver, run);
   } catch (const symbolic::Interrupted&) {
     throw py::error_already_set();  // the exception the signal handler set
   }
@@ -172,7 +243,7 @@ py::object evaluate(const std::string& form, const std::vector<std::pair<std::st
 }  // namespace
 
 void register_derive(py::module_& m) {
-  m.def("derive", &derive, py::arg("options"), py::arg("expanded"), py::arg("jobs"), py::arg("progress"), py::arg("notice"));
+  m.def("derive", &derive, py::arg("options"), py::arg("expanded"), py::arg("jobs"), py::arg("progress"), py::arg("notice"), py::arg("checkpoint"));
   m.def("evaluate", &evaluate, py::arg("form"), py::arg("definitions"), py::arg("values"), py::arg("zero"));
 }
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "checkpoint.hpp"
+#include "superball/distribute/identities.hpp"
 #include "convert.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
@@ -173,13 +174,9 @@ py::dict map(const Scene& scene, const std::string& x, const std::string& y, con
   settings.threads = static_cast<int>(threads);
   // The result's arrays and dicts, beside the map at its peak: about what the command's JSON holds.
   settings.output_bytes_per_point = present::map_output_bytes_per_point(present::MapOutput::Json);
-  const auto axis_text = [](const numeric::Axis& a) {
-    return a.parameter.key() + "=" + numeric::to_string(a.from) + ":" + numeric::to_string(a.to) + ":" + std::to_string(a.steps);
-  };
   settings.runner = checkpoint.empty() ? interruptible_runner(std::move(progress), {"points", "boundaries"})
                                        : kept_runner(std::move(progress), {"points", "boundaries"}, checkpoint,
-                                                     distribute::typed_identity("map", {{"x", axis_text(ax)}, {"y", axis_text(ay)}, {"precision", settings.precision.name()}},
-                                                                                {{"scene", write_scene(scene)}}));
+                                                     distribute::map_identity(scene, ax, ay, settings.precision));
   std::optional<numeric::Map> m;
   std::optional<verify::Overlay> o;
   {

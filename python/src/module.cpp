@@ -32,6 +32,7 @@
 #include "superball/cases/printed_conditions.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/cases/vocabulary.hpp"
+#include "superball/symbolic/derivation.hpp"
 #include "superball/numeric/certify.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/sweep.hpp"
@@ -324,11 +325,44 @@ py::tuple audit(const std::string& epsilon, int samples, std::uint64_t seed) {
   return py::make_tuple(to_python(present::audit_json(a)), present::to_text(a));
 }
 
+/// The text of one task of explore() kept in a checkpoint: the JSON
+/// {"json", "text", "scene"} of a case explored (the witness scene as TOML,
+/// absent without one), or {"pattern", "cell", "json"} of a cell of the table.
+std::string explore_task_text(const verify::ExploreResult& r, bool cell) {
+  nlohmann::ordered_json j;
+  if (cell) {
+    const present::RenderedCell c = present::render(r);
+    j["pattern"] = c.pattern;
+    j["cell"] = c.text;
+    j["json"] = c.json;
+  } else {
+    j["json"] = present::to_json(r);
+    j["text"] = present::to_text(r);
+    if (r.scene) j["scene"] = write_scene(*r.scene);
+  }
+  return j.dump();
+}
+
+/// Reads back explore_task_text() of a case (or of a cell) as data;
+/// std::invalid_argument("WHERE: a damaged result (…)") when it is not that.
+nlohmann::ordered_json read_explore_task(const std::string& text, bool cell, const std::string& where) {
+  auto damaged = [&](const std::string& what) { return std::invalid_argument(where + ": a damaged result (" + what + ")"); };
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(text, nullptr, false);
+  auto is_string = [&](const char* key) { return j.contains(key) && j[key].is_string(); };
+  if (j.is_discarded() || !j.is_object() || !j.contains("json") || !j["json"].is_object() ||
+      (cell ? !is_string("pattern") || !is_string("cell") : !is_string("text") || (j.contains("scene") && !is_string("scene"))))
+    throw damaged(cell ? "not the JSON of an explored cell" : "not the JSON of an explored case");
+  if (!j["json"].contains("reach") || !j["json"]["reach"].is_string()) throw damaged("no verdict");
+  return j;
+}
+
 /// explore(): per case (or per cell of the table), to_json as Python objects, the report and the witness scene.
 /// progress(phase, done, total) ("case NAME", or "cells" for the table) and Ctrl-C as the search goes
 /// (ExploreOptions::progress; the GIL is held: GiNaC is not thread-safe).
+/// With a \p checkpoint folder, each case (each cell of the table) is a task
+/// kept there (run_kept()), told as phase "cases" ("cells") between tasks.
 std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::uint64_t seed, int starts, int evaluations, double box_low,
-                               double box_high, const py::object& progress) {
+                               double box_high, const py::object& progress, const std::string& checkpoint) {
   verify::ExploreOptions o;
   o.seed = seed;
   o.starts = starts;
@@ -343,20 +377,76 @@ std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::
   };
   const present::SelectionOptions chosen = selection(options);
   std::vector<py::tuple> out;
-  if (all_patterns) {
-    present::check_all_patterns(chosen);
+  if (all_patterns) present::check_all_patterns(chosen);
+  if (all_patterns && checkpoint.empty()) {
     o.progress = told("cells");
     const verify::PatternTable t = verify::explore_all_patterns(o);
     out.push_back(py::make_tuple(to_python(present::to_json(t)), present::to_text(t)));
     return out;
   }
-  present::require_case(chosen, true);
-  const present::Selection sel = present::resolve(chosen);
-  for (const ContactSet& c : sel.cases) {
-    o.progress = told("case " + Vocabulary::paper().case_name(c));
-    const verify::ExploreResult r = verify::explore_case(*sel.deriver, c, o);
-    out.push_back(py::make_tuple(to_python(present::to_json(r)), present::to_text(r), r.scene ? py::cast(*r.scene) : py::none()));
+  std::optional<present::Selection> sel;
+  std::vector<ContactSet> cases;
+  verify::PatternTable table;
+  if (all_patterns) {  // the cells of the table, pattern by pattern, case by case (as the command's tasks)
+    table.options = o;
+    table.patterns = verify::table_patterns();
+    for (const NamedCase& c : Vocabulary::paper().cases()) {
+      table.cases.push_back(c.name);
+      cases.push_back(c.closed);
+    }
+  } else {
+    present::require_case(chosen, true);
+    sel = present::resolve(chosen);
+    cases = sel->cases;
   }
+  if (checkpoint.empty()) {
+    for (const ContactSet& c : cases) {
+      o.progress = told("case " + Vocabulary::paper().case_name(c));
+      const verify::ExploreResult r = verify::explore_case(*sel->deriver, c, o);
+      out.push_back(py::make_tuple(to_python(present::to_json(r)), present::to_text(r), r.scene ? py::cast(*r.scene) : py::none()));
+    }
+    return out;
+  }
+  // The run: the selection as given, the scene's content, the options of the search.
+  std::map<std::string, std::string> named, inputs;
+  for (const auto& [key, value] : options)
+    if (!value.is_none()) named["selection." + key.cast<std::string>()] = py::str(value).cast<std::string>();
+  if (!chosen.scene.empty()) inputs["scene"] = write_scene(load_scene(chosen.scene));
+  named["all-patterns"] = all_patterns ? "true" : "false";
+  named["seed"] = std::to_string(seed), named["starts"] = std::to_string(starts), named["evaluations"] = std::to_string(evaluations);
+  named["box"] = numeric::to_string(box_low) + ":" + numeric::to_string(box_high);
+  const std::size_t columns = cases.size(), count = all_patterns ? table.patterns.size() * columns : columns;
+  std::map<std::size_t, std::unique_ptr<symbolic::Deriver>> derivers;  // the table's, one per pattern, made when first needed
+  auto deriver = [&](std::size_t row) -> const symbolic::Deriver& {
+    if (!all_patterns) return *sel->deriver;
+    auto& d = derivers[row];
+    if (!d) d = std::make_unique<symbolic::Deriver>(symbolic::Pattern::paper(table.patterns[row]), symbolic::Obstacle::Infinite);
+    return *d;
+  };
+  std::vector<std::vector<present::RenderedCell>> cells;
+  run_kept(checkpoint, distribute::typed_identity("explore", named, inputs), count, distribute::kMaxTaskBytes, progress,
+           all_patterns ? "cells" : "cases", 1, count,
+           [&](std::size_t k) {
+             verify::ExploreOptions each = o;
+             each.progress = told("case " + Vocabulary::paper().case_name(cases[k % columns]));
+             return explore_task_text(verify::explore_case(deriver(k / columns), cases[k % columns], each), all_patterns);
+           },
+           [&](std::size_t k, std::string&& text, const std::string& origin) {
+             nlohmann::ordered_json j = read_explore_task(text, all_patterns, origin);
+             if (all_patterns) {
+               if (k % columns == 0) cells.emplace_back();
+               cells.back().push_back({j["pattern"].get<std::string>(), j["cell"].get<std::string>(), j["json"]});
+               return;
+             }
+             py::object scene = py::none();
+             if (j.contains("scene")) {
+               Scene s = parse_scene(j["scene"].get<std::string>(), origin);
+               s.origin = s.title;  // as the search names its witness
+               scene = py::cast(std::move(s));
+             }
+             out.push_back(py::make_tuple(to_python(j["json"]), j["text"].get<std::string>(), scene));
+           });
+  if (all_patterns) out.push_back(py::make_tuple(to_python(present::to_json(table, cells)), present::to_text(table, cells)));
   return out;
 }
 
@@ -461,7 +551,7 @@ PYBIND11_MODULE(_superball, m) {
         py::arg("threads"), py::arg("progress"), py::arg("checkpoint"));
   m.def("audit", &audit, py::arg("epsilon"), py::arg("samples"), py::arg("seed"));
   m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
-        py::arg("box_low"), py::arg("box_high"), py::arg("progress"));
+        py::arg("box_low"), py::arg("box_high"), py::arg("progress"), py::arg("checkpoint"));
   register_map(m);
   register_checkpoint(m);
   register_scene(m);

@@ -917,7 +917,7 @@ class PatternTable:
 def explore(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int] = None, pairs: Any = None, coupling: Any = None,
             closed: Any = None, all: bool = False, scene: Any = None, all_patterns: bool = False, seed: int = 1, starts: int = 24,
             evaluations: int = 1000, box: Tuple[float, float] = (1e-3, 1e3),
-            progress: Any = None) -> Union[ExploreResult, List[ExploreResult], PatternTable]:
+            progress: Any = None, checkpoint: Any = None) -> Union[ExploreResult, List[ExploreResult], PatternTable]:
     """Search a witness of the superball in a case (fixed obstacle, a = 1), or prove it impossible.
 
     The derived exact conditions of the case and the minors of M bound the
@@ -933,17 +933,23 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int
     least every 1024 evaluations, True/False, or None (a bar on standard
     error when it is a terminal); Ctrl-C stops it (KeyboardInterrupt) within
     as many evaluations.  The result does not depend on it.
+    ``checkpoint``: a folder (``superball explore --checkpoint``) where each
+    case (with ``all_patterns``, each cell of the table) is written as soon
+    as it is explored; the same call made again explores only those not
+    there, and the result is the same.  Between two of them ``progress``
+    is told ``("cases", done, total)`` (``"cells"``).
     """
     low, high = box
+    folder = _checkpoint_option(checkpoint, "explore")
     options = _selection(case, alphas, bodies, pairs, coupling, "infinite", None, 0, closed, all, scene)
     told = _progress.resolve(progress, "explore")
     if all_patterns:
-        (d, text), = _superball.explore(options, True, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high), told)
+        (d, text), = _superball.explore(options, True, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high), told, folder)
         patterns = [row["cells"][0]["pattern"] if row["cells"] else ",".join(f"alpha{k}" for k in row["alphas"]) for row in d["rows"]]
         reach = np.array([[cell["reach"] for cell in row["cells"]] for row in d["rows"]], dtype=str)
         return PatternTable(patterns, list(d["cases"]), reach, d, text)
     out = []
-    for d, text, witness_scene in _superball.explore(options, False, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high), told):
+    for d, text, witness_scene in _superball.explore(options, False, _int_option(seed, "seed"), _int_option(starts, "starts"), _int_option(evaluations, "evaluations"), float(low), float(high), told, folder):
         witness = {k: Fraction(v) for k, v in (d.get("witness") or {}).items()}
         ratio = Fraction(d["ratio"]) if d.get("ratio") is not None and witness else None
         out.append(ExploreResult(d["case"], d["reach"], ratio, witness, None if witness_scene is None else Scene(_scene=witness_scene), d, text))

@@ -245,6 +245,7 @@ def derive_all(
     expanded: bool = ...,
     jobs: Optional[int] = ...,
     progress: Union[None, bool, Progress] = ...,
+    checkpoint: Union[str, os.PathLike[str], None] = ...,
 ) -> List[Derivation]: ...
 
 @dataclass(frozen=True)
@@ -325,6 +326,7 @@ def explore(
     evaluations: int = ...,
     box: Tuple[float, float] = ...,
     progress: Any = ...,
+    checkpoint: Union[str, os.PathLike[str], None] = ...,
 ) -> Union[ExploreResult, List[ExploreResult], PatternTable]: ...
 
 # map(): python/superball/_map.py

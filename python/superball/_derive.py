@@ -17,7 +17,7 @@ from fractions import Fraction
 from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _superball
-from ._options import _int_option, _selection
+from ._options import _checkpoint_option, _int_option, _selection
 
 InputError = _superball.InputError
 Error = _superball.Error
@@ -288,7 +288,8 @@ class _TerminalProgress:
             _sys.stderr.flush()
 
 
-def _run(name: str, options: Dict[str, Any], expanded: bool, jobs: Optional[int], progress: Union[None, bool, Progress]) -> List[Derivation]:
+def _run(name: str, options: Dict[str, Any], expanded: bool, jobs: Optional[int], progress: Union[None, bool, Progress],
+         checkpoint: str = "") -> List[Derivation]:
     if progress is None:
         bar = _TerminalProgress(name)
         notice, step = bar.notice, bar
@@ -296,7 +297,8 @@ def _run(name: str, options: Dict[str, Any], expanded: bool, jobs: Optional[int]
         notice, step = None, (progress if callable(progress) else None)
         if progress is not False and not callable(progress):
             raise InputError(f"{name}: progress must be None, False or a callable (done, total), got {progress!r}")
-    out = [_derivation(d) for d in _superball.derive(options, bool(expanded), 0 if jobs is None else _int_option(jobs, "jobs"), step, notice)]
+    out = [_derivation(d) for d in _superball.derive(options, bool(expanded), 0 if jobs is None else _int_option(jobs, "jobs"), step, notice,
+                                                  checkpoint)]
     # Compact JSON of several cases has the conditions on M in the first case only: every Derivation shows them.
     psd = [c for c in out[0].conditions if c.kind == "psd"] if out else []
     return [d if any(c.kind == "psd" for c in d.conditions) else _with_conditions(d, d.conditions + psd) for d in out]
@@ -344,7 +346,7 @@ def derive(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int]
 
 def derive_all(alphas: Any = None, bodies: Optional[int] = None, pairs: Any = None, coupling: Any = None, obstacle: str = "infinite",
                scaling: Any = None, order: int = 0, scene: Any = None, expanded: bool = False, jobs: Optional[int] = None,
-               progress: Union[None, bool, Progress] = None) -> List[Derivation]:
+               progress: Union[None, bool, Progress] = None, checkpoint: Any = None) -> List[Derivation]:
     """Every evolution case of a pattern (2ⁿ⁻¹ of them, in mask order: the
     contact (c, c+1) closed for bit c − 1), as :func:`derive` gives one.
 
@@ -357,6 +359,10 @@ def derive_all(alphas: Any = None, bodies: Optional[int] = None, pairs: Any = No
     callable is called with (cases done, cases in all) after each case.
     Ctrl-C (KeyboardInterrupt) stops the workers at once.  The GIL is
     released while the workers compute.
+    ``checkpoint``: a folder (``superball derive --all --checkpoint``) where
+    each case is written by its worker as soon as it is derived; the same
+    call made again derives only the cases not there, and the result is the
+    same.  A callable ``progress`` is then told the cases found there first.
     """
     options = _selection(None, alphas, bodies, pairs, coupling, obstacle, scaling, order, None, True, scene)
-    return _run("derive_all", options, expanded, jobs, progress)
+    return _run("derive_all", options, expanded, jobs, progress, _checkpoint_option(checkpoint, "derive_all"))

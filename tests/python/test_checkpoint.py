@@ -202,3 +202,162 @@ def test_a_run_file_that_is_a_link_or_a_fifo_is_refused(paper, tmp_path):
             said = "a symbolic link, not read"
         with pytest.raises(superball.InputError, match=re.escape(f"--checkpoint {folder}: its run file: {said}; give another folder")):
             superball.sweep(paper, "K.3-4", few, progress=False, checkpoint=folder)
+
+
+EXPLORE = dict(alphas=2, all=True, starts=2, evaluations=100)
+
+
+def explored(results):
+    return [(r.case, r.reach, r.ratio, r.witness, None if r.scene is None else r.scene.to_toml(), r.data, r.text) for r in results]
+
+
+def test_explore_with_a_checkpoint_interrupted_then_resumed_is_the_same(tmp_path):
+    plain = superball.explore(**EXPLORE, progress=False)
+    folder = tmp_path / "e"
+
+    def stop(phase, done, total):
+        if phase == "cases" and done >= 3:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        superball.explore(**EXPLORE, progress=stop, checkpoint=folder)
+    assert tasks(folder) == ["task-00000000", "task-00000001", "task-00000002"]
+    first = {f: os.stat(folder / f).st_mtime_ns for f in tasks(folder)}
+    told = []
+    resumed = superball.explore(**EXPLORE, progress=lambda *a: told.append(a), checkpoint=folder)
+    assert told[0] == ("cases", 3, len(plain))  # three cases read back, not explored again
+    assert [t for t in told if t[0] == "cases"] == [("cases", k, len(plain)) for k in range(3, len(plain) + 1)]
+    assert {f: os.stat(folder / f).st_mtime_ns for f in tasks(folder)[:3]} == first
+    assert explored(resumed) == explored(plain)
+    assert any(r.scene is not None for r in resumed)  # a witness scene read back from its task file
+    # A task edited by hand (its checksum no longer holds): said, explored again, the same.
+    path = folder / "task-00000001"
+    text = path.read_bytes()
+    path.write_bytes(text.replace(b'"reach"', b'"REACH"', 1))
+    with pytest.warns(UserWarning) as said:
+        again = superball.explore(**EXPLORE, progress=False, checkpoint=folder)
+    assert [str(w.message) for w in said] == [f"--checkpoint {folder}: task-00000001: task 1: fails its checksum (changed or damaged since it was "
+                                              "written); task 1 computed again"]
+    assert explored(again) == explored(plain) and path.read_bytes() == text
+    # A task cut short: said, explored again.
+    path.write_bytes(text[:len(text) // 2])
+    with pytest.warns(UserWarning, match=re.escape(f"--checkpoint {folder}: task-00000001: cut short in task 1 (") + r".* left\); task 1 computed again$"):
+        superball.explore(**EXPLORE, progress=False, checkpoint=folder)
+    # Another search is another run.
+    with pytest.raises(superball.InputError, match=re.escape(f"--checkpoint {folder}: holds run ") + ".*give another folder$"):
+        superball.explore(**dict(EXPLORE, seed=2), progress=False, checkpoint=folder)
+
+
+def test_explore_all_patterns_with_a_checkpoint_keeps_each_cell(tmp_path):
+    kw = dict(all_patterns=True, starts=1, evaluations=10)
+    plain = superball.explore(**kw, progress=False)
+    kept = superball.explore(**kw, progress=False, checkpoint=tmp_path / "t")
+    assert len(tasks(tmp_path / "t")) == plain.reach.size == 64
+    again = superball.explore(**kw, progress=False, checkpoint=tmp_path / "t")
+    for t in (kept, again):
+        assert t.data == plain.data and t.text == plain.text and np.array_equal(t.reach, plain.reach)
+
+
+def derived(results):
+    return [(d.case, d.velocities_text, d.report, d.data) for d in results]
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_derive_all_with_a_checkpoint_interrupted_then_resumed_derives_only_the_missing_cases(tmp_path, jobs):
+    kw = dict(bodies=5, pairs="near2", coupling="near2", jobs=jobs)
+    plain = superball.derive_all(**kw, progress=False)
+    folder = tmp_path / "d"
+
+    def stop(done, total):
+        if done >= 5:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        superball.derive_all(**kw, progress=stop, checkpoint=folder)
+    kept = tasks(folder)
+    assert kept[:5] == [f"task-0000000{k}" for k in range(5)] and len(kept) < len(plain)
+    first = {f: os.stat(folder / f).st_mtime_ns for f in kept}
+    told = []
+    resumed = superball.derive_all(**kw, progress=lambda *a: told.append(a), checkpoint=folder)
+    assert told == [(k, len(plain)) for k in range(len(kept), len(plain) + 1)]  # the cases kept read back, not derived again
+    assert {f: os.stat(folder / f).st_mtime_ns for f in kept} == first
+    assert derived(resumed) == derived(plain)
+    assert tasks(folder) == [f"task-{k:08d}" for k in range(len(plain))]
+
+
+def test_derive_all_checkpoint_checks_its_folder(tmp_path):
+    kw = dict(alphas=2, jobs=1, progress=False)
+    plain = superball.derive_all(**kw)
+    folder = tmp_path / "d"
+    superball.derive_all(**kw, checkpoint=folder)
+    path = folder / "task-00000003"
+    text = path.read_bytes()
+    path.write_bytes(text.replace(b"velocities", b"VELOCITIES", 1))
+    with pytest.warns(UserWarning) as said:
+        again = superball.derive_all(**kw, checkpoint=folder)
+    assert [str(w.message) for w in said] == [f"--checkpoint {folder}: task-00000003: task 3: fails its checksum (changed or damaged since it was "
+                                              "written); task 3 computed again"]
+    assert derived(again) == derived(plain) and path.read_bytes() == text
+    for kind in ("fifo", "symlink"):
+        os.rename(path, tmp_path / "elsewhere")
+        if kind == "fifo":
+            os.mkfifo(path)
+            said = "a FIFO, not a regular file: not read"
+        else:
+            os.symlink(tmp_path / "elsewhere", path)
+            said = "a symbolic link, not read"
+        with pytest.warns(UserWarning, match=re.escape(f"--checkpoint {folder}: task-00000003: {said}; task 3 computed again")):
+            assert derived(superball.derive_all(**kw, checkpoint=folder)) == derived(plain)
+        assert not os.path.islink(path) and path.read_bytes() == text
+        os.remove(tmp_path / "elsewhere")
+    with pytest.raises(superball.InputError, match=re.escape(f"--checkpoint {folder}: holds run ") + ".*give another folder$"):
+        superball.derive_all(**dict(kw, expanded=True), checkpoint=folder)
+    with pytest.raises(superball.InputError, match="derive_all: checkpoint: expected a folder"):
+        superball.derive_all(**kw, checkpoint=3)
+
+
+def test_a_map_folder_is_one_run_for_the_command_and_the_module(paper, tmp_path):
+    """map names its run the same way from both fronts (numeric::Axis::text(), the scene's content, the precision):
+    a folder made by the command is finished by the module and the reverse, with the same results."""
+    plain = superball.map(paper, X, Y, progress=False)
+    reference = run_cli("map", PAPER, "--x", X, "--y", Y, "--json")[1]
+    # Made by the command (the axes spelled otherwise: one run), read back whole by the module.
+    folder = tmp_path / "from-command"
+    code, out, err = run_cli("map", PAPER, "--x", "K.03-4=0.0:20:9", "--y", "alpha.2=-110:0:9", "--json", "--checkpoint", folder)
+    assert code == 0 and out == reference and err == ""
+    told = []
+    same_map(superball.map(paper, X, Y, progress=lambda *a: told.append(a), checkpoint=folder), plain)
+    points = len(tasks(folder / "points"))
+    assert told[0] == ("points", points, points)  # nothing solved again
+    # Made by the module, interrupted in its bisections, finished by the command.
+    folder = tmp_path / "from-module"
+
+    def stop(phase, done, total):
+        if phase == "boundaries" and done >= 3:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        superball.map(paper, X, Y, progress=stop, checkpoint=folder)
+    code, out, err = run_cli("map", PAPER, "--x", X, "--y", Y, "--json", "--checkpoint", folder)
+    assert code == 0 and out == reference
+    assert err.splitlines()[:2] == [f"superball: --checkpoint {folder / 'points'}: {points} of {points} tasks done already, 0 to compute",
+                                    f"superball: --checkpoint {folder / 'boundaries'}: 3 of {len(tasks(folder / 'boundaries'))} tasks done already, "
+                                    f"{len(tasks(folder / 'boundaries')) - 3} to compute"]
+    # Both fronts check the other's files the same way, with the same words.
+    path = folder / "points" / "task-00000000"
+    text = path.read_bytes()
+    path.write_bytes(text[:-2])
+    code, out, err = run_cli("map", PAPER, "--x", X, "--y", Y, "--json", "--checkpoint", folder)
+    said = err.splitlines()[0].removeprefix("superball: ")
+    assert code == 0 and out == reference
+    assert re.fullmatch(re.escape(f"--checkpoint {folder / 'points'}: task-00000000: cut short in task 0 (") + r".* left\); task 0 computed again", said)
+    path.write_bytes(text[:-2])
+    with pytest.warns(UserWarning) as warned:
+        same_map(superball.map(paper, X, Y, progress=False, checkpoint=folder), plain)
+    assert [str(w.message) for w in warned] == [said]
+    # Another map is another run, refused by both with one message.
+    code, out, err = run_cli("map", PAPER, "--x", X, "--y", "alpha.2=-110:0:10", "--json", "--checkpoint", folder, check=False)
+    with pytest.raises(superball.InputError) as python:
+        superball.map(paper, X, "alpha.2=-110:0:10", progress=False, checkpoint=folder)
+    assert code == 2 and out == "" and err == f"superball: {python.value}\n"
+    assert str(python.value).startswith(f"--checkpoint {folder / 'points'}: holds run ")

@@ -20,6 +20,7 @@
 #include "superball/numeric/memory.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/precision.hpp"
+#include "superball/numeric/scalar.hpp"
 #include "superball/numeric/sweep.hpp"
 #include "superball/numeric/export.hpp"
 SUPERBALL_NUMERIC_API_BEGIN
@@ -43,6 +44,11 @@ struct Axis {
   int steps = 2;
   /// x_k = from + (to − from)·k/(steps − 1), k = 0 … steps − 1.
   std::vector<cln::cl_RA> values() const { return linspace(from, to, steps); }
+  /// The axis as KEY=FROM:TO:STEPS in canonical form: the parameter's key
+  /// (Parameter::key(), "K.3-4" for "K.03-4") and the ends as exact
+  /// fractions ("1/10" for "0.1"), so that two spellings of one axis give
+  /// one text (a checkpoint's run is named by it, from either front).
+  std::string text() const { return parameter.key() + "=" + to_string(from) + ":" + to_string(to) + ":" + std::to_string(steps); }
 };
 
 /// What decides a region of a map: the evolution case (the contacts that
