@@ -64,8 +64,8 @@ void measure(benchmark::State& state, const numeric::ExactScene& scene, int digi
     cln::cl_RA v;
     if constexpr (std::is_same_v<S, cln::cl_RA>) {
       v = out.velocities_after[i];
-    } else if constexpr (std::is_same_v<S, cln::cl_R>) {
-      v = cln::rational(out.velocities_after[i]);
+    } else if constexpr (std::is_same_v<S, numeric::MpFloat>) {
+      v = numeric::rational(out.velocities_after[i]);
     } else {
       v = cln::rational(cln::cl_float(static_cast<double>(out.velocities_after[i])));
       if constexpr (std::is_same_v<S, long double>) {  // keep the bits a double cannot hold
@@ -101,7 +101,7 @@ int main(int argc, char** argv) {
     }
     for (int d : {20, 50, 100})
       benchmark::RegisterBenchmark((name + "digits:" + std::to_string(d)).c_str(),
-                                   [&scene, d](benchmark::State& s) { measure<cln::cl_R>(s, scene, d); });
+                                   [&scene, d](benchmark::State& s) { measure<numeric::MpFloat>(s, scene, d); });
     benchmark::RegisterBenchmark((name + "exact").c_str(), [&scene](benchmark::State& s) { measure<cln::cl_RA>(s, scene, 0); });
   }
   benchmark::Initialize(&argc, argv);

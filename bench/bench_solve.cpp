@@ -250,9 +250,14 @@ void BM_UnconstrainedRewrite(benchmark::State& state) {
 }
 BENCHMARK_TEMPLATE(BM_UnconstrainedRewrite, true)->Name("solve/paper/double/unconstrained-rewrite");
 BENCHMARK_TEMPLATE(BM_UnconstrainedRewrite, false)->Name("solve/paper/double/unconstrained-rewrite-no-check");
-BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(20)->Name("solve/paper/digits:20");
-BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(50)->Name("solve/paper/digits:50");
-BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(100)->Name("solve/paper/digits:100");
+BENCHMARK_TEMPLATE(BM_Solve, numeric::MpFloat)->Arg(20)->Name("solve/paper/digits:20");
+BENCHMARK_TEMPLATE(BM_Solve, numeric::MpFloat)->Arg(50)->Name("solve/paper/digits:50");
+BENCHMARK_TEMPLATE(BM_Solve, numeric::MpFloat)->Arg(100)->Name("solve/paper/digits:100");
+/// The same precisions in CLN floats (digits_format()), digits:N's arithmetic
+/// before MPFR, side by side with it.
+BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(20)->Name("solve/paper/digits:20/cln");
+BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(50)->Name("solve/paper/digits:50/cln");
+BENCHMARK_TEMPLATE(BM_Solve, cln::cl_R)->Arg(100)->Name("solve/paper/digits:100/cln");
 BENCHMARK_TEMPLATE(BM_Solve, cln::cl_RA)->Arg(0)->Name("solve/paper/exact");
 
 /// The exact solve in CLN rationals throughout (Settings::integer_kernel =

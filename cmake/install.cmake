@@ -20,7 +20,7 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/superballConfig.cmake ${CMAKE_CURRENT_
 if(BUILD_SHARED_LIBS)
   set(SUPERBALL_PC_PRIVATE "")
 else()
-  set(SUPERBALL_PC_PRIVATE "Requires.private: tomlplusplus")
+  set(SUPERBALL_PC_PRIVATE "Requires.private: tomlplusplus mpfr gmp")
 endif()
 set(SUPERBALL_PREFIX "@SUPERBALL_PREFIX@")  # kept for install time
 set(staged ${CMAKE_CURRENT_BINARY_DIR}/install-time)

@@ -26,12 +26,14 @@ S fabs(const S& x) {
 
 /// √x in S: CLN's sqrt of a cl_R holding an exact rational would give a
 /// float of CLN's default (single) format, so the CLN floats take it at the
-/// problem's digits.
+/// problem's digits; an MpFloat of 64 bits (an integer) too.
 template <class S>
 S square_root(const S& x, int digits) {
   if constexpr (std::is_floating_point<S>::value) {
     (void)digits;
     return std::sqrt(x);
+  } else if constexpr (std::is_same<S, MpFloat>::value) {
+    return x.precision() >= digits_precision(digits) ? sqrt(x) : sqrt(S(x + MpFloat::zero(digits_precision(digits))));
   } else {
     return cln::sqrt(cln::cl_float(x, digits_format(digits)));
   }
@@ -162,6 +164,7 @@ Certificate certify(const Problem<S>& p, const Solution<S>& s) {
 template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<double>&, const Solution<double>&);
 template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<long double>&, const Solution<long double>&);
 template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<MpFloat>&, const Solution<MpFloat>&);
 
 template <class S>
 std::vector<std::string> trust_warnings(const Problem<S>& problem, const Solution<S>& solution) {
@@ -188,6 +191,7 @@ std::vector<std::string> trust_warnings(const Problem<S>& problem, const Solutio
 template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<double>&, const Solution<double>&);
 template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<long double>&, const Solution<long double>&);
 template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<MpFloat>&, const Solution<MpFloat>&);
 template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<cln::cl_RA>&, const Solution<cln::cl_RA>&);
 
 namespace {

@@ -327,10 +327,12 @@ int Problem<S>::check(const char* who) const {
 template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<double>&);
 template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<long double>&);
 template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<cln::cl_R>&);
+template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<MpFloat>&);
 template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<cln::cl_RA>&);
 template struct Problem<double>;
 template struct Problem<long double>;
 template struct Problem<cln::cl_R>;
+template struct Problem<MpFloat>;
 template struct Problem<cln::cl_RA>;
 
 }  // namespace superball::numeric

@@ -1,4 +1,4 @@
-// digits:N (CLN floats of N decimal digits) for every N it accepts, against
+// digits:N (MPFR floats of N decimal digits) for every N it accepts, against
 // the exact solution (issue 25, point 1), and the warning of an explicit
 // arithmetic whose answer the certificate does not prove (point 5).
 //
@@ -59,7 +59,7 @@ struct Outcome {
 Outcome judge(const ExactScene& scene, int digits, const Problem<cl_RA>& pe, const Solution<cl_RA>& se) {
   SCOPED_TRACE("digits:" + std::to_string(digits));
   Outcome o;
-  const auto p = Problem<cl_R>::from(scene, digits);
+  const auto p = Problem<numeric::MpFloat>::from(scene, digits);
   const auto s = numeric::solve(p);
   const std::vector<std::string> warnings = numeric::trust_warnings(p, s);
   o.warned = !warnings.empty();
@@ -68,7 +68,7 @@ Outcome judge(const ExactScene& scene, int digits, const Problem<cl_RA>& pe, con
     return o;
   }
   o.success = true;
-  const cl_RA u = exact_value(ScalarTraits<cl_R>::unit_roundoff(digits));
+  const cl_RA u = exact_value(ScalarTraits<numeric::MpFloat>::unit_roundoff(digits));
   EXPECT_TRUE(cln::plusp(u) && u <= cln::expt(cl_RA(10), -digits)) << "u = " << approx(u);
   const std::vector<cl_RA> W = exact_vector(s.velocities_after);
   const cl_RA rel = relative_velocity_error(W, se.velocities_after, pe.u);
@@ -232,17 +232,17 @@ TEST(TrustWarnings, PaperSceneIsTrustedInEveryArithmetic) {
   const auto pl = Problem<long double>::from(scene);
   EXPECT_TRUE(numeric::trust_warnings(pl, numeric::solve(pl)).empty());
   for (int d : {numeric::min_digits, 16, 30, 100}) {
-    const auto pc = Problem<cl_R>::from(scene, d);
+    const auto pc = Problem<numeric::MpFloat>::from(scene, d);
     EXPECT_TRUE(numeric::trust_warnings(pc, numeric::solve(pc)).empty()) << "digits:" << d;
   }
 }
 
 TEST(TrustWarnings, CertificateOfDigitsIsTighterThanLongDouble) {
-  // certify() in CLN floats uses their own unit roundoff: on the paper
+  // certify() in digits:N uses its own unit roundoff: on the paper
   // scene its bound is far below long double's.
   const ExactScene scene = ExactScene::from(load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml"));
   const auto pl = Problem<long double>::from(scene);
-  const auto pc = Problem<cl_R>::from(scene, 50);
+  const auto pc = Problem<numeric::MpFloat>::from(scene, 50);
   const numeric::Certificate l = numeric::certify(pl, numeric::solve(pl)), c = numeric::certify(pc, numeric::solve(pc));
   ASSERT_TRUE(l.case_certain && c.case_certain);
   EXPECT_LT(c.relative_error, l.relative_error * 1e-25);

@@ -119,8 +119,8 @@ TEST_P(HardScene, EveryPrecisionIsRightOrDeclines) {
 
   const Verdict d = judge<double>(scene, 0, pe, se);
   const Verdict ld = judge<long double>(scene, 0, pe, se);
-  const Verdict lo = judge<cl_R>(scene, kDigitsLow, pe, se);
-  const Verdict hi = judge<cl_R>(scene, kDigitsHigh, pe, se);
+  const Verdict lo = judge<numeric::MpFloat>(scene, kDigitsLow, pe, se);
+  const Verdict hi = judge<numeric::MpFloat>(scene, kDigitsHigh, pe, se);
 
   // auto: the first of double, long double whose answer is decided and
   // certified to the default rtol, else exact (certify.hpp).
@@ -173,7 +173,7 @@ TEST_P(HardScene, DefinitenessBoundCertifiesOnlyWhatTheFactorizationConfirms) {
   };
   expect_implies(definiteness<double>(scene, 0), "double");
   expect_implies(definiteness<long double>(scene, 0), "long double");
-  expect_implies(definiteness<cl_R>(scene, kDigitsLow), "digits:20");
+  expect_implies(definiteness<numeric::MpFloat>(scene, kDigitsLow), "digits:20");
   const auto exact = definiteness<cl_RA>(scene, 0);
   EXPECT_TRUE(exact.first && exact.second) << "exact arithmetic";
 }

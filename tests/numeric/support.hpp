@@ -68,13 +68,13 @@ inline std::uint64_t positive_setting(const char* name, std::uint64_t fallback) 
 // ---------------------------------------------------------------------------
 // Scalar types under test.
 
-/// Decimal digits of the CLN float type under test (digits:30).
+/// Decimal digits of the MPFR (and CLN) float type under test (digits:30).
 inline constexpr int kClnDigits = 30;
 
 /// The digits argument of Problem<S>::from for \p S.
 template <class S>
 int digits_of() {
-  return std::is_same<S, cl_R>::value ? kClnDigits : 0;
+  return std::is_same<S, cl_R>::value || std::is_same<S, numeric::MpFloat>::value ? kClnDigits : 0;
 }
 
 /// The unit roundoff u of \p S (0 for exact rationals), as an exact rational.
@@ -124,6 +124,7 @@ cl_RA residual_tolerance() {
 /// The exact rational value of a scalar (floats are dyadic or decimal rationals).
 inline cl_RA exact_value(const cl_RA& x) { return x; }
 inline cl_RA exact_value(const cl_R& x) { return cln::rational(x); }
+inline cl_RA exact_value(const numeric::MpFloat& x) { return numeric::rational(x); }
 inline cl_RA exact_value(double x) { return exact_value(static_cast<long double>(x)); }
 inline cl_RA exact_value(long double x) {
   if (x == 0) return 0;
@@ -684,7 +685,7 @@ inline cl_RA relative_velocity_error(const std::vector<cl_RA>& W, const std::vec
 namespace superball::testing {
 
 /// The four arithmetics every numeric property is checked in.
-using Scalars = ::testing::Types<double, long double, cl_R, cl_RA>;
+using Scalars = ::testing::Types<double, long double, numeric::MpFloat, cl_RA>;
 
 /// Test names: RandomScenes/double, …/digits30, …/exact.
 struct ScalarNames {
@@ -692,7 +693,7 @@ struct ScalarNames {
   static std::string GetName(int) {
     if (std::is_same<S, double>::value) return "double";
     if (std::is_same<S, long double>::value) return "long_double";
-    if (std::is_same<S, cl_R>::value) return "digits" + std::to_string(kClnDigits);
+    if (std::is_same<S, numeric::MpFloat>::value) return "digits" + std::to_string(kClnDigits);
     return "exact";
   }
 };

@@ -137,11 +137,13 @@ int ChainSolver<S>::bandwidth() const {
 template SUPERBALL_NUMERIC_EXPORT Solution<double> solve(const Problem<double>&);
 template SUPERBALL_NUMERIC_EXPORT Solution<long double> solve(const Problem<long double>&);
 template SUPERBALL_NUMERIC_EXPORT Solution<cln::cl_R> solve(const Problem<cln::cl_R>&);
+template SUPERBALL_NUMERIC_EXPORT Solution<MpFloat> solve(const Problem<MpFloat>&);
 template SUPERBALL_NUMERIC_EXPORT Solution<cln::cl_RA> solve(const Problem<cln::cl_RA>&);
 
 template class ChainSolver<double>;
 template class ChainSolver<long double>;
 template class ChainSolver<cln::cl_R>;
+template class ChainSolver<MpFloat>;
 template class ChainSolver<cln::cl_RA>;
 
 }  // namespace superball::numeric

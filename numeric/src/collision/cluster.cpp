@@ -247,6 +247,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
 template class ClusterSystem<double>;
 template class ClusterSystem<long double>;
 template class ClusterSystem<cln::cl_R>;
+template class ClusterSystem<MpFloat>;
 template class ClusterSystem<cln::cl_RA>;
 
 }  // namespace superball::numeric::detail

@@ -79,6 +79,7 @@ class ClusterSystem {
 extern template class ClusterSystem<double>;
 extern template class ClusterSystem<long double>;
 extern template class ClusterSystem<cln::cl_R>;
+extern template class ClusterSystem<MpFloat>;
 extern template class ClusterSystem<cln::cl_RA>;
 
 }  // namespace superball::numeric::detail

@@ -227,10 +227,12 @@ typename CollisionSolver<S>::Lcp CollisionSolver<S>::lcp(const Problem<S>& probl
 template struct Settings<double>;
 template struct Settings<long double>;
 template struct Settings<cln::cl_R>;
+template struct Settings<MpFloat>;
 template struct Settings<cln::cl_RA>;
 template class CollisionSolver<double>;
 template class CollisionSolver<long double>;
 template class CollisionSolver<cln::cl_R>;
+template class CollisionSolver<MpFloat>;
 template class CollisionSolver<cln::cl_RA>;
 
 }  // namespace superball::numeric

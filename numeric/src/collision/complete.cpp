@@ -223,10 +223,12 @@ bool scale_solution(Solution<S>& s, const Scaling& k, int direction) {
 template bool all_finite(const Solution<double>&);
 template bool all_finite(const Solution<long double>&);
 template bool all_finite(const Solution<cln::cl_R>&);
+template bool all_finite(const Solution<MpFloat>&);
 template bool all_finite(const Solution<cln::cl_RA>&);
 template bool scale_solution(Solution<double>&, const Scaling&, int);
 template bool scale_solution(Solution<long double>&, const Scaling&, int);
 template bool scale_solution(Solution<cln::cl_R>&, const Scaling&, int);
+template bool scale_solution(Solution<MpFloat>&, const Scaling&, int);
 template bool scale_solution(Solution<cln::cl_RA>&, const Scaling&, int);
 template void complete_solution(const Problem<double>&, ClusterSystem<double>&, const std::vector<double>&, const std::vector<char>&, bool,
                                 const Settings<double>&, CheckWorkspace<double>&, Solution<double>&);
@@ -234,6 +236,8 @@ template void complete_solution(const Problem<long double>&, ClusterSystem<long 
                                 const Settings<long double>&, CheckWorkspace<long double>&, Solution<long double>&);
 template void complete_solution(const Problem<cln::cl_R>&, ClusterSystem<cln::cl_R>&, const std::vector<cln::cl_R>&, const std::vector<char>&, bool,
                                 const Settings<cln::cl_R>&, CheckWorkspace<cln::cl_R>&, Solution<cln::cl_R>&);
+template void complete_solution(const Problem<MpFloat>&, ClusterSystem<MpFloat>&, const std::vector<MpFloat>&, const std::vector<char>&, bool,
+                                const Settings<MpFloat>&, CheckWorkspace<MpFloat>&, Solution<MpFloat>&);
 template void complete_solution(const Problem<cln::cl_RA>&, ClusterSystem<cln::cl_RA>&, const std::vector<cln::cl_RA>&, const std::vector<char>&, bool,
                                 const Settings<cln::cl_RA>&, CheckWorkspace<cln::cl_RA>&, Solution<cln::cl_RA>&);
 

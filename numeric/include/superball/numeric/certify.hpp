@@ -77,9 +77,11 @@ AutoChoice choose_precision(const ExactScene& scene, double rtol);
 extern template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<double>&, const Solution<double>&);
 extern template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<long double>&, const Solution<long double>&);
 extern template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+extern template SUPERBALL_NUMERIC_EXPORT Certificate certify(const Problem<MpFloat>&, const Solution<MpFloat>&);
 extern template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<double>&, const Solution<double>&);
 extern template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<long double>&, const Solution<long double>&);
 extern template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<cln::cl_R>&, const Solution<cln::cl_R>&);
+extern template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<MpFloat>&, const Solution<MpFloat>&);
 extern template SUPERBALL_NUMERIC_EXPORT std::vector<std::string> trust_warnings(const Problem<cln::cl_RA>&, const Solution<cln::cl_RA>&);
 ///@}
 

@@ -76,6 +76,7 @@ bool solves_as_chain(const Problem<S>& p) {
 extern template class SUPERBALL_NUMERIC_EXPORT ChainSolver<double>;
 extern template class SUPERBALL_NUMERIC_EXPORT ChainSolver<long double>;
 extern template class SUPERBALL_NUMERIC_EXPORT ChainSolver<cln::cl_R>;
+extern template class SUPERBALL_NUMERIC_EXPORT ChainSolver<MpFloat>;
 extern template class SUPERBALL_NUMERIC_EXPORT ChainSolver<cln::cl_RA>;
 
 }  // namespace superball::numeric

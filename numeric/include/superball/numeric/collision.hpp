@@ -171,16 +171,19 @@ Solution<S> solve(const Problem<S>& problem);
 extern template struct SUPERBALL_NUMERIC_EXPORT Settings<double>;
 extern template struct SUPERBALL_NUMERIC_EXPORT Settings<long double>;
 extern template struct SUPERBALL_NUMERIC_EXPORT Settings<cln::cl_R>;
+extern template struct SUPERBALL_NUMERIC_EXPORT Settings<MpFloat>;
 extern template struct SUPERBALL_NUMERIC_EXPORT Settings<cln::cl_RA>;
 extern template class SUPERBALL_NUMERIC_EXPORT CollisionSolver<double>;
 extern template class SUPERBALL_NUMERIC_EXPORT CollisionSolver<long double>;
 extern template class SUPERBALL_NUMERIC_EXPORT CollisionSolver<cln::cl_R>;
+extern template class SUPERBALL_NUMERIC_EXPORT CollisionSolver<MpFloat>;
 extern template class SUPERBALL_NUMERIC_EXPORT CollisionSolver<cln::cl_RA>;
 ///@{
 /// The explicit instantiations of solve() compiled into the library, one per scalar type.
 extern template SUPERBALL_NUMERIC_EXPORT Solution<double> solve(const Problem<double>&);
 extern template SUPERBALL_NUMERIC_EXPORT Solution<long double> solve(const Problem<long double>&);
 extern template SUPERBALL_NUMERIC_EXPORT Solution<cln::cl_R> solve(const Problem<cln::cl_R>&);
+extern template SUPERBALL_NUMERIC_EXPORT Solution<MpFloat> solve(const Problem<MpFloat>&);
 extern template SUPERBALL_NUMERIC_EXPORT Solution<cln::cl_RA> solve(const Problem<cln::cl_RA>&);
 ///@}
 

@@ -9,13 +9,14 @@
 #include <optional>
 #include <string>
 #include "superball/numeric/export.hpp"
+#include "superball/numeric/mpfloat.hpp"
 SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
-/// `double`, `long-double`, `digits:N` (CLN floats, N decimal digits) or `exact` (CLN rationals).
+/// `double`, `long-double`, `digits:N` (MPFR floats of N decimal digits, MpFloat) or `exact` (CLN rationals).
 struct Precision {
-  /// The arithmetic: double, long double, CLN floats of #digits digits, exact rationals.
+  /// The arithmetic: double, long double, MPFR floats of #digits digits, exact rationals.
   enum class Kind { Double, LongDouble, Digits, Exact };
   /// The arithmetic chosen.
   Kind kind = Kind::Double;
@@ -58,7 +59,7 @@ decltype(auto) with_scalar(const Precision& p, F&& f) {
   switch (p.kind) {
     case Precision::Kind::Double: return f(double{});
     case Precision::Kind::LongDouble: return f(static_cast<long double>(0));
-    case Precision::Kind::Digits: return f(cln::cl_R{});
+    case Precision::Kind::Digits: return f(MpFloat{});
     case Precision::Kind::Exact: break;
   }
   return f(cln::cl_RA{});

@@ -199,11 +199,13 @@ bool positive_semidefinite(const ExactScene& scene);
 extern template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<double>&);
 extern template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<long double>&);
 extern template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<cln::cl_R>&);
+extern template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<MpFloat>&);
 extern template SUPERBALL_NUMERIC_EXPORT Scaling scaling_of(const Problem<cln::cl_RA>&);
 ///@}
 extern template struct SUPERBALL_NUMERIC_EXPORT Problem<double>;
 extern template struct SUPERBALL_NUMERIC_EXPORT Problem<long double>;
 extern template struct SUPERBALL_NUMERIC_EXPORT Problem<cln::cl_R>;
+extern template struct SUPERBALL_NUMERIC_EXPORT Problem<MpFloat>;
 extern template struct SUPERBALL_NUMERIC_EXPORT Problem<cln::cl_RA>;
 
 }  // namespace superball::numeric

@@ -1,9 +1,12 @@
 #pragma once
 /// \file scalar.hpp
 /// The scalar types the numeric backend is instantiated with, and what it
-/// needs to know of each: double, long double, CLN floats of N decimal digits
-/// (cln::cl_R holding floats of one precision) and CLN exact rationals
-/// (cln::cl_RA).  Eigen needs NumTraits for the CLN types; they are here.
+/// needs to know of each: double, long double, MPFR floats of N decimal
+/// digits (MpFloat, the arithmetic of `digits:N`), CLN floats of N decimal
+/// digits (cln::cl_R holding floats of one precision: the reference MpFloat
+/// replaced, kept for the tests and benchmarks that compare the two) and CLN
+/// exact rationals (cln::cl_RA).  Eigen needs NumTraits for the CLN types and
+/// MpFloat; they are here.
 
 #include <cln/floatformat.h>
 #include <cln/rational.h>
@@ -15,6 +18,7 @@
 #include <string>
 #include <type_traits>
 #include "superball/numeric/export.hpp"
+#include "superball/numeric/mpfloat.hpp"
 SUPERBALL_NUMERIC_API_BEGIN
 
 namespace Eigen {
@@ -33,6 +37,17 @@ template <>
 struct NumTraits<cln::cl_RA> : ClnNumTraits<cln::cl_RA> {};
 template <>
 struct NumTraits<cln::cl_R> : ClnNumTraits<cln::cl_R> {};
+/// MpFloat: no heap below 114 digits, each operation a call into MPFR.
+template <>
+struct NumTraits<superball::numeric::MpFloat> : GenericNumTraits<superball::numeric::MpFloat> {
+  using Real = superball::numeric::MpFloat;        ///< itself
+  using NonInteger = superball::numeric::MpFloat;  ///< itself
+  using Literal = superball::numeric::MpFloat;     ///< itself
+  using Nested = superball::numeric::MpFloat;      ///< itself
+  enum { IsInteger = 0, IsSigned = 1, IsComplex = 0, RequireInitialization = 1, ReadCost = 2, AddCost = 20, MulCost = 30 };
+  /// Not a fixed number of digits.
+  static inline int digits10() { return 0; }
+};
 
 }  // namespace Eigen
 
@@ -102,6 +117,30 @@ struct SUPERBALL_NUMERIC_EXPORT ScalarTraits<cln::cl_R> {
   static bool sqrt(const cln::cl_RA& square, int digits, cln::cl_R& out);
 };
 
+/// The precision in bits of `digits:N` in MpFloat: CLN's for N digits
+/// (digits_format(): at least N decimal digits, two 64-bit words or more)
+/// less one bit, 127, 191, … (MPFR is fastest below a whole number of
+/// words): 127 bits for N <= 37, 191 for N = 50, 383 for N = 100.
+/// Throws std::invalid_argument("digits_precision(): ...") unless \p digits > 0.
+long digits_precision(int digits);
+
+/// MPFR floats of digits_precision(\p digits) bits: the arithmetic of `digits:N`.
+template <>
+struct SUPERBALL_NUMERIC_EXPORT ScalarTraits<MpFloat> {
+  /// Whether S holds exact values (no rounding).
+  static constexpr bool exact = false;
+  /// The precision's name, as `--precision` spells it ("digits", the N apart).
+  static std::string name() { return "digits"; }
+  /// The exact rational \p r correctly rounded to digits_precision(\p digits) bits.
+  static MpFloat from(const cln::cl_RA& r, int digits);
+  /// \p x as a double (rounded to nearest).
+  static double to_double(const MpFloat& x);
+  /// The unit roundoff u = 2^−p of p = digits_precision(\p digits) bits (digits:20 when \p digits <= 0).
+  static MpFloat unit_roundoff(int digits);
+  /// The square root of \p square rounded to the digits' precision, into \p out; always true.
+  static bool sqrt(const cln::cl_RA& square, int digits, MpFloat& out);
+};
+
 template <>
 /// Exact CLN rationals: no rounding at all.
 struct SUPERBALL_NUMERIC_EXPORT ScalarTraits<cln::cl_RA> {
@@ -130,6 +169,9 @@ S times_power_of_two(const S& x, int k) {
   }
 }
 
+/// x · 2^k in MpFloat, exact barring overflow.
+MpFloat times_power_of_two(const MpFloat& x, int k);
+
 /// Whether \p x is a finite number (always true for the CLN types).
 template <class S>
 bool finite(const S& x) {
@@ -151,6 +193,13 @@ std::string to_string(long double x, int significant = 21);
 std::string to_string(const cln::cl_R& x, int significant = 0);
 std::string to_string(const cln::cl_RA& x, int significant = 0);
 ///@}
+/// MpFloat: the fewest digits that read back to \p x when \p significant is
+/// 0 (as CLN floats print), else rounded exactly as to_decimal() does.
+std::string to_string(const MpFloat& x, int significant = 0);
+/// Whether \p x is a number (not infinite, not NaN).
+bool finite(const MpFloat& x);
+/// The exact value of the finite \p x; throws std::domain_error("rational(): ...") otherwise.
+cln::cl_RA rational(const MpFloat& x);
 
 /// \p x rounded to \p significant decimal digits, exactly (round half away
 /// from zero), without trailing zeros, in scientific notation when the

@@ -1,0 +1,278 @@
+// MpFloat (mpfloat.hpp) on MPFR, and what the solver needs of it
+// (ScalarTraits<MpFloat>, to_string): the only file that includes mpfr.h.
+#include "superball/numeric/mpfloat.hpp"
+
+#include <gmp.h>
+#include <mpfr.h>
+
+#include <cln/float.h>
+#include <cln/integer.h>
+#include <cln/integer_io.h>
+#include <cln/rational.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdlib>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "superball/numeric/scalar.hpp"
+
+namespace superball::numeric {
+
+static_assert(sizeof(MpFloat::Raw) == sizeof(__mpfr_struct), "MpFloat::Raw mirrors __mpfr_struct");
+static_assert(offsetof(MpFloat::Raw, prec) == offsetof(__mpfr_struct, _mpfr_prec), "MpFloat::Raw mirrors __mpfr_struct");
+static_assert(offsetof(MpFloat::Raw, sign) == offsetof(__mpfr_struct, _mpfr_sign), "MpFloat::Raw mirrors __mpfr_struct");
+static_assert(offsetof(MpFloat::Raw, exp) == offsetof(__mpfr_struct, _mpfr_exp), "MpFloat::Raw mirrors __mpfr_struct");
+static_assert(offsetof(MpFloat::Raw, d) == offsetof(__mpfr_struct, _mpfr_d), "MpFloat::Raw mirrors __mpfr_struct");
+static_assert(sizeof(mp_limb_t) == sizeof(std::uint64_t) && GMP_NUMB_BITS == 64, "64-bit limbs");
+
+namespace {
+
+mpfr_ptr mp(MpFloat& x) { return reinterpret_cast<mpfr_ptr>(x.raw()); }
+mpfr_srcptr mp(const MpFloat& x) { return reinterpret_cast<mpfr_srcptr>(x.raw()); }
+
+long words(long bits) { return (bits + GMP_NUMB_BITS - 1) / GMP_NUMB_BITS; }
+
+using Op = int (*)(mpfr_ptr, mpfr_srcptr, mpfr_srcptr, mpfr_rnd_t);
+
+/// \p x at the larger precision \p bits, exactly, in place: its
+/// significand moves to the top words, zeros below; the exponent stays.
+void widen(MpFloat& x, long bits) {
+  auto& r = *x.raw();
+  const long from = (r.prec + 63) / 64, to = (bits + 63) / 64;
+  const bool regular = r.exp > __MPFR_EXP_INF;
+  if (to > MpFloat::inline_limbs && to > from) {  // may need the heap: by a copy
+    const MpFloat keep = x;
+    x = MpFloat::zero(bits);
+    r.sign = keep.raw()->sign;
+    r.exp = keep.raw()->exp;
+    if (regular) {
+      for (long k = 0; k < to - from; ++k) r.d[k] = 0;
+      for (long k = 0; k < from; ++k) r.d[to - from + k] = keep.raw()->d[k];
+    }
+    return;
+  }
+  if (regular && to > from) {
+    for (long k = from - 1; k >= 0; --k) r.d[to - from + k] = r.d[k];
+    for (long k = 0; k < to - from; ++k) r.d[k] = 0;
+  }
+  r.prec = bits;  // the low bits below the old precision are zero already
+}
+
+/// a op b rounded to the larger precision; an operand of lower precision
+/// (a constant) is first widened exactly to the larger one, so that MPFR
+/// takes its paths for operands of one precision (2–3× faster below 192 bits).
+MpFloat binary(const MpFloat& a, const MpFloat& b, Op op) {
+  const long p = std::max(a.precision(), b.precision());
+  MpFloat r = MpFloat::zero(p);
+  if (a.precision() == b.precision()) {
+    op(mp(r), mp(a), mp(b), MPFR_RNDN);
+  } else {
+    MpFloat wide = a.precision() < p ? a : b;
+    widen(wide, p);
+    if (a.precision() < p)
+      op(mp(r), mp(wide), mp(b), MPFR_RNDN);
+    else
+      op(mp(r), mp(a), mp(wide), MPFR_RNDN);
+  }
+  return r;
+}
+
+/// x op= y, in place: x is widened first when y is the more precise.
+MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op) {
+  if (x.precision() < y.precision() && x.raw()->exp == __MPFR_EXP_ZERO && y.raw()->exp > __MPFR_EXP_INF &&
+      (op == static_cast<Op>(mpfr_add) || op == static_cast<Op>(mpfr_sub))) {  // 0 ± y: exact, the sum started at S(0)
+    x = y;
+    if (op == static_cast<Op>(mpfr_sub)) x.raw()->sign = -x.raw()->sign;
+    return x;
+  }
+  if (x.precision() == y.precision()) {
+    op(mp(x), mp(x), mp(y), MPFR_RNDN);
+  } else if (x.precision() > y.precision()) {
+    MpFloat wide = y;
+    widen(wide, x.precision());
+    op(mp(x), mp(x), mp(wide), MPFR_RNDN);
+  } else {
+    widen(x, y.precision());
+    op(mp(x), mp(x), mp(y), MPFR_RNDN);
+  }
+  return x;
+}
+
+/// The exact integer \p z as a CLN integer, word by word.
+cln::cl_I to_cln(const mpz_t z) {
+  cln::cl_I r = 0;
+  for (long k = static_cast<long>(mpz_size(z)) - 1; k >= 0; --k)
+    r = cln::ash(r, GMP_NUMB_BITS) + cln::cl_I(static_cast<unsigned long long>(mpz_getlimbn(z, k)));
+  return mpz_sgn(z) < 0 ? cln::cl_I(-r) : r;
+}
+
+/// The exact CLN integer \p x into \p z.
+void from_cln(const cln::cl_I& x, mpz_t z) {
+  std::ostringstream os;
+  cln::print_integer(os, 16, x);
+  mpz_set_str(z, os.str().c_str(), 16);
+}
+
+}  // namespace
+
+static_assert(MpFloat::Raw{0, 0, -0x7fffffffffffffffL, nullptr}.exp == __MPFR_EXP_ZERO, "MpFloat's zero is MPFR's");
+static_assert(-0x7fffffffffffffffL + 2 == __MPFR_EXP_INF && __MPFR_EXP_NAN == -0x7fffffffffffffffL + 1, "MpFloat's inf and NaN are MPFR's");
+
+MpFloat::MpFloat(Uninitialised, long bits) : raw_{bits, 1, kZeroExp, limbs_} {
+  if (words(bits) > inline_limbs) grow(bits);
+  raw_.prec = bits;
+}
+
+void MpFloat::grow(long bits) {
+  const long need = words(bits);
+  if (need <= capacity_) return;
+  auto* d = new std::uint64_t[static_cast<std::size_t>(need)];
+  if (raw_.d != limbs_) delete[] raw_.d;
+  raw_.d = d;
+  capacity_ = static_cast<int>(need);
+}
+
+void MpFloat::release() { delete[] raw_.d; }
+
+MpFloat::MpFloat(double x) noexcept : MpFloat(Uninitialised{}, kIntegerBits) { mpfr_set_d(mp(*this), x, MPFR_RNDN); }
+
+MpFloat MpFloat::zero(long bits) {
+  if (bits < MPFR_PREC_MIN || bits > MPFR_PREC_MAX) throw std::invalid_argument("MpFloat::zero(): precision out of range: " + std::to_string(bits));
+  return MpFloat(Uninitialised{}, bits);
+}
+
+MpFloat::MpFloat(MpFloat&& other) noexcept : raw_(other.raw_), capacity_(other.capacity_) {
+  if (other.raw_.d == other.limbs_) {
+    raw_.d = limbs_;
+    copy_significand(other);
+  } else {  // steal the heap significand
+    other.raw_ = {kIntegerBits, 1, kZeroExp, other.limbs_};
+    other.capacity_ = inline_limbs;
+  }
+}
+
+MpFloat& MpFloat::operator=(MpFloat&& other) noexcept {
+  if (this == &other) return *this;
+  if (other.raw_.d == other.limbs_ || capacity_ >= other.capacity_) return *this = static_cast<const MpFloat&>(other);  // room enough: copy
+  if (raw_.d != limbs_) delete[] raw_.d;
+  raw_ = other.raw_;
+  capacity_ = other.capacity_;
+  other.raw_ = {kIntegerBits, 1, kZeroExp, other.limbs_};
+  other.capacity_ = inline_limbs;
+  return *this;
+}
+
+MpFloat& MpFloat::operator+=(const MpFloat& x) { return in_place(*this, x, mpfr_add); }
+MpFloat& MpFloat::operator-=(const MpFloat& x) { return in_place(*this, x, mpfr_sub); }
+MpFloat& MpFloat::operator*=(const MpFloat& x) { return in_place(*this, x, mpfr_mul); }
+MpFloat& MpFloat::operator/=(const MpFloat& x) { return in_place(*this, x, mpfr_div); }
+
+MpFloat operator+(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_add); }
+MpFloat operator-(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_sub); }
+MpFloat operator*(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_mul); }
+MpFloat operator/(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_div); }
+MpFloat sqrt(const MpFloat& x) {
+  MpFloat r = MpFloat::zero(x.precision());
+  mpfr_sqrt(mp(r), mp(x), MPFR_RNDN);
+  return r;
+}
+
+bool operator==(const MpFloat& a, const MpFloat& b) { return mpfr_equal_p(mp(a), mp(b)) != 0; }
+bool operator!=(const MpFloat& a, const MpFloat& b) { return !(a == b); }
+bool less(const MpFloat& a, const MpFloat& b) { return mpfr_less_p(mp(a), mp(b)) != 0; }
+bool operator<=(const MpFloat& a, const MpFloat& b) { return mpfr_lessequal_p(mp(a), mp(b)) != 0; }
+
+bool operator>=(const MpFloat& a, const MpFloat& b) { return mpfr_greaterequal_p(mp(a), mp(b)) != 0; }
+
+long digits_precision(int digits) {
+  if (digits <= 0) throw std::invalid_argument("digits_precision(): digits must be > 0, got " + std::to_string(digits));
+  // The bits CLN asks for N digits (cln::float_format(N)), rounded up to
+  // whole words less one bit, at least 127: MPFR's fast paths take
+  // precisions below 2 and 3 words; CLN took whole words, at least 2.
+  const long bits = static_cast<long>(cln::float_format(static_cast<uintE>(digits)));
+  return std::max<long>(2 * GMP_NUMB_BITS - 1, words(bits + 1) * GMP_NUMB_BITS - 1);
+}
+
+MpFloat ScalarTraits<MpFloat>::from(const cln::cl_RA& r, int digits) {
+  if (digits <= 0) throw std::invalid_argument("ScalarTraits<MpFloat>::from(): digits must be > 0");
+  MpFloat x = MpFloat::zero(digits_precision(digits));
+  mpq_t q;
+  mpq_init(q);
+  from_cln(cln::numerator(r), mpq_numref(q));
+  from_cln(cln::denominator(r), mpq_denref(q));
+  mpfr_set_q(mp(x), q, MPFR_RNDN);  // correctly rounded
+  mpq_clear(q);
+  return x;
+}
+
+double ScalarTraits<MpFloat>::to_double(const MpFloat& x) { return mpfr_get_d(mp(x), MPFR_RNDN); }
+
+MpFloat ScalarTraits<MpFloat>::unit_roundoff(int digits) {
+  // Rounding to nearest in p bits: |fl(x) − x| <= 2^−p |x|.
+  MpFloat u = MpFloat::zero(digits_precision(digits > 0 ? digits : 20));
+  mpfr_set_si_2exp(mp(u), 1, -u.precision(), MPFR_RNDN);
+  return u;
+}
+
+bool ScalarTraits<MpFloat>::sqrt(const cln::cl_RA& square, int digits, MpFloat& out) {
+  out = numeric::sqrt(from(square, digits));
+  return true;
+}
+
+cln::cl_RA rational(const MpFloat& x) {
+  if (!mpfr_number_p(mp(x))) throw std::domain_error("rational(): not a finite number");
+  if (mpfr_zero_p(mp(x))) return 0;
+  mpz_t z;
+  mpz_init(z);
+  const mpfr_exp_t e = mpfr_get_z_2exp(z, mp(x));
+  const cln::cl_I m = to_cln(z);
+  mpz_clear(z);
+  return e >= 0 ? cln::cl_RA(cln::ash(m, e)) : cln::cl_RA(m) / cln::ash(1, -e);
+}
+
+MpFloat times_power_of_two(const MpFloat& x, int k) {
+  MpFloat r = MpFloat::zero(x.precision());
+  mpfr_mul_2si(mp(r), mp(x), k, MPFR_RNDN);
+  return r;
+}
+
+bool finite(const MpFloat& x) { return mpfr_number_p(mp(x)) != 0; }
+
+std::string to_string(const MpFloat& x, int significant) {
+  if (!mpfr_number_p(mp(x))) return mpfr_nan_p(mp(x)) ? "nan" : mpfr_sgn(mp(x)) > 0 ? "inf" : "-inf";
+  if (significant > 0 || mpfr_zero_p(mp(x))) return to_decimal(rational(x), significant > 0 ? significant : 1);
+  // All its digits: the fewest that read back to x (as CLN printed its floats).
+  const std::size_t most = mpfr_get_str_ndigits(10, x.precision());
+  MpFloat back = MpFloat::zero(x.precision());
+  for (std::size_t n = most > 4 ? most - 4 : 1;; ++n) {
+    mpfr_exp_t e = 0;
+    std::unique_ptr<char, void (*)(char*)> digits(mpfr_get_str(nullptr, &e, 10, n, mp(x), MPFR_RNDN), mpfr_free_str);
+    std::string d = digits.get();
+    const bool negative = d[0] == '-';
+    if (negative) d.erase(0, 1);
+    const std::string text = (negative ? "-0." : "0.") + d + "e" + std::to_string(e);
+    mpfr_strtofr(mp(back), text.c_str(), nullptr, 10, MPFR_RNDN);
+    if (n < most && !(back == x)) continue;
+    // d·10^(e − |d|): the decimal of to_decimal()'s shape, all of d kept.
+    while (d.size() > 1 && d.back() == '0') d.pop_back();
+    const long point = static_cast<long>(e);  // digits before the point
+    std::string out;
+    if (point - 1 < -4 || point - 1 >= static_cast<long>(n)) {
+      out = d.substr(0, 1) + (d.size() > 1 ? "." + d.substr(1) : "") + "e" + (point - 1 < 0 ? "-" : "+") +
+            (std::labs(point - 1) < 10 ? "0" : "") + std::to_string(std::labs(point - 1));
+    } else if (point <= 0) {
+      out = "0." + std::string(static_cast<std::size_t>(-point), '0') + d;
+    } else {
+      if (static_cast<long>(d.size()) < point) d += std::string(static_cast<std::size_t>(point) - d.size(), '0');
+      out = d.substr(0, static_cast<std::size_t>(point));
+      if (static_cast<long>(d.size()) > point) out += "." + d.substr(static_cast<std::size_t>(point));
+    }
+    return (negative ? "-" : "") + out;
+  }
+}
+
+}  // namespace superball::numeric
