@@ -31,7 +31,7 @@ void add_solve(CLI::App& app, Action& action) {
   cmd->add_option("scene", o->scene, "Scene file (TOML)")->required();
   cmd->add_option("--precision,-p", o->precision,
                   "Arithmetic: auto (default: the cheapest of double, long-double, exact whose result is certified to --rtol), "
-                  "double, long-double, digits:N (CLN floats, N decimal digits), exact (CLN rationals)")
+                  "double, long-double, digits:N (MPFR floats, at least N decimal digits), exact (CLN rationals)")
       ->capture_default_str();
   CLI::Option* rtol = cmd->add_option("--rtol", o->rtol, "With --precision auto: largest certified relative error of the velocities, 0 to 1")
       ->capture_default_str();

@@ -6,7 +6,7 @@ BUILD_DIR="${BUILD_DIR:-$ROOT/build}"
 
 PACKAGES=(
   build-essential cmake pkg-config ninja-build          # toolchain (Ninja: see CMAKE_GENERATOR below)
-  libginac-dev libcln-dev libeigen3-dev                 # symbolic and numeric backends
+  libginac-dev libcln-dev libeigen3-dev libmpfr-dev     # symbolic and numeric backends (MPFR: digits:N)
   libtomlplusplus-dev nlohmann-json3-dev libcli11-dev   # scene files, JSON, command line
   libgtest-dev libbenchmark-dev                         # tests and benchmarks
   texlive-latex-base gnuplot-nox python3-sympy          # LaTeX check, plots, the SymPy reference

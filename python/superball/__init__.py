@@ -18,7 +18,7 @@ command (same answers, same messages):
 
 - :class:`Scene` — a scene (``Scene.load(path)``, ``Scene.from_dict(...)``,
   ``Scene(bodies=..., K=..., ...)``, ``scene.with_value("K.3-4", 7)``);
-- :func:`solve` — one collision in double, long double, CLN floats of N
+- :func:`solve` — one collision in double, long double, MPFR floats of N
   digits, exact rationals, or ``auto`` (the cheapest certified);
 - :func:`sweep` and :func:`switch_points` — one parameter varied, on all
   cores, without the GIL; where the evolution case changes, exactly;
@@ -490,7 +490,7 @@ def solve(scene: Scene, precision: str = "auto", rtol: Optional[float] = None) -
     rationals, the first whose evolution case is certain and whose velocity
     error is certified below ``rtol`` relative to max|U⁺|, default
     :data:`DEFAULT_RTOL`), ``"double"``, ``"long-double"``, ``"digits:N"``
-    (CLN floats of N decimal digits, 10 ≤ N ≤ 10000) or ``"exact"`` (CLN
+    (MPFR floats of at least N decimal digits, 10 ≤ N ≤ 10000) or ``"exact"`` (CLN
     rationals).  ``rtol`` applies to ``"auto"`` only.
 
     The solver finds the unique solution of the complementarity problem
