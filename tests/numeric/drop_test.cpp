@@ -106,5 +106,29 @@ TEST(Drop, BadKeysAreOneLineErrors) {
   EXPECT_NE(message("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[drop]\nwhen = 1\n").find("drop.when: unknown key"), std::string::npos);
 }
 
+TEST(Drop, ABodyBouncingOnABodyAtRestComesToRestAtTheSumOfItsSeries) {
+  // The paper's §4.4 stack released with 1 mm gaps: ball 3 sticks to the obstacle (K34 = 10 < m3 = 15),
+  // then ball 2 bounces on it with a constant ratio until its bounces accumulate; each rest is said once.
+  const Scene s = load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/drop-paper-4.4.toml");
+  const DropResult r = drop(s, Precision::parse("double"));
+  EXPECT_EQ(r.end, "apex");
+  EXPECT_LT(r.events.size(), 50u);
+  ASSERT_EQ(r.rest.size(), 2u);
+  EXPECT_EQ(r.rest[0].body, 3);
+  EXPECT_FALSE(r.rest[0].accumulation);
+  EXPECT_EQ(r.rest[1].body, 2);
+  ASSERT_TRUE(r.rest[1].accumulation);
+  const double e = r.rest[1].ratio, g = 9.81;
+  ASSERT_GT(e, 0);
+  ASSERT_LT(e, 1);
+  // The last bounces of ball 2 on ball 3 have the ratio e, and the rest is their geometric sum.
+  const DropEvent& last = r.events.back();
+  const DropEvent& before = r.events[r.events.size() - 2];
+  EXPECT_NEAR(last.velocities_after[1] / before.velocities_after[1], e, 1e-9);
+  EXPECT_NEAR(r.rest[1].time, last.time + 2 * last.velocities_after[1] / g / (1 - e), kClosedFormTolerance);
+  for (const DropEvent& ev : r.events) EXPECT_LE(ev.kinetic_energy_after, ev.kinetic_energy_before * (1 + kBalanceTolerance));
+  EXPECT_GT(r.top_apex_ratio, 1);
+}
+
 }  // namespace
 }  // namespace superball::numeric

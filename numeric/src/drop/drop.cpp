@@ -256,6 +256,7 @@ class DropRun {
       }
       a = b + 1;
     }
+    const std::vector<bool> was_supported = supported_;
     for (int i = p; i <= q; ++i) {
       if (!(fixed_ && i == n_ - 1)) momentum_after += full_.mass[i] * v_[i];
       last_t_[i] = t_;
@@ -278,10 +279,12 @@ class DropRun {
     ev.momentum_before = T::to_double(momentum_before);
     ev.momentum_after = T::to_double(momentum_after);
     r_.events.push_back(ev);
-    // A body left at rest on the obstacle by the collision.
-    const int lowest = n_ - 2;
-    if (fixed_ && q == n_ - 1 && p <= lowest && whole.closed(lowest) && v_[lowest] == S(0))
-      r_.rest.push_back({lowest + 1, ev.time, false, 0});
+    // The bodies this collision leaves at rest on the obstacle (directly or on
+    // bodies resting there) that were not resting before: each is said once.
+    if (fixed_ && q == n_ - 1) {
+      for (int i = q - 1; i >= p && whole.closed(i) && v_[i] == S(0); --i)
+        if (!was_supported[i]) r_.rest.push_back({i + 1, ev.time, false, 0});
+    }
     return true;
   }
 
@@ -293,15 +296,16 @@ class DropRun {
   }
   double kinetic() const { return ScalarTraits<S>::to_double(kinetic_energy()); }
 
-  /// After a bounce of the lowest free body alone on the fixed obstacle:
-  /// when nothing else can touch it before its bounces accumulate, it rests
-  /// there at the sum of the geometric series (and no later than \p until
-  /// when that is >= 0).
+  /// After a bounce of the lowest free body b on the fixed obstacle, or on
+  /// the bodies at rest on it (every body below b held): when nothing else
+  /// can touch it before its bounces accumulate, it rests there at the sum
+  /// of the geometric series (and no later than \p until when that is >= 0).
   void accumulate(S until) {
     if (!fixed_ || r_.events.empty()) return;
     const DropEvent& ev = r_.events.back();
-    const int b = n_ - 2;
-    if (ev.first_body != b + 1 || ev.last_body != n_ || ev.time != ScalarTraits<S>::to_double(t_)) return;
+    int b = n_ - 2;
+    while (b >= 0 && supported_[b]) --b;
+    if (b < 0 || ev.first_body != b + 1 || ev.last_body != n_ || ev.time != ScalarTraits<S>::to_double(t_)) return;
     const S before = -S(ev.velocities_before[b]), after = v_[b];
     if (!(after > S(0)) || !(before > S(0))) return;
     const S e = after / before;
@@ -326,12 +330,12 @@ class DropRun {
     }
     const double e_double = ScalarTraits<S>::to_double(e);
     v_[b] = S(0);
-    z_[b] = S(0);
+    z_[b] = z_[b + 1];
     gap_[b] = S(0);
     supported_[b] = true;
     advance(span);
     last_t_[b] = t_;
-    last_z_[b] = S(0);
+    last_z_[b] = z_[b];
     last_v_[b] = S(0);
     r_.rest.push_back({b + 1, ScalarTraits<S>::to_double(t_), true, e_double});
   }
