@@ -32,6 +32,7 @@ void add_derive(CLI::App& app, Action& action);
 void add_audit(CLI::App& app, Action& action);
 void add_verify(CLI::App& app, Action& action);
 void add_explore(CLI::App& app, Action& action);
+void add_drop(CLI::App& app, Action& action);
 
 /// Refuses the empty string: "" names no file, case or list, and a command
 /// must not take it for "none" or "standard output" (use "none" or "-").

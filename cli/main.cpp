@@ -58,6 +58,7 @@ int run(int argc, char** argv) {
   add_audit(app, action);
   add_verify(app, action);
   add_explore(app, action);
+  add_drop(app, action);
   add_merge(app);
   // `superball merge PART…`: the run the parts belong to, its results taken from them.
   std::vector<std::string> words(argv + 1, argv + argc), merged;

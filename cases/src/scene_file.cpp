@@ -31,7 +31,7 @@ class SceneReader {
   Scene read(const toml::table& root) {
     Scene scene;
     scene.origin = origin_;
-    check_keys(root, "", {"title", "drop_height", "g", "fall_speed", "body", "dissipation", "flight"});
+    check_keys(root, "", {"title", "drop_height", "g", "fall_speed", "body", "dissipation", "flight", "drop"});
     if (auto t = root.get("title")) {
       if (!t->is_string()) fail(*t, "title", "must be a string");
       scene.title = t->value<std::string>().value_or("");
@@ -61,10 +61,43 @@ class SceneReader {
           fail(*d, "flight.duration", "must be > 0 seconds (got " + scene.flight.duration->text + ")");
       }
     }
+    if (auto d = root.get("drop")) read_drop(*d, scene);
     return scene;
   }
 
  private:
+  /// The [drop] table and the release positions it needs (drop_height > 0 over a fixed obstacle).
+  void read_drop(const toml::node& node, Scene& scene) const {
+    if (!node.is_table()) fail(node, "drop", "must be a table");
+    const toml::table& t = *node.as_table();
+    check_keys(t, "drop.", {"until", "max_events", "distant"});
+    scene.drop.requested = true;
+    if (const toml::node* u = t.get("until")) {
+      const std::string bad = "must be \"apex\" or a time in seconds > 0";
+      const bool apex = u->is_string() && *u->value<std::string>() == "apex";
+      if (!apex) {
+        if (u->is_string() && u->value<std::string>()->find_first_of("0123456789") == std::string::npos)
+          fail(*u, "drop.until", bad + " (got \"" + *u->value<std::string>() + "\")");
+        scene.drop.until = number(*u, "drop.until");
+        if (scene.drop.until->is_negative() || scene.drop.until->is_zero()) fail(*u, "drop.until", bad + " (got " + scene.drop.until->text + ")");
+      }
+    }
+    if (const toml::node* m = t.get("max_events")) {
+      if (!m->is_integer()) fail(*m, "drop.max_events", std::string("must be a whole number from 1 to ") + std::to_string(max_drop_events) + " (got a " + type_name(*m) + ")");
+      const long long v = *m->value<long long>();
+      if (v < 1 || v > max_drop_events)
+        fail(*m, "drop.max_events", "must be a whole number from 1 to " + std::to_string(max_drop_events) + " (got " + std::to_string(v) + ")");
+      scene.drop.max_events = v;
+    }
+    if (const toml::node* d = t.get("distant")) {
+      if (!d->is_boolean()) fail(*d, "drop.distant", std::string("must be true or false (got a ") + type_name(*d) + ")");
+      scene.drop.distant = *d->value<bool>();
+    }
+    const bool fixed = !scene.bodies.empty() && scene.bodies.back().infinite;
+    if (fixed && (!scene.drop_height || scene.drop_height->is_zero()))
+      fail(t, "drop_height", "a drop onto a fixed obstacle needs drop_height > 0 (the lowest free body's height above it, m)");
+  }
+
   [[noreturn]] void fail(const toml::node& at, const std::string& field, const std::string& what) const {
     fail_at(at.source(), field, what);
   }
@@ -156,7 +189,7 @@ class SceneReader {
     for (std::size_t k = 0; k < list->size(); ++k) {
       const toml::table& t = *(*list)[k].as_table();
       const std::string field = "body[" + std::to_string(k + 1) + "]";
-      check_keys(t, field + ".", {"mass", "velocity"});
+      check_keys(t, field + ".", {"mass", "velocity", "gap"});
       Body body;
       const toml::node* mass = t.get("mass");
       if (!mass) fail(t, field + ".mass", "missing: every body needs a mass (kg), or \"inf\" for a fixed obstacle");
@@ -171,6 +204,11 @@ class SceneReader {
           fail(*mass, field + ".mass", "must be > 0 (got " + body.mass.text + ")");
       }
       if (const toml::node* v = t.get("velocity")) body.velocity = number(*v, field + ".velocity");
+      if (const toml::node* g = t.get("gap")) {
+        body.gap = number(*g, field + ".gap");
+        if (body.gap->is_negative()) fail(*g, field + ".gap", "must be >= 0 m (got " + body.gap->text + ")");
+        if (k + 1 == list->size()) fail(*g, field + ".gap", "the bottom body has no body below it (drop_height is the lowest free body's height)");
+      }
       if (!body.velocity && !falls && !body.infinite)
         fail(t, field, "no velocity before the collision: give velocity, or drop_height / fall_speed for the scene");
       scene.bodies.push_back(body);
@@ -511,6 +549,7 @@ std::string write_scene(const Scene& scene, const std::string& comment) {
   for (const Body& b : scene.bodies) {
     os << "\n[[body]]\nmass = " << (b.infinite ? std::string("\"inf\"") : toml_number(b.mass)) << '\n';
     if (b.velocity) os << "velocity = " << toml_number(*b.velocity) << '\n';
+    if (b.gap) os << "gap = " << toml_number(*b.gap) << '\n';
   }
   std::string diagonal, alphas, couplings;
   const Vocabulary& v = Vocabulary::paper();
@@ -533,6 +572,12 @@ std::string write_scene(const Scene& scene, const std::string& comment) {
   if (scene.flight.requested) {
     os << "\n[flight]\n";
     if (scene.flight.duration) os << "duration = " << toml_number(*scene.flight.duration) << '\n';
+  }
+  if (scene.drop.requested) {
+    os << "\n[drop]\n";
+    if (scene.drop.until) os << "until = " << toml_number(*scene.drop.until) << '\n';
+    if (scene.drop.max_events != Drop{}.max_events) os << "max_events = " << scene.drop.max_events << '\n';
+    if (scene.drop.distant) os << "distant = true\n";
   }
   return os.str();
 }

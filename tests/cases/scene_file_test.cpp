@@ -332,7 +332,7 @@ TEST(SceneFile, ControlCharactersInMessagesAreEscaped) {
                        Case{R"(a\u007fb)", R"(a\x7fb)"}, Case{R"(a\u0001b\tc\rd)", R"(a\x01b\tc\rd)"}, Case{R"(a\u009bb)", R"(a\u009bb)"}}) {
     SCOPED_TRACE(c.key);
     const std::string m = message_of(head + "\"" + c.key + "\" = 2\n" + kTwoBodies);
-    EXPECT_NE(m.find(std::string("body[1].") + c.printed + ": unknown key (expected one of: mass, velocity)"), std::string::npos) << m;
+    EXPECT_NE(m.find(std::string("body[1].") + c.printed + ": unknown key (expected one of: gap, mass, velocity)"), std::string::npos) << m;
     for (const char ch : m) EXPECT_TRUE(static_cast<unsigned char>(ch) >= 0x20 && ch != 0x7f) << int(ch) << " in " << m;
     EXPECT_EQ(m.find("\xC2\x9B"), std::string::npos) << m;
   }
@@ -627,7 +627,7 @@ TEST(SceneFromValue, MessagesNameTheField) {
   EXPECT_EQ(value_message(paper_value("-1")), "<dict>: body[1].mass: must be > 0 (got -1)");
   SceneValue v = paper_value("1");
   v.members.push_back({"colour", str("red")});
-  EXPECT_EQ(value_message(v), "<dict>: colour: unknown key (expected one of: body, dissipation, drop_height, fall_speed, flight, g, title)");
+  EXPECT_EQ(value_message(v), "<dict>: colour: unknown key (expected one of: body, dissipation, drop, drop_height, fall_speed, flight, g, title)");
   v = paper_value("1");
   v.members[2].second.items[1].members[0].second = {SceneValue::Kind::Boolean, "", true, {}, {}};
   EXPECT_EQ(value_message(v), "<dict>: body[2].mass: must be a number or a fraction string like \"1/3\" (got a boolean)");

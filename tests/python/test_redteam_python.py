@@ -199,7 +199,7 @@ def test_map_where_m_is_nowhere_psd_is_refused(paper):
     ({"bodies": ["1e999999999", 1]}, ["body[1].mass: '1e999999999' has an exponent out of range"]),
     ({"bodies": ["1\x002", 1]}, ["body[1].mass: '1\\02' is not a number (unexpected '\\0')"]),  # was: "body[1].mass: '1"
     ({"bodies": ["1\x1b[31m", 1]}, ["'1\\e[31m' is not a number"]),
-    ({"bodies": [{"mass": 1, "colour": 2}, 1]}, ["body[1].colour: unknown key (expected one of: mass, velocity)"]),
+    ({"bodies": [{"mass": 1, "colour": 2}, 1]}, ["body[1].colour: unknown key (expected one of: gap, mass, velocity)"]),
     ({"bodies": [{1: 1}, 1]}, ["body[1].1: unknown key"]),
     ({"K": [("1-2", 7)]}, ["dissipation.K: must be a table"]),
     ({"K": {"2-1": 7}}, ["dissipation.K.2-1: '2-1' needs 1 <= i < j"]),

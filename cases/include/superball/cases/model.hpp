@@ -91,6 +91,8 @@ struct Body {
   Number mass;                     ///< > 0 unless infinite
   bool infinite = false;           ///< a fixed obstacle (bottom body only)
   std::optional<Number> velocity;  ///< velocity before the collision, if given
+  /// Distance (m) to the body below at release, for a drop ([drop]); absent or 0: touching.
+  std::optional<Number> gap;
 };
 
 /// The flight after the collision, computed only when a scene asks for it
@@ -99,6 +101,21 @@ struct Flight {
   /// True when the scene has a [flight] table (even an empty one).
   bool requested = false;
   std::optional<Number> duration;  ///< seconds to draw; default: until the highest apex is passed twice over
+};
+
+/// The whole drop, computed only when a scene asks for it with a [drop]
+/// table: the bodies released on a vertical line under gravity, every
+/// collision and flight followed in time order (numeric/drop.hpp).
+struct Drop {
+  /// True when the scene has a [drop] table (even an empty one).
+  bool requested = false;
+  /// `until`: seconds simulated; nullopt is "apex" (the default), the top
+  /// body's first apex after its last collision.
+  std::optional<Number> until;
+  /// `max_events`: the most collisions followed before the drop stops (default 10,000).
+  long long max_events = 10000;
+  /// `distant`: every pair declared in M takes part in every collision (default false: the touching cluster).
+  bool distant = false;
 };
 
 /// A scene: the bodies and only the effects that are in play.
@@ -115,6 +132,8 @@ struct Scene {
   std::vector<MatrixEntry> entries;   ///< declared entries of M only
   /// The flight after the collision, when asked for ([flight]).
   Flight flight;
+  /// The whole drop, when asked for ([drop]).
+  Drop drop;
 
   /// The number of bodies n.
   int size() const { return static_cast<int>(bodies.size()); }

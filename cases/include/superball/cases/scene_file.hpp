@@ -28,6 +28,8 @@ inline constexpr int max_scene_bodies = 100000;
 /// [...] } ]`); the limit is checked before the TOML parser, which recurses
 /// once per level, runs.
 inline constexpr int max_scene_nesting = 16;
+/// Largest `[drop] max_events` a scene may ask for.
+inline constexpr long long max_drop_events = 100000000;
 /// The name of standard input in messages and in Scene::origin.
 inline constexpr std::string_view stdin_origin = "<stdin>";
 
@@ -46,6 +48,10 @@ inline constexpr std::string_view stdin_origin = "<stdin>";
 /// K = { "1-2" = 7 }                       # diagonal of M
 /// alpha = { "2" = -100 }                  # paper's α_k, n = 4 only
 /// coupling = [ { pairs = ["1-2", "1-4"], value = -100 } ]
+/// [drop]                # optional: the whole drop (bodies may then have gap = 0.01)
+/// until = "apex"        # or seconds > 0
+/// max_events = 10000    # 1 .. max_drop_events
+/// distant = false
 /// \endcode
 /// Numbers may be TOML integers or floats (read exactly as written) or
 /// strings holding a fraction "1/3".  Throws InputError naming the file, the

@@ -1,0 +1,391 @@
+#include "superball/numeric/drop.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "superball/cases/error.hpp"
+#include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/collision.hpp"
+#include "superball/numeric/problem.hpp"
+
+namespace superball::numeric {
+namespace {
+
+/// The exact rational value of a double or long double.
+template <class S>
+cln::cl_RA to_exact(S x) {
+  if (x == S(0) || !std::isfinite(x)) return 0;  // (a datum out of range fails the solve in S first)
+  int e = 0;
+  const S f = std::frexp(x, &e);  // |f| in [1/2, 1)
+  const unsigned long long m = static_cast<unsigned long long>(std::ldexp(std::fabs(f), 64 - 1) * 2);  // all 64 (or 53) bits
+  const cln::cl_RA r = cln::cl_I(m) * cln::expt(cln::cl_RA(2), e - 64);
+  return x < S(0) ? cln::cl_RA(-r) : r;
+}
+
+/// The collision of \p p solved in S, and again in exact rationals from the
+/// same (rounded) data when S's solve fails its residual check (stiff
+/// contacts, K/m of 10⁶ and more, do in double).
+template <class S>
+Solution<S> solve_collision(const Problem<S>& p) {
+  Solution<S> sol = solve(p);
+  if (sol.status == Status::Success) return sol;
+  Problem<cln::cl_RA> q;
+  q.n = p.n;
+  q.fixed_bottom = p.fixed_bottom;
+  for (int i = 0; i < p.n; ++i) q.mass.push_back(p.fixed_bottom && i == p.n - 1 ? cln::cl_RA(0) : to_exact(p.mass[i]));  // the obstacle's is unused
+  for (const S& u : p.u) q.u.push_back(to_exact(u));
+  for (const Entry<S>& e : p.entries) q.entries.push_back({e.i, e.j, e.k, e.l, to_exact(e.value)});
+  const Solution<cln::cl_RA> exact = solve(q);
+  if (exact.status != Status::Success) return sol;
+  sol.status = Status::Success;
+  sol.closed = exact.closed;
+  sol.velocities_after.assign(exact.velocities_after.size(), S(0));
+  for (std::size_t i = 0; i < exact.velocities_after.size(); ++i) sol.velocities_after[i] = ScalarTraits<S>::from(exact.velocities_after[i], 0);
+  return sol;
+}
+
+/// The state of every body between events, in S, and the run's record.
+template <class S>
+class DropRun {
+ public:
+  DropRun(const Scene& scene, const ExactScene& exact, const std::string& precision)
+      : scene_(scene), full_(Problem<S>::from(exact)), n_(full_.n), fixed_(full_.fixed_bottom) {
+    using T = ScalarTraits<S>;
+    g_ = T::from(parse_rational(scene.g.fraction()), 0);
+    u_ = T::unit_roundoff(0);
+    z_.assign(n_, S(0));
+    v_.assign(n_, S(0));
+    gap_.assign(n_ > 0 ? n_ - 1 : 0, S(0));
+    supported_.assign(n_, false);
+    if (fixed_) supported_[n_ - 1] = true;
+    // Heights from the bottom: the obstacle at 0, the lowest free body at drop_height, each other one gap above.
+    for (int i = n_ - 2; i >= 0; --i) {
+      const auto& b = scene.bodies[static_cast<std::size_t>(i)];
+      const Number* gap = i == n_ - 2 ? (scene.drop_height ? &*scene.drop_height : nullptr) : (b.gap ? &*b.gap : nullptr);
+      gap_[i] = gap ? T::from(parse_rational(gap->fraction()), 0) : S(0);
+      z_[i] = z_[i + 1] + gap_[i];
+    }
+    for (int i = 0; i < n_; ++i) {
+      const auto& b = scene.bodies[static_cast<std::size_t>(i)];
+      if (!(fixed_ && i == n_ - 1) && b.velocity) v_[i] = T::from(parse_rational(b.velocity->fraction()), 0);
+    }
+    const S top = z_[0] - z_[n_ - 1];
+    time_scale_ = top > S(0) ? S(std::sqrt(S(2) * top / g_)) : S(1);
+    height_scale_ = top > S(0) ? top : S(1);
+    last_t_.assign(n_, S(0));
+    last_z_ = z_;
+    last_v_ = v_;
+    r_.precision = precision;
+    r_.g = T::to_double(g_);
+    r_.fixed_bottom = fixed_;
+    for (int i = 0; i < n_; ++i) {
+      r_.masses.push_back(fixed_ && i == n_ - 1 ? std::numeric_limits<double>::infinity() : T::to_double(full_.mass[i]));
+      r_.release_heights.push_back(T::to_double(z_[i]));
+      r_.release_velocities.push_back(T::to_double(v_[i]));
+    }
+  }
+
+  DropResult run() {
+    const bool to_apex = !scene_.drop.until;
+    const S until = to_apex ? S(0) : ScalarTraits<S>::from(parse_rational(scene_.drop.until->fraction()), 0);
+    settle();
+    for (;;) {
+      const auto [dt, closing] = next_event();
+      // The top body's apex, when it comes before anything else can touch it.
+      if (to_apex && !supported_[0] && v_[0] > S(0) && S(v_[0] / g_) < dt) {
+        advance(v_[0] / g_);
+        end("apex");
+        break;
+      }
+      if (!to_apex && t_ + dt > until) {
+        advance(until - t_);
+        end("until");
+        break;
+      }
+      if (closing.empty()) {
+        end(std::all_of(supported_.begin(), supported_.end(), [](bool s) { return s; }) ? "rest" : "no-more-events");
+        break;
+      }
+      if (static_cast<long long>(r_.events.size()) >= scene_.drop.max_events) {
+        end("max-events");
+        break;
+      }
+      advance(dt);
+      if (!collide(closing)) {
+        end("numerical-issue");
+        break;
+      }
+      accumulate(to_apex ? S(-1) : until);
+    }
+    return std::move(r_);
+  }
+
+ private:
+  S acceleration(int i) const { return supported_[i] ? S(0) : S(-g_); }
+
+  /// Bodies at rest on the fixed obstacle (directly or on one another) are held by it.
+  void settle() {
+    for (int i = n_ - 2; i >= 0; --i)
+      if (fixed_ && supported_[i + 1] && gap_[i] == S(0) && v_[i] == S(0)) supported_[i] = true;
+  }
+
+  /// The time contact c (bodies c, c+1) closes from now, +∞ when it does not.
+  S closing_time(int c) const {
+    const S inf = std::numeric_limits<S>::infinity();
+    if (supported_[c]) return inf;
+    const S d = v_[c] - v_[c + 1], gap = gap_[c];
+    if (!supported_[c + 1]) return d < S(0) ? S(gap / -d) : inf;  // both free: linear
+    // Over the held bodies: gap + d t − g t²/2 = 0, the positive root in a stable form.
+    if (gap == S(0)) return d > S(0) ? S(2 * d / g_) : S(0);
+    const S root = std::sqrt(d * d + 2 * g_ * gap);
+    return d > S(0) ? S((d + root) / g_) : S(2 * gap / (root - d));
+  }
+
+  /// The next event: its delay and the contacts that close then (ties together).
+  std::pair<S, std::vector<int>> next_event() {
+    const S inf = std::numeric_limits<S>::infinity();
+    std::vector<S> times(static_cast<std::size_t>(n_ - 1));
+    S first = inf;
+    for (int c = 0; c + 1 < n_; ++c) {
+      times[c] = closing_time(c);
+      first = std::min(first, times[c]);
+    }
+    std::vector<int> closing;
+    if (first == inf) return {inf, closing};
+    const S scale = std::max(S(t_ + first), time_scale_);
+    const S tie = S(drop_tie_ulps) * u_ * scale, doubt = S(drop_doubt_ulps) * u_ * scale;
+    for (int c = 0; c + 1 < n_; ++c) {
+      if (times[c] - first <= tie) {
+        closing.push_back(c);
+      } else if (times[c] - first <= doubt) {
+        ++near_ties_;
+      }
+    }
+    return {first, closing};
+  }
+
+  /// Every body's flight over \p dt.
+  void advance(S dt) {
+    if (dt <= S(0)) return;
+    for (int c = 0; c + 1 < n_; ++c) gap_[c] += (v_[c] - v_[c + 1]) * dt + (acceleration(c) - acceleration(c + 1)) * dt * dt / 2;
+    for (int i = 0; i < n_; ++i) {
+      if (supported_[i]) continue;
+      z_[i] += v_[i] * dt - g_ * dt * dt / 2;
+      v_[i] -= g_ * dt;
+    }
+    t_ += dt;
+  }
+
+  bool touching(int c) const { return gap_[c] == S(0) && v_[c] - v_[c + 1] <= S(0); }
+
+  /// The collisions of the clusters of the contacts in \p closing; false when a solve fails.
+  bool collide(const std::vector<int>& closing) {
+    for (int c : closing) gap_[c] = S(0);
+    std::vector<bool> closes(static_cast<std::size_t>(n_ - 1), false);
+    for (int c : closing) closes[c] = true;
+    for (int c = 0; c + 1 < n_;) {
+      if (!touching(c)) {
+        ++c;
+        continue;
+      }
+      int last = c;  // the run of touching contacts c … last
+      bool any = false;
+      for (; last + 1 < n_ && touching(last); ++last) any = any || closes[last];
+      if (any && !collide_cluster(c, last, closes)) return false;
+      c = last + 1;
+    }
+    settle();
+    return true;
+  }
+
+  /// The collision of bodies p … q (contacts p … q−1 touching).
+  bool collide_cluster(int p, int q, const std::vector<bool>& closes) {
+    using T = ScalarTraits<S>;
+    Problem<S> sub;
+    sub.n = q - p + 1;
+    sub.fixed_bottom = fixed_ && q == n_ - 1;
+    sub.in_range = full_.in_range;
+    for (int i = p; i <= q; ++i) {
+      sub.mass.push_back(full_.mass[i]);
+      sub.u.push_back(v_[i]);
+    }
+    for (const Entry<S>& e : full_.entries)
+      if (std::min(e.i, e.k) >= p && std::max(e.j, e.l) <= q) sub.entries.push_back({e.i - p, e.j - p, e.k - p, e.l - p, e.value});
+    const Solution<S> sol = solve_collision(sub);
+    DropEvent ev;
+    ev.time = T::to_double(t_);
+    for (int c = p; c < q; ++c)
+      if (closes[c]) ev.contacts.push_back(Pair{c + 1, c + 2}.name());
+    ev.first_body = p + 1;
+    ev.last_body = q + 1;
+    for (int i = 0; i < n_; ++i) {
+      ev.velocities_before.push_back(T::to_double(v_[i]));
+      ev.heights.push_back(T::to_double(z_[i]));
+    }
+    ev.kinetic_energy_before = kinetic();
+    if (sol.status != Status::Success) {
+      r_.events.push_back(ev);
+      return false;
+    }
+    S momentum_before = S(0), momentum_after = S(0), speed = S(0);
+    for (int i = p; i <= q; ++i) {
+      const bool finite = !(fixed_ && i == n_ - 1);
+      if (finite) momentum_before += full_.mass[i] * v_[i];
+      speed = std::max({speed, S(std::abs(v_[i])), S(std::abs(sol.velocities_after[i - p]))});
+      if (finite) v_[i] = sol.velocities_after[i - p];
+    }
+    // Contacts that stay closed move as one: the group's velocity (its momentum over its mass, 0 on the obstacle).
+    ContactSet whole(n_);
+    for (int c = p; c < q; ++c) {
+      const bool closed = sol.closed.closed(c - p) || std::abs(S(v_[c] - v_[c + 1])) <= S(drop_closed_ulps) * u_ * speed;
+      whole.set_closed(c, closed);
+    }
+    for (int a = p; a <= q;) {
+      int b = a;
+      while (b < q && whole.closed(b)) ++b;
+      if (b > a) {
+        const bool on_obstacle = fixed_ && b == n_ - 1;
+        S m = S(0), mv = S(0);
+        for (int i = a; i <= b; ++i)
+          if (!(fixed_ && i == n_ - 1)) m += full_.mass[i], mv += full_.mass[i] * v_[i];
+        const S common = on_obstacle ? S(0) : S(mv / m);
+        for (int i = a; i <= b; ++i)
+          if (!(fixed_ && i == n_ - 1)) v_[i] = common;
+      }
+      a = b + 1;
+    }
+    const std::vector<bool> was_supported = supported_;
+    for (int i = p; i <= q; ++i) {
+      if (!(fixed_ && i == n_ - 1)) momentum_after += full_.mass[i] * v_[i];
+      last_t_[i] = t_;
+      last_z_[i] = z_[i];
+      last_v_[i] = v_[i];
+      if (!(fixed_ && i == n_ - 1)) supported_[i] = false;
+    }
+    for (int c = p; c < q; ++c)
+      if (whole.closed(c)) ev.closed.push_back(Pair{c + 1, c + 2}.name());
+    const Vocabulary& paper = Vocabulary::paper();
+    if (sub.n == n_ && n_ == paper.bodies()) {
+      ev.case_name = paper.case_name(whole);
+    } else {
+      std::string set;
+      for (const auto& c : ev.closed) set += (set.empty() ? "" : ",") + c;
+      ev.case_name = "{" + set + "}";
+    }
+    for (int i = 0; i < n_; ++i) ev.velocities_after.push_back(T::to_double(v_[i]));
+    ev.kinetic_energy_after = kinetic();
+    ev.momentum_before = T::to_double(momentum_before);
+    ev.momentum_after = T::to_double(momentum_after);
+    r_.events.push_back(ev);
+    // The bodies this collision leaves at rest on the obstacle (directly or on
+    // bodies resting there) that were not resting before: each is said once.
+    if (fixed_ && q == n_ - 1) {
+      for (int i = q - 1; i >= p && whole.closed(i) && v_[i] == S(0); --i)
+        if (!was_supported[i]) r_.rest.push_back({i + 1, ev.time, false, 0});
+    }
+    return true;
+  }
+
+  S kinetic_energy() const {
+    S e = S(0);
+    for (int i = 0; i < n_; ++i)
+      if (!(fixed_ && i == n_ - 1)) e += full_.mass[i] * v_[i] * v_[i] / 2;
+    return e;
+  }
+  double kinetic() const { return ScalarTraits<S>::to_double(kinetic_energy()); }
+
+  /// After a bounce of the lowest free body b on the fixed obstacle, or on
+  /// the bodies at rest on it (every body below b held): when nothing else
+  /// can touch it before its bounces accumulate, it rests there at the sum
+  /// of the geometric series (and no later than \p until when that is >= 0).
+  void accumulate(S until) {
+    if (!fixed_ || r_.events.empty()) return;
+    const DropEvent& ev = r_.events.back();
+    int b = n_ - 2;
+    while (b >= 0 && supported_[b]) --b;
+    if (b < 0 || ev.first_body != b + 1 || ev.last_body != n_ || ev.time != ScalarTraits<S>::to_double(t_)) return;
+    const S before = -S(ev.velocities_before[b]), after = v_[b];
+    if (!(after > S(0)) || !(before > S(0))) return;
+    const S e = after / before;
+    if (!(e < S(1))) return;
+    // Bounces are followed one by one down to drop_rest_fraction of the release height.
+    if (S(after * after / (2 * g_)) > S(drop_rest_fraction) * height_scale_) return;
+    const S span = (2 * after / g_) / (1 - e);
+    if (until >= S(0) && t_ + span > until) return;
+    // The top body's apex comes first: the run ends there.
+    if (b != 0 && !supported_[0] && v_[0] > S(0) && S(v_[0] / g_) < span && until < S(0)) return;
+    if (b == 0 && until < S(0)) return;
+    // Nothing above may close before: the contacts above b in free flight,
+    // and body b−1 stays over the highest arc of b (a concave flight's
+    // minimum over an interval is at one of its ends).
+    for (int c = 0; c + 1 < b; ++c)
+      if (closing_time(c) <= span) return;
+    if (b >= 1) {
+      const S apex = after * after / (2 * g_);
+      const S w = v_[b - 1];
+      const S at_end = gap_[b - 1] + w * span - g_ * span * span / 2;
+      if (!(gap_[b - 1] > apex) || !(at_end > apex)) return;
+    }
+    const double e_double = ScalarTraits<S>::to_double(e);
+    v_[b] = S(0);
+    z_[b] = z_[b + 1];
+    gap_[b] = S(0);
+    supported_[b] = true;
+    advance(span);
+    last_t_[b] = t_;
+    last_z_[b] = z_[b];
+    last_v_[b] = S(0);
+    r_.rest.push_back({b + 1, ScalarTraits<S>::to_double(t_), true, e_double});
+  }
+
+  void end(const char* why) {
+    using T = ScalarTraits<S>;
+    r_.end = why;
+    r_.end_time = T::to_double(t_);
+    r_.near_ties = near_ties_;
+    for (int i = 0; i < n_; ++i) {
+      if (fixed_ && i == n_ - 1) continue;
+      const S up = last_v_[i] > S(0) ? last_v_[i] : S(0);
+      r_.apexes.push_back({i + 1, T::to_double(S(last_z_[i] + up * up / (2 * g_))), T::to_double(S(last_t_[i] + up / g_))});
+    }
+    const double h0 = r_.release_heights[0];
+    r_.top_apex_ratio = r_.apexes.empty() ? 0 : h0 > 0 ? r_.apexes[0].height / h0 : std::numeric_limits<double>::infinity();
+  }
+
+  const Scene& scene_;
+  Problem<S> full_;
+  int n_;
+  bool fixed_;
+  S g_, u_, t_ = S(0), time_scale_ = S(1), height_scale_ = S(1);
+  std::vector<S> z_, v_, gap_;
+  std::vector<bool> supported_;
+  std::vector<S> last_t_, last_z_, last_v_;  ///< each body's state after its last collision (or release)
+  int near_ties_ = 0;
+  DropResult r_;
+};
+
+}  // namespace
+
+DropResult drop(const Scene& scene, const Precision& precision) {
+  if (!scene.drop.requested) throw InputError(scene.origin + ": has no [drop] table: superball drop follows a scene's [drop]");
+  if (scene.drop.distant)
+    throw std::invalid_argument("drop(): " + scene.origin +
+                                ": drop.distant = true (every pair of M in every collision) is not implemented yet; the drop follows the "
+                                "touching cluster (distant = false)");
+  if (precision.kind != Precision::Kind::Double && precision.kind != Precision::Kind::LongDouble)
+    throw std::invalid_argument("drop(): precision " + precision.name() +
+                                ": a drop runs in double or long-double (a floor impact's time is a square root, and the flights "
+                                "are not exact)");
+  // The checks of a scene (M positive semi-definite, masses), on the bodies at rest.
+  Scene still = scene;
+  still.drop_height.reset();
+  still.fall_speed.reset();
+  for (Body& b : still.bodies) b.velocity = Number::integer(0);
+  const ExactScene exact = ExactScene::from(still);
+  if (precision.kind == Precision::Kind::Double) return DropRun<double>(scene, exact, precision.name()).run();
+  return DropRun<long double>(scene, exact, precision.name()).run();
+}
+
+}  // namespace superball::numeric
