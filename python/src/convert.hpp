@@ -46,6 +46,8 @@ void between_tasks(const py::object& progress, const std::string& phase, std::si
 
 /// Register the functions of map.cpp on \p m.
 void register_map(py::module_& m);
+/// drop(): drop.cpp.
+void register_drop(py::module_& m);
 /// Register scene.cpp's construction from a structured value and the
 /// properties of a scene on \p m's class Scene.
 void register_scene(py::module_& m);

@@ -553,6 +553,7 @@ PYBIND11_MODULE(_superball, m) {
   m.def("explore", &explore, py::arg("options"), py::arg("all_patterns"), py::arg("seed"), py::arg("starts"), py::arg("evaluations"),
         py::arg("box_low"), py::arg("box_high"), py::arg("progress"), py::arg("checkpoint"));
   register_map(m);
+  register_drop(m);
   register_checkpoint(m);
   register_scene(m);
   m.def("thread_count", &numeric::thread_count, py::arg("requested"));

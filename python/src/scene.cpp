@@ -160,7 +160,8 @@ void register_scene(py::module_& m) {
       .def_property_readonly("fall_speed", [](const Scene& s) { return optional_number(s.fall_speed); })
       .def_property_readonly("drop_height", [](const Scene& s) { return optional_number(s.drop_height); })
       .def_property_readonly("g", [](const Scene& s) { return exact(s.g); })
-      .def_property_readonly("flight", [](const Scene& s) { return s.flight.requested; });
+      .def_property_readonly("flight", [](const Scene& s) { return s.flight.requested; })
+      .def_property_readonly("drop", [](const Scene& s) { return s.drop.requested; });
 }
 
 }  // namespace superball::python

@@ -52,6 +52,7 @@ __all__ = [
     "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "sweep",
     "SwitchPoint", "switch_points", "Condition", "Derivation", "derive", "derive_all", "audit", "verify", "explore",
     "DEFAULT_RTOL", "STATUSES", "map", "MapResult", "BoundaryPoint", "MapCurve", "MapAxis", "Overlay", "DerivedZero", "OverlayMatch",
+    "drop", "DropResult", "DropEvent", "DropApex", "DropRest",
 ]
 
 Error = _superball.Error
@@ -119,7 +120,7 @@ def _scene_number(value: Any) -> Any:
     return value
 
 
-_SCENE_KEYS = ("title", "fall_speed", "drop_height", "g", "bodies", "K", "alpha", "coupling", "flight")
+_SCENE_KEYS = ("title", "fall_speed", "drop_height", "g", "bodies", "K", "alpha", "coupling", "flight", "drop")
 
 
 def _coupling_value(c: Any) -> Any:
@@ -176,6 +177,13 @@ def _scene_value(d: Mapping[str, Any], what: str) -> Dict[str, Any]:
         v["flight"] = {k: _scene_number(x) for k, x in flight.items()}
     elif flight not in (None, False):
         v["flight"] = flight
+    drop = d.get("drop")
+    if drop is True:
+        v["drop"] = {}
+    elif isinstance(drop, Mapping):
+        v["drop"] = {k: _scene_number(x) for k, x in drop.items()}
+    elif drop not in (None, False):
+        v["drop"] = drop
     return v
 
 
@@ -187,7 +195,11 @@ class Scene:
     ``drop_height``.  M is given by its declared entries: ``K`` (diagonal,
     ``{"1-2": 7, …}``), ``alpha`` (the paper's α₁…α₇ for 4 bodies,
     ``{2: -100}``) and ``coupling`` (``[("1-3", "2-4", 3)]`` or
-    ``[{"pairs": ["1-3", "2-4"], "value": 3}]``).
+    ``[{"pairs": ["1-3", "2-4"], "value": 3}]``).  ``flight=True`` (or a dict
+    of ``[flight]``'s keys) asks for the flight after the collision;
+    ``drop=True`` (or a dict: ``until``, ``max_events``) for the whole drop
+    (:func:`drop`), the bodies released ``drop_height`` over the obstacle and
+    each ``{"mass": …, "gap": …}`` above the body below it.
 
     Numbers are read exactly as written: ints, ``Fraction``, strings
     (``"1/3"``, ``"5e6"``) and floats by their shortest decimal (``0.001`` is
@@ -204,12 +216,13 @@ class Scene:
     def __init__(self, bodies: Optional[Sequence[Any]] = None, *, title: Optional[str] = None, fall_speed: Optional[Number] = None,
                  drop_height: Optional[Number] = None, g: Optional[Number] = None, K: Optional[Mapping[str, Number]] = None,
                  alpha: Optional[Mapping[Union[int, str], Number]] = None, coupling: Optional[Sequence[Any]] = None,
-                 flight: Union[bool, Mapping[str, Number], None] = None, _scene: Any = None) -> None:
+                 flight: Union[bool, Mapping[str, Number], None] = None, drop: Union[bool, Mapping[str, Any], None] = None,
+                 _scene: Any = None) -> None:
         if _scene is not None:
             self._scene = _scene
             return
         d = {"title": title, "fall_speed": fall_speed, "drop_height": drop_height, "g": g, "bodies": bodies, "K": K,
-             "alpha": alpha, "coupling": coupling, "flight": flight}
+             "alpha": alpha, "coupling": coupling, "flight": flight, "drop": drop}
         origin = title if isinstance(title, str) and title else "<scene>"
         self._scene = _superball.Scene.from_value(_scene_value(d, "Scene"), origin)
 
@@ -312,6 +325,11 @@ class Scene:
     def flight(self) -> bool:
         """Whether the scene asks for the flight after the collision ([flight])."""
         return self._scene.flight
+
+    @property
+    def drop(self) -> bool:
+        """Whether the scene asks for the whole drop ([drop]: :func:`drop`)."""
+        return self._scene.drop
 
     def __repr__(self) -> str:
         fall = f"fall_speed={float(self.fall_speed):.6g}" if self.fall_speed is not None else (
@@ -961,3 +979,4 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int
 # Maps over two parameters (python/superball/_map.py)
 
 from ._map import BoundaryPoint, DerivedZero, MapAxis, MapCurve, MapResult, Overlay, OverlayMatch, map  # noqa: E402  (uses Scene, defined above)
+from ._drop import DropApex, DropEvent, DropRest, DropResult, drop  # noqa: E402  (uses Scene, defined above)

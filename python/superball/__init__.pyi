@@ -33,7 +33,7 @@ class Scene:
         K: Optional[Mapping[str, Number]] = ...,
         alpha: Optional[Mapping[Union[int, str], Number]] = ...,
         coupling: Optional[Sequence[Any]] = ...,
-        flight: Union[bool, Mapping[str, Number], None] = ...,
+        flight: Union[bool, Mapping[str, Number], None] = ..., drop: Union[bool, Mapping[str, Any], None] = ...,
     ) -> None: ...
     @classmethod
     def load(cls, path: Any) -> Scene: ...
@@ -69,6 +69,8 @@ class Scene:
     def keys(self) -> List[str]: ...
     @property
     def flight(self) -> bool: ...
+    @property
+    def drop(self) -> bool: ...
     def _repr_html_(self) -> str: ...
 
 class Result:
@@ -414,6 +416,58 @@ class MapResult:
     def shape(self) -> Tuple[int, int]: ...
     def plot(self, ax: Any = ..., curves: bool = ..., legend: bool = ...) -> Any: ...
     def _repr_html_(self) -> str: ...
+
+@dataclass(frozen=True)
+class DropEvent:
+    time: float
+    contacts: Tuple[str, ...]
+    bodies: Tuple[int, int]
+    case: str
+    closed: Tuple[str, ...]
+    heights: npt.NDArray[np.float64]
+    velocities_before: npt.NDArray[np.float64]
+    velocities_after: npt.NDArray[np.float64]
+    kinetic_energy_before: float
+    kinetic_energy_after: float
+    momentum_before: float
+    momentum_after: float
+
+@dataclass(frozen=True)
+class DropApex:
+    body: int
+    height: float
+    time: float
+
+@dataclass(frozen=True)
+class DropRest:
+    body: int
+    time: float
+    accumulation: bool
+    ratio: float
+
+class DropResult:
+    scene: str
+    title: str
+    precision: str
+    g: float
+    fixed_obstacle: bool
+    masses: npt.NDArray[np.float64]
+    release_heights: npt.NDArray[np.float64]
+    release_velocities: npt.NDArray[np.float64]
+    events: List[DropEvent]
+    times: npt.NDArray[np.float64]
+    velocities_after: npt.NDArray[np.float64]
+    kinetic_energy_after: npt.NDArray[np.float64]
+    apexes: List[DropApex]
+    rest: List[DropRest]
+    end: str
+    end_time: float
+    top_apex_ratio: float
+    near_ties: int
+    def to_dict(self) -> Dict[str, Any]: ...
+    def _repr_html_(self) -> str: ...
+
+def drop(scene: Scene, precision: str = ...) -> DropResult: ...
 
 def map(scene: Scene, x: Union[str, Tuple[str, Number, Number, int]], y: Union[str, Tuple[str, Number, Number, int]],
         precision: str = ..., threads: Optional[int] = ..., progress: Any = ...,

@@ -18,6 +18,8 @@ AUDIT = ("audit",)
 EXPLORE = ("explore", "--case", "1", "--alphas", "2")
 SOLVE = ("solve", PAPER)
 SWEEP = ("sweep", PAPER, "--vary", "K.3-4=0:20:5")
+TWO_BALLS = PAPER.parent / "drop-two-balls.toml"
+DROP = ("drop", TWO_BALLS)
 
 
 def scene():
@@ -115,6 +117,11 @@ CASES = [
      lambda: superball.switch_points(scene(), "alpha.2", superball.linspace(-110, 0, 12)), None),
     (("sweep", PAPER, "--vary", "alpha.2=-110:0:12", "--switch-points"),
      lambda: superball.sweep(scene(), "alpha.2", superball.linspace(-110, 0, 12)).switch_points(), None),
+    # the drop's arithmetic: numeric::drop(), Precision::parse()
+    (DROP + ("--precision", "exact"), lambda: superball.drop(superball.Scene.load(TWO_BALLS), "exact"), None),
+    (DROP + ("--precision", "digits:30"), lambda: superball.drop(superball.Scene.load(TWO_BALLS), "digits:30"), None),
+    (DROP + ("--precision", "quad"), lambda: superball.drop(superball.Scene.load(TWO_BALLS), "quad"), None),
+    (("drop", PAPER), lambda: superball.drop(scene()), None),
 ]
 
 

@@ -1,0 +1,74 @@
+"""drop(): the command's numbers (superball drop --json) and text, the physics of a drop, scenes with gaps from
+keywords, and bad input as the command says it."""
+import math
+
+import numpy as np
+import pytest
+
+import superball
+from conftest import PAPER, SCENES, cli_json, run_cli
+
+TWO = SCENES / "drop-two-balls.toml"
+PAPER_STACK = SCENES / "drop-paper-4.4.toml"
+
+
+@pytest.mark.parametrize("path", [TWO, PAPER_STACK])
+def test_the_command_s_json_and_text(path):
+    r = superball.drop(superball.Scene.load(path))
+    j = cli_json("drop", path, "--json")
+    assert r.to_dict() == j
+    assert str(r) == run_cli("drop", path)[1]
+    assert len(r.events) == len(j["events"]) > 0 and r.velocities_after.shape == (len(r.events), len(j["masses"]))
+    for e, c in zip(r.events, j["events"]):
+        assert e.time == c["time"] and list(e.velocities_after) == c["velocities_after"] and e.case == c["case"]
+    np.testing.assert_array_equal(r.times, [c["time"] for c in j["events"]])
+    assert (r.end, r.top_apex_ratio) == (j["end"], j["top_apex_ratio"])
+    assert "DropResult" in repr(r) and len(repr(r)) < 300 and "<pre>" in r._repr_html_()
+
+
+def test_physics_of_the_two_ball_drop():
+    r = superball.drop(superball.Scene.load(TWO))
+    assert np.all(np.diff(r.times) >= 0)
+    for e in r.events:
+        assert e.kinetic_energy_after <= e.kinetic_energy_before * (1 + 1e-12)
+        if e.bodies[1] < len(r.masses):  # the fixed floor not in the cluster: momentum conserved
+            assert e.momentum_after == pytest.approx(e.momentum_before, rel=1e-12, abs=1e-15)
+    assert 8.9 < r.top_apex_ratio < 9.0  # the light ball over the heavy one: nearly 9 h
+    assert r.apexes[0].height == pytest.approx(r.top_apex_ratio * r.release_heights[0], rel=1e-12)
+
+
+def test_a_ball_on_the_floor_from_keywords_rests_at_the_sum_of_its_bounces():
+    s = superball.Scene(bodies=[1, "inf"], drop_height=1, K={"1-2": 9}, drop={"until": 10})
+    assert s.drop and not superball.Scene(bodies=[1, "inf"], drop_height=1, K={"1-2": 9}).drop
+    r = superball.drop(s)
+    e, h, g = 0.8, 1.0, 9.81  # e = (K - m)/(K + m)
+    assert [x.body for x in r.rest] == [1] and r.rest[0].accumulation and r.rest[0].ratio == pytest.approx(e, rel=1e-12)
+    assert r.rest[0].time == pytest.approx(math.sqrt(2 * h / g) * (1 + e) / (1 - e), rel=1e-9)
+    for k, v in enumerate(r.velocities_after[:, 0]):
+        assert v * v / (2 * g) == pytest.approx(e ** (2 * (k + 1)) * h, rel=1e-9)
+    # The same scene with gaps from keywords is the file's.
+    two = superball.Scene(bodies=[{"mass": 0.001, "gap": 0.001}, 1, "inf"], drop_height=1, K={"1-2": 1e6, "2-3": 1e6}, drop=True)
+    assert superball.drop(two).to_dict()["events"] == superball.drop(superball.Scene.load(TWO)).to_dict()["events"]
+
+
+@pytest.mark.parametrize("precision", ["exact", "digits:20"])
+def test_arithmetics_a_drop_does_not_run_are_refused_as_the_command_does(precision):
+    with pytest.raises(superball.InputError) as e:
+        superball.drop(superball.Scene.load(TWO), precision)
+    code, _, err = run_cli("drop", TWO, "--precision", precision, check=False)
+    assert code == 2 and err == f"superball: {e.value}\n"
+
+
+def test_bad_scenes_and_types():
+    paper = superball.Scene.load(PAPER)
+    with pytest.raises(superball.InputError, match=r"has no \[drop\] table"):
+        superball.drop(paper)
+    for bad, message in (({"max_events": 0}, "drop.max_events: must be a whole number"), ({"until": -1}, "drop.until"),
+                         ({"when": 3}, "unknown key"), ({"distant": True}, "not implemented yet")):
+        with pytest.raises(superball.InputError, match=message):
+            superball.drop(superball.Scene(bodies=[1, "inf"], drop_height=1, K={"1-2": 9}, drop=bad))
+    with pytest.raises(superball.InputError, match="gap"):
+        superball.Scene(bodies=[{"mass": 1, "gap": -1}, 1, "inf"], drop_height=1, K={"1-2": 9, "2-3": 9}, drop=True)
+    for call in (lambda: superball.drop(str(TWO)), lambda: superball.drop(superball.Scene.load(TWO), 2)):
+        with pytest.raises(superball.InputError):
+            call()
