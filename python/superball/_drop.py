@@ -48,7 +48,7 @@ class DropApex:
 class DropRest:
     """Body ``body`` comes to rest on the fixed obstacle (or on bodies at rest
     there) at ``time`` (s): left at rest by a collision, or, when
-    ``accumulation``, at the sum of its bounces' geometric series of ratio ``ratio``."""
+    ``accumulation``, at the sum of its bounces' geometric series of ratio ``ratio`` (0 otherwise)."""
 
     body: int
     time: float
@@ -91,7 +91,7 @@ class DropResult:
                                              else np.zeros((0, n)))
         self.kinetic_energy_after: np.ndarray = np.array([e.kinetic_energy_after for e in self.events], dtype=float)
         self.apexes: List[DropApex] = [DropApex(a["body"], a["height"], a["time"]) for a in d["apexes"]]
-        self.rest: List[DropRest] = [DropRest(r["body"], r["time"], r["accumulation"], r["ratio"]) for r in d["rest"]]
+        self.rest: List[DropRest] = [DropRest(r["body"], r["time"], r["accumulation"], r.get("ratio", 0.0)) for r in d["rest"]]
         self.end: str = d["end"]
         self.end_time: float = d["end_time"]
         self.top_apex_ratio: float = d["top_apex_ratio"]

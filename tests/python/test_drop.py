@@ -32,7 +32,7 @@ def test_physics_of_the_two_ball_drop():
     for e in r.events:
         assert e.kinetic_energy_after <= e.kinetic_energy_before * (1 + 1e-12)
         if e.bodies[1] < len(r.masses):  # the fixed floor not in the cluster: momentum conserved
-            assert e.momentum_after == pytest.approx(e.momentum_before, rel=1e-12, abs=1e-15)
+            assert e.momentum_after == pytest.approx(e.momentum_before, rel=1e-9)
     assert 8.9 < r.top_apex_ratio < 9.0  # the light ball over the heavy one: nearly 9 h
     assert r.apexes[0].height == pytest.approx(r.top_apex_ratio * r.release_heights[0], rel=1e-12)
 

@@ -44,7 +44,7 @@ def test_keywords_and_dicts():
         superball.Scene.from_dict({})
     with pytest.raises(ValueError, match="^<scene>: body\\[1\\].mass: must be a number or a fraction string"):
         superball.Scene(bodies=[True, 1], fall_speed=1)
-    with pytest.raises(ValueError, match="^<scene>: body\\[1\\].speed: unknown key \\(expected one of: mass, velocity\\)"):
+    with pytest.raises(ValueError, match="^<scene>: body\\[1\\].speed: unknown key \\(expected one of: gap, mass, velocity\\)"):
         superball.Scene(bodies=[{"mass": 1, "speed": 2}, 1], fall_speed=1)
     with pytest.raises(ValueError, match="not positive semi-definite"):
         superball.solve(superball.Scene(bodies=[1, 2, 3, 4], fall_speed=1, K={"1-2": 1, "1-4": 1}, alpha={2: 5}))
