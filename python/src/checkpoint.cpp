@@ -9,15 +9,15 @@
 #include <utility>
 
 #include "convert.hpp"
+#include "module.hpp"
 #include "superball/cases/error.hpp"
+#include "superball/cases/scene_file.hpp"
 
 namespace superball::python {
 
 namespace py = pybind11;
 
-void run_kept(const std::string& folder, const distribute::RunIdentity& id, std::size_t count, std::uint64_t max_task_bytes,
-              const py::object& progress, const std::string& phase, std::size_t per, std::size_t items,
-              const distribute::Distribution::Task& task, const KeptDeliver& deliver) {
+distribute::Options kept_options(const std::string& folder) {
   distribute::Options options;
   options.checkpoint = folder;
   options.warn = [](const std::string& line) {  // what the command says on standard error
@@ -25,7 +25,21 @@ void run_kept(const std::string& folder, const distribute::RunIdentity& id, std:
     // Stack level 2: the caller of the module's function (sweep(), map(), verify() call the extension).
     if (PyErr_WarnEx(PyExc_UserWarning, printable(line).c_str(), 2) != 0) throw py::error_already_set();
   };
-  distribute::Distribution run(id, options, count, max_task_bytes);
+  return options;
+}
+
+SelectionRun selection_run(const py::dict& options) {
+  SelectionRun run;
+  for (const auto& [key, value] : options)
+    if (!value.is_none()) run.named["selection." + key.cast<std::string>()] = py::str(value).cast<std::string>();
+  if (const std::string scene = selection(options).scene; !scene.empty()) run.inputs["scene"] = write_scene(load_scene(scene));
+  return run;
+}
+
+void run_kept(const std::string& folder, const distribute::RunIdentity& id, std::size_t count, std::uint64_t max_task_bytes,
+              const py::object& progress, const std::string& phase, std::size_t per, std::size_t items,
+              const distribute::Distribution::Task& task, const KeptDeliver& deliver) {
+  distribute::Distribution run(id, kept_options(folder), count, max_task_bytes);
   std::size_t done = count - run.todo().size();
   auto between = [&] { between_tasks(progress, phase, done == count ? items : std::min(done * per, items), items); };
   between();

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,21 @@ namespace superball::python {
 /// Takes task k's result and where it came from (Distribution::origin(),
 /// to name it in a message when it does not read back).
 using KeptDeliver = std::function<void(std::size_t k, std::string&& text, const std::string& origin)>;
+
+/// The options of a checkpoint \p folder kept from Python: a damaged task
+/// file is said through warnings.warn (a UserWarning at the caller's line,
+/// with the command's text), the GIL taken for it.
+distribute::Options kept_options(const std::string& folder);
+
+/// The values of a run on a selection of cases (verify(), explore(),
+/// derive_all() with a checkpoint): each keyword of the selection \p options
+/// given (not None) as "selection.KEY", and the content of its scene file
+/// (write_scene(), so its spelling does not count) as the input "scene".
+/// The caller adds its own options to `named`, then typed_identity().
+struct SelectionRun {
+  std::map<std::string, std::string> named, inputs;
+};
+SelectionRun selection_run(const pybind11::dict& options);
 
 /// Runs tasks 0 … count−1 of the run \p id kept in the folder \p folder (a
 /// folder of another run refused, a damaged task file said through

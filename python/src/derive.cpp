@@ -17,9 +17,9 @@
 #include <utility>
 #include <vector>
 
+#include "checkpoint.hpp"
 #include "convert.hpp"
 #include "module.hpp"
-#include "superball/cases/scene_file.hpp"
 #include "superball/distribute/distribute.hpp"
 #include "superball/cases/error.hpp"
 #include "superball/numeric/memory.hpp"
@@ -81,19 +81,10 @@ void derive_kept(const std::string& folder, const py::dict& options, const prese
                  const std::function<std::string(std::size_t)>& task,
                  const std::function<void(std::size_t, std::string&&, const std::string& origin)>& deliver,
                  const std::function<void(std::size_t, std::size_t)>& progress, const symbolic::Workers::Interrupt& interrupted) {
-  std::map<std::string, std::string> named, inputs;
-  for (const auto& [key, value] : options)
-    if (!value.is_none()) named["selection." + key.cast<std::string>()] = py::str(value).cast<std::string>();
-  if (const std::string scene = selection(options).scene; !scene.empty()) inputs["scene"] = write_scene(load_scene(scene));
-  named["expanded"] = expanded ? "true" : "false";
-  distribute::Options o;
-  o.checkpoint = folder;
-  o.warn = [](const std::string& line) {  // what the command says on standard error
-    py::gil_scoped_acquire gil;
-    if (PyErr_WarnEx(PyExc_UserWarning, printable(line).c_str(), 2) != 0) throw py::error_already_set();
-  };
+  SelectionRun id = selection_run(options);
+  id.named["expanded"] = expanded ? "true" : "false";
   const std::size_t count = sel.cases.size();
-  distribute::Distribution run(distribute::typed_identity("derive", named, inputs), o, count);
+  distribute::Distribution run(distribute::typed_identity("derive", id.named, id.inputs), kept_options(folder), count);
   std::vector<bool> computed(count, false);
   for (std::size_t k : run.todo()) computed[k] = true;
   std::size_t done = count - run.todo().size();

@@ -297,10 +297,7 @@ std::vector<py::tuple> verify_cases(const py::dict& options, const std::vector<s
     out.push_back(py::make_tuple(to_python(present::to_json(v)), present::to_text(v), v.exact_agrees()));
   }
   if (!checkpoint.empty()) {  // the run: the selection as given, the scene's content, the options of the verification
-    std::map<std::string, std::string> named, inputs;
-    for (const auto& [key, value] : options)
-      if (!value.is_none()) named["selection." + key.cast<std::string>()] = py::str(value).cast<std::string>();
-    if (!chosen.scene.empty()) inputs["scene"] = write_scene(load_scene(chosen.scene));
+    auto [named, inputs] = selection_run(options);
     for (const cln::cl_RA& e : o.epsilons) named["epsilons"] += (named["epsilons"].empty() ? "" : ",") + verify::epsilon_name(e);
     named["samples"] = std::to_string(samples), named["boundary-pairs"] = std::to_string(boundary_pairs), named["seed"] = std::to_string(seed);
     run_kept(checkpoint, distribute::typed_identity("verify", named, inputs), sel.cases.size(), distribute::kMaxTaskBytes, progress, "cases", 1,
@@ -408,10 +405,7 @@ std::vector<py::tuple> explore(const py::dict& options, bool all_patterns, std::
     return out;
   }
   // The run: the selection as given, the scene's content, the options of the search.
-  std::map<std::string, std::string> named, inputs;
-  for (const auto& [key, value] : options)
-    if (!value.is_none()) named["selection." + key.cast<std::string>()] = py::str(value).cast<std::string>();
-  if (!chosen.scene.empty()) inputs["scene"] = write_scene(load_scene(chosen.scene));
+  auto [named, inputs] = selection_run(options);
   named["all-patterns"] = all_patterns ? "true" : "false";
   named["seed"] = std::to_string(seed), named["starts"] = std::to_string(starts), named["evaluations"] = std::to_string(evaluations);
   named["box"] = numeric::to_string(box_low) + ":" + numeric::to_string(box_high);

@@ -69,7 +69,7 @@ class DropRun {
     }
     for (int i = 0; i < n_; ++i) {
       const auto& b = scene.bodies[static_cast<std::size_t>(i)];
-      if (!(fixed_ && i == n_ - 1) && b.velocity) v_[i] = T::from(parse_rational(b.velocity->fraction()), 0);
+      if (!obstacle(i) && b.velocity) v_[i] = T::from(parse_rational(b.velocity->fraction()), 0);
     }
     const S top = z_[0] - z_[n_ - 1];
     time_scale_ = top > S(0) ? S(std::sqrt(S(2) * top / g_)) : S(1);
@@ -81,7 +81,7 @@ class DropRun {
     r_.g = T::to_double(g_);
     r_.fixed_bottom = fixed_;
     for (int i = 0; i < n_; ++i) {
-      r_.masses.push_back(fixed_ && i == n_ - 1 ? std::numeric_limits<double>::infinity() : T::to_double(full_.mass[i]));
+      r_.masses.push_back(obstacle(i) ? std::numeric_limits<double>::infinity() : T::to_double(full_.mass[i]));
       r_.release_heights.push_back(T::to_double(z_[i]));
       r_.release_velocities.push_back(T::to_double(v_[i]));
     }
@@ -123,6 +123,9 @@ class DropRun {
   }
 
  private:
+  /// Body \p i is the fixed obstacle (the bottom body of infinite mass): no velocity, momentum or energy of its own.
+  bool obstacle(int i) const { return fixed_ && i == n_ - 1; }
+
   S acceleration(int i) const { return supported_[i] ? S(0) : S(-g_); }
 
   /// Bodies at rest on the fixed obstacle (directly or on one another) are held by it.
@@ -205,7 +208,7 @@ class DropRun {
     using T = ScalarTraits<S>;
     Problem<S> sub;
     sub.n = q - p + 1;
-    sub.fixed_bottom = fixed_ && q == n_ - 1;
+    sub.fixed_bottom = obstacle(q);
     sub.in_range = full_.in_range;
     for (int i = p; i <= q; ++i) {
       sub.mass.push_back(full_.mass[i]);
@@ -231,7 +234,7 @@ class DropRun {
     }
     S momentum_before = S(0), momentum_after = S(0), speed = S(0);
     for (int i = p; i <= q; ++i) {
-      const bool finite = !(fixed_ && i == n_ - 1);
+      const bool finite = !obstacle(i);
       if (finite) momentum_before += full_.mass[i] * v_[i];
       speed = std::max({speed, S(std::abs(v_[i])), S(std::abs(sol.velocities_after[i - p]))});
       if (finite) v_[i] = sol.velocities_after[i - p];
@@ -246,23 +249,23 @@ class DropRun {
       int b = a;
       while (b < q && whole.closed(b)) ++b;
       if (b > a) {
-        const bool on_obstacle = fixed_ && b == n_ - 1;
+        const bool on_obstacle = obstacle(b);
         S m = S(0), mv = S(0);
         for (int i = a; i <= b; ++i)
-          if (!(fixed_ && i == n_ - 1)) m += full_.mass[i], mv += full_.mass[i] * v_[i];
+          if (!obstacle(i)) m += full_.mass[i], mv += full_.mass[i] * v_[i];
         const S common = on_obstacle ? S(0) : S(mv / m);
         for (int i = a; i <= b; ++i)
-          if (!(fixed_ && i == n_ - 1)) v_[i] = common;
+          if (!obstacle(i)) v_[i] = common;
       }
       a = b + 1;
     }
     const std::vector<bool> was_supported = supported_;
     for (int i = p; i <= q; ++i) {
-      if (!(fixed_ && i == n_ - 1)) momentum_after += full_.mass[i] * v_[i];
+      if (!obstacle(i)) momentum_after += full_.mass[i] * v_[i];
       last_t_[i] = t_;
       last_z_[i] = z_[i];
       last_v_[i] = v_[i];
-      if (!(fixed_ && i == n_ - 1)) supported_[i] = false;
+      if (!obstacle(i)) supported_[i] = false;
     }
     for (int c = p; c < q; ++c)
       if (whole.closed(c)) ev.closed.push_back(Pair{c + 1, c + 2}.name());
@@ -281,7 +284,7 @@ class DropRun {
     r_.events.push_back(ev);
     // The bodies this collision leaves at rest on the obstacle (directly or on
     // bodies resting there) that were not resting before: each is said once.
-    if (fixed_ && q == n_ - 1) {
+    if (obstacle(q)) {
       for (int i = q - 1; i >= p && whole.closed(i) && v_[i] == S(0); --i)
         if (!was_supported[i]) r_.rest.push_back({i + 1, ev.time, false, 0});
     }
@@ -291,7 +294,7 @@ class DropRun {
   S kinetic_energy() const {
     S e = S(0);
     for (int i = 0; i < n_; ++i)
-      if (!(fixed_ && i == n_ - 1)) e += full_.mass[i] * v_[i] * v_[i] / 2;
+      if (!obstacle(i)) e += full_.mass[i] * v_[i] * v_[i] / 2;
     return e;
   }
   double kinetic() const { return ScalarTraits<S>::to_double(kinetic_energy()); }
@@ -346,7 +349,7 @@ class DropRun {
     r_.end_time = T::to_double(t_);
     r_.near_ties = near_ties_;
     for (int i = 0; i < n_; ++i) {
-      if (fixed_ && i == n_ - 1) continue;
+      if (obstacle(i)) continue;
       const S up = last_v_[i] > S(0) ? last_v_[i] : S(0);
       r_.apexes.push_back({i + 1, T::to_double(S(last_z_[i] + up * up / (2 * g_))), T::to_double(S(last_t_[i] + up / g_))});
     }
