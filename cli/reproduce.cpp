@@ -656,7 +656,7 @@ void prepare_folder(const std::string& out) {
 }  // namespace
 
 void add_reproduce(CLI::App& app, Action& action) {
-  auto o = std::make_shared<Run>(Run{default_scenes(), "report"});
+  auto o = std::make_shared<Run>(Run{default_scenes(), "report", {}});
   CLI::App* cmd = app.add_subcommand("reproduce", "Recompute the paper's numbers and figures and write a report");
   cmd->footer(
       "Writes OUT/report.md, OUT/report.tex and the figures (PNG and SVG, with their gnuplot data and scripts).\n"
