@@ -1,0 +1,89 @@
+#include "superball/numeric/drop_limit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "superball/cases/error.hpp"
+
+namespace superball::numeric {
+namespace {
+
+/// Whether every body moves up at least as fast as the one below it (within \p tolerance m/s).
+bool separating(const std::vector<double>& v, double tolerance) {
+  for (std::size_t i = 0; i + 1 < v.size(); ++i)
+    if (v[i] - v[i + 1] < -tolerance) return false;
+  return true;
+}
+
+/// \p scene with every body's gap divided by 10^k, exactly (the gap's fraction with k more zeros under it); every gap 0 for k < 0.
+Scene scaled_gaps(const Scene& scene, int k) {
+  Scene out = scene;
+  for (Body& b : out.bodies) {
+    if (!b.gap) continue;
+    b.gap = k < 0 ? Number::integer(0) : Number::parse(b.gap->numerator + "/" + b.gap->denominator + std::string(static_cast<std::size_t>(k), '0'));
+  }
+  return out;
+}
+
+}  // namespace
+
+DropCascade first_cascade(const DropResult& drop, double speed) {
+  DropCascade c;
+  if (drop.events.empty()) return c;
+  const double tolerance = drop_cascade_tolerance * speed;
+  for (const DropEvent& e : drop.events) {
+    ++c.events;
+    c.collisions.push_back(std::to_string(e.first_body) + "-" + std::to_string(e.last_body) + " " + e.case_name);
+    c.velocities = e.velocities_after;
+    c.duration = e.time - drop.events.front().time;
+    if (separating(e.velocities_after, tolerance)) {
+      c.complete = true;
+      break;
+    }
+  }
+  return c;
+}
+
+void GapLimitOptions::check() const {
+  if (decades < 1 || decades > max_decades)
+    throw std::invalid_argument("GapLimitOptions::check(): decades must be a whole number from 1 to " + std::to_string(max_decades) +
+                                ", got " + std::to_string(decades));
+}
+
+GapLimit gaps_to_zero(const Scene& scene, const Precision& precision, const GapLimitOptions& options) {
+  options.check();
+  if (std::none_of(scene.bodies.begin(), scene.bodies.end(), [](const Body& b) { return b.gap && !b.gap->is_zero(); }))
+    throw InputError(scene.origin + ": no body has a gap > 0: its drop is the simultaneous collision already");
+  GapLimit limit;
+  limit.simultaneous.scale = 0;
+  limit.simultaneous.drop = drop(scaled_gaps(scene, -1), precision);
+  const DropResult& sim = limit.simultaneous.drop;
+  if (!sim.events.empty()) {
+    const DropEvent& first = sim.events.front();
+    for (int i = first.first_body - 1; i < first.last_body; ++i)
+      if (!std::isinf(sim.masses[static_cast<std::size_t>(i)]))
+        limit.landing_speed = std::max(limit.landing_speed, std::fabs(first.velocities_before[static_cast<std::size_t>(i)]));
+  }
+  const double speed = limit.landing_speed > 0 ? limit.landing_speed : 1;
+  limit.simultaneous.cascade = first_cascade(sim, speed);
+  const std::vector<double>& reference = limit.simultaneous.cascade.velocities;
+  for (int k = 0; k <= options.decades; ++k) {
+    GapLimitStep step;
+    step.scale = std::pow(10.0, -k);
+    step.drop = drop(scaled_gaps(scene, k), precision);
+    step.cascade = first_cascade(step.drop, speed);
+    if (step.cascade.velocities.size() == reference.size()) {
+      for (std::size_t i = 0; i < reference.size(); ++i)
+        if (!std::isinf(sim.masses[i])) step.deviation = std::max(step.deviation, std::fabs(step.cascade.velocities[i] - reference[i]) / speed);
+    } else {
+      step.deviation = std::numeric_limits<double>::infinity();  // one of the two drops had no collision
+    }
+    limit.steps.push_back(std::move(step));
+  }
+  const GapLimitStep& last = limit.steps.back();
+  limit.converges = last.cascade.complete && limit.simultaneous.cascade.complete && last.deviation <= drop_limit_tolerance;
+  return limit;
+}
+
+}  // namespace superball::numeric
