@@ -48,6 +48,8 @@ void between_tasks(const py::object& progress, const std::string& phase, std::si
 void register_map(py::module_& m);
 /// drop(): drop.cpp.
 void register_drop(py::module_& m);
+/// gaps_to_zero(): a drop as its gaps go to 0 against the simultaneous collision.
+void register_gap_limit(py::module_& m);
 /// Register scene.cpp's construction from a structured value and the
 /// properties of a scene on \p m's class Scene.
 void register_scene(py::module_& m);

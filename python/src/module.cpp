@@ -548,6 +548,7 @@ PYBIND11_MODULE(_superball, m) {
         py::arg("box_low"), py::arg("box_high"), py::arg("progress"), py::arg("checkpoint"));
   register_map(m);
   register_drop(m);
+  register_gap_limit(m);
   register_checkpoint(m);
   register_scene(m);
   m.def("thread_count", &numeric::thread_count, py::arg("requested"));

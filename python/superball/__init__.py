@@ -52,7 +52,7 @@ __all__ = [
     "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "sweep",
     "SwitchPoint", "switch_points", "Condition", "Derivation", "derive", "derive_all", "audit", "verify", "explore",
     "DEFAULT_RTOL", "STATUSES", "map", "MapResult", "BoundaryPoint", "MapCurve", "MapAxis", "Overlay", "DerivedZero", "OverlayMatch",
-    "drop", "DropResult", "DropEvent", "DropApex", "DropRest",
+    "drop", "DropResult", "DropEvent", "DropApex", "DropRest", "gaps_to_zero", "GapLimit", "GapLimitStep",
 ]
 
 Error = _superball.Error
@@ -980,3 +980,4 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int
 
 from ._map import BoundaryPoint, DerivedZero, MapAxis, MapCurve, MapResult, Overlay, OverlayMatch, map  # noqa: E402  (uses Scene, defined above)
 from ._drop import DropApex, DropEvent, DropRest, DropResult, drop  # noqa: E402  (uses Scene, defined above)
+from ._drop_limit import GapLimit, GapLimitStep, gaps_to_zero  # noqa: E402  (uses Scene, defined above)

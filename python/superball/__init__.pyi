@@ -469,6 +469,36 @@ class DropResult:
 
 def drop(scene: Scene, precision: str = ...) -> DropResult: ...
 
+@dataclass(frozen=True)
+class GapLimitStep:
+    scale: float
+    events: int
+    complete: bool
+    collisions: Tuple[str, ...]
+    velocities: npt.NDArray[np.float64]
+    duration: float
+    deviation: Optional[float]
+    drop_collisions: int
+    end: str
+    top_apex_ratio: Optional[float]
+
+class GapLimit:
+    scene: str
+    title: str
+    precision: str
+    landing_speed: float
+    tolerance: float
+    converges: bool
+    simultaneous: GapLimitStep
+    steps: List[GapLimitStep]
+    scales: npt.NDArray[np.float64]
+    velocities: npt.NDArray[np.float64]
+    deviations: npt.NDArray[np.float64]
+    def to_dict(self) -> Dict[str, Any]: ...
+    def _repr_html_(self) -> str: ...
+
+def gaps_to_zero(scene: Scene, decades: int = ..., precision: str = ...) -> GapLimit: ...
+
 def map(scene: Scene, x: Union[str, Tuple[str, Number, Number, int]], y: Union[str, Tuple[str, Number, Number, int]],
         precision: str = ..., threads: Optional[int] = ..., progress: Any = ...,
         checkpoint: Union[str, os.PathLike[str], None] = ..., overlay: bool = ...) -> MapResult: ...
