@@ -31,9 +31,10 @@ void add_drop(CLI::App& app, Action& action) {
   cmd->add_option("scene", o->scene, "Scene file (TOML) with a [drop] table")->required();
   cmd->add_option("--precision,-p", o->precision, "Arithmetic: double (default) or long-double")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON for programs instead of text");
-  cmd->add_flag("--gaps-to-zero", o->gaps_to_zero, "Compare the drops with the gaps shrunk by decades against the simultaneous collision");
+  CLI::Option* limit = cmd->add_flag("--gaps-to-zero", o->gaps_to_zero, "Compare the drops with the gaps shrunk by decades against the simultaneous collision");
   cmd->add_option("--decades", o->decades, "With --gaps-to-zero: the gaps go down to 1e-DECADES times the scene's (1 to 12)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(limit);
   cmd->callback([o, &action] {
     action = [o] {
       if (o->gaps_to_zero) {
