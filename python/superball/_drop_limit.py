@@ -3,7 +3,6 @@ collision (``superball drop --gaps-to-zero``)."""
 
 from __future__ import annotations
 
-import html as _html
 from dataclasses import dataclass
 from typing import Any, Dict, List, Optional, Tuple
 
@@ -11,6 +10,7 @@ import numpy as np
 
 from . import _superball
 from ._options import _int_option
+from ._report import _Report
 
 
 @dataclass(frozen=True)
@@ -43,7 +43,7 @@ def _step(d: Dict[str, Any]) -> GapLimitStep:
                         c["duration"], d["deviation"], d["collisions"], d["end"], d["top_apex_ratio"])
 
 
-class GapLimit:
+class GapLimit(_Report):
     """A drop as its gaps go to 0 (``superball drop --gaps-to-zero``).
 
     ``steps``: the gapped drops (:class:`GapLimitStep`, scale 1, 0.1, ...);
@@ -54,8 +54,7 @@ class GapLimit:
     ``str()`` is the command's text, ``to_dict()`` its ``--json``."""
 
     def __init__(self, d: Dict[str, Any]) -> None:
-        self._dict = {k: v for k, v in d.items() if k != "text"}
-        self._text: str = d["text"]
+        super().__init__(d)
         self.scene: str = d["scene"]
         self.title: str = d["title"]
         self.precision: str = d["precision"]
@@ -68,20 +67,10 @@ class GapLimit:
         self.velocities: np.ndarray = np.vstack([s.velocities for s in self.steps])
         self.deviations: np.ndarray = np.array([np.inf if s.deviation is None else s.deviation for s in self.steps], dtype=float)
 
-    def to_dict(self) -> Dict[str, Any]:
-        """The fields of ``superball drop --gaps-to-zero --json``."""
-        return dict(self._dict)
-
-    def __str__(self) -> str:
-        return self._text
-
     def __repr__(self) -> str:
         return (f"<superball.GapLimit {self.scene!r} ({self.precision}): {len(self.steps)} gapped drops, "
                 f"{'converge' if self.converges else 'do not converge'} to the simultaneous collision "
                 f"(deviation {self.deviations[-1]:.3g} a at gaps x {self.scales[-1]:.0e})>")
-
-    def _repr_html_(self) -> str:
-        return f"<pre>{_html.escape(self._text)}</pre>"
 
 
 def gaps_to_zero(scene: Any, decades: int = 8, precision: str = "double") -> GapLimit:
