@@ -428,9 +428,10 @@ void drop_gaps(const Run& run, Document& doc) {
   doc.table({"gaps", "first cascade (balls, case)", "U1+/a", "U2+/a", "U3+/a", "top apex / release height", "deviation / a"}, rows);
   doc.figure("drop-gaps", "Velocities of the three balls after the first cascade against the gap (points), and after the simultaneous "
                           "collision (dashed lines).");
+  const bool converges = limit.verdict == numeric::GapVerdict::Converges;
   doc.paragraph(std::string("The gapped drops converge (the cascades differ by about ten times less each decade) but ") +
-                (limit.converges ? "to the simultaneous collision." : "not to the simultaneous collision: ") +
-                (limit.converges ? std::string()
+                (converges ? "to the simultaneous collision." : "not to the simultaneous collision: ") +
+                (converges ? std::string()
                                  : "at 1 nm ball 1 leaves at " + decimal(limit.steps.back().cascade.velocities[0] / a, 4) +
                                        " a after " + std::to_string(limit.steps.back().cascade.events) +
                                        " binary collisions, against " + decimal(limit.simultaneous.cascade.velocities[0] / a, 4) +

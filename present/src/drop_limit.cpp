@@ -48,7 +48,7 @@ nlohmann::json to_json(const PresentedGapLimit& g) {
           {"precision", r.simultaneous.drop.precision},
           {"landing_speed", r.landing_speed},
           {"tolerance", numeric::drop_limit_tolerance},
-          {"converges", r.converges},
+          {"verdict", numeric::to_string(r.verdict)},
           {"simultaneous", step_json(r.simultaneous)},
           {"steps", steps}};
 }
@@ -79,10 +79,19 @@ std::string to_text(const PresentedGapLimit& g) {
   for (const auto& s : r.steps) row(s);
   row(r.simultaneous);
   const numeric::GapLimitStep& last = r.steps.back();
-  os << '\n'
-     << (r.converges ? "the gapped drops converge to the simultaneous collision" : "the gapped drops do NOT converge to the simultaneous collision")
-     << ": at gaps x " << scale_text(last.scale) << " the velocities after the cascade differ from it by " << number(last.deviation, 3)
-     << " a (tolerance " << number(numeric::drop_limit_tolerance) << " a)\n";
+  os << '\n';
+  if (r.verdict == numeric::GapVerdict::Undecided) {
+    const numeric::GapLimitStep* cut = &r.simultaneous;
+    for (const auto& s : r.steps)
+      if (!s.cascade.complete) cut = &s;
+    os << "undecided: the drop with gaps x " << scale_text(cut->scale) << " ended by " << cut->drop.end
+       << " before the bodies separated (the scene's [drop] until or max_events)\n";
+  } else {
+    os << (r.verdict == numeric::GapVerdict::Converges ? "the gapped drops converge to the simultaneous collision"
+                                                       : "the gapped drops do NOT converge to the simultaneous collision")
+       << ": at gaps x " << scale_text(last.scale) << " the velocities after the cascade differ from it by " << number(last.deviation, 3)
+       << " a (tolerance " << number(numeric::drop_limit_tolerance) << " a)\n";
+  }
   return os.str();
 }
 

@@ -488,7 +488,9 @@ class GapLimit:
     precision: str
     landing_speed: float
     tolerance: float
-    converges: bool
+    verdict: str
+    @property
+    def converges(self) -> bool: ...
     simultaneous: GapLimitStep
     steps: List[GapLimitStep]
     scales: npt.NDArray[np.float64]

@@ -49,8 +49,11 @@ class GapLimit(_Report):
     ``steps``: the gapped drops (:class:`GapLimitStep`, scale 1, 0.1, ...);
     ``simultaneous``: the drop with every gap 0; as arrays, ``scales`` (k,),
     ``velocities`` (k, n) after each cascade and ``deviations`` (k,);
-    ``landing_speed`` a (m/s); ``converges``: whether the smallest gaps'
-    cascade ends within ``tolerance`` a of the simultaneous collision.
+    ``landing_speed`` a (m/s); ``verdict``: ``"converges"`` when the smallest
+    gaps' cascade ends within ``tolerance`` a of the simultaneous collision,
+    ``"differs"`` when farther, ``"undecided"`` when a drop ended (the scene's
+    ``until`` or ``max_events``) before its first cascade did; ``converges``:
+    whether the verdict is ``"converges"``.
     ``str()`` is the command's text, ``to_dict()`` its ``--json``."""
 
     def __init__(self, d: Dict[str, Any]) -> None:
@@ -60,16 +63,20 @@ class GapLimit(_Report):
         self.precision: str = d["precision"]
         self.landing_speed: float = d["landing_speed"]
         self.tolerance: float = d["tolerance"]
-        self.converges: bool = d["converges"]
+        self.verdict: str = d["verdict"]
         self.simultaneous: GapLimitStep = _step(d["simultaneous"])
         self.steps: List[GapLimitStep] = [_step(s) for s in d["steps"]]
         self.scales: np.ndarray = np.array([s.scale for s in self.steps], dtype=float)
         self.velocities: np.ndarray = np.vstack([s.velocities for s in self.steps])
         self.deviations: np.ndarray = np.array([np.inf if s.deviation is None else s.deviation for s in self.steps], dtype=float)
 
+    @property
+    def converges(self) -> bool:
+        return self.verdict == "converges"
+
     def __repr__(self) -> str:
         return (f"<superball.GapLimit {self.scene!r} ({self.precision}): {len(self.steps)} gapped drops, "
-                f"{'converge' if self.converges else 'do not converge'} to the simultaneous collision "
+                f"verdict {self.verdict} against the simultaneous collision "
                 f"(deviation {self.deviations[-1]:.3g} a at gaps x {self.scales[-1]:.0e})>")
 
 

@@ -67,7 +67,7 @@ TEST(GapsToZero, TheCascadesConvergeAtTheRateOfTheGaps) {
   }
   for (const GapLimitStep& s : limit.steps) EXPECT_TRUE(s.cascade.complete);
   // ... and the limit is not the simultaneous collision: ball 1 leaves at 1.79 a after three binary collisions, 1.00 a after one collision of the stack.
-  EXPECT_FALSE(limit.converges);
+  EXPECT_EQ(limit.verdict, GapVerdict::Differs);
   EXPECT_GT(limit.steps.back().deviation, 0.5);
   EXPECT_EQ(limit.steps.back().cascade.events, 3);
   EXPECT_EQ(limit.simultaneous.cascade.collisions.at(0), "1-4 3.3");
@@ -92,7 +92,7 @@ TEST(GapsToZero, TwoBallsTendToTheSequenceOfBinaryImpactsNotToTheSimultaneousCol
   EXPECT_EQ(limit.simultaneous.drop.events.at(0).case_name, "{1-2}");
   EXPECT_NEAR(sim.velocities[0], sim.velocities[1], 1e-9 * a);
   EXPECT_NEAR(sim.velocities[0], a, 1e-5 * a);
-  EXPECT_FALSE(limit.converges);
+  EXPECT_EQ(limit.verdict, GapVerdict::Differs);
 }
 
 TEST(GapsToZero, PlasticContactsConvergeToTheSimultaneousCollision) {
@@ -101,7 +101,7 @@ TEST(GapsToZero, PlasticContactsConvergeToTheSimultaneousCollision) {
       "drop_height = 1\n[[body]]\nmass = 1\ngap = 0.001\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n"
       "[dissipation]\nK = { \"1-2\" = 0.5, \"2-3\" = 1 }\n[drop]\n");
   const GapLimit limit = gaps_to_zero(s, Precision::parse("long-double"), GapLimitOptions{3});
-  EXPECT_TRUE(limit.converges);
+  EXPECT_EQ(limit.verdict, GapVerdict::Converges);
   for (const GapLimitStep& st : limit.steps) EXPECT_LE(st.deviation, drop_limit_tolerance);
 }
 
@@ -120,6 +120,30 @@ TEST(GapsToZero, RefusesScenesWithoutGapsAndDecadesOutOfRange) {
   }
   EXPECT_THROW(gaps_to_zero(s, Precision::parse("exact")), std::invalid_argument);
   EXPECT_THROW(gaps_to_zero(stack(two_balls("9", "9")), Precision::parse("double")), InputError);  // no [drop]
+}
+
+TEST(GapsToZero, ADropEndedBeforeItsCascadeLeavesTheVerdictUndecided) {
+  const GapLimit limit = gaps_to_zero(stack(two_balls("1e6", "1e6") + "[drop]\nmax_events = 1\n"), Precision::parse("double"), GapLimitOptions{2});
+  EXPECT_EQ(limit.verdict, GapVerdict::Undecided);
+  for (const GapLimitStep& s : limit.steps) {
+    EXPECT_FALSE(s.cascade.complete);
+    EXPECT_TRUE(std::isinf(s.deviation));
+  }
+}
+
+TEST(GapsToZero, GapsTheArithmeticCannotTellFromContactAreRefusedWithTheDecadesThatCanBeTaken) {
+  // 1e-300 m resolves in double; 1e-308 m (eight decades down) joins the floor's collision as if it touched.
+  const Scene s = stack("drop_height = 1\n[[body]]\nmass = 0.001\ngap = 1e-300\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n"
+                        "[dissipation]\nK = { \"1-2\" = 1e6, \"2-3\" = 1e6 }\n[drop]\n");
+  EXPECT_EQ(gaps_to_zero(s, Precision::parse("double"), GapLimitOptions{7}).verdict, GapVerdict::Differs);
+  try {
+    gaps_to_zero(s, Precision::parse("double"), GapLimitOptions{12});
+    ADD_FAILURE() << "1e-312 m taken as a gap";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("t.toml: gaps x 1e-"), std::string::npos) << m;
+    EXPECT_NE(m.find("is below what double resolves: the contact collides as if it touched; take "), std::string::npos) << m;
+  }
 }
 
 }  // namespace

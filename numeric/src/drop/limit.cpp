@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "superball/cases/error.hpp"
@@ -26,7 +27,27 @@ Scene scaled_gaps(const Scene& scene, int k) {
   return out;
 }
 
+/// The first contact of the first collision of \p drop that had a gap > 0 at release in \p scene (0-based), or -1.
+int gapped_contact_in_first_collision(const Scene& scene, const DropResult& drop) {
+  if (drop.events.empty()) return -1;
+  const DropEvent& e = drop.events.front();
+  for (int c = e.first_body - 1; c + 1 < e.last_body; ++c) {
+    const auto& gap = scene.bodies[static_cast<std::size_t>(c)].gap;
+    if (c + 2 < scene.size() && gap && !gap->is_zero()) return c;  // (the lowest free body's distance to the obstacle is drop_height)
+  }
+  return -1;
+}
+
 }  // namespace
+
+const char* to_string(GapVerdict v) {
+  switch (v) {
+    case GapVerdict::Converges: return "converges";
+    case GapVerdict::Differs: return "differs";
+    case GapVerdict::Undecided: break;
+  }
+  return "undecided";
+}
 
 DropCascade first_cascade(const DropResult& drop, double speed) {
   DropCascade c;
@@ -71,18 +92,27 @@ GapLimit gaps_to_zero(const Scene& scene, const Precision& precision, const GapL
   for (int k = 0; k <= options.decades; ++k) {
     GapLimitStep step;
     step.scale = std::pow(10.0, -k);
-    step.drop = drop(scaled_gaps(scene, k), precision);
+    const Scene scaled = scaled_gaps(scene, k);
+    step.drop = drop(scaled, precision);
+    if (const int c = gapped_contact_in_first_collision(scaled, step.drop); c >= 0)
+      throw InputError(scene.origin + ": gaps x 1e-" + std::to_string(k) + ": the gap of contact " + std::to_string(c + 1) + "-" +
+                       std::to_string(c + 2) + " (" + scaled.bodies[static_cast<std::size_t>(c)].gap->text + " m) is below what " +
+                       precision.name() + " resolves: the contact collides as if it touched; " +
+                       (k == 0 ? std::string("widen the gaps") : "take " + std::to_string(k - 1) + " decades or fewer"));
     step.cascade = first_cascade(step.drop, speed);
-    if (step.cascade.velocities.size() == reference.size()) {
+    if (step.cascade.complete && limit.simultaneous.cascade.complete && step.cascade.velocities.size() == reference.size()) {
       for (std::size_t i = 0; i < reference.size(); ++i)
         if (!std::isinf(sim.masses[i])) step.deviation = std::max(step.deviation, std::fabs(step.cascade.velocities[i] - reference[i]) / speed);
     } else {
-      step.deviation = std::numeric_limits<double>::infinity();  // one of the two drops had no collision
+      step.deviation = std::numeric_limits<double>::infinity();  // a cascade that did not end, or a drop without collision
     }
     limit.steps.push_back(std::move(step));
   }
-  const GapLimitStep& last = limit.steps.back();
-  limit.converges = last.cascade.complete && limit.simultaneous.cascade.complete && last.deviation <= drop_limit_tolerance;
+  const bool complete = limit.simultaneous.cascade.complete &&
+                        std::all_of(limit.steps.begin(), limit.steps.end(), [](const GapLimitStep& s) { return s.cascade.complete; });
+  limit.verdict = !complete ? GapVerdict::Undecided
+                  : limit.steps.back().deviation <= drop_limit_tolerance ? GapVerdict::Converges
+                                                                          : GapVerdict::Differs;
   return limit;
 }
 

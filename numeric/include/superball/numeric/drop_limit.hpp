@@ -79,9 +79,20 @@ struct GapLimitStep {
   /// Its first cascade.
   DropCascade cascade;
   /// max_i |U_i − U_i(simultaneous)| over the free bodies after the
-  /// cascades, over the landing speed (0 for the simultaneous drop itself).
+  /// cascades, over the landing speed (0 for the simultaneous drop itself;
+  /// +∞ when a cascade is not complete).
   double deviation = 0;
 };
+
+/// What the series says of the limit of the gapped drops.
+enum class GapVerdict {
+  Converges,  ///< the smallest gaps' cascade ends within drop_limit_tolerance of the simultaneous collision
+  Differs,    ///< it ends farther
+  Undecided   ///< a drop ended (until, max_events) before its first cascade did
+};
+
+/// "converges", "differs", "undecided".
+const char* to_string(GapVerdict v);
 
 /// The series of gapped drops and the simultaneous one.
 struct GapLimit {
@@ -93,14 +104,17 @@ struct GapLimit {
   std::vector<GapLimitStep> steps;
   /// Whether the smallest gaps' cascade ends within drop_limit_tolerance of
   /// the simultaneous collision (deviation of the last step).
-  bool converges = false;
+  GapVerdict verdict = GapVerdict::Undecided;
 };
 
 /// The drops of \p scene (with a [drop] table and at least one gap > 0)
 /// with its gaps multiplied by 10⁻ᵏ, k = 0 … options.decades, and with
 /// every gap 0, in \p precision (double or long double, as drop()).
-/// Throws superball::InputError naming the scene when it has no gap, and
-/// what drop() and GapLimitOptions::check() throw.
+/// Throws superball::InputError naming the scene when it has no gap, or
+/// when the gaps of a step are below what \p precision resolves (its first
+/// collision joins a contact that had a gap, as if it touched: the message
+/// says how many decades can be taken), and what drop() and
+/// GapLimitOptions::check() throw.
 GapLimit gaps_to_zero(const Scene& scene, const Precision& precision, const GapLimitOptions& options = {});
 
 }  // namespace superball::numeric

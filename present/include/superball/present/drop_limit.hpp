@@ -30,7 +30,7 @@ struct PresentedGapLimit {
 PresentedGapLimit gap_limit_scene(const Scene& scene, const std::string& precision = "double", int decades = 8);
 
 /// Every field of \p g, for programs: `landing_speed`, `tolerance`,
-/// `converges`, `simultaneous` and `steps` (each: `scale`, `cascade` with
+/// `verdict` (converges, differs, undecided), `simultaneous` and `steps` (each: `scale`, `cascade` with
 /// `events`, `complete`, `collisions`, `velocities`, `duration`;
 /// `deviation`, `collisions`, `end`, `top_apex_ratio`).
 nlohmann::json to_json(const PresentedGapLimit& g);
