@@ -84,8 +84,7 @@ std::string to_text(const PresentedGapLimit& g) {
     const numeric::GapLimitStep* cut = &r.simultaneous;
     for (const auto& s : r.steps)
       if (!s.cascade.complete) cut = &s;
-    os << "undecided: the drop with gaps x " << scale_text(cut->scale) << " ended by " << cut->drop.end
-       << " before the bodies separated (the scene's [drop] until or max_events)\n";
+    os << "undecided: the drop with gaps x " << scale_text(cut->scale) << " ended (" << cut->drop.end << ") before its first cascade did\n";
   } else {
     os << (r.verdict == numeric::GapVerdict::Converges ? "the gapped drops converge to the simultaneous collision"
                                                        : "the gapped drops do NOT converge to the simultaneous collision")

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "superball/cases/error.hpp"
+#include "superball/numeric/scalar.hpp"
 
 namespace superball::numeric {
 namespace {
@@ -96,7 +97,7 @@ GapLimit gaps_to_zero(const Scene& scene, const Precision& precision, const GapL
     step.drop = drop(scaled, precision);
     if (const int c = gapped_contact_in_first_collision(scaled, step.drop); c >= 0)
       throw InputError(scene.origin + ": gaps x 1e-" + std::to_string(k) + ": the gap of contact " + std::to_string(c + 1) + "-" +
-                       std::to_string(c + 2) + " (" + scaled.bodies[static_cast<std::size_t>(c)].gap->text + " m) is below what " +
+                       std::to_string(c + 2) + " (" + to_string(scaled.bodies[static_cast<std::size_t>(c)].gap->approx(), 3) + " m) is below what " +
                        precision.name() + " resolves: the contact collides as if it touched; " +
                        (k == 0 ? std::string("widen the gaps") : "take " + std::to_string(k - 1) + " decades or fewer"));
     step.cascade = first_cascade(step.drop, speed);

@@ -88,7 +88,7 @@ struct GapLimitStep {
 enum class GapVerdict {
   Converges,  ///< the smallest gaps' cascade ends within drop_limit_tolerance of the simultaneous collision
   Differs,    ///< it ends farther
-  Undecided   ///< a drop ended (until, max_events) before its first cascade did
+  Undecided   ///< a drop ended (until, max_events, nothing more collides) before its first cascade did
 };
 
 /// "converges", "differs", "undecided".
