@@ -95,6 +95,35 @@ TEST(GapsToZero, TwoBallsTendToTheSequenceOfBinaryImpactsNotToTheSimultaneousCol
   EXPECT_EQ(limit.verdict, GapVerdict::Differs);
 }
 
+TEST(GapsToZero, NBallsTendToTwoToTheNMinusOneTimesTheLandingSpeed) {
+  // n balls, each 1000 times lighter than the one below, nearly elastic: the limit of the cascade is one binary impact per
+  // contact, bottom up, (its closed form to 1e-6 a), and the top ball's speed approaches (2^n - 1) a.
+  for (int n = 2; n <= 4; ++n) {
+    std::string text = "drop_height = 1\n";
+    std::vector<double> m;
+    for (int i = 0; i < n; ++i) {
+      m.push_back(std::pow(1e-3, n - 1 - i));
+      text += "[[body]]\nmass = 1e-" + std::to_string(3 * (n - 1 - i)) + "\n" + (i + 1 < n ? "gap = 0.001\n" : "");
+    }
+    text += "[[body]]\nmass = \"inf\"\n[dissipation]\nK = { ";
+    for (int i = 1; i <= n; ++i) text += (i > 1 ? ", " : "") + ("\"" + std::to_string(i) + "-" + std::to_string(i + 1) + "\" = 1e9");
+    text += " }\n[drop]\n";
+    const GapLimit limit = gaps_to_zero(stack(text), Precision::parse("double"), GapLimitOptions{6});
+    const double a = limit.landing_speed, k = 1e9;
+    std::vector<double> u(static_cast<std::size_t>(n), -a);
+    u[n - 1] = (k - m[n - 1]) / (k + m[n - 1]) * a;  // the bottom ball off the floor
+    for (int i = n - 2; i >= 0; --i) {  // then each ball meets the one below it, once
+      const double mu = m[i] * m[i + 1] / (m[i] + m[i + 1]), e = (k - mu) / (k + mu), p = m[i] * u[i] + m[i + 1] * u[i + 1], w = u[i + 1] - u[i];
+      u[i] = (p + m[i + 1] * e * w) / (m[i] + m[i + 1]);
+      u[i + 1] = (p - m[i] * e * w) / (m[i] + m[i + 1]);
+    }
+    const DropCascade& c = limit.steps.back().cascade;
+    ASSERT_EQ(c.events, n) << n << " balls";
+    for (int i = 0; i < n; ++i) EXPECT_NEAR(c.velocities[i], u[i], 1e-6 * a) << n << " balls, ball " << i + 1;
+    EXPECT_NEAR(c.velocities[0] / a, std::pow(2.0, n) - 1, 0.005 * (std::pow(2.0, n) - 1)) << n << " balls";
+  }
+}
+
 TEST(GapsToZero, PlasticContactsConvergeToTheSimultaneousCollision) {
   // K = m on the floor and K = mu between the balls: restitution 0, every body stops whatever the order.
   const Scene s = stack(
