@@ -1,14 +1,36 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "gnuplot.hpp"
 #include "superball/cases/scene_file.hpp"
 #include "superball/present/drop.hpp"
 
 namespace superball::cli {
+namespace {
+
+/// The files --plot DIR writes (check_outputs() checks DIR itself).
+const char* const kFigureFiles[] = {"trajectories.dat", "trajectories.gp", "trajectories.png", "trajectories.svg"};
+
+/// Every body's height against time (present::drop_trace()), the collisions and rests marked, as DIR/trajectories.*.
+void draw_drop(const present::PresentedDrop& d, const std::string& dir) {
+  const present::DropTrace trace = present::drop_trace(d.result);
+  Plot plot{"Height against time from the release (" + d.origin + ")", "time since the release (s)",
+            "height above the obstacle's release height (m)", false, false, "outside right top box opaque spacing 1.4", {}, {}};
+  const std::size_t n = trace.time.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool obstacle = d.result.fixed_bottom && i + 1 == n;
+    plot.series.push_back({obstacle ? "obstacle" : "body " + std::to_string(i + 1), trace.time[i], trace.height[i], false});
+  }
+  plot.series.push_back({"collisions", trace.collision_time, trace.collision_height, true});
+  if (!trace.rest_time.empty()) plot.series.push_back({"at rest", trace.rest_time, trace.rest_height, true});
+  draw(dir, "trajectories", plot);
+}
+
+}  // namespace
 
 void add_drop(CLI::App& app, Action& action) {
   struct Options {
-    std::string scene, precision = "double";
+    std::string scene, precision = "double", plot;
     bool json = false;
   };
   auto o = std::make_shared<Options>();
@@ -18,16 +40,24 @@ void add_drop(CLI::App& app, Action& action) {
       "each collision is solved by Fremond's law of the touching cluster, the flights in closed form.  The\n"
       "output lists the collisions (time, contacts, case, velocities after, kinetic energy), the bodies that\n"
       "come to rest on a fixed obstacle (a bounce sequence accumulating at its closed-form time), each body's\n"
-      "apex after its last collision and the top body's apex over its release height (docs/DROP.md).\n\n"
+      "apex after its last collision and the top body's apex over its release height (docs/DROP.md).\n"
+      "--plot DIR also draws every body's height against time, the collisions and the rests marked, into\n"
+      "DIR/trajectories.png and .svg with gnuplot (DIR/trajectories.dat and .gp beside them redraw it); a bounce\n"
+      "sequence that accumulates is drawn at rest from its rest time.  DIR must exist.\n\n"
       "Examples:\n"
       "  superball drop cases/scenes/drop-two-balls.toml\n"
-      "  superball drop cases/scenes/drop-one-ball.toml --json");
+      "  superball drop cases/scenes/drop-one-ball.toml --json\n"
+      "  superball drop cases/scenes/drop-three-balls.toml --plot out   # out/trajectories.png");
   cmd->add_option("scene", o->scene, "Scene file (TOML) with a [drop] table")->required();
   cmd->add_option("--precision,-p", o->precision, "Arithmetic: double (default) or long-double")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON for programs instead of text");
+  cmd->add_option("--plot", o->plot, "Folder for the trajectory plot (DIR/trajectories.png, .svg, .dat, .gp)")->check(non_empty());
   cmd->callback([o, &action] {
     action = [o] {
+      if (!o->plot.empty())
+        for (const char* file : kFigureFiles) check_not_input("--plot " + o->plot + " (" + file + ")", o->plot + "/" + file);
       const present::PresentedDrop d = present::drop_scene(load_scene(o->scene), o->precision);
+      if (!o->plot.empty()) draw_drop(d, o->plot);
       write_output("", o->json ? present::to_json(d).dump(2) + "\n" : present::to_text(d));
       return d.result.end == "max-events" || d.result.end == "numerical-issue" ? numerical_failure : ok;
     };

@@ -1,6 +1,8 @@
 // drop(): numeric::drop() for Python through present::drop_scene(), its
-// result as the command's JSON (Python objects, never JSON text) and text.
+// result as the command's JSON (Python objects, never JSON text), its text
+// and its trajectories (present::drop_trace(), for DropResult.plot()).
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
 
 #include <string>
 
