@@ -80,6 +80,7 @@ DropTrace drop_trace(const numeric::DropResult& r) {
     bool held = r.fixed_bottom && i + 1 == n;  // at rest on the fixed obstacle (or on bodies at rest there)
     for (std::size_t k = 0; k < at.size(); ++k) {
       const double t0 = at[k], t1 = k + 1 < at.size() ? at[k + 1] : end, z0 = (*z[k])[i], v0 = (*v[k])[i];
+      const double floor = (*z[k])[n - 1];  // where a body at rest lies: on the obstacle (bodies are points)
       const numeric::DropEvent* e = by[k];
       if (e && static_cast<int>(i) + 1 >= e->first_body && static_cast<int>(i) + 1 <= e->last_body) held = held && v0 == 0;
       // This body's rests (in time order) up to the end of this flight: left at rest now, or accumulating during it.
@@ -91,25 +92,25 @@ DropTrace drop_trace(const numeric::DropResult& r) {
         } else if (!held) {
           held = true;
           out.rest_time.push_back(s.time);
-          out.rest_height.push_back(z0);
+          out.rest_height.push_back(floor);
         }
       }
       if (held) {
-        track.arc(t0, t1, z0, 0, 0);
+        track.arc(t0, t1, floor, 0, 0);
       } else if (accumulation) {
-        // Bounces from z0 with speeds v0·eʲ, drawn down to the figure's resolution, then at rest.
+        // Bounces from the floor with speeds v0·eʲ, drawn down to the figure's resolution, then at rest.
         double t = t0, speed = v0;
         for (int j = 0; j < max_drawn_bounces && speed > 0 && speed * speed / (2 * r.g) >= drop_trace_resolution * top; ++j) {
           const double flight = 2 * speed / r.g;
           if (t + flight > accumulation->time) break;
-          track.arc(t, t + flight, z0, speed, r.g);
+          track.arc(t, t + flight, floor, speed, r.g);
           t += flight;
           speed *= accumulation->ratio;
         }
-        track.arc(t, t1, z0, 0, 0);
+        track.arc(t, t1, floor, 0, 0);
         held = true;
         out.rest_time.push_back(accumulation->time);
-        out.rest_height.push_back(z0);
+        out.rest_height.push_back(floor);
       } else {
         track.arc(t0, t1, z0, v0, r.g);
       }
