@@ -381,8 +381,8 @@ class DropRun {
   DropResult r_;
 };
 
-/// Refuses a datum of the drop (g, drop_height, a gap, a velocity, until,
-/// the top body's release height) that is not 0 and lies outside the window
+/// Refuses a datum of the drop (g, drop_height, a gap, a velocity, a mass,
+/// until, the top body's release height) that is not 0 and lies outside the window
 /// [2^−w, 2^w] of S (w = safe_exponent<S>()), where the flights' products
 /// (v², 2·g·h, g·t²) stay finite and a nonzero datum stays nonzero:
 /// std::invalid_argument("drop(): SCENE: FIELD = VALUE is outside ...").
@@ -409,6 +409,7 @@ void check_window(const Scene& scene, const Precision& precision) {
     const std::string field = "body[" + std::to_string(k + 1) + "].";
     if (b.gap) check(value(*b.gap), field + "gap", b.gap->text), top = top + value(*b.gap);
     if (b.velocity && !b.infinite) check(value(*b.velocity), field + "velocity", b.velocity->text);
+    if (!b.infinite) check(value(b.mass), field + "mass", b.mass.text);  // the energies m·v² are not scaled
   }
   check(top, "the top body's release height", to_string(cln::cl_R(top), 6));
 }

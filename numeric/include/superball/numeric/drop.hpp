@@ -141,7 +141,7 @@ struct DropResult {
 /// std::invalid_argument("drop(): ...") for an arithmetic it does not run
 /// in (exact, digits:N: the times of floor impacts are square roots) and for
 /// `distant = true`, not implemented yet, and for a datum (g, drop_height,
-/// a gap, a velocity, until, the top release height) that is not 0 and lies
+/// a gap, a velocity, a mass, until, the top release height) that is not 0 and lies
 /// outside the arithmetic's window [2^−w, 2^w] (w = safe_exponent<S>()).
 DropResult drop(const Scene& scene, const Precision& precision);
 
