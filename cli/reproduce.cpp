@@ -403,8 +403,6 @@ void drop_gaps(const Run& run, Document& doc) {
   const numeric::GapLimit limit = numeric::gaps_to_zero(scene, double_precision, options);
   const double a = limit.landing_speed;
   const double gap = scene.bodies[0].gap->approx();
-  Plot plot{"The paragraph 4.4 stack dropped with gaps: velocities after the first cascade", "gap between the balls (m)",
-            "velocity after the cascade / a", true, false, "inside center right box opaque spacing 1.4", {}, {}};
   std::vector<std::vector<Cell>> rows;
   auto row = [&](const numeric::GapLimitStep& step, const std::string& gaps) {
     std::string collisions;
@@ -412,18 +410,9 @@ void drop_gaps(const Run& run, Document& doc) {
     rows.push_back({gaps, collisions, decimal(step.cascade.velocities[0] / a, 6), decimal(step.cascade.velocities[1] / a, 6),
                     decimal(step.cascade.velocities[2] / a, 6), decimal(step.drop.top_apex_ratio, 6), decimal(step.deviation, 3)});
   };
-  for (int i = 0; i < 3; ++i) plot.series.push_back({"U_" + std::to_string(i + 1) + "^+/a (gapped)", {}, {}, true});
-  for (const auto& step : limit.steps) {
-    row(step, decimal(gap * step.scale, 3) + " m");
-    for (int i = 0; i < 3; ++i) {
-      plot.series[static_cast<std::size_t>(i)].x.push_back(gap * step.scale);
-      plot.series[static_cast<std::size_t>(i)].y.push_back(step.cascade.velocities[static_cast<std::size_t>(i)] / a);
-    }
-  }
+  for (const auto& step : limit.steps) row(step, decimal(gap * step.scale, 3) + " m");
   row(limit.simultaneous, "0 (simultaneous)");
-  for (int i = 0; i < 3; ++i)
-    plot.markers.push_back({limit.simultaneous.cascade.velocities[static_cast<std::size_t>(i)] / a,
-                            "U_" + std::to_string(i + 1) + "^+/a simultaneous", false, true, 0.97, false});
+  const Plot plot = gap_limit_plot(limit, scene, "The paragraph 4.4 stack dropped with gaps: velocities after the first cascade");
   draw(run.out, "drop-gaps", plot);
   doc.table({"gaps", "first cascade (balls, case)", "U1+/a", "U2+/a", "U3+/a", "top apex / release height", "deviation / a"}, rows);
   doc.figure("drop-gaps", "Velocities of the three balls after the first cascade against the gap (points), and after the simultaneous "

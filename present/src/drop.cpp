@@ -1,5 +1,6 @@
 #include "superball/present/drop.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -20,7 +21,103 @@ std::string joined(const std::vector<std::string>& items, const char* none) {
   return s.empty() ? none : s;
 }
 
+/// Most bounces of an accumulating sequence drawn one by one (the rest is drawn at rest).
+constexpr int max_drawn_bounces = 10000;
+
+/// One body's samples, arc after arc.
+struct Track {
+  std::vector<double>& t;
+  std::vector<double>& z;
+  double run;  ///< the run's duration: an arc spanning an eighth of it gets every sample
+
+  /// The arc z0 + v·τ − a·τ²/2, τ from 0 to t1 − t0 (a flat line when v = a = 0).
+  void arc(double t0, double t1, double z0, double v, double a) {
+    if (!t.empty() && t.back() == t0 && !(t1 > t0)) return;
+    const double span = std::max(t1 - t0, 0.0);
+    const int k = v == 0 && a == 0 ? 1 : std::clamp(static_cast<int>(std::ceil(drop_trace_samples * 8 * span / run)), 4, drop_trace_samples);
+    for (int s = !t.empty() && t.back() == t0 ? 1 : 0; s <= k; ++s) {
+      const double tau = span * s / k;
+      t.push_back(s == k ? t0 + span : t0 + tau);
+      z.push_back(z0 + v * tau - a * tau * tau / 2);
+    }
+  }
+};
+
 }  // namespace
+
+DropTrace drop_trace(const numeric::DropResult& r) {
+  const std::size_t n = r.masses.size();
+  DropTrace out;
+  out.time.resize(n);
+  out.height.resize(n);
+  // The states the flights start from: the release, then every collision solved (a failed one ends the run).
+  std::vector<double> at{0};
+  std::vector<const std::vector<double>*> z{&r.release_heights}, v{&r.release_velocities};
+  std::vector<const numeric::DropEvent*> by;
+  by.push_back(nullptr);
+  for (const numeric::DropEvent& e : r.events) {
+    if (e.velocities_after.size() != n || e.heights.size() != n) break;
+    at.push_back(e.time);
+    z.push_back(&e.heights);
+    v.push_back(&e.velocities_after);
+    by.push_back(&e);
+    for (const std::string& c : e.contacts) {
+      out.collision_time.push_back(e.time);
+      out.collision_height.push_back(e.heights[static_cast<std::size_t>(Pair::parse(c).j - 1)]);
+    }
+  }
+  const double end = std::max(r.end_time, at.back());
+  // The highest point of any arc: the scale of what a figure shows.
+  double top = 0;
+  for (std::size_t k = 0; k < at.size(); ++k)
+    for (std::size_t i = 0; i < n; ++i) top = std::max(top, (*z[k])[i] + std::pow(std::max((*v[k])[i], 0.0), 2) / (2 * r.g));
+  std::vector<std::vector<const numeric::DropRest*>> rests(n);
+  for (const numeric::DropRest& s : r.rest)
+    if (s.body >= 1 && static_cast<std::size_t>(s.body) <= n) rests[static_cast<std::size_t>(s.body - 1)].push_back(&s);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t next = 0;
+    Track track{out.time[i], out.height[i], end > 0 ? end : 1};
+    bool held = r.fixed_bottom && i + 1 == n;  // at rest on the fixed obstacle (or on bodies at rest there)
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      const double t0 = at[k], t1 = k + 1 < at.size() ? at[k + 1] : end, z0 = (*z[k])[i], v0 = (*v[k])[i];
+      const double floor = (*z[k])[n - 1];  // where a body at rest lies: on the obstacle (bodies are points)
+      const numeric::DropEvent* e = by[k];
+      if (e && static_cast<int>(i) + 1 >= e->first_body && static_cast<int>(i) + 1 <= e->last_body) held = held && v0 == 0;
+      // This body's rests (in time order) up to the end of this flight: left at rest now, or accumulating during it.
+      const numeric::DropRest* accumulation = nullptr;
+      for (; next < rests[i].size() && rests[i][next]->time <= (rests[i][next]->accumulation ? t1 : t0); ++next) {
+        const numeric::DropRest& s = *rests[i][next];
+        if (s.accumulation) {
+          accumulation = &s;
+        } else if (!held) {
+          held = true;
+          out.rest_time.push_back(s.time);
+          out.rest_height.push_back(floor);
+        }
+      }
+      if (held) {
+        track.arc(t0, t1, floor, 0, 0);
+      } else if (accumulation) {
+        // Bounces from the floor with speeds v0·eʲ, drawn down to the figure's resolution, then at rest.
+        double t = t0, speed = v0;
+        for (int j = 0; j < max_drawn_bounces && speed > 0 && speed * speed / (2 * r.g) >= drop_trace_resolution * top; ++j) {
+          const double flight = 2 * speed / r.g;
+          if (t + flight > accumulation->time) break;
+          track.arc(t, t + flight, floor, speed, r.g);
+          t += flight;
+          speed *= accumulation->ratio;
+        }
+        track.arc(t, t1, floor, 0, 0);
+        held = true;
+        out.rest_time.push_back(accumulation->time);
+        out.rest_height.push_back(floor);
+      } else {
+        track.arc(t0, t1, z0, v0, r.g);
+      }
+    }
+  }
+  return out;
+}
 
 PresentedDrop drop_scene(const Scene& scene, const std::string& precision) {
   return {scene.origin, scene.title, numeric::drop(scene, numeric::Precision::parse(precision))};

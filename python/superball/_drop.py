@@ -67,11 +67,12 @@ class DropResult:
     ``end_time``; ``top_apex_ratio``: the top body's apex over its release
     height; ``near_ties``: events that came closer than the doubt margin
     without being tied (docs/DROP.md).  ``str()`` is the command's text,
-    ``to_dict()`` its ``--json``."""
+    ``to_dict()`` its ``--json``, ``plot()`` the figure of ``--plot``."""
 
     def __init__(self, d: Dict[str, Any]) -> None:
-        self._dict = {k: v for k, v in d.items() if k != "text"}
+        self._dict = {k: v for k, v in d.items() if k not in ("text", "trace")}
         self._text: str = d["text"]
+        self._trace: Dict[str, Any] = d["trace"]
         self.scene: str = d["scene"]
         self.title: str = d["title"]
         self.precision: str = d["precision"]
@@ -100,6 +101,41 @@ class DropResult:
     def to_dict(self) -> Dict[str, Any]:
         """The fields of ``superball drop --json``."""
         return dict(self._dict)
+
+    def trajectories(self) -> List[Tuple[np.ndarray, np.ndarray]]:
+        """Each body's ``(time, height)`` samples, top to bottom (the fixed
+        obstacle's too), from the release to ``end_time``: the curves that
+        ``superball drop --plot`` and :meth:`plot` draw (parabolas between
+        events; a bounce sequence that accumulates drawn at rest from its
+        rest time)."""
+        return [(np.array(t, dtype=float), np.array(z, dtype=float)) for t, z in zip(self._trace["time"], self._trace["height"])]
+
+    def plot(self, ax: Any = None, legend: bool = True) -> Any:
+        """Draw every body's height against time on ``ax`` (a new figure's
+        when None) with matplotlib, the collisions (each closing contact)
+        and the rests marked, as ``superball drop --plot``.  Returns ``ax``."""
+        try:  # optional: imported only here
+            import matplotlib.pyplot as plt
+        except ImportError as e:
+            raise ImportError(f"DropResult.plot() needs matplotlib (python3-matplotlib, or pip install matplotlib): {e}") from e
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(7, 5))
+        n = len(self.masses)
+        for i, (t, z) in enumerate(self.trajectories()):
+            obstacle = self.fixed_obstacle and i == n - 1
+            ax.plot(t, z, linewidth=1 if obstacle else 1.5, color="dimgrey" if obstacle else None,
+                    label="obstacle" if obstacle else f"body {i + 1}")
+        for key, label, marker in (("collisions", "collisions", "."), ("rest", "at rest", "o")):
+            t, z = self._trace[key]
+            if len(t):
+                ax.plot(t, z, linestyle="none", marker=marker, markersize=4, color="black", label=label)
+        ax.set_xlabel("time since the release (s)")
+        ax.set_ylabel("height above the obstacle's release height (m)")
+        ax.set_title(self.title or self.scene, fontsize=10)
+        if legend:
+            ax.legend(fontsize=8, loc="best")
+        return ax
 
     def __str__(self) -> str:
         return self._text

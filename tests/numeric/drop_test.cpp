@@ -130,5 +130,84 @@ TEST(Drop, ABodyBouncingOnABodyAtRestComesToRestAtTheSumOfItsSeries) {
   EXPECT_GT(r.top_apex_ratio, 1);
 }
 
+TEST(Drop, TwoTouchingBallsBouncingAsOneComeToRestAtTheSumOfTheirSeries) {
+  // Two balls released touching (no gap) bounce on the floor as one stack (case {1-2} every time): their
+  // speeds are geometric too.  They were bounced until the doubles ran out (354,588 events, or the
+  // scene's max_events); now both rest at the series' sum, after a few thousand bounces at most.
+  const Scene s = scene(
+      "drop_height = 1\n[[body]]\nmass = 0.001\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n"
+      "[dissipation]\nK = { \"1-2\" = 1e3, \"2-3\" = 1e3 }\n[drop]\nuntil = 1000\n");
+  for (const char* p : {"double", "long-double"}) {
+    const DropResult r = drop(s, Precision::parse(p));
+    EXPECT_EQ(r.end, "until") << p;
+    EXPECT_LT(r.events.size(), 10000u) << p;
+    ASSERT_EQ(r.rest.size(), 2u) << p;
+    EXPECT_EQ(r.rest[0].body, 2);
+    EXPECT_EQ(r.rest[1].body, 1);
+    EXPECT_TRUE(r.rest[0].accumulation && r.rest[1].accumulation);
+    EXPECT_EQ(r.rest[0].time, r.rest[1].time);
+    const DropEvent& last = r.events.back();
+    const double e = r.rest[0].ratio, g = 9.81;
+    EXPECT_NEAR(last.velocities_after[0] / r.events[r.events.size() - 2].velocities_after[0], e, 1e-9) << p;
+    EXPECT_NEAR(r.rest[0].time, last.time + 2 * last.velocities_after[0] / g / (1 - e), kClosedFormTolerance * r.rest[0].time) << p;
+    // At rest on the floor, not a rounding below it.
+    for (const DropApex& a : r.apexes) EXPECT_GE(a.height, 0) << p;
+  }
+}
+
+TEST(Drop, ABodyLeftAtRestOnTheFloorIsNotBelowIt) {
+  const Scene s = scene(
+      "drop_height = 1\n[[body]]\nmass = 1e70\ngap = 0.001\n[[body]]\nmass = 1e70\n[[body]]\nmass = \"inf\"\n"
+      "[dissipation]\nK = { \"1-2\" = 1e3, \"2-3\" = 1e3 }\n[drop]\n");
+  const DropResult r = drop(s, Precision::parse("double"));
+  ASSERT_EQ(r.end, "rest");
+  for (const DropApex& a : r.apexes) EXPECT_EQ(a.height, 0);
+  EXPECT_EQ(r.top_apex_ratio, 0);
+}
+
+TEST(Drop, DataOutsideTheArithmeticsWindowAreRefusedNotRoundedToZeroOrInfinity) {
+  // 1e308 m overflowed 2·g·h (a gap of 1e308 was "tied" with the floor impact: the top ball teleported into
+  // contact), 1e-400 m became 0 (a touching stack: another drop).  Each is refused, naming the field.
+  const std::string bodies = "[[body]]\nmass = 0.001\n%GAP%[[body]]\nmass = 1\n%V%[[body]]\nmass = \"inf\"\n"
+                             "[dissipation]\nK = { \"1-2\" = 1e3, \"2-3\" = 1e3 }\n[drop]\n";
+  auto make = [&](const std::string& root, const std::string& gap, const std::string& v, const std::string& drop_table) {
+    std::string t = root + bodies + drop_table;
+    t.replace(t.find("%GAP%"), 5, gap);
+    t.replace(t.find("%V%"), 3, v);
+    return scene(t);
+  };
+  const struct {
+    Scene s;
+    std::string field;
+  } bad[] = {
+      {make("drop_height = 1\n", "gap = 1e308\n", "", ""), "body[1].gap = 1e308"},
+      {make("drop_height = 1\n", "gap = \"1e-400\"\n", "", ""), "body[1].gap = 1e-400"},
+      {make("drop_height = 1e300\n", "", "", ""), "drop_height = 1e300"},
+      {make("drop_height = 1\ng = 1e-300\n", "", "", ""), "g = 1e-300"},
+      {make("drop_height = 1\n", "", "velocity = 1e200\n", ""), "body[2].velocity = 1e200"},
+      {make("drop_height = 1\n", "", "", "until = 1e300\n"), "drop.until = 1e300"},
+      {make("drop_height = 1e77\n", "gap = 1e77\n", "", ""), "the top body's release height = 2e+77"},
+      {scene("drop_height = 1\n[[body]]\nmass = 1e300\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9 }\n[drop]\n"),
+       "body[1].mass = 1e300"},  // its kinetic energy overflowed (null in the JSON)
+  };
+  for (const auto& b : bad) {
+    try {
+      drop(b.s, Precision::parse("double"));
+      ADD_FAILURE() << b.field << ": not refused";
+    } catch (const std::invalid_argument& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.rfind("drop(): t.toml: " + b.field + " is outside what a drop in double computes with", 0), 0u) << m;
+      EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    }
+  }
+  // long double's window holds 1e-400 and 1e308: the drops run there (the ball 1e308 m up falls onto the
+  // lower one, at rest by then, and bounces back nearly as high: e = (K - m)/(K + m) close to 1).
+  EXPECT_EQ(drop(bad[1].s, Precision::parse("long-double")).end, "apex");
+  const DropResult high = drop(bad[0].s, Precision::parse("long-double"));
+  EXPECT_EQ(high.end, "apex");
+  EXPECT_GT(high.apexes[0].height, 0.99e308);
+  EXPECT_LT(high.apexes[0].height, 1e308);
+}
+
 }  // namespace
 }  // namespace superball::numeric

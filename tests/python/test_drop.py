@@ -72,3 +72,59 @@ def test_bad_scenes_and_types():
     for call in (lambda: superball.drop(str(TWO)), lambda: superball.drop(superball.Scene.load(TWO), 2)):
         with pytest.raises(superball.InputError):
             call()
+
+
+def _figure_blocks(path):
+    """The blocks of a `--plot` data file: (title, x array, y array) each."""
+    blocks = []
+    for line in path.read_text().splitlines():
+        if line.startswith("# "):
+            blocks.append((line[2:], [], []))
+        elif line.strip():
+            x, y = line.split()
+            blocks[-1][1].append(float(x))
+            blocks[-1][2].append(float(y))
+    return blocks
+
+
+@pytest.mark.parametrize("path", [SCENES / "drop-one-ball.toml", PAPER_STACK])
+def test_the_trajectories_are_the_command_s_figure(path, tmp_path):
+    """trajectories() and plot() draw from the library's sampling: the points of `superball drop --plot`."""
+    r = superball.drop(superball.Scene.load(path))
+    code, _, err = run_cli("drop", path, "--plot", tmp_path, check=False)
+    if code == 3 and "gnuplot" in err:
+        pytest.skip("no gnuplot")  # the data file is written before gnuplot runs
+    blocks = _figure_blocks(tmp_path / "trajectories.dat")
+    curves = r.trajectories()
+    assert len(curves) == len(r.masses) and [b[0] for b in blocks[:len(curves)]][-1] == "obstacle"
+    for (t, z), (_, x, y) in zip(curves, blocks):
+        np.testing.assert_allclose(t, x, rtol=1e-15)  # the file has 17 digits
+        np.testing.assert_allclose(z, y, rtol=1e-15, atol=1e-300)
+        assert t[0] == 0 and t[-1] == r.end_time and np.all(np.diff(t) >= 0)
+    for (t, z), h in zip(curves, r.release_heights):
+        assert z[0] == h
+    # Between events each free body flies a parabola of g: its second differences on equal steps are -g·dt².
+    t, z = curves[0]
+    first = t <= r.events[0].time
+    tt, zz = t[first], z[first]
+    np.testing.assert_allclose(zz, r.release_heights[0] + r.release_velocities[0] * tt - r.g * tt ** 2 / 2, atol=1e-12)
+
+
+def test_plot_draws_every_body_and_marks_the_collisions_and_the_rests():
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    r = superball.drop(superball.Scene(bodies=[1, "inf"], drop_height=1, K={"1-2": 9}, drop={"until": 10}))
+    ax = r.plot()
+    labels = [line.get_label() for line in ax.lines]
+    assert labels == ["body 1", "obstacle", "collisions", "at rest"]
+    assert ax.get_xlabel() == "time since the release (s)"
+    collisions = ax.lines[2].get_xdata()
+    np.testing.assert_array_equal(collisions, r.times)
+    rest = ax.lines[3]
+    assert list(rest.get_xdata()) == [r.rest[0].time] and list(rest.get_ydata()) == [0]
+    # After the rest the ball lies on the floor, to the end of the run.
+    t, z = r.trajectories()[0]
+    assert np.all(z[t >= r.rest[0].time] == 0) and t[-1] == 10 and len(t) < 2000
+    plt.close(ax.figure)

@@ -140,3 +140,41 @@ def test_the_command_and_the_module_refuse_with_the_same_line(args, call, messag
     assert str(e.value) == err[len("superball: "):-1]
     if message is not None:
         assert str(e.value) == message
+
+
+# Bad drop scenes (the red team's): refused by the scene loader (cases/) or by numeric::drop() (a datum outside
+# the arithmetic's window), the same line from `superball drop FILE` and from superball.drop(Scene.load(FILE)).
+_DROP_BODIES = ('[[body]]\nmass = 0.001\n{top}[[body]]\nmass = 1\n{middle}[[body]]\nmass = "inf"\n{bottom}'
+                '[dissipation]\nK = {{ "1-2" = 1e3, "2-3" = 1e3 }}\n[drop]\n{drop}')
+BAD_DROPS = [
+    ("drop_height = 1\n", {"drop": 'until = "soon"\n'}, 'drop.until: must be "apex" or a time in seconds > 0 (got "soon")'),
+    ("drop_height = 1\n", {"drop": "until = 0\n"}, "drop.until: must be"),
+    ("drop_height = 1\n", {"drop": "until = nan\n"}, "drop.until: must be a finite number (got nan)"),
+    ("drop_height = 1\n", {"drop": "max_events = 1e3\n"}, "drop.max_events: must be a whole number from 1 to 100000000 (got a float)"),
+    ("drop_height = 1\n", {"drop": "max_events = 1000000000000\n"}, "(got 1000000000000)"),
+    ("drop_height = 1\n", {"top": "gap = -0.5\n"}, "body[1].gap: must be >= 0 m (got -0.5)"),
+    ("drop_height = 1\n", {"top": "gap = inf\n"}, "body[1].gap: must be a finite number (got inf)"),
+    ("drop_height = 1\n", {"top": 'gap = "x"\n'}, "body[1].gap: 'x' is not a number"),
+    ("drop_height = 1\n", {"bottom": "gap = 0.1\n"}, "body[3].gap: the bottom body has no body below it"),
+    ("drop_height = 0\n", {}, "drop_height: a drop onto a fixed obstacle needs drop_height > 0"),
+    ("drop_height = -1\n", {}, "drop_height: must be >= 0 (got -1)"),
+    ("drop_height = 1\ng = 0\n", {}, "g: must be > 0 (got 0)"),
+    ("drop_height = 1\n", {"top": "gap = 1e308\n"}, "body[1].gap = 1e308 is outside what a drop in double computes with"),
+    ("drop_height = 1\n", {"top": 'gap = "1e-400"\n'}, "body[1].gap = 1e-400 is outside what a drop in double computes with"),
+    ("drop_height = 1e300\n", {}, "drop_height = 1e300 is outside what a drop in double computes with"),
+    ("drop_height = 1\n", {"middle": "velocity = 1e200\n"}, "body[2].velocity = 1e200 is outside"),
+    ("drop_height = 1\n", {"drop": "until = 1e300\n"}, "drop.until = 1e300 is outside"),
+]
+
+
+@pytest.mark.parametrize("root, parts, message", BAD_DROPS, ids=[m[:40] for _, _, m in BAD_DROPS])
+def test_a_bad_drop_scene_is_refused_with_the_same_line(root, parts, message, tmp_path):
+    path = tmp_path / "bad-drop.toml"
+    path.write_text(root + _DROP_BODIES.format(**{"top": "", "middle": "", "bottom": "", "drop": "", **parts}))
+    code, out, err = run_cli("drop", path, "--plot", tmp_path, check=False)
+    assert code == 2 and out == "" and err.count("\n") == 1 and err.startswith(f"superball: {path}:"), err
+    assert message in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad-drop.toml"]  # nothing of the figure written
+    with pytest.raises(superball.InputError) as e:
+        superball.drop(superball.Scene.load(path))
+    assert str(e.value) == err[len("superball: "):-1]

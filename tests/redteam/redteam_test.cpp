@@ -1233,6 +1233,149 @@ Case make_mpi(Rng& rng, int index) {
   return c;
 }
 
+/// A drop scene (`superball drop`, issue 27) from the text of its values
+/// (as they go into the TOML; "" leaves a key out).
+struct DropSpec {
+  std::vector<std::string> mass, gap, velocity;  ///< top to bottom; the last mass "inf" or finite
+  std::vector<std::string> K;                      ///< K of contact i-(i+1)
+  std::string drop_height = "1", g, until, max_events;
+  std::string toml() const {
+    std::ostringstream os;
+    if (!drop_height.empty()) os << "drop_height = " << drop_height << '\n';
+    if (!g.empty()) os << "g = " << g << '\n';
+    for (std::size_t i = 0; i < mass.size(); ++i) {
+      os << "[[body]]\nmass = " << mass[i] << '\n';
+      if (!gap[i].empty()) os << "gap = " << gap[i] << '\n';
+      if (!velocity[i].empty()) os << "velocity = " << velocity[i] << '\n';
+    }
+    os << "[dissipation]\nK = {";
+    for (std::size_t i = 0; i < K.size(); ++i) os << (i ? ", " : " ") << '"' << i + 1 << '-' << i + 2 << "\" = " << K[i];
+    os << " }\n[drop]\n";
+    if (!until.empty()) os << "until = " << until << '\n';
+    if (!max_events.empty()) os << "max_events = " << max_events << '\n';
+    return os.str();
+  }
+};
+
+/// Two balls over a fixed floor, 1 mm apart, nearly elastic: the drop of the README.
+DropSpec two_balls() { return DropSpec{{"0.001", "1", "\"inf\""}, {"0.001", "", ""}, {"", "", ""}, {"1e3", "1e3"}, "1", "", "", ""}; }
+
+/// A random drop scene of 1 to 4 free bodies: mostly admissible values, some hostile ones.
+DropSpec random_drop(Rng& rng) {
+  DropSpec s;
+  const int n = between(rng, 2, 5);
+  const auto hostile = [&](const std::vector<std::string>& fine, const std::vector<std::string>& bad) {
+    return coin(rng, 0.15) ? pick(rng, bad) : pick(rng, fine);
+  };
+  for (int i = 0; i < n; ++i) {
+    const bool bottom = i + 1 == n;
+    s.mass.push_back(bottom ? pick(rng, {std::string("\"inf\""), std::string("inf"), std::string("100"), std::string("1")})
+                            : hostile({"1e-3", "0.5", "1", "10", "\"1/3\"", "1e-6", "1e3"}, {"0", "-1", "1e300", "\"1e-400\"", "nan"}));
+    s.gap.push_back(bottom ? (coin(rng, 0.05) ? "0.1" : "")
+                           : hostile({"", "0", "0.001", "0.01", "\"1/7\"", "1e-9", "0.5"}, {"-1", "nan", "inf", "1e308", "\"1e-400\"", "\"x\"", "true", "1e80"}));
+    s.velocity.push_back(coin(rng, 0.2) ? hostile({"0", "1", "-2", "5", "\"1/3\""}, {"1e300", "nan", "\"up\""}) : "");
+  }
+  for (int i = 1; i < n; ++i) s.K.push_back(hostile({"9", "1e3", "1e4", "0.5", "30", "1e6"}, {"0", "-1", "1e-300", "1e300"}));
+  s.drop_height = hostile({"1", "0.5", "\"1/2\"", "2"}, {"0", "-1", "", "1e300", "\"1e-400\"", "nan"});
+  if (coin(rng, 0.3)) s.g = hostile({"9.81", "1", "\"981/100\""}, {"0", "-9.81", "1e-300", "1e300"});
+  if (coin(rng, 0.5)) s.until = hostile({"\"apex\"", "1", "3", "0.01", "\"1/3\""}, {"0", "-1", "nan", "inf", "\"soon\"", "1e300", "\"Apex\""});
+  if (coin(rng, 0.5)) s.max_events = hostile({"1", "2", "50", "1000"}, {"0", "-1", "1.5", "2147483648", "1000000000000", "\"5\""});
+  return s;
+}
+
+/// A successful drop's JSON (exit 0 or 1): its own invariants.
+void check_drop_json(const Outcome& o, std::vector<std::string>& v, long long max_events) {
+  if (o.exit_code != 0 && o.exit_code != 1) return;
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(o.out);
+  } catch (const std::exception& e) {
+    return v.push_back(std::string("drop --json: not JSON: ") + e.what());
+  }
+  const auto finite = [&](const nlohmann::json& x, const std::string& what) {
+    if (!x.is_number() || !std::isfinite(x.get<double>())) v.push_back("drop --json: " + what + " is " + x.dump());
+  };
+  double t = 0;
+  if (static_cast<long long>(j["events"].size()) > max_events) v.push_back("drop --json: more events than max_events");
+  for (const auto& e : j["events"]) {
+    finite(e["time"], "a collision's time");
+    if (e["time"].is_number() && e["time"].get<double>() < t) v.push_back("drop --json: collisions out of time order at " + e["time"].dump());
+    if (e["time"].is_number()) t = e["time"];
+    for (const auto& x : e["heights"]) finite(x, "a collision's heights");
+    if (j["end"] != "numerical-issue" || &e != &j["events"].back())
+      for (const auto& x : e["velocities_after"]) finite(x, "a collision's velocities_after");
+    finite(e["kinetic_energy_before"], "a collision's kinetic energy before");
+    if (j["end"] == "numerical-issue" && &e == &j["events"].back()) continue;  // the failed solve: no answer after
+    finite(e["kinetic_energy_after"], "a collision's kinetic energy after");
+    if (!e["kinetic_energy_before"].is_number() || !e["kinetic_energy_after"].is_number()) continue;
+    const double before = e["kinetic_energy_before"], after = e["kinetic_energy_after"];
+    if (after > before * (1 + 1e-9) + 1e-300) v.push_back("drop --json: kinetic energy increased at t = " + e["time"].dump());
+  }
+  // Over a fixed obstacle no body goes below it (a finite bottom body falls, and the others with it), but for
+  // the rounding of an impact's position (1e-9 of the release height: a body last seen at -1e-23 m).
+  double scale = 0;
+  for (const auto& h : j["release_heights"])
+    if (h.is_number()) scale = std::max(scale, std::fabs(h.get<double>()));
+  for (const auto& a : j["apexes"]) {
+    finite(a["height"], "an apex");
+    if (j["fixed_obstacle"] == true && a["height"].is_number() && a["height"].get<double>() < -1e-9 * scale)
+      v.push_back("drop --json: an apex below the fixed obstacle: " + a.dump());
+  }
+  finite(j["end_time"], "end_time");
+}
+
+/// Hostile drop scenes and paths (issue 27's red-team pass): every bad value refused with one line naming
+/// its field, what the drop computes with in range, a run bounded by max_events, the JSON's physics.
+Case make_drop(Rng& rng, int index) {
+  Case c;
+  DropSpec s = two_balls();
+  std::vector<std::string> args = {"drop", "@/scene.toml", "--json"};
+  long long max_events = 10000;
+  c.expect = Expect::Refused;
+  switch (index) {
+    case 0: s.gap[0] = "1e308", c.named = {"body[1].gap = 1e308 is outside"}; break;  // 2 g h overflowed: a teleport into contact
+    case 1: s.gap[0] = "\"1e-400\"", c.named = {"body[1].gap = 1e-400"}; break;        // 0 in double: another drop
+    case 2: s.drop_height = "1e300", c.named = {"drop_height = 1e300"}; break;
+    case 3: s.mass.back() = "100", s.until = "1e300", c.named = {"drop.until = 1e300"}; break;  // fell to -inf
+    case 4:  // two touching balls: they bounced as one to the last denormal (354,588 events); now a rest
+      s.gap[0] = "", s.until = "1e6", s.max_events = "100000000", max_events = 3500, c.expect = Expect::Success;
+      c.named = {};
+      break;
+    case 5: s.until = "\"soon\"", c.named = {"drop.until"}; break;
+    case 6: s.max_events = "1000000000000", c.named = {"drop.max_events"}; break;
+    case 7: s.max_events = "1.5", c.named = {"drop.max_events"}; break;
+    case 8: s.gap.back() = "0.1", c.named = {"body[3].gap"}; break;
+    case 9: c.files["cut.toml"] = s.toml().substr(0, s.toml().size() - 4), args[1] = "@/cut.toml"; break;  // "[drop" cut short
+    case 10: c.fifos["fifo"] = s.toml(), args[1] = "@/fifo", c.expect = Expect::Success; break;
+    case 11:  // a symbolic link reads as the file (its name aside)
+      c.runs = {Command{{"drop", "@/scene.toml", "--json"}}, Command{{"drop", "@/link.toml", "--json"}}};
+      c.before = [](const std::string& dir, std::size_t run, Writers&) {
+        if (run == 1) fs::create_symlink("scene.toml", dir + "/link.toml");
+      };
+      c.spellings = {{"link.toml", "scene.toml"}};
+      c.expect = Expect::Success;
+      break;
+    case 12: args[1] = "@/dangling.toml", c.before = [](const std::string& dir, std::size_t run, Writers&) {
+      if (run == 0) fs::create_symlink("nowhere.toml", dir + "/dangling.toml");
+    }; break;
+    case 13: args = {"drop", "@/scene.toml", "--plot", "@/missing-folder"}, c.expect = Expect::OutputFailure; break;
+    case 14: s.mass = {"1"}, s.gap = {""}, s.velocity = {""}, s.K = {}, c.named = {"body"}; break;  // one body
+    case 15: args.insert(args.end(), {"--precision", "exact"}), c.named = {"double or long-double"}; break;
+    case 16: s.velocity[0] = "3", s.velocity[1] = "10", s.g = "\"1/10\"", c.expect = Expect::Success; break;  // thrown upward, weak g
+    default: s = random_drop(rng), c.expect = Expect::Any;
+  }
+  c.files["scene.toml"] = s.toml();
+  if (c.runs.empty()) c.runs = {Command{args}};
+  if (!s.max_events.empty() && index != 4) {
+    const auto m = value_of(s.max_events);
+    if (m && *m >= 1 && *m == std::floor(*m)) max_events = static_cast<long long>(*m);
+  }
+  c.check = [max_events](const std::vector<Outcome>& o, std::vector<std::string>& v) {
+    for (const Outcome& x : o) check_drop_json(x, v, max_events);
+  };
+  return c;
+}
+
 struct Class {
   const char* name;
   int enumerated;  ///< cases always run (the issue's examples)
@@ -1253,6 +1396,7 @@ const std::vector<Class> kClasses = {
     {"spelling", 4, make_spelling},
     {"memory", 4, make_memory, kSanitized ? "superball is built with sanitizers: it cannot start under an address-space limit" : nullptr},
     {"inout", 8, make_inout},
+    {"drop", 17, make_drop},
     {"mpi", 6, make_mpi, kWithMpi ? "superball is built with MPI: a launcher's environment without mpirun has nothing to check" : nullptr},
 };
 

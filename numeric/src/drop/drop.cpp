@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "superball/cases/error.hpp"
@@ -285,8 +286,10 @@ class DropRun {
     // The bodies this collision leaves at rest on the obstacle (directly or on
     // bodies resting there) that were not resting before: each is said once.
     if (obstacle(q)) {
-      for (int i = q - 1; i >= p && whole.closed(i) && v_[i] == S(0); --i)
+      for (int i = q - 1; i >= p && whole.closed(i) && v_[i] == S(0); --i) {
+        z_[i] = last_z_[i] = z_[q];  // on the obstacle, not a rounding below it
         if (!was_supported[i]) r_.rest.push_back({i + 1, ev.time, false, 0});
+      }
     }
     return true;
   }
@@ -300,15 +303,20 @@ class DropRun {
   double kinetic() const { return ScalarTraits<S>::to_double(kinetic_energy()); }
 
   /// After a bounce of the lowest free body b on the fixed obstacle, or on
-  /// the bodies at rest on it (every body below b held): when nothing else
-  /// can touch it before its bounces accumulate, it rests there at the sum
-  /// of the geometric series (and no later than \p until when that is >= 0).
+  /// the bodies at rest on it (every body below b held), with the bodies
+  /// a … b−1 that touch it and move with it as one (a stack bouncing whole:
+  /// its law is linear, so its speeds too are geometric): when nothing else
+  /// can touch them before their bounces accumulate, they rest there at the
+  /// sum of the geometric series (and no later than \p until when that is >= 0).
   void accumulate(S until) {
     if (!fixed_ || r_.events.empty()) return;
     const DropEvent& ev = r_.events.back();
     int b = n_ - 2;
     while (b >= 0 && supported_[b]) --b;
-    if (b < 0 || ev.first_body != b + 1 || ev.last_body != n_ || ev.time != ScalarTraits<S>::to_double(t_)) return;
+    // Bodies a … b−1 touching b and moving with it before and after (a stack bouncing as one) bounce with it.
+    int a = b;
+    while (a > 0 && a > ev.first_body - 1 && gap_[a - 1] == S(0) && v_[a - 1] == v_[b] && ev.velocities_before[a - 1] == ev.velocities_before[b]) --a;
+    if (b < 0 || ev.first_body != a + 1 || ev.last_body != n_ || ev.time != ScalarTraits<S>::to_double(t_)) return;
     const S before = -S(ev.velocities_before[b]), after = v_[b];
     if (!(after > S(0)) || !(before > S(0))) return;
     const S e = after / before;
@@ -318,29 +326,33 @@ class DropRun {
     const S span = (2 * after / g_) / (1 - e);
     if (until >= S(0) && t_ + span > until) return;
     // The top body's apex comes first: the run ends there.
-    if (b != 0 && !supported_[0] && v_[0] > S(0) && S(v_[0] / g_) < span && until < S(0)) return;
-    if (b == 0 && until < S(0)) return;
-    // Nothing above may close before: the contacts above b in free flight,
-    // and body b−1 stays over the highest arc of b (a concave flight's
+    if (a != 0 && !supported_[0] && v_[0] > S(0) && S(v_[0] / g_) < span && until < S(0)) return;
+    if (a == 0 && until < S(0)) return;
+    // Nothing above may close before: the contacts above a in free flight,
+    // and body a−1 stays over the highest arc of a (a concave flight's
     // minimum over an interval is at one of its ends).
-    for (int c = 0; c + 1 < b; ++c)
+    for (int c = 0; c + 1 < a; ++c)
       if (closing_time(c) <= span) return;
-    if (b >= 1) {
+    if (a >= 1) {
       const S apex = after * after / (2 * g_);
-      const S w = v_[b - 1];
-      const S at_end = gap_[b - 1] + w * span - g_ * span * span / 2;
-      if (!(gap_[b - 1] > apex) || !(at_end > apex)) return;
+      const S w = v_[a - 1];
+      const S at_end = gap_[a - 1] + w * span - g_ * span * span / 2;
+      if (!(gap_[a - 1] > apex) || !(at_end > apex)) return;
     }
     const double e_double = ScalarTraits<S>::to_double(e);
-    v_[b] = S(0);
-    z_[b] = z_[b + 1];
-    gap_[b] = S(0);
-    supported_[b] = true;
+    for (int i = b; i >= a; --i) {
+      v_[i] = S(0);
+      z_[i] = z_[b + 1];
+      gap_[i] = S(0);
+      supported_[i] = true;
+    }
     advance(span);
-    last_t_[b] = t_;
-    last_z_[b] = z_[b];
-    last_v_[b] = S(0);
-    r_.rest.push_back({b + 1, ScalarTraits<S>::to_double(t_), true, e_double});
+    for (int i = b; i >= a; --i) {
+      last_t_[i] = t_;
+      last_z_[i] = z_[i];
+      last_v_[i] = S(0);
+      r_.rest.push_back({i + 1, ScalarTraits<S>::to_double(t_), true, e_double});
+    }
   }
 
   void end(const char* why) {
@@ -369,6 +381,39 @@ class DropRun {
   DropResult r_;
 };
 
+/// Refuses a datum of the drop (g, drop_height, a gap, a velocity, a mass,
+/// until, the top body's release height) that is not 0 and lies outside the window
+/// [2^−w, 2^w] of S (w = safe_exponent<S>()), where the flights' products
+/// (v², 2·g·h, g·t²) stay finite and a nonzero datum stays nonzero:
+/// std::invalid_argument("drop(): SCENE: FIELD = VALUE is outside ...").
+template <class S>
+void check_window(const Scene& scene, const Precision& precision) {
+  const int w = safe_exponent<S>();
+  const cln::cl_RA low = cln::expt(cln::cl_RA(2), -w), high = cln::expt(cln::cl_RA(2), w);
+  auto check = [&](const cln::cl_RA& x, const std::string& field, const std::string& text) {
+    if (cln::zerop(x) || (cln::abs(x) >= low && cln::abs(x) <= high)) return;
+    std::ostringstream range;
+    range.precision(2);
+    range << std::ldexp(1.0L, -w) << " to " << std::ldexp(1.0L, w);
+    throw std::invalid_argument("drop(): " + scene.origin + ": " + field + " = " + text + " is outside what a drop in " + precision.name() +
+                                " computes with (0, or " + range.str() + " in magnitude" +
+                                (precision.kind == Precision::Kind::Double ? "; long-double takes more)" : ")"));
+  };
+  auto value = [](const Number& x) { return parse_rational(x.fraction()); };
+  check(value(scene.g), "g", scene.g.text);
+  cln::cl_RA top = 0;
+  if (scene.drop_height) check(top = value(*scene.drop_height), "drop_height", scene.drop_height->text);
+  if (scene.drop.until) check(value(*scene.drop.until), "drop.until", scene.drop.until->text);
+  for (std::size_t k = scene.bodies.size(); k-- > 0;) {
+    const Body& b = scene.bodies[k];
+    const std::string field = "body[" + std::to_string(k + 1) + "].";
+    if (b.gap) check(value(*b.gap), field + "gap", b.gap->text), top = top + value(*b.gap);
+    if (b.velocity && !b.infinite) check(value(*b.velocity), field + "velocity", b.velocity->text);
+    if (!b.infinite) check(value(b.mass), field + "mass", b.mass.text);  // the energies m·v² are not scaled
+  }
+  check(top, "the top body's release height", to_string(cln::cl_R(top), 6));
+}
+
 }  // namespace
 
 DropResult drop(const Scene& scene, const Precision& precision) {
@@ -387,6 +432,8 @@ DropResult drop(const Scene& scene, const Precision& precision) {
   still.fall_speed.reset();
   for (Body& b : still.bodies) b.velocity = Number::integer(0);
   const ExactScene exact = ExactScene::from(still);
+  if (precision.kind == Precision::Kind::Double) check_window<double>(scene, precision);
+  if (precision.kind == Precision::Kind::LongDouble) check_window<long double>(scene, precision);
   if (precision.kind == Precision::Kind::Double) return DropRun<double>(scene, exact, precision.name()).run();
   return DropRun<long double>(scene, exact, precision.name()).run();
 }

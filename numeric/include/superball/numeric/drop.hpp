@@ -20,7 +20,8 @@
 /// decided by fewer than drop_doubt_ulps roundoffs, and running in
 /// long double (64-bit significand) tells whether it changes the answer.
 ///
-/// Rest.  A body bouncing alone on the fixed obstacle has velocities in a
+/// Rest.  A body (or a stack of touching bodies moving as one) bouncing
+/// alone on the fixed obstacle has velocities in a
 /// geometric sequence of ratio e (its law is linear); when nothing else can
 /// touch it before the sum of the series and its apex is below
 /// drop_rest_fraction of the release height, it comes to rest at
@@ -139,7 +140,9 @@ struct DropResult {
 /// (M not positive semi-definite, no [drop] table) and
 /// std::invalid_argument("drop(): ...") for an arithmetic it does not run
 /// in (exact, digits:N: the times of floor impacts are square roots) and for
-/// `distant = true`, not implemented yet.
+/// `distant = true`, not implemented yet, and for a datum (g, drop_height,
+/// a gap, a velocity, a mass, until, the top release height) that is not 0 and lies
+/// outside the arithmetic's window [2^−w, 2^w] (w = safe_exponent<S>()).
 DropResult drop(const Scene& scene, const Precision& precision);
 
 }  // namespace superball::numeric
