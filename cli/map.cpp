@@ -1,5 +1,6 @@
 #include "map.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -49,6 +50,31 @@ std::vector<std::pair<double, double>> derived_points(const verify::Overlay& o, 
     points.push_back(numeric::position(m, b));
   }
   return points;
+}
+
+/// The map of a drop scene (a [drop] table): the label and the top apex
+/// ratio of every grid point (numeric::drop_map()), as a summary, CSV or
+/// JSON, and with \p plot its figure.  Exit 1 when a run ended on
+/// max_events or on an unsolved collision.
+Exit drop_map(const Scene& scene, const numeric::Axis& x, const numeric::Axis& y, const numeric::MapSettings& settings, bool csv, bool json,
+             const std::string& plot) {
+  const numeric::DropMap m = numeric::drop_map(scene, x, y, settings);
+  const std::string precision = settings.precision.name();
+  const std::string text = json ? present::drop_map_json(m, scene, precision).dump(1) + "\n"
+                           : csv ? present::drop_map_csv(m)
+                                 : present::drop_map_summary(m, scene, precision);
+  if (!plot.empty()) {
+    const std::string stem = plot.substr(plot.find_last_of('/') + 1), title = scene.title.empty() ? scene.origin : scene.title;
+    const std::string png = "pngcairo size 1500,760 font 'DejaVu Sans,11'", svg = "svg size 1500,760 dynamic font 'DejaVu Sans,11'";
+    write_output(plot + ".dat", present::drop_map_figure_data(m));
+    write_output(plot + ".gp", present::drop_map_figure_script(m, title, stem + ".dat", png, "'" + stem + ".png'") +
+                                   present::drop_map_figure_script(m, title, stem + ".dat", svg, "'" + stem + ".svg'"));
+    render(present::drop_map_figure_script(m, title, plot + ".dat", png, ""), plot + ".png");
+    render(present::drop_map_figure_script(m, title, plot + ".dat", svg, ""), plot + ".svg");
+  }
+  write_output("", text);
+  const bool unfinished = std::any_of(m.points.begin(), m.points.end(), [](const numeric::DropPoint& p) { return p.end == "max-events" || p.end == "numerical-issue"; });
+  return unfinished ? numerical_failure : ok;
 }
 
 }  // namespace
@@ -138,6 +164,12 @@ void add_map(CLI::App& app, Action& action) {
       // rank 0 alone goes on (overlay, output, figures).  Each of the two
       // stages is a task list of its own, with its checkpoint subfolder.
       const numeric::Axis ax{rx.parameter, rx.from, rx.to, rx.steps}, ay{ry.parameter, ry.from, ry.to, ry.steps};
+      if (scene.drop.requested) {
+        if (o->overlay) numeric::refuse_drop(scene, "map --overlay");
+        if (o->boundary_points) numeric::refuse_drop(scene, "map --boundary-points");
+        if (mpi_size() > 1 || !o->distribute.checkpoint.empty()) numeric::refuse_distributed_drop(scene, "map");
+        return drop_map(scene, ax, ay, settings, o->csv, o->json, o->plot);
+      }
       int stage = 0;
       if (mpi_size() > 1 || !o->distribute.checkpoint.empty())
         settings.runner = [&](std::size_t count, const Distribution::Task& task) {
