@@ -165,8 +165,8 @@ void add_map(CLI::App& app, Action& action) {
       // stages is a task list of its own, with its checkpoint subfolder.
       const numeric::Axis ax{rx.parameter, rx.from, rx.to, rx.steps}, ay{ry.parameter, ry.from, ry.to, ry.steps};
       if (scene.drop.requested) {
-        if (o->overlay) numeric::refuse_drop(scene, "map --overlay");
-        if (o->boundary_points) numeric::refuse_drop(scene, "map --boundary-points");
+        if (o->overlay) numeric::refuse_drop(scene, "overlay");
+        if (o->boundary_points) numeric::refuse_drop(scene, "boundary_points");
         if (mpi_size() > 1 || !o->distribute.checkpoint.empty()) numeric::refuse_distributed_drop(scene, "map");
         return drop_map(scene, ax, ay, settings, o->csv, o->json, o->plot);
       }

@@ -300,7 +300,7 @@ void add_sweep(CLI::App& app, Action& action) {
       const auto precision = numeric::Precision::parse(o->precision);
       numeric::check_threads(o->threads);  // before any output, as the range
       if (scene.drop.requested) {
-        if (o->switches) numeric::refuse_drop(scene, "sweep --switch-points");
+        if (o->switches) numeric::refuse_drop(scene, "switch_points()");
         if (mpi_size() > 1 || !o->distribute.shard.empty() || !o->distribute.part.empty() || !o->distribute.checkpoint.empty())
           numeric::refuse_distributed_drop(scene, "sweep");
         return drop_rows(scene, r, precision, o->csv, o->threads);

@@ -74,9 +74,10 @@ Parameter Parameter::parse(const std::string& key, const Scene& scene) {
     if (!scene.drop.requested) bad(key, "a gap is a release position of a drop; the scene has no [drop] table");
     p.kind_ = Kind::Gap;
     p.body = index_of(tail);
-    if (p.body < 1 || p.body >= n)
-      bad(key, "body must be 1.." + std::to_string(n - 1) + " (gap.i is body i's distance to the body below it; body " + std::to_string(n) +
-                   " has none)");
+    // Body n − 1's distance to the bottom body is drop_height; the bottom body has none below it.
+    if (p.body < 1 || p.body > n - 2)
+      bad(key, (n > 2 ? "body must be 1.." + std::to_string(n - 2) : std::string("no gap to vary with 2 bodies")) +
+                   " (gap.i is body i's distance to the body below it; body " + std::to_string(n - 1) + "'s is drop_height)");
   } else if (key == "drop_height" || key == "fall_speed" || key == "g") {
     p.kind_ = key == "g" ? Kind::Gravity : key == "drop_height" ? Kind::DropHeight : Kind::FallSpeed;
     if (p.kind_ == Kind::DropHeight && scene.fall_speed) bad(key, "the scene gives fall_speed, not drop_height");
