@@ -121,12 +121,17 @@ void add_map(CLI::App& app, Action& action) {
       "bisections, are handed out to the ranks as tasks (each on --threads threads); rank 0 writes the same bytes\n"
       "as one process (and draws --plot, runs --overlay).  --checkpoint DIR keeps each finished task (DIR/points,\n"
       "then DIR/boundaries; at most 64 of each): the same command run again, also under MPI, computes only those\n"
-      "missing and writes the same bytes.  map has no --shard: its bisections need every grid point first.\n\n"
+      "missing and writes the same bytes.  map has no --shard: its bisections need every grid point first.\n"
+      "A drop scene (a [drop] table; keys also gap.i) is mapped drop by drop: per point the top body's apex ratio\n"
+      "and its label, the sequence of its collisions (docs/DROP.md); the summary lists the labels, --csv gives\n"
+      "KEYX, KEYY, top_apex_ratio, events, end, label; no boundary is bisected (no exact solution of one collision),\n"
+      "and --overlay, --boundary-points, --checkpoint and MPI are refused.\n\n"
       "Examples:\n"
       "  superball map cases/scenes/paper-fig5-alpha2.toml --x alpha.2=-200:100:121 --y alpha.5=-10:10:81\n"
       "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:101 --y alpha.2=-150:0:101 --plot k34-alpha2\n"
       "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:41 --y alpha.2=-150:0:41 --overlay\n"
-      "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:41 --y alpha.2=-150:0:41 --boundary-points --csv");
+      "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:41 --y alpha.2=-150:0:41 --boundary-points --csv\n"
+      "  superball map cases/scenes/drop-three-balls.toml --x gap.1=0:0.004:21 --y gap.2=0:0.004:21");
   cmd->add_option("scene", o->scene, "Scene file (TOML)")->required();
   cmd->add_option("--x", o->x, "KEY=FROM:TO:N, the horizontal axis")->required();
   cmd->add_option("--y", o->y, "KEY=FROM:TO:N, the vertical axis")->required();

@@ -279,10 +279,14 @@ void add_sweep(CLI::App& app, Action& action) {
       "Clusters (docs/CLUSTER.md): the values are solved in blocks of " + std::to_string(kChunk) + " (the tasks): under MPI\n"
       "(`mpirun -n P superball sweep ...`, built with -DSUPERBALL_WITH_MPI=ON) the ranks take blocks as they\n"
       "become free, each on its --threads, and rank 0 writes; --shard I/N solves the blocks k with k mod N = I-1\n"
-      "into a part file for `superball merge`; --checkpoint DIR keeps each finished block.  Same bytes every way.\n\n"
+      "into a part file for `superball merge`; --checkpoint DIR keeps each finished block.  Same bytes every way.\n"
+      "A drop scene (a [drop] table; keys also gap.i) is swept drop by drop: KEY, top_apex_ratio, events, end and\n"
+      "label, the sequence of its collisions (CONTACTS:CASE each, a run of k as *k; docs/DROP.md), in double or\n"
+      "long-double, on one process (no --switch-points, --checkpoint, --shard or MPI).\n\n"
       "Examples:\n"
       "  superball sweep cases/scenes/paper-4.4-alpha2.toml --vary K.3-4=0:20:401 --csv\n"
-      "  superball sweep cases/scenes/paper-4.4-alpha2.toml --vary K.3-4=0:20:41 --switch-points");
+      "  superball sweep cases/scenes/paper-4.4-alpha2.toml --vary K.3-4=0:20:41 --switch-points\n"
+      "  superball sweep cases/scenes/drop-three-balls.toml --vary gap.2=0:0.004:5");
   cmd->add_option("scene", o->scene, "Scene file (TOML)")->required();
   cmd->add_option("--vary", o->vary, "KEY=FROM:TO:STEPS")->required();
   cmd->add_option("--precision,-p", o->precision, "Arithmetic of the sweep values (see solve; not with --switch-points, which is exact)")->capture_default_str();
