@@ -318,7 +318,8 @@ class Scene:
     @property
     def keys(self) -> List[str]:
         """The keys of the values the scene holds, as :meth:`with_value`, :func:`sweep` and :func:`map` take them:
-        ``["K.1-2", …, "alpha.2", "mass.1", …, "velocity.4", "fall_speed"]``."""
+        ``["K.1-2", …, "alpha.2", "mass.1", …, "velocity.4", "fall_speed"]``; a drop scene's gaps too
+        (``"gap.1"`` … ``"gap.{n-2}"``)."""
         return self._scene.keys
 
     @property

@@ -57,6 +57,14 @@ def test_a_drop_map_gives_the_command_s_grid():
     assert "none bisected" in m.boundaries
 
 
+def test_a_drop_scene_s_keys_hold_its_gaps_and_each_can_be_set():
+    scene = superball.Scene.load(THREE_BALLS)
+    assert scene.keys[-2:] == ["gap.1", "gap.2"]
+    for key in scene.keys:
+        assert scene.with_value(key, "1/2").keys == scene.keys
+    assert "gap.1" not in superball.Scene.load(SCENES / "paper-4.4-alpha2.toml").keys
+
+
 @pytest.mark.parametrize("call, message", [
     (lambda s: superball.sweep(s, "gap.1", [0, 1], checkpoint="unused"), "no checkpoint"),
     (lambda s: superball.map(s, "gap.1=0:1:3", "mass.1=1:2:3", overlay=True), "overlay: "),
