@@ -187,6 +187,22 @@ TEST(DropMapCli, SummaryJsonAndFigureOfOneMap) {
   EXPECT_NE(slurp(prefix + ".gp").find("L1: 2-3:{1-2}"), std::string::npos);
 }
 
+TEST(DropMapCli, ARunEndedByMaxEventsIsPrintedAsSuchAndExitsOne) {
+  // A gap of 1e300 m: the lower bodies bounce for as long as the top one falls, until max_events (here 5).
+  const std::string path = scene_with(kThree, "[drop]", "[drop]\nmax_events = 5", "drop-map-max-events.toml");
+  const RunResult sweep = run({"sweep", path, "--vary", "gap.1=0:1e300:2", "--csv"});
+  EXPECT_EQ(sweep.exit_code, 1) << describe(sweep);
+  EXPECT_EQ(sweep.err, "");
+  const auto rows = lines(sweep.out);
+  ASSERT_EQ(rows.size(), 3u) << sweep.out;
+  EXPECT_EQ(csv_fields(rows[1])[3], "apex");
+  EXPECT_EQ(csv_fields(rows[2])[2], "5");
+  EXPECT_EQ(csv_fields(rows[2])[3], "max-events");
+  const RunResult map = run({"map", path, "--x", "gap.1=0:1e300:2", "--y", "mass.1=1/1000:1:2"});
+  EXPECT_EQ(map.exit_code, 1) << describe(map);
+  EXPECT_NE(map.out.find("runs ended by max-events or an unsolved collision: 2 points"), std::string::npos) << map.out;
+}
+
 TEST(DropMapCli, HostileInputIsRefusedWithOneLine) {
   const std::string paper = kScenes + "paper-4.4-alpha2.toml";
   // A gap on a scene without [drop]; the bottom body's; body n - 1's (its distance is drop_height); not a body.
