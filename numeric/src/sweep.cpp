@@ -22,16 +22,20 @@
 #include "superball/numeric/psd_along.hpp"
 
 namespace superball::numeric {
-namespace {
+namespace detail {
 
-/// The values as text, written on the calling thread: tasks on other threads
-/// parse their own copies and never touch the caller's CLN objects.
 std::vector<std::string> as_text(const std::vector<cln::cl_RA>& values) {
   std::vector<std::string> texts;
   texts.reserve(values.size());
   for (const auto& v : values) texts.push_back(to_string(v));
   return texts;
 }
+
+}  // namespace detail
+
+namespace {
+
+using detail::as_text;
 
 /// A thread's own copy of the scene, with the parameter set to \p text, a
 /// value inside a range that check_values() has passed.

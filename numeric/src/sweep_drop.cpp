@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "map_internal.hpp"
 #include "superball/cases/error.hpp"
 #include "superball/numeric/map.hpp"
 #include "superball/numeric/parallel.hpp"
@@ -18,12 +19,7 @@ std::string token(const DropEvent& e) {
   return t + ":" + e.case_name;
 }
 
-/// The exact values as text, written on the calling thread (sweep.cpp).
-std::vector<std::string> as_text(const std::vector<cln::cl_RA>& values) {
-  std::vector<std::string> texts;
-  for (const auto& v : values) texts.push_back(to_string(v));
-  return texts;
-}
+using detail::as_text;
 
 /// Set \p values of \p parameters through Parameter::set() and drop the
 /// scene there: every check of a value, with its value in the message.
