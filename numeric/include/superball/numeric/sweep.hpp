@@ -67,7 +67,10 @@ struct SweepPoint {
 /// entry per value: the same problem as converting the value's scene, bit
 /// for bit, at a fraction of the cost.  The smallest and largest of \p values pass check_range()
 /// first (throws InputError), so every value solved is admissible; no value,
-/// or \p threads refused by check_threads(), throws std::invalid_argument.
+/// or \p threads refused by check_threads(), throws std::invalid_argument,
+/// and so does a scene with a [drop] table (refuse_drop(); drop_sweep()
+/// sweeps drops), here and in sweep_marking_psd(), label_changes() and
+/// switch_points().
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads = 1);
 
