@@ -1,5 +1,6 @@
 #include "map.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -51,6 +52,31 @@ std::vector<std::pair<double, double>> derived_points(const verify::Overlay& o, 
   return points;
 }
 
+/// The map of a drop scene (a [drop] table): the label and the top apex
+/// ratio of every grid point (numeric::drop_map()), as a summary, CSV or
+/// JSON, and with \p plot its figure.  Exit 1 when a run ended on
+/// max_events or on an unsolved collision.
+Exit drop_map(const Scene& scene, const numeric::Axis& x, const numeric::Axis& y, const numeric::MapSettings& settings, bool csv, bool json,
+             const std::string& plot) {
+  const numeric::DropMap m = numeric::drop_map(scene, x, y, settings);
+  const std::string precision = settings.precision.name();
+  const std::string text = json ? present::drop_map_json(m, scene, precision).dump(1) + "\n"
+                           : csv ? present::drop_map_csv(m)
+                                 : present::drop_map_summary(m, scene, precision);
+  if (!plot.empty()) {
+    const std::string stem = plot.substr(plot.find_last_of('/') + 1), title = scene.title.empty() ? scene.origin : scene.title;
+    const std::string png = "pngcairo size 1500,760 font 'DejaVu Sans,11'", svg = "svg size 1500,760 dynamic font 'DejaVu Sans,11'";
+    write_output(plot + ".dat", present::drop_map_figure_data(m));
+    write_output(plot + ".gp", present::drop_map_figure_script(m, title, stem + ".dat", png, "'" + stem + ".png'") +
+                                   present::drop_map_figure_script(m, title, stem + ".dat", svg, "'" + stem + ".svg'"));
+    render(present::drop_map_figure_script(m, title, plot + ".dat", png, ""), plot + ".png");
+    render(present::drop_map_figure_script(m, title, plot + ".dat", svg, ""), plot + ".svg");
+  }
+  write_output("", text);
+  const bool unfinished = std::any_of(m.points.begin(), m.points.end(), [](const numeric::DropPoint& p) { return p.end == "max-events" || p.end == "numerical-issue"; });
+  return unfinished ? numerical_failure : ok;
+}
+
 }  // namespace
 
 void add_map(CLI::App& app, Action& action) {
@@ -95,12 +121,17 @@ void add_map(CLI::App& app, Action& action) {
       "bisections, are handed out to the ranks as tasks (each on --threads threads); rank 0 writes the same bytes\n"
       "as one process (and draws --plot, runs --overlay).  --checkpoint DIR keeps each finished task (DIR/points,\n"
       "then DIR/boundaries; at most 64 of each): the same command run again, also under MPI, computes only those\n"
-      "missing and writes the same bytes.  map has no --shard: its bisections need every grid point first.\n\n"
+      "missing and writes the same bytes.  map has no --shard: its bisections need every grid point first.\n"
+      "A drop scene (a [drop] table; keys also gap.i) is mapped drop by drop: per point the top body's apex ratio\n"
+      "and its label, the sequence of its collisions (docs/DROP.md); the summary lists the labels, --csv gives\n"
+      "KEYX, KEYY, top_apex_ratio, events, end, label; no boundary is bisected (no exact solution of one collision),\n"
+      "and --overlay, --boundary-points, --checkpoint and MPI are refused.\n\n"
       "Examples:\n"
       "  superball map cases/scenes/paper-fig5-alpha2.toml --x alpha.2=-200:100:121 --y alpha.5=-10:10:81\n"
       "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:101 --y alpha.2=-150:0:101 --plot k34-alpha2\n"
       "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:41 --y alpha.2=-150:0:41 --overlay\n"
-      "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:41 --y alpha.2=-150:0:41 --boundary-points --csv");
+      "  superball map cases/scenes/paper-4.4-alpha2.toml --x K.3-4=0:20:41 --y alpha.2=-150:0:41 --boundary-points --csv\n"
+      "  superball map cases/scenes/drop-three-balls.toml --x gap.1=0:0.004:21 --y gap.2=0:0.004:21");
   cmd->add_option("scene", o->scene, "Scene file (TOML)")->required();
   cmd->add_option("--x", o->x, "KEY=FROM:TO:N, the horizontal axis")->required();
   cmd->add_option("--y", o->y, "KEY=FROM:TO:N, the vertical axis")->required();
@@ -138,6 +169,12 @@ void add_map(CLI::App& app, Action& action) {
       // rank 0 alone goes on (overlay, output, figures).  Each of the two
       // stages is a task list of its own, with its checkpoint subfolder.
       const numeric::Axis ax{rx.parameter, rx.from, rx.to, rx.steps}, ay{ry.parameter, ry.from, ry.to, ry.steps};
+      if (scene.drop.requested) {
+        if (o->overlay) numeric::refuse_drop(scene, "overlay");
+        if (o->boundary_points) numeric::refuse_drop(scene, "boundary_points");
+        if (mpi_size() > 1 || !o->distribute.checkpoint.empty()) numeric::refuse_distributed_drop(scene, "map");
+        return drop_map(scene, ax, ay, settings, o->csv, o->json, o->plot);
+      }
       int stage = 0;
       if (mpi_size() > 1 || !o->distribute.checkpoint.empty())
         settings.runner = [&](std::size_t count, const Distribution::Task& task) {

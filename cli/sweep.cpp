@@ -226,6 +226,32 @@ int check_block(std::size_t k, std::string& text, const Scene& scene, const Rang
   return failures;
 }
 
+/// The sweep of a drop scene (a [drop] table): per value, the top body's
+/// apex ratio, the number of collisions, why the run ended and its label
+/// (numeric::drop_label()), printed a block of kChunk values at a time.
+/// Exit 1 when a run ended on max_events or on an unsolved collision.
+Exit drop_rows(const Scene& scene, const Range& r, const numeric::Precision& precision, bool csv, int threads) {
+  const std::string sep = csv ? "," : "  ";
+  (void)numeric::drop_sweep(scene, r.parameter, {r.from, r.to}, precision, 1);  // every check of the range, before any output
+  Output out("");
+  out.write(r.parameter.key() + sep + "top_apex_ratio" + sep + "events" + sep + "end" + sep + "label\n");
+  bool failed = false;
+  for (int first = 0; first < r.steps; first += kChunk) {
+    const auto values = numeric::linspace(r.from, r.to, r.steps, first, std::min(kChunk, r.steps - first));
+    std::ostringstream os;
+    const auto points = numeric::drop_sweep(scene, r.parameter, values, precision, threads);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      const numeric::DropPoint& p = points[k];
+      os << decimal(values[k], 10) << sep << numeric::to_string(p.ratio, csv ? 17 : 9) << sep << p.events << sep << p.end << sep
+         << (csv ? csv_field(p.label) : p.label) << '\n';
+      failed = failed || p.end == "max-events" || p.end == "numerical-issue";
+    }
+    out.write(os.str());
+  }
+  out.commit();
+  return failed ? numerical_failure : ok;
+}
+
 }  // namespace
 
 void add_sweep(CLI::App& app, Action& action) {
@@ -253,10 +279,14 @@ void add_sweep(CLI::App& app, Action& action) {
       "Clusters (docs/CLUSTER.md): the values are solved in blocks of " + std::to_string(kChunk) + " (the tasks): under MPI\n"
       "(`mpirun -n P superball sweep ...`, built with -DSUPERBALL_WITH_MPI=ON) the ranks take blocks as they\n"
       "become free, each on its --threads, and rank 0 writes; --shard I/N solves the blocks k with k mod N = I-1\n"
-      "into a part file for `superball merge`; --checkpoint DIR keeps each finished block.  Same bytes every way.\n\n"
+      "into a part file for `superball merge`; --checkpoint DIR keeps each finished block.  Same bytes every way.\n"
+      "A drop scene (a [drop] table; keys also gap.i) is swept drop by drop: KEY, top_apex_ratio, events, end and\n"
+      "label, the sequence of its collisions (CONTACTS:CASE each, a run of k as *k; docs/DROP.md), in double or\n"
+      "long-double, on one process (no --switch-points, --checkpoint, --shard or MPI).\n\n"
       "Examples:\n"
       "  superball sweep cases/scenes/paper-4.4-alpha2.toml --vary K.3-4=0:20:401 --csv\n"
-      "  superball sweep cases/scenes/paper-4.4-alpha2.toml --vary K.3-4=0:20:41 --switch-points");
+      "  superball sweep cases/scenes/paper-4.4-alpha2.toml --vary K.3-4=0:20:41 --switch-points\n"
+      "  superball sweep cases/scenes/drop-three-balls.toml --vary gap.2=0:0.004:5");
   cmd->add_option("scene", o->scene, "Scene file (TOML)")->required();
   cmd->add_option("--vary", o->vary, "KEY=FROM:TO:STEPS")->required();
   cmd->add_option("--precision,-p", o->precision, "Arithmetic of the sweep values (see solve; not with --switch-points, which is exact)")->capture_default_str();
@@ -273,6 +303,12 @@ void add_sweep(CLI::App& app, Action& action) {
         throw std::invalid_argument("sweep: --switch-points bisects on the exact solution; --precision does not apply to it");
       const auto precision = numeric::Precision::parse(o->precision);
       numeric::check_threads(o->threads);  // before any output, as the range
+      if (scene.drop.requested) {
+        if (o->switches) numeric::refuse_drop(scene, "switch_points()");
+        if (mpi_size() > 1 || !o->distribute.shard.empty() || !o->distribute.part.empty() || !o->distribute.checkpoint.empty())
+          numeric::refuse_distributed_drop(scene, "sweep");
+        return drop_rows(scene, r, precision, o->csv, o->threads);
+      }
       numeric::check_range(scene, r.parameter, r.from, r.to);  // every value, before any output
       const std::size_t count = sweep_tasks(r, o->switches);
       // A block's text: at most kChunk + 1 lines of a few numbers each.

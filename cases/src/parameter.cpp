@@ -70,12 +70,20 @@ Parameter Parameter::parse(const std::string& key, const Scene& scene) {
     p.body = body_of(key, tail, n);
     if (p.kind_ == Kind::Mass && scene.bodies[static_cast<std::size_t>(p.body - 1)].infinite)
       bad(key, "body " + std::to_string(p.body) + " is a fixed obstacle (infinite mass)");
+  } else if (head == "gap") {
+    if (!scene.drop.requested) bad(key, "a gap is a release position of a drop; the scene has no [drop] table");
+    p.kind_ = Kind::Gap;
+    p.body = index_of(tail);
+    // Body n − 1's distance to the bottom body is drop_height; the bottom body has none below it.
+    if (p.body < 1 || p.body > n - 2)
+      bad(key, (n > 2 ? "body must be 1.." + std::to_string(n - 2) : std::string("no gap to vary with 2 bodies")) +
+                   " (gap.i is body i's distance to the body below it; body " + std::to_string(n - 1) + "'s is drop_height)");
   } else if (key == "drop_height" || key == "fall_speed" || key == "g") {
     p.kind_ = key == "g" ? Kind::Gravity : key == "drop_height" ? Kind::DropHeight : Kind::FallSpeed;
     if (p.kind_ == Kind::DropHeight && scene.fall_speed) bad(key, "the scene gives fall_speed, not drop_height");
     if (p.kind_ == Kind::FallSpeed && scene.drop_height) bad(key, "the scene gives drop_height, not fall_speed");
   } else {
-    bad(key, "unknown parameter (expected K.i-j, alpha.k, coupling.i-j/k-l, mass.i, velocity.i, drop_height, fall_speed or g)");
+    bad(key, "unknown parameter (expected K.i-j, alpha.k, coupling.i-j/k-l, mass.i, velocity.i, gap.i (a drop), drop_height, fall_speed or g)");
   }
   p.key_ = p.canonical(n);
   return p;
@@ -92,6 +100,7 @@ std::string Parameter::canonical(int bodies) const {
     }
     case Kind::Mass: return "mass." + std::to_string(body);
     case Kind::Velocity: return "velocity." + std::to_string(body);
+    case Kind::Gap: return "gap." + std::to_string(body);
     case Kind::DropHeight: return "drop_height";
     case Kind::FallSpeed: return "fall_speed";
     case Kind::Gravity: return "g";
@@ -116,6 +125,7 @@ void Parameter::assign(Scene& s, const Number& value) const {
     }
     case Kind::Mass: s.bodies[static_cast<std::size_t>(body - 1)].mass = value; break;
     case Kind::Velocity: s.bodies[static_cast<std::size_t>(body - 1)].velocity = value; break;
+    case Kind::Gap: s.bodies[static_cast<std::size_t>(body - 1)].gap = value; break;
     case Kind::DropHeight: s.drop_height = value; break;
     case Kind::FallSpeed: s.fall_speed = value; break;
     case Kind::Gravity: s.g = value; break;

@@ -421,7 +421,7 @@ std::vector<MapBoundary> boundaries_from_text(const std::string& text) {
 
 }  // namespace detail
 
-void check_map(const Scene& scene, const Axis& x, const Axis& y) {
+void check_axes(const Axis& x, const Axis& y) {
   if (x.parameter == y.parameter)
     throw std::invalid_argument("map(): --x " + x.parameter.spelling() + " and --y " + y.parameter.spelling() + " name the same parameter (" +
                                 x.parameter.key() + "); a map needs two different parameters");
@@ -431,6 +431,11 @@ void check_map(const Scene& scene, const Axis& x, const Axis& y) {
                                   std::to_string(map_max_steps));
     if (a->from == a->to) throw std::invalid_argument("map(): " + a->parameter.key() + ": FROM and TO are equal");
   }
+}
+
+void check_map(const Scene& scene, const Axis& x, const Axis& y) {
+  refuse_drop(scene, "map()");
+  check_axes(x, y);
   for (const cln::cl_RA& vx : {x.from, x.to})
     for (const cln::cl_RA& vy : {y.from, y.to}) {
       try {

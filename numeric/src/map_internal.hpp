@@ -18,6 +18,10 @@
 
 namespace superball::numeric::detail {
 
+/// The values as text, written on the calling thread: tasks on other threads
+/// parse their own copies and never touch the caller's CLN objects (sweep.cpp).
+std::vector<std::string> as_text(const std::vector<cln::cl_RA>& values);
+
 /// The index of the one entry of M in which the scenes \p a and \p b differ
 /// (as ExactScene, M unchecked), nullopt when they differ in anything else
 /// or in more than one entry: the axis of a map that varies that entry only.

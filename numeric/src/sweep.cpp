@@ -22,16 +22,20 @@
 #include "superball/numeric/psd_along.hpp"
 
 namespace superball::numeric {
-namespace {
+namespace detail {
 
-/// The values as text, written on the calling thread: tasks on other threads
-/// parse their own copies and never touch the caller's CLN objects.
 std::vector<std::string> as_text(const std::vector<cln::cl_RA>& values) {
   std::vector<std::string> texts;
   texts.reserve(values.size());
   for (const auto& v : values) texts.push_back(to_string(v));
   return texts;
 }
+
+}  // namespace detail
+
+namespace {
+
+using detail::as_text;
 
 /// A thread's own copy of the scene, with the parameter set to \p text, a
 /// value inside a range that check_values() has passed.
@@ -354,6 +358,7 @@ void bisect(Labeller& label_at, LabelChange c, int bits, std::vector<LabelChange
 std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                                        const Label& label, int bits, int threads, const ProvenLabel& proven, LabelCounts* counts) {
   check_threads(threads);
+  refuse_drop(scene, "label_changes()");
   if (bits < 1 || bits > max_bits)
     throw std::invalid_argument("label_changes(): bits must be a whole number from 1 to " + std::to_string(max_bits) + ", got " + std::to_string(bits));
   for (std::size_t k = 1; k < values.size(); ++k)
@@ -464,6 +469,7 @@ std::vector<SweepPoint> entry_sweep(const Scene& first, std::size_t entry, const
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads) {
   check_threads(threads);
+  refuse_drop(scene, "sweep()");
   if (values.empty()) throw std::invalid_argument("sweep(): no value to solve");
   check_values(scene, parameter, values);
   if (values.size() > 1 && (precision.kind == Precision::Kind::Double || precision.kind == Precision::Kind::LongDouble)) {
@@ -494,6 +500,7 @@ std::vector<bool> sweep_marking_psd(const Scene& scene, const Parameter& paramet
                                     const std::function<void(std::size_t, const SweepPoint&)>& deliver,
                                     const std::function<void(std::size_t, std::size_t)>& progress, const TaskRunner& runner) {
   check_threads(threads);
+  refuse_drop(scene, "sweep()");
   if (values.empty()) throw std::invalid_argument("sweep(): no value to solve");
   const std::vector<bool> psd = psd_along(scene, parameter, values);
   std::vector<std::size_t> solved;
@@ -544,6 +551,7 @@ std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& para
 
 std::vector<SwitchPoint> switch_points(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                                        int bits, int threads) {
+  refuse_drop(scene, "switch_points()");
   if (values.size() < 2) throw std::invalid_argument("switch_points(): at least two values are needed");
   const Label by_case = [](const ExactPoint& e) { return e.solution.closed.to_string(); };
   const ProvenLabel proven_case = [](const ProvenPoint& p) -> std::optional<std::string> { return p.closed.to_string(); };

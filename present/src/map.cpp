@@ -391,4 +391,142 @@ std::string map_figure_script(const Map& m, const std::vector<MapMark>& marks, b
   return gp.str();
 }
 
+std::vector<std::string> drop_map_labels(const numeric::DropMap& m) {
+  std::vector<std::string> labels;
+  for (const numeric::DropPoint& p : m.points)
+    if (std::find(labels.begin(), labels.end(), p.label) == labels.end()) labels.push_back(p.label);
+  return labels;
+}
+
+std::string drop_map_csv(const numeric::DropMap& m) {
+  std::ostringstream os;
+  os << m.x.parameter.key() << ',' << m.y.parameter.key() << ",top_apex_ratio,events,end,label\n";
+  for (int j = 0; j < m.y.steps; ++j) {
+    const std::string y = decimal(value(m.y, j), 10);
+    for (int i = 0; i < m.x.steps; ++i) {
+      const numeric::DropPoint& p = m.at(i, j);
+      os << decimal(value(m.x, i), 10) << ',' << y << ',' << number(p.ratio) << ',' << p.events << ',' << p.end << ',' << csv_field(p.label) << '\n';
+    }
+  }
+  return os.str();
+}
+
+nlohmann::ordered_json drop_map_json(const numeric::DropMap& m, const Scene& scene, const std::string& precision) {
+  nlohmann::ordered_json j;
+  j["scene"] = scene.origin;
+  j["title"] = scene.title;
+  j["precision"] = precision;
+  for (const numeric::Axis* a : {&m.x, &m.y})
+    j[a == &m.x ? "x" : "y"] = {{"key", a->parameter.key()}, {"from", numeric::to_string(a->from)}, {"to", numeric::to_string(a->to)}, {"steps", a->steps}};
+  const std::vector<std::string> labels = drop_map_labels(m);
+  j["labels"] = labels;
+  nlohmann::ordered_json points = nlohmann::ordered_json::array();
+  for (int jy = 0; jy < m.y.steps; ++jy)
+    for (int i = 0; i < m.x.steps; ++i) {
+      const numeric::DropPoint& p = m.at(i, jy);
+      points.push_back({{"i", i},
+                        {"j", jy},
+                        {"label", std::find(labels.begin(), labels.end(), p.label) - labels.begin()},
+                        {"top_apex_ratio", p.ratio},
+                        {"events", p.events},
+                        {"end", p.end}});
+    }
+  j["points"] = std::move(points);
+  j["boundaries"] = drop_map_no_boundaries;
+  return j;
+}
+
+std::string drop_map_summary(const numeric::DropMap& m, const Scene& scene, const std::string& precision) {
+  std::ostringstream os;
+  auto axis = [](const numeric::Axis& a) {
+    return a.parameter.key() + " from " + numeric::to_string(a.from) + " to " + numeric::to_string(a.to) + " (" + std::to_string(a.steps) +
+           " values)";
+  };
+  os << "drop map of " << scene.origin << ": " << axis(m.x) << " by " << axis(m.y) << ", in " << precision << '\n';
+  os << "points: " << m.points.size() << "; value: the top body's apex ratio; label: its collisions in time order (CONTACTS:CASE, a run as *k)\n";
+  const std::vector<std::string> labels = drop_map_labels(m);
+  double low = INFINITY, high = -INFINITY;
+  std::size_t unfinished = 0;
+  for (std::size_t k = 0; k < labels.size(); ++k) {
+    std::size_t in = 0;
+    double lo = INFINITY, hi = -INFINITY;
+    for (const numeric::DropPoint& p : m.points)
+      if (p.label == labels[k]) ++in, lo = std::min(lo, p.ratio), hi = std::max(hi, p.ratio);
+    os << "  L" << k + 1 << ": " << in << (in == 1 ? " point" : " points") << ", ratio " << numeric::to_string(lo, 6) << " to " << numeric::to_string(hi, 6) << ": " << labels[k]
+       << '\n';
+  }
+  for (const numeric::DropPoint& p : m.points) {
+    low = std::min(low, p.ratio), high = std::max(high, p.ratio);
+    unfinished += p.end == "max-events" || p.end == "numerical-issue";
+  }
+  os << "top apex ratio from " << numeric::to_string(low, 6) << " to " << numeric::to_string(high, 6) << '\n';
+  if (unfinished) os << "runs ended by max-events or an unsolved collision: " << unfinished << " points\n";
+  std::size_t changes = 0;
+  for (int j = 0; j < m.y.steps; ++j)
+    for (int i = 0; i < m.x.steps; ++i) {
+      if (i + 1 < m.x.steps && m.at(i, j).label != m.at(i + 1, j).label) ++changes;
+      if (j + 1 < m.y.steps && m.at(i, j).label != m.at(i, j + 1).label) ++changes;
+    }
+  os << "neighbouring points of different labels: " << changes << "; boundaries: " << drop_map_no_boundaries << '\n';
+  return os.str();
+}
+
+std::string drop_map_figure_data(const numeric::DropMap& m) {
+  const std::vector<std::string> labels = drop_map_labels(m);
+  std::ostringstream os;
+  os.precision(17);
+  for (int index = 0; index < 2; ++index) {
+    os << (index == 0 ? "# index 0: x y r g b, the colour of the label\n" : "\n\n# index 1: x y top apex ratio\n");
+    for (int j = 0; j < m.y.steps; ++j) {
+      const double y = cln::double_approx(value(m.y, j));
+      for (int i = 0; i < m.x.steps; ++i) {
+        const numeric::DropPoint& p = m.at(i, j);
+        os << cln::double_approx(value(m.x, i)) << ' ' << y << ' ';
+        if (index == 0) {
+          const Rgb c = rgb(kColours[(std::find(labels.begin(), labels.end(), p.label) - labels.begin()) % kColourCount]);
+          os << c.r << ' ' << c.g << ' ' << c.b << '\n';
+        } else {
+          os << number(p.ratio) << '\n';
+        }
+      }
+      os << '\n';
+    }
+  }
+  return os.str();
+}
+
+std::string drop_map_figure_script(const numeric::DropMap& m, const std::string& title, const std::string& data, const std::string& terminal,
+                                   const std::string& output) {
+  const std::vector<std::string> labels = drop_map_labels(m);
+  const double x0 = cln::double_approx(m.x.from), x1 = cln::double_approx(m.x.to);
+  const double y0 = cln::double_approx(m.y.from), y1 = cln::double_approx(m.y.to);
+  const std::string d = quoted(data);
+  std::ostringstream gp;
+  gp.precision(17);
+  gp << "set terminal " << terminal << "\nset output " << output << '\n'
+     << "set xrange [" << std::min(x0, x1) << ':' << std::max(x0, x1) << "] noextend\n"
+     << "set yrange [" << std::min(y0, y1) << ':' << std::max(y0, y1) << "] noextend\n"
+     << "set xlabel " << quoted(axis_label(m.x.parameter.key())) << "\nset ylabel " << quoted(axis_label(m.y.parameter.key())) << '\n'
+     << "set tics out nomirror\nset border lw 1\nset style fill solid 1.0 noborder\n"
+     << "set multiplot title " << quoted(title) << " font ',13'\n"
+     << "set tmargin at screen 0.89\nset bmargin at screen " << kLegendTop + 0.1 << '\n'
+     << "set lmargin at screen 0.06\nset rmargin at screen 0.45\n";
+  // Left: the labels, each in its colour (cycled after 10), named in the legend.
+  gp << "set title 'Sequences of collisions (labels)'\n"
+     << "set key at screen 0.06, screen " << kLegendTop << " left top vertical reverse Left maxrows 4 samplen 2 spacing 1.15 width 3 font ',9'\n"
+     << "plot " << d << " index 0 using 1:2:3:4:5 with rgbimage notitle";
+  for (std::size_t k = 0; k < labels.size(); ++k) {
+    const std::string name = labels[k].size() > 60 ? labels[k].substr(0, 57) + "..." : labels[k];
+    gp << ", NaN with boxes lc rgb '" << kColours[k % kColourCount] << "' title " << quoted("L" + std::to_string(k + 1) + ": " + name) << " noenhanced";
+  }
+  gp << "\nunset key\n";
+  // Right: the top apex ratio.
+  gp << "set lmargin at screen 0.55\nset rmargin at screen 0.91\n"
+     << "set title 'Top body apex ratio (apex / release height)'\n"
+     << "set palette defined (0 '#0D0887', 1 '#6A00A8', 2 '#B12A90', 3 '#E16462', 4 '#FCA636', 5 '#F0F921')\n"
+     << "set cbtics out nomirror\n"
+     << "plot " << d << " index 1 using 1:2:3 with image notitle\nunset multiplot\n";
+  return gp.str();
+}
+
 }  // namespace superball::present

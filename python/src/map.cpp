@@ -6,6 +6,7 @@
 
 #include <cln/real.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -190,11 +191,62 @@ py::dict map(const Scene& scene, const std::string& x, const std::string& y, con
   return out;
 }
 
+/// map() of a drop scene (a [drop] table): numeric::drop_map() of the grid
+/// of \p x by \p y in \p precision on \p threads, the GIL released while it
+/// runs, as arrays (ny, nx): top apex ratio, label code into "labels"
+/// (present::drop_map_labels()), number of collisions, and the ends as a
+/// list; "summary" is the command's.  A \p checkpoint is refused
+/// (numeric::refuse_distributed_drop()), \p overlay too (numeric::refuse_drop()).
+py::dict drop_map(const Scene& scene, const std::string& x, const std::string& y, const std::string& precision, long long threads,
+                  const std::string& checkpoint, bool overlay) {
+  numeric::check_threads(threads);
+  const numeric::Axis ax = axis("x", x, scene), ay = axis("y", y, scene);
+  numeric::MapSettings settings;
+  settings.precision = numeric::Precision::parse(precision);
+  settings.threads = static_cast<int>(threads);
+  if (overlay) numeric::refuse_drop(scene, "overlay");
+  if (!checkpoint.empty()) numeric::refuse_distributed_drop(scene, "map");
+  settings.output_bytes_per_point = present::map_output_bytes_per_point(present::MapOutput::Json);
+  std::optional<numeric::DropMap> m;
+  {
+    py::gil_scoped_release release;
+    m = numeric::drop_map(scene, ax, ay, settings);
+  }
+  const auto nx = static_cast<py::ssize_t>(m->x.steps), ny = static_cast<py::ssize_t>(m->y.steps);
+  py::array_t<double> ratio({ny, nx});
+  py::array_t<std::int32_t> codes({ny, nx}), events({ny, nx});
+  const std::vector<std::string> labels = present::drop_map_labels(*m);
+  py::list ends;
+  for (std::size_t k = 0; k < m->points.size(); ++k) {
+    const numeric::DropPoint& p = m->points[k];
+    ratio.mutable_data()[k] = p.ratio;
+    events.mutable_data()[k] = p.events;
+    codes.mutable_data()[k] = static_cast<std::int32_t>(std::find(labels.begin(), labels.end(), p.label) - labels.begin());
+    ends.append(p.end);
+  }
+  py::dict out;
+  out["scene"] = scene.origin;
+  out["title"] = scene.title;
+  out["precision"] = settings.precision.name();
+  out["x"] = axis_dict(m->x);
+  out["y"] = axis_dict(m->y);
+  out["ratio"] = std::move(ratio);
+  out["label_codes"] = std::move(codes);
+  out["label_list"] = py::tuple(py::cast(labels));
+  out["events"] = std::move(events);
+  out["end"] = std::move(ends);
+  out["boundaries"] = present::drop_map_no_boundaries;
+  out["summary"] = present::drop_map_summary(*m, scene, settings.precision.name());
+  return out;
+}
+
 }  // namespace
 
 void register_map(py::module_& m) {
   m.def("map", &map, py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("precision"), py::arg("threads"), py::arg("progress"),
         py::arg("checkpoint"), py::arg("overlay"));
+  m.def("drop_map", &drop_map, py::arg("scene"), py::arg("x"), py::arg("y"), py::arg("precision"), py::arg("threads"), py::arg("checkpoint"),
+        py::arg("overlay"));
 }
 
 }  // namespace superball::python

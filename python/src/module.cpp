@@ -225,6 +225,49 @@ py::tuple sweep(const Scene& scene, const std::string& key, const Values& values
   return py::make_tuple(x, u, codes, table.names(), status, psd);
 }
 
+/// sweep() of a drop scene (a [drop] table): values, top apex ratios,
+/// labels, numbers of collisions and ends, numeric::drop_sweep() a block of
+/// numeric::sweep_chunk_values at a time (\p progress told and Ctrl-C
+/// checked between blocks), the GIL released while it runs.  A \p checkpoint
+/// is refused (numeric::refuse_distributed_drop()).
+py::tuple drop_sweep(const Scene& scene, const std::string& key, const Values& values, const std::string& precision, int threads,
+                     py::object progress, const std::string& checkpoint) {
+  const Parameter parameter = Parameter::parse(key, scene);
+  const auto p = numeric::Precision::parse(precision);
+  if (!checkpoint.empty()) numeric::refuse_distributed_drop(scene, "sweep");
+  const auto count = static_cast<py::ssize_t>(values.exact.size());
+  py::array_t<double> x(count), ratio(count);
+  py::array_t<std::int32_t> events(count);
+  std::vector<std::string> labels, ends;
+  double* rd = ratio.mutable_data();
+  std::int32_t* ed = events.mutable_data();
+  {
+    py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> hold(*values.lock);
+    if (values.exact.empty()) throw std::invalid_argument("drop_sweep(): no value to run");
+    // Every check of the range first, as the command's (the smallest and largest value).
+    const auto [low, high] = std::minmax_element(values.exact.begin(), values.exact.end());
+    (void)numeric::drop_sweep(scene, parameter, {*low, *high}, p, 1);
+    const std::size_t total = values.exact.size();
+    for (std::size_t first = 0; first < total; first += numeric::sweep_chunk_values) {
+      between_tasks(progress, "values", first, total);
+      const std::size_t size = std::min(total, first + numeric::sweep_chunk_values) - first;
+      const std::vector<cln::cl_RA> chunk(values.exact.begin() + static_cast<std::ptrdiff_t>(first),
+                                          values.exact.begin() + static_cast<std::ptrdiff_t>(first + size));
+      const auto points = numeric::drop_sweep(scene, parameter, chunk, p, threads);
+      for (std::size_t k = 0; k < size; ++k) {
+        rd[first + k] = points[k].ratio;
+        ed[first + k] = points[k].events;
+        labels.push_back(points[k].label);
+        ends.push_back(points[k].end);
+      }
+    }
+    between_tasks(progress, "values", total, total);
+    fill_doubles(values, x.mutable_data());
+  }
+  return py::make_tuple(x, ratio, labels, events, ends);
+}
+
 /// switch_points(): one tuple per change of case, in increasing value:
 /// (low, high, middle as decimal text, bracket width as decimal text, case below and its closed contacts, the same above).
 std::vector<py::tuple> switch_points(const Scene& scene, const std::string& key, const Values& values, int bits, int threads) {
@@ -537,6 +580,8 @@ PYBIND11_MODULE(_superball, m) {
       .def("to_text", [](const present::Presented& p) { return present::to_text(p); });
 
   m.def("solve", &solve, py::arg("scene"), py::arg("precision"), py::arg("rtol"));
+  m.def("drop_sweep", &drop_sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"),
+        py::arg("progress"), py::arg("checkpoint"));
   m.def("sweep", &sweep, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("precision"), py::arg("threads"), py::arg("progress"),
         py::arg("checkpoint"));
   m.def("switch_points", &switch_points, py::arg("scene"), py::arg("key"), py::arg("values"), py::arg("bits"), py::arg("threads"));

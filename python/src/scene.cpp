@@ -105,7 +105,8 @@ py::dict matrix(const Scene& s) {
 
 /// The keys of the values the scene holds, as sweep() and map() take them
 /// (canonical: Parameter::key()): M's entries, the masses, the velocities
-/// given, the fall (fall_speed, or drop_height and g).
+/// given, the fall (fall_speed, or drop_height and g) and, in a drop scene,
+/// the gaps.
 std::vector<std::string> keys(const Scene& s) {
   std::vector<std::string> out;
   for (const MatrixEntry& e : s.entries)
@@ -119,6 +120,9 @@ std::vector<std::string> keys(const Scene& s) {
     out.emplace_back("drop_height");
     out.emplace_back("g");
   }
+  // A drop's release gaps (0 when not given); body n − 1's distance to the bottom body is drop_height.
+  if (s.drop.requested)
+    for (int i = 1; i <= s.size() - 2; ++i) out.push_back("gap." + std::to_string(i));
   return out;
 }
 

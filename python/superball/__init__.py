@@ -49,10 +49,10 @@ from . import _progress, _superball
 from ._options import _checkpoint_option, _int_option, _selection, _str_option
 
 __all__ = [
-    "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "sweep",
+    "Error", "InputError", "Scene", "Result", "solve", "ExactRange", "linspace", "SweepResult", "DropSweepResult", "sweep",
     "SwitchPoint", "switch_points", "Condition", "Derivation", "derive", "derive_all", "audit", "verify", "explore",
     "DEFAULT_RTOL", "STATUSES", "map", "MapResult", "BoundaryPoint", "MapCurve", "MapAxis", "Overlay", "DerivedZero", "OverlayMatch",
-    "drop", "DropResult", "DropEvent", "DropApex", "DropRest", "gaps_to_zero", "GapLimit", "GapLimitStep",
+    "DropMapResult", "drop", "DropResult", "DropEvent", "DropApex", "DropRest", "gaps_to_zero", "GapLimit", "GapLimitStep",
 ]
 
 Error = _superball.Error
@@ -318,7 +318,8 @@ class Scene:
     @property
     def keys(self) -> List[str]:
         """The keys of the values the scene holds, as :meth:`with_value`, :func:`sweep` and :func:`map` take them:
-        ``["K.1-2", …, "alpha.2", "mass.1", …, "velocity.4", "fall_speed"]``."""
+        ``["K.1-2", …, "alpha.2", "mass.1", …, "velocity.4", "fall_speed"]``; a drop scene's gaps too
+        (``"gap.1"`` … ``"gap.{n-2}"``)."""
         return self._scene.keys
 
     @property
@@ -666,8 +667,43 @@ class SweepResult:
         return len(self.values)
 
 
+@dataclass(frozen=True)
+class DropSweepResult:
+    """The drops of a scene with a [drop] table along one parameter (``superball sweep`` of a drop scene).
+
+    ``values``: float64 (N,); ``ratio``: the top body's apex ratio at each
+    value (``DropResult.top_apex_ratio``, float64); ``labels``: the sequence
+    of collisions of each drop (NumPy str array, the command's ``label``:
+    ``CONTACTS:CASE`` per collision in time order, a run of k equal ones as
+    ``TOKEN*k``, docs/DROP.md); ``events``: int32, the number of collisions;
+    ``end``: why each run ended (``"apex"``, ``"rest"``, ``"max-events"``, …).
+    No switch points: a drop has no exact solution of one collision to bisect.
+    """
+
+    key: str
+    precision: str
+    values: np.ndarray
+    ratio: np.ndarray
+    labels: np.ndarray
+    events: np.ndarray
+    end: Tuple[str, ...]
+
+    @property
+    def ok(self) -> bool:
+        """Whether no run ended on max_events or on an unsolved collision (the command's exit 0)."""
+        return not any(e in ("max-events", "numerical-issue") for e in self.end)
+
+    def __len__(self) -> int:
+        return len(self.values)
+
+    def __repr__(self) -> str:
+        span = f"{self.values[0]:.6g} to {self.values[-1]:.6g}" if len(self) else "no value"
+        return (f"<superball.DropSweepResult {self.key} = {span} ({len(self)} values, {self.precision}): "
+                f"{len(set(self.labels.tolist()))} labels; top apex ratio {np.min(self.ratio):.6g} to {np.max(self.ratio):.6g}>")
+
+
 def sweep(scene: Scene, key: str, values: Any, precision: str = "double", threads: int = 0, progress: Any = None,
-          checkpoint: Any = None) -> SweepResult:
+          checkpoint: Any = None) -> Union[SweepResult, DropSweepResult]:
     """Solve ``scene`` at every value of the parameter ``key`` (``superball sweep``).
 
     ``key`` as in :meth:`Scene.with_value` (``"K.3-4"``).  ``values``: a
@@ -686,9 +722,19 @@ def sweep(scene: Scene, key: str, values: Any, precision: str = "double", thread
     block of values is written as soon as it is solved; the same call made
     again (same scene, key, values and precision) solves only the blocks
     not there, and the result is the same.
+
+    A scene with a [drop] table gives a :class:`DropSweepResult` instead:
+    each value's whole drop (:func:`drop`), its top apex ratio and its
+    sequence of collisions, as ``superball sweep`` prints them (keys as
+    above plus ``gap.i``; precision double or long-double; no checkpoint).
     """
     _check_scene(scene, "sweep")
     v = _values(values)
+    if scene.drop:
+        x, ratio, labels, events, end = _superball.drop_sweep(scene._scene, _str_option(key, "key"), v, _str_option(precision, "precision"),
+                                                              _int_option(threads, "threads"), _progress.resolve(progress, "sweep"),
+                                                              _checkpoint_option(checkpoint, "sweep"))
+        return DropSweepResult(str(key), str(precision), x, ratio, np.array(labels, dtype=str), events, tuple(end))
     x, u, codes, (names, closed), status, psd = _superball.sweep(scene._scene, _str_option(key, "key"), v, _str_option(precision, "precision"),
                                                             _int_option(threads, "threads"), _progress.resolve(progress, "sweep"),
                                                             _checkpoint_option(checkpoint, "sweep"))
@@ -978,6 +1024,6 @@ def explore(case: Optional[str] = None, alphas: Any = None, bodies: Optional[int
 # ---------------------------------------------------------------------------
 # Maps over two parameters (python/superball/_map.py)
 
-from ._map import BoundaryPoint, DerivedZero, MapAxis, MapCurve, MapResult, Overlay, OverlayMatch, map  # noqa: E402  (uses Scene, defined above)
+from ._map import BoundaryPoint, DerivedZero, DropMapResult, MapAxis, MapCurve, MapResult, Overlay, OverlayMatch, map  # noqa: E402  (uses Scene, defined above)
 from ._drop import DropApex, DropEvent, DropRest, DropResult, drop  # noqa: E402  (uses Scene, defined above)
 from ._drop_limit import GapLimit, GapLimitStep, gaps_to_zero  # noqa: E402  (uses Scene, defined above)

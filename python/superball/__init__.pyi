@@ -156,8 +156,21 @@ class SweepResult:
     def closed(self, k: int) -> Tuple[str, ...]: ...
     def __len__(self) -> int: ...
 
+@dataclass(frozen=True)
+class DropSweepResult:
+    key: str
+    precision: str
+    values: npt.NDArray[np.float64]
+    ratio: npt.NDArray[np.float64]
+    labels: npt.NDArray[np.str_]
+    events: npt.NDArray[np.int32]
+    end: Tuple[str, ...]
+    @property
+    def ok(self) -> bool: ...
+    def __len__(self) -> int: ...
+
 def sweep(scene: Scene, key: str, values: Values, precision: str = ..., threads: int = ..., progress: Any = ...,
-          checkpoint: Union[str, os.PathLike[str], None] = ...) -> SweepResult: ...
+          checkpoint: Union[str, os.PathLike[str], None] = ...) -> Union[SweepResult, DropSweepResult]: ...
 
 @dataclass(frozen=True)
 class SwitchPoint:
@@ -503,6 +516,23 @@ class GapLimit:
 
 def gaps_to_zero(scene: Scene, decades: int = ..., precision: str = ...) -> GapLimit: ...
 
+class DropMapResult:
+    scene: str
+    title: str
+    precision: str
+    x: MapAxis
+    y: MapAxis
+    ratio: npt.NDArray[np.float64]
+    label_codes: npt.NDArray[np.int32]
+    label_list: Tuple[str, ...]
+    labels: npt.NDArray[np.str_]
+    events: npt.NDArray[np.int32]
+    end: npt.NDArray[np.str_]
+    boundaries: str
+    def __init__(self, d: Dict[str, Any]) -> None: ...
+    @property
+    def shape(self) -> Tuple[int, int]: ...
+
 def map(scene: Scene, x: Union[str, Tuple[str, Number, Number, int]], y: Union[str, Tuple[str, Number, Number, int]],
         precision: str = ..., threads: Optional[int] = ..., progress: Any = ...,
-        checkpoint: Union[str, os.PathLike[str], None] = ..., overlay: bool = ...) -> MapResult: ...
+        checkpoint: Union[str, os.PathLike[str], None] = ..., overlay: bool = ...) -> Union[MapResult, DropMapResult]: ...

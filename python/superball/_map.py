@@ -6,7 +6,7 @@ from __future__ import annotations
 import html as _html
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -271,6 +271,45 @@ class MapResult:
         return ax
 
 
+class DropMapResult:
+    """A map of the drops of a scene with a [drop] table (``superball map`` of a drop scene).
+
+    Arrays are (ny, nx) as :class:`MapResult`'s: ``ratio`` the top body's
+    apex ratio (float64), ``labels`` each drop's sequence of collisions (str,
+    the command's ``label``), ``label_codes`` (int32) into ``label_list``
+    (the distinct labels in the order met, L1, L2, …), ``events`` (int32)
+    the number of collisions, ``end`` why each run ended (str).
+    ``boundaries``: why none are bisected.  ``str()`` is the command's summary.
+    """
+
+    def __init__(self, d: Dict[str, Any]) -> None:
+        self.scene: str = d["scene"]
+        self.title: str = d["title"]
+        self.precision: str = d["precision"]
+        self.x = MapAxis(d["x"]["key"], d["x"]["from"], d["x"]["to"], d["x"]["steps"], d["x"]["values"])
+        self.y = MapAxis(d["y"]["key"], d["y"]["from"], d["y"]["to"], d["y"]["steps"], d["y"]["values"])
+        self.ratio: np.ndarray = d["ratio"]
+        self.label_codes: np.ndarray = d["label_codes"]
+        self.label_list: Tuple[str, ...] = d["label_list"]
+        self.labels: np.ndarray = np.array(list(self.label_list), dtype=str)[self.label_codes]
+        self.events: np.ndarray = d["events"]
+        self.end: np.ndarray = np.array(d["end"], dtype=str).reshape(self.ratio.shape)
+        self.boundaries: str = d["boundaries"]
+        self._summary: str = d["summary"]
+
+    @property
+    def shape(self) -> Tuple[int, int]:
+        """(ny, nx)."""
+        return self.ratio.shape
+
+    def __str__(self) -> str:
+        return self._summary
+
+    def __repr__(self) -> str:
+        return (f"<superball.DropMapResult {self.scene!r} {self.x.key} x {self.y.key} ({self.x.steps} x {self.y.steps}, {self.precision}): "
+                f"{len(self.label_list)} labels; top apex ratio {np.min(self.ratio):.6g} to {np.max(self.ratio):.6g}>")
+
+
 def _axis_text(axis: Any, name: str) -> str:
     """KEY=FROM:TO:STEPS as given, or from a tuple (key, start, stop, steps)."""
     if isinstance(axis, str):
@@ -284,7 +323,7 @@ def _axis_text(axis: Any, name: str) -> str:
 
 
 def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional[int] = None, progress: Any = None,
-        checkpoint: Any = None, overlay: bool = False) -> MapResult:
+        checkpoint: Any = None, overlay: bool = False) -> Union[MapResult, DropMapResult]:
     """Solve ``scene`` over a grid of two parameters and locate the boundaries
     between its regions exactly (``superball map``).
 
@@ -309,6 +348,12 @@ def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional
     grid lines exactly and compare them with the boundary points
     (``superball map --overlay``): ``MapResult.overlay``.  A disagreement is
     ``overlay.agrees`` false, not an exception.
+
+    A scene with a [drop] table gives a :class:`DropMapResult` instead: each
+    grid point's whole drop (:func:`drop`), its top apex ratio and its
+    sequence of collisions, as ``superball map`` gives them (keys as above
+    plus ``gap.i``; precision double or long-double; no boundaries, no
+    checkpoint, no overlay; ``progress`` is not told).
     """
     from . import InputError, Scene
     from ._options import _int_option
@@ -321,6 +366,9 @@ def map(scene: Any, x: Any, y: Any, precision: str = "double", threads: Optional
     callback = _progress.resolve(progress, "map")
     if not isinstance(overlay, bool):
         raise InputError(f"map: overlay: expected True or False, got {overlay!r}")
+    if scene.drop:
+        return DropMapResult(_superball.drop_map(scene._scene, _axis_text(x, "x"), _axis_text(y, "y"), precision, threads,
+                                                 _checkpoint_option(checkpoint, "map"), overlay))
     d = _superball.map(scene._scene, _axis_text(x, "x"), _axis_text(y, "y"), precision, threads, callback, _checkpoint_option(checkpoint, "map"),
                        overlay)
     return MapResult(d)

@@ -154,7 +154,32 @@ INSTANTIATE_TEST_SUITE_P(Keys, ParameterBad,
                                            BadKey{"mass.5", "body must be 1..4"}, BadKey{"mass.x", "body must be"},
                                            BadKey{"mass.1x", "body must be"}, BadKey{"mass.4", "fixed obstacle"},
                                            BadKey{"velocity.9", "body must be"}, BadKey{"drop_height", "fall_speed"},
-                                           BadKey{"speed", "unknown parameter"}, BadKey{"", "unknown parameter"}));
+                                           BadKey{"speed", "unknown parameter"}, BadKey{"", "unknown parameter"},
+                                           BadKey{"gap.1", "no [drop] table"}));
+
+TEST(Parameter, GapIsABodysReleaseDistanceInADropScene) {
+  const Scene drop = parse_scene("drop_height = 1\n[[body]]\nmass = 1\ngap = 0.5\n[[body]]\nmass = 2\n[[body]]\nmass = 3\n"
+                                 "[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 1, \"2-3\" = 1, \"3-4\" = 1 }\n[drop]\n",
+                                 "drop");
+  const Parameter gap = Parameter::parse("gap.01", drop);
+  EXPECT_EQ(gap.key(), "gap.1");
+  EXPECT_EQ(gap, Parameter::parse("gap.1", drop));
+  EXPECT_NE(Parameter::parse("gap.2", drop), gap);
+  Scene s = drop;
+  gap.set(s, Number::parse("1/4"));
+  ASSERT_TRUE(s.bodies[0].gap);
+  EXPECT_EQ(s.bodies[0].gap->text, "1/4");
+  // The loader's check: a gap is >= 0; the scene is left as it was.
+  try {
+    gap.set(s, Number::parse("-1"));
+    ADD_FAILURE() << "a negative gap was set";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "drop: gap.1 = -1: body[1].gap: must be >= 0 m (got -1)");
+  }
+  EXPECT_EQ(s.bodies[0].gap->text, "1/4");
+  // Body 3's distance to the obstacle is drop_height, and the obstacle has none below it.
+  for (const char* key : {"gap.3", "gap.4", "gap.0", "gap.x"}) EXPECT_THROW(Parameter::parse(key, drop), std::invalid_argument) << key;
+}
 
 TEST(Parameter, AlphaNeedsFourBodies) {
   const Scene three = parse_scene(kThreeBodies, "three");

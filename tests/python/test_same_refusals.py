@@ -26,6 +26,10 @@ def scene():
     return superball.Scene.load(PAPER)
 
 
+def two_balls():
+    return superball.Scene.load(TWO_BALLS)
+
+
 def verify(**kw):
     return superball.verify(**{"case": "1", "alphas": 2, **kw})
 
@@ -122,6 +126,23 @@ CASES = [
     (DROP + ("--precision", "digits:30"), lambda: superball.drop(superball.Scene.load(TWO_BALLS), "digits:30"), None),
     (DROP + ("--precision", "quad"), lambda: superball.drop(superball.Scene.load(TWO_BALLS), "quad"), None),
     (("drop", PAPER), lambda: superball.drop(scene()), None),
+    # maps and sweeps of drops: the loader's checks at the range's ends,
+    # drop()'s arithmetic, and what a drop has not (numeric::refuse_drop(), refuse_distributed_drop())
+    (("sweep", TWO_BALLS, "--vary", "gap.1=-1:1:3"), lambda: superball.sweep(two_balls(), "gap.1", superball.linspace(-1, 1, 3)), None),
+    (("sweep", TWO_BALLS, "--vary", "gap.1=0:1:3", "--precision", "exact"),
+     lambda: superball.sweep(two_balls(), "gap.1", superball.linspace(0, 1, 3), precision="exact"), None),
+    (("map", TWO_BALLS, "--x", "gap.1=0:1:3", "--y", "mass.1=1:2:3", "--precision", "digits:30"),
+     lambda: superball.map(two_balls(), "gap.1=0:1:3", "mass.1=1:2:3", precision="digits:30"), None),
+    (("map", TWO_BALLS, "--x", "gap.1=0:1:3", "--y", "drop_height=0:1:3"),
+     lambda: superball.map(two_balls(), "gap.1=0:1:3", "drop_height=0:1:3"), None),
+    (("sweep", TWO_BALLS, "--vary", "gap.1=0:1:3", "--switch-points"),
+     lambda: superball.switch_points(two_balls(), "gap.1", superball.linspace(0, 1, 3)), None),
+    (("map", TWO_BALLS, "--x", "gap.1=0:1:3", "--y", "mass.1=1:2:3", "--overlay"),
+     lambda: superball.map(two_balls(), "gap.1=0:1:3", "mass.1=1:2:3", overlay=True), None),
+    (("map", TWO_BALLS, "--x", "gap.1=0:1:3", "--y", "mass.1=1:2:3", "--checkpoint", "unused-drop-map"),
+     lambda: superball.map(two_balls(), "gap.1=0:1:3", "mass.1=1:2:3", checkpoint="unused-drop-map"), None),
+    (("sweep", TWO_BALLS, "--vary", "gap.1=0:1:3", "--checkpoint", "unused-drop-sweep"),
+     lambda: superball.sweep(two_balls(), "gap.1", superball.linspace(0, 1, 3), checkpoint="unused-drop-sweep"), None),
 ]
 
 

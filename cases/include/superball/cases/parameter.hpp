@@ -13,7 +13,8 @@ namespace superball {
 /// A scalar parameter of a scene, named as on the command line:
 /// `K.3-4` (diagonal of M), `alpha.2` (the paper's α₂, n = 4),
 /// `coupling.1-2/1-4` (off-diagonal entry of M), `mass.1`, `velocity.4`,
-/// `drop_height`, `fall_speed`, `g`.
+/// `drop_height`, `fall_speed`, `g`, and for a scene with a [drop] table
+/// `gap.1` (body 1's gap to the body below it at release, m).
 ///
 /// One entry of the scene has several spellings, all parsed into the same
 /// Parameter: indices may have leading zeros (`K.03-4` is `K.3-4`,
@@ -29,7 +30,7 @@ class Parameter {
   /// The canonical spelling, used in every output: `K.i-j` and
   /// `coupling.i-j/k-l` with indices in decimal without leading zeros and
   /// the pairs in increasing order, `alpha.k` for a coupling the paper names
-  /// (4 bodies), `mass.i`, `velocity.i`, `drop_height`, `fall_speed`, `g`.
+  /// (4 bodies), `mass.i`, `velocity.i`, `gap.i`, `drop_height`, `fall_speed`, `g`.
   const std::string& key() const { return key_; }
   /// The spelling parse() was given, for messages that quote the user.
   const std::string& spelling() const { return spelling_; }
@@ -54,7 +55,7 @@ class Parameter {
   void assign(Scene& scene, const Number& value) const;
 
  private:
-  enum class Kind { Entry, Mass, Velocity, DropHeight, FallSpeed, Gravity } kind_ = Kind::Entry;
+  enum class Kind { Entry, Mass, Velocity, Gap, DropHeight, FallSpeed, Gravity } kind_ = Kind::Entry;
   std::string key_, spelling_;
   Pair first, second;  ///< Entry: first <= second
   int body = 0;

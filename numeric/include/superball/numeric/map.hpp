@@ -209,12 +209,18 @@ struct Map {
   const MapPoint& at(int i, int j) const { return points[static_cast<std::size_t>(j) * static_cast<std::size_t>(x.steps) + static_cast<std::size_t>(i)]; }
 };
 
+/// Refuse two axes that cannot make a map: the same parameter on both,
+/// fewer than 2 or more than map_max_steps values on one, equal ends
+/// (std::invalid_argument "map(): …"); check_map() and drop_map() call it.
+void check_axes(const Axis& x, const Axis& y);
+
 /// Refuse, before anything is solved, a map whose axes or rectangle cannot be
 /// solved: the same parameter on both axes, fewer than 2 or more than
 /// map_max_steps values on an axis, equal ends (std::invalid_argument
 /// "map(): …"), or a corner of the rectangle that a scene file could not
 /// hold or where a contact opens before the collision (InputError
-/// "ORIGIN: KEYX = X, KEYY = Y: what is wrong").
+/// "ORIGIN: KEYX = X, KEYY = Y: what is wrong"), and a scene with a [drop]
+/// table (refuse_drop(): drop_map() maps drops).
 ///
 /// The corners suffice: the loader's checks are signs of one value each, and
 /// each D_c(U⁻) is affine in a velocity and monotone in a = sqrt(2 g h), so
@@ -256,6 +262,32 @@ void map_points(const Scene& scene, const Axis& x, const Axis& y, const MapSetti
 /// of a Cholesky factorization (about n·u·‖M‖ for n pairs), so the filter
 /// decides only points at least that far inside or outside the cone.
 inline constexpr double map_psd_margin = 1e-9;
+
+/// A map of a drop scene (a scene with a [drop] table): the DropPoint of
+/// every grid point.  No boundaries: a drop has no exact solution to
+/// bisect, its label changes where the order of its collisions does.
+struct DropMap {
+  ///@{
+  /// The two axes: x varies along a row, y from row to row.
+  Axis x, y;
+  ///@}
+  std::vector<DropPoint> points;  ///< row by row: points[j·x.steps + i] is at (x_i, y_j)
+  /// The point at (x_i, y_j).
+  const DropPoint& at(int i, int j) const { return points[static_cast<std::size_t>(j) * static_cast<std::size_t>(x.steps) + static_cast<std::size_t>(i)]; }
+};
+
+/// The drop of \p scene (with a [drop] table) at every point (x_i, y_j) of
+/// the grid, in settings.precision on settings.threads, each its own run of
+/// drop() as drop_sweep() runs one, so the map does not depend on the
+/// threads, bit for bit.  Before anything is run: settings.check(), the
+/// axes as check_map() takes them (two parameters, 2 … map_max_steps
+/// values, distinct ends), the four corners set through Parameter::set()
+/// and dropped (the admissible set is convex: each loader's check is a sign
+/// of one value, M's positive semi-definiteness a convex cone), and
+/// settings.fits() with each point's DropPoint.  settings.runner must be
+/// empty (std::invalid_argument: a drop map is not spread over processes
+/// nor checkpointed); settings.boundaries is not used.
+DropMap drop_map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings = {});
 
 /// The point of a boundary in the plane, in double: the middle of its bracket
 /// on the varying axis, the grid value on the other.

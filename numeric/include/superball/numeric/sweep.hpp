@@ -12,6 +12,7 @@
 
 #include "superball/cases/parameter.hpp"
 #include "superball/numeric/collision.hpp"
+#include "superball/numeric/drop.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/precision.hpp"
 #include "superball/numeric/export.hpp"
@@ -66,7 +67,10 @@ struct SweepPoint {
 /// entry per value: the same problem as converting the value's scene, bit
 /// for bit, at a fraction of the cost.  The smallest and largest of \p values pass check_range()
 /// first (throws InputError), so every value solved is admissible; no value,
-/// or \p threads refused by check_threads(), throws std::invalid_argument.
+/// or \p threads refused by check_threads(), throws std::invalid_argument,
+/// and so does a scene with a [drop] table (refuse_drop(); drop_sweep()
+/// sweeps drops), here and in sweep_marking_psd(), label_changes() and
+/// switch_points().
 std::vector<SweepPoint> sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
                               const Precision& precision, int threads = 1);
 
@@ -106,6 +110,60 @@ std::string write_sweep_points(const std::vector<SweepPoint>& points);
 /// (values left 0); std::invalid_argument("read_sweep_points(): a damaged
 /// result (…)") when it is not that.
 std::vector<SweepPoint> read_sweep_points(const std::string& text, int bodies);
+
+/// What a map or a sweep keeps of one drop (a scene with a [drop] table,
+/// drop()): its label, the sequence of its collisions, and its value, the
+/// top body's apex ratio.
+struct DropPoint {
+  /// drop_label() of the run: equal sequences of collisions, equal labels.
+  std::string label;
+  /// DropResult::top_apex_ratio.
+  double ratio = 0;
+  /// The number of collisions.
+  int events = 0;
+  /// DropResult::end ("apex", "rest", "max-events", …).
+  std::string end;
+};
+
+/// The label of a drop: its collisions in time order, each written
+/// CONTACTS:CASE (the contacts that closed at that instant, then
+/// DropEvent::case_name, e.g. "2-3:{}" or "1-2,2-3,3-4:3.3"), separated by
+/// one space, a run of k > 1 equal collisions written once as TOKEN*k
+/// ("3-4:{}*12"); "none" when there was no collision.  Canonical: two drops
+/// have the same label exactly when their sequences of contacts and cases
+/// are the same.
+std::string drop_label(const DropResult& result);
+
+/// The DropPoint of \p result.
+DropPoint drop_point(const DropResult& result);
+
+/// The drop of \p scene (with a [drop] table) at each of \p values of
+/// \p parameter, in \p precision, on \p threads threads (0: all cores):
+/// every value is its own run of drop() from the scene with the value
+/// assigned, so each point is that of `superball drop` on the scene with
+/// the value written in, bit for bit, whatever \p threads.  First the
+/// smallest and the largest value are set through Parameter::set() (the
+/// loader's checks: gap >= 0, drop_height > 0 over a fixed obstacle, …) and
+/// dropped (drop()'s checks: M positive semi-definite, the precision
+/// double or long double); along one parameter every check admits an
+/// interval, so every value between passes.  Throws InputError
+/// ("ORIGIN: KEY = VALUE: what is wrong") or std::invalid_argument as those
+/// do, std::invalid_argument without a value, for a scene without [drop]
+/// or for \p threads refused by check_threads().
+std::vector<DropPoint> drop_sweep(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values,
+                                  const Precision& precision, int threads = 1);
+
+/// Throws std::invalid_argument("WHAT: ORIGIN has a [drop] table: a map
+/// or sweep of drops runs in one process …"): a sweep or map of drops is
+/// not spread over MPI ranks, shards or a checkpoint (drop_map() with a
+/// runner, the fronts' options).
+[[noreturn]] void refuse_distributed_drop(const Scene& scene, const std::string& what);
+
+/// Throws std::invalid_argument("WHAT: ORIGIN has a [drop] table: …")
+/// when \p scene asks for a drop: \p what (switch_points(),
+/// label_changes(), an overlay) bisects the exact solution of one
+/// collision, which a drop, a sequence of collisions, does not have.
+void refuse_drop(const Scene& scene, const std::string& what);
 
 /// The exact solution (CLN rationals) of a scene at one parameter value.
 struct ExactPoint {

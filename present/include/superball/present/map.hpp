@@ -87,6 +87,35 @@ std::string map_figure_data(const numeric::Map& m, const std::vector<MapMark>& m
 std::string map_figure_script(const numeric::Map& m, const std::vector<MapMark>& marks, bool derived, const std::string& title,
                               const std::string& data, const std::string& terminal, const std::string& output);
 
+/// The distinct labels of a drop map (numeric::drop_label()), numbered
+/// L1, L2, … in the order first met along the grid (x fastest).
+std::vector<std::string> drop_map_labels(const numeric::DropMap& m);
+/// A drop map as CSV, one row per point (x varies fastest): KEYX, KEYY,
+/// top_apex_ratio (17 digits), events, end, label.
+std::string drop_map_csv(const numeric::DropMap& m);
+/// A drop map for programs: scene, title, precision, the axes (exact ends),
+/// "labels" (drop_map_labels()), "points" row by row, each with i, j, its
+/// label's index into "labels", top_apex_ratio, events and end, and
+/// "boundaries": the text saying why there are none.
+nlohmann::ordered_json drop_map_json(const numeric::DropMap& m, const Scene& scene, const std::string& precision);
+/// A drop map for people: the grid, each label (L1, …) with its number of
+/// points and range of the top apex ratio, the whole range, the runs not
+/// ended by an apex or a rest, and the neighbouring pairs whose labels
+/// differ (no boundary is bisected: drop_map_no_boundaries).
+std::string drop_map_summary(const numeric::DropMap& m, const Scene& scene, const std::string& precision);
+/// Why a drop map or sweep has no bisected boundaries, as the outputs say it.
+inline constexpr const char* drop_map_no_boundaries =
+    "none bisected: a drop has no exact solution of one collision to bisect; its label changes between neighbouring points of different labels";
+/// The data of a drop map's figure: index 0, x y r g b (each label's
+/// colour); index 1, x y top apex ratio.
+std::string drop_map_figure_data(const numeric::DropMap& m);
+/// The gnuplot script of the figure of drop_map_figure_data(): two panels
+/// side by side, the labels in distinct colours with a legend naming L1, …,
+/// and the top apex ratio in colour; \p data, \p terminal and \p output
+/// as in map_figure_script().
+std::string drop_map_figure_script(const numeric::DropMap& m, const std::string& title, const std::string& data, const std::string& terminal,
+                                   const std::string& output);
+
 /// The axis label of a parameter key for gnuplot's enhanced text: alpha.2 ->
 /// α_2, K.3-4 -> K_{34}, others as they are.
 std::string axis_label(const std::string& key);
