@@ -4,10 +4,12 @@
 // laws at every collision.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "superball/cases/error.hpp"
 #include "superball/cases/scene_file.hpp"
+#include "superball/numeric/collision.hpp"
 #include "superball/numeric/drop.hpp"
 
 namespace superball::numeric {
@@ -83,8 +85,7 @@ TEST(Drop, RefusesWhatItDoesNotRun) {
   const Scene s = scene("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[drop]\n");
   EXPECT_THROW(drop(s, Precision::parse("exact")), std::invalid_argument);
   EXPECT_THROW(drop(scene("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n"), Precision::parse("double")), InputError);
-  EXPECT_THROW(drop(scene("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[drop]\ndistant = true\n"), Precision::parse("double")),
-               std::invalid_argument);
+  EXPECT_THROW(drop(s, SolvePrecision{true, {}, 1e-6}), std::invalid_argument);
 }
 
 TEST(Drop, BadKeysAreOneLineErrors) {
@@ -128,6 +129,110 @@ TEST(Drop, ABodyBouncingOnABodyAtRestComesToRestAtTheSumOfItsSeries) {
   EXPECT_NEAR(r.rest[1].time, last.time + 2 * last.velocities_after[1] / g / (1 - e), kClosedFormTolerance);
   for (const DropEvent& ev : r.events) EXPECT_LE(ev.kinetic_energy_after, ev.kinetic_energy_before * (1 + kBalanceTolerance));
   EXPECT_GT(r.top_apex_ratio, 1);
+}
+
+/// The paper's §4.4 stack with 1 mm gaps (cases/scenes/drop-paper-4.4.toml), in the view \p distant, until \p until.
+Scene paper_stack(bool distant, const std::string& until) {
+  Scene s = load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/drop-paper-4.4.toml");
+  s.drop.distant = distant;
+  s.drop.until = Number::parse(until);
+  return s;
+}
+
+/// Every velocity of every event of \p a and \p b, bit for bit.
+void expect_same_events(const DropResult& a, const DropResult& b) {
+  ASSERT_EQ(a.events.size(), b.events.size());
+  for (std::size_t k = 0; k < a.events.size(); ++k) {
+    EXPECT_EQ(a.events[k].velocities_after, b.events[k].velocities_after) << "event " << k + 1;
+    EXPECT_EQ(a.events[k].time, b.events[k].time) << "event " << k + 1;
+    EXPECT_EQ(a.events[k].case_name, b.events[k].case_name) << "event " << k + 1;
+  }
+  EXPECT_EQ(a.end, b.end);
+  EXPECT_EQ(a.top_apex_ratio, b.top_apex_ratio);
+}
+
+/// The balance laws of every collision of \p r: kinetic energy never
+/// increases; the momentum of the finite bodies is conserved when the
+/// colliding bodies do not hold the fixed obstacle; contacts under
+/// impenetrability (closed at the instant: not apart) do not interpenetrate.
+void expect_balances(const DropResult& r) {
+  const int n = static_cast<int>(r.masses.size());
+  for (const DropEvent& ev : r.events) {
+    SCOPED_TRACE("event at t = " + std::to_string(ev.time));
+    EXPECT_LE(ev.kinetic_energy_after, ev.kinetic_energy_before * (1 + kBalanceTolerance));
+    if (!(r.fixed_bottom && ev.last_body == n)) EXPECT_NEAR(ev.momentum_after, ev.momentum_before, kBalanceTolerance * (1 + std::abs(ev.momentum_before)));
+    double speed = 0;
+    for (double v : ev.velocities_before) speed = std::max(speed, std::abs(v));
+    for (int c = ev.first_body - 1; c + 1 < ev.last_body; ++c) {
+      const std::string name = std::to_string(c + 1) + "-" + std::to_string(c + 2);
+      if (std::find(ev.apart.begin(), ev.apart.end(), name) != ev.apart.end()) continue;
+      EXPECT_GE(ev.velocities_after[c] - ev.velocities_after[c + 1], -kBalanceTolerance * speed) << "contact " << name;
+    }
+  }
+}
+
+TEST(DropDistant, AStackWithEveryContactClosedCollidesAsInTheTouchingView) {
+  // Every contact closed at the impact: the colliding system and its problem are the touching view's, bit for bit.
+  Scene s = scene("drop_height = 1\n[[body]]\nmass = 0.5\n[[body]]\nmass = 2\n[[body]]\nmass = 3\n[[body]]\nmass = \"inf\"\n"
+                  "[dissipation]\nK = { \"1-2\" = 3, \"2-3\" = 5, \"3-4\" = 7, \"1-4\" = 2 }\n[drop]\nmax_events = 1\n");
+  const DropResult touching = drop(s, Precision::parse("double"));
+  s.drop.distant = true;
+  const DropResult distant = drop(s, Precision::parse("double"));
+  ASSERT_EQ(distant.events.size(), 1u);
+  EXPECT_TRUE(distant.events[0].apart.empty());
+  expect_same_events(touching, distant);
+  EXPECT_TRUE(distant.distant);
+}
+
+TEST(DropDistant, NoPairOfMAcrossAnOpenGapGivesTheSameDrop) {
+  // One ball on the floor (bounces, then rest), and two free bodies meeting
+  // (finite bottom): M's only pair is the contact that closes.
+  for (const char* text :
+       {"drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9 }\n[drop]\nuntil = 10\n",
+        "[[body]]\nmass = 1\ngap = 0.5\nvelocity = -1\n[[body]]\nmass = 4\nvelocity = 1\n[dissipation]\nK = { \"1-2\" = 2 }\n[drop]\nuntil = 3\n"}) {
+    Scene s = scene(text);
+    const DropResult touching = drop(s, Precision::parse("double"));
+    s.drop.distant = true;
+    const DropResult distant = drop(s, Precision::parse("double"));
+    ASSERT_GT(distant.events.size(), 0u);
+    expect_same_events(touching, distant);
+    EXPECT_EQ(touching.rest.size(), distant.rest.size());
+    expect_balances(distant);
+  }
+}
+
+TEST(DropDistant, ThePaperStackBouncesAtTheFirstImpactAsTheSimultaneousCollision) {
+  // §4.4 with 1 mm gaps: all three balls reach the obstacle at the same speed
+  // a = sqrt(2 g 0.5), 3-4 closing first.  Touching view: ball 3 alone hits
+  // the obstacle, balls 1 and 2 fly on.  Distant view: every pair of M acts
+  // at that instant (K14 = 1500 couples ball 1 and the obstacle through the
+  // stack); the simultaneous collision of the paper ends in case 3.3 (every
+  // contact opens: no reaction), so impenetrability on 1-2 and 2-3 plays no
+  // part there, and the distant first impact is that collision.
+  const DropResult touching = drop(paper_stack(false, "0.5"), Precision::parse("double"));
+  const DropResult distant = drop(paper_stack(true, "0.5"), Precision::parse("double"));
+  ASSERT_GT(touching.events.size(), 1u);
+  ASSERT_GT(distant.events.size(), 1u);
+  const DropEvent &t1 = touching.events[0], &d1 = distant.events[0];
+  EXPECT_EQ(t1.contacts, std::vector<std::string>{"3-4"});
+  EXPECT_EQ(d1.contacts, std::vector<std::string>{"3-4"});
+  EXPECT_EQ(t1.first_body, 3);
+  EXPECT_EQ(d1.first_body, 1);
+  EXPECT_EQ(d1.apart, (std::vector<std::string>{"1-2", "2-3"}));
+  EXPECT_EQ(t1.velocities_after[0], t1.velocities_before[0]);  // ball 1 not in the touching cluster
+  EXPECT_GT(d1.velocities_after[0], 0);                         // ball 1 bounces at a distance
+  // The simultaneous collision of the same stack (no gaps), at the same speed.
+  Scene together = paper_stack(false, "0.5");
+  for (Body& b : together.bodies) b.gap.reset();
+  together.drop.requested = false;
+  const double a = -d1.velocities_before[2];
+  const Problem<double> p = Problem<double>::from(ExactScene::from(together));
+  const Solution<double> sim = solve(p);
+  ASSERT_EQ(sim.status, Status::Success);
+  for (int c = 0; c < 3; ++c) EXPECT_FALSE(sim.closed.closed(c)) << "case 3.3: every contact opens";
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(d1.velocities_after[i], sim.velocities_after[i] * p.unit, 1e-9 * a) << "ball " << i + 1;
+  expect_balances(touching);
+  expect_balances(distant);
 }
 
 }  // namespace
