@@ -87,8 +87,8 @@ std::string to_text(const PresentedDrop& d) {
      << " at t = " << number(r.end_time, 8) << " s";
   if (r.near_ties > 0) os << ", " << r.near_ties << " near ties (see docs/DROP.md)";
   if (r.distant) os << "\ndistant: every pair of M takes part in every collision";
-  os << "\norder of events: " << (r.orders_certified ? "every order certified" : "not every order certified") << " (" << r.ties << " ties, "
-     << r.near_ties << " near ties)";
+  os << "\norder of events: " << (r.orders_certified ? "every order certified" : "not every order certified") << " (ties " << r.ties << ", near ties "
+     << r.near_ties << ")";
   if (r.escalated)
     os << "; auto: double could not certify every order, long-double decided; the " << r.double_events << " events in double "
        << (r.sequences_agree ? "are the same" : "differ");

@@ -235,5 +235,102 @@ TEST(DropDistant, ThePaperStackBouncesAtTheFirstImpactAsTheSimultaneousCollision
   expect_balances(distant);
 }
 
+TEST(DropDistant, AFiniteBottomMassConservesTheMomentumOfEveryCollision) {
+  // No fixed obstacle: every collision at a distance is internal to the stack.
+  Scene s = scene("[[body]]\nmass = 0.2\nvelocity = 0\ngap = 0.05\n[[body]]\nmass = 1\nvelocity = 0\ngap = 0.1\n[[body]]\nmass = 2\n"
+                  "velocity = 0\ngap = 0.02\n[[body]]\nmass = 5\nvelocity = 3\n[dissipation]\n"
+                  "K = { \"1-2\" = 4, \"2-3\" = 6, \"3-4\" = 8, \"1-4\" = 3, \"2-4\" = 1 }\n[drop]\ndistant = true\nuntil = 1.5\n");
+  for (const char* p : {"double", "long-double"}) {
+    const DropResult r = drop(s, Precision::parse(p));
+    ASSERT_GE(r.events.size(), 3u) << p;
+    for (const DropEvent& ev : r.events) {
+      EXPECT_EQ(ev.first_body, 1);  // M joins every body: the whole stack collides each time
+      EXPECT_EQ(ev.last_body, 4);
+    }
+    expect_balances(r);
+  }
+}
+
+TEST(DropDistant, AHugeKAtADistanceIsSolvedAndReversesTheLightBall) {
+  // K14 = 1e12 against m1 = 1e-3: the double solve fails its residual check
+  // and the collision is solved again in exact rationals, with the contacts
+  // left open there too; ball 1 leaves at minus its velocity, to 2 m1/K14.
+  Scene s = paper_stack(true, "0.35");
+  for (MatrixEntry& e : s.entries)
+    if (e.diagonal() && e.first.name() == "1-4") e.value = Number::parse("1e12");
+  const DropResult r = drop(s, Precision::parse("double"));
+  EXPECT_EQ(r.end, "until");
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_NEAR(r.events[0].velocities_after[0], -r.events[0].velocities_before[0], 1e-9);
+  expect_balances(r);
+}
+
+TEST(DropDistant, ThePaperStackChattersBecauseBallOneReversesAtEveryCollision) {
+  // Found by running it to the apex: with every pair of M in every
+  // collision and K14 = 1500 >> m1 = 1e-3, ball 1 reverses (U1+ ~ -U1-) at
+  // each collision of the stack below, however far it is, and each
+  // reversal kicks balls 2 and 3 through K12, K13 (about 1e-6 m/s): their
+  // bounces on the obstacle never die out, and the run ends on max_events.
+  Scene s = paper_stack(true, "1");
+  s.drop.until.reset();
+  s.drop.max_events = 60;
+  const DropResult r = drop(s, Precision::parse("double"));
+  EXPECT_EQ(r.end, "max-events");
+  ASSERT_EQ(r.events.size(), 60u);
+  for (std::size_t k = 1; k < r.events.size(); ++k) {
+    const DropEvent& ev = r.events[k];
+    EXPECT_LT(ev.velocities_before[0] * ev.velocities_after[0], 0) << "event " << k + 1;
+    EXPECT_NEAR(std::abs(ev.velocities_after[0]), std::abs(ev.velocities_before[0]), 0.05 * std::abs(ev.velocities_before[0])) << "event " << k + 1;
+  }
+  expect_balances(r);
+}
+
+/// Three balls over a fixed floor, 1-2 and 2-3 closing at 0.1 s and 0.1 s + \p late.
+Scene two_contacts_at_once(const std::string& late) {
+  return scene("drop_height = 1\n[[body]]\nmass = 1\ngap = 0.1\nvelocity = -1\n[[body]]\nmass = 1\ngap = 0.1" + late +
+               "\nvelocity = 0\n[[body]]\nmass = 1\nvelocity = 1\n[[body]]\nmass = \"inf\"\n"
+               "[dissipation]\nK = { \"1-2\" = 5, \"2-3\" = 5, \"3-4\" = 5 }\n[drop]\nuntil = 0.3\n");
+}
+
+TEST(DropOrder, AnExactTieCollidesTogetherAndIsNotCertifiedInAnyPrecision) {
+  const SolvePrecision automatic = SolvePrecision::parse("auto", std::nullopt);
+  const DropResult r = drop(two_contacts_at_once(""), automatic);
+  ASSERT_GE(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].contacts, (std::vector<std::string>{"1-2", "2-3"}));
+  EXPECT_EQ(r.ties, 1);
+  EXPECT_FALSE(r.events[0].order_certified);
+  EXPECT_FALSE(r.orders_certified);
+  EXPECT_TRUE(r.escalated);
+  EXPECT_EQ(r.precision, "long-double");
+  EXPECT_EQ(r.precision_asked, "auto");
+  EXPECT_TRUE(r.sequences_agree);
+  // Momentum of the three balls conserved: the floor is not in the cluster 1-3.
+  expect_balances(r);
+}
+
+TEST(DropOrder, AutoRunsANearTieAgainInLongDoubleWhichCertifiesIt) {
+  // 1e-12 s apart: within the doubt bound of double (2^20 u t ~ 6e-11 s),
+  // outside long double's (~3e-14 s).
+  const Scene s = two_contacts_at_once("00000000001");
+  const DropResult d = drop(s, Precision::parse("double"));
+  EXPECT_EQ(d.near_ties, 1);
+  EXPECT_FALSE(d.orders_certified);
+  EXPECT_EQ(d.precision_asked, "double");
+  EXPECT_FALSE(d.escalated);
+  const DropResult r = drop(s, SolvePrecision::parse("auto", std::nullopt));
+  EXPECT_TRUE(r.escalated);
+  EXPECT_EQ(r.precision, "long-double");
+  EXPECT_TRUE(r.orders_certified);
+  EXPECT_EQ(r.near_ties, 0);
+  EXPECT_TRUE(r.sequences_agree);
+  EXPECT_EQ(r.double_events, static_cast<int>(d.events.size()));
+  EXPECT_EQ(r.events[0].contacts, std::vector<std::string>{"1-2"});
+  // A run whose orders are all certified in double stays in double.
+  const DropResult plain = drop(load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/drop-two-balls.toml"), SolvePrecision::parse("auto", std::nullopt));
+  EXPECT_TRUE(plain.orders_certified);
+  EXPECT_FALSE(plain.escalated);
+  EXPECT_EQ(plain.precision, "double");
+}
+
 }  // namespace
 }  // namespace superball::numeric
