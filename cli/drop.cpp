@@ -23,7 +23,7 @@ void add_drop(CLI::App& app, Action& action) {
       "  superball drop cases/scenes/drop-two-balls.toml\n"
       "  superball drop cases/scenes/drop-one-ball.toml --json");
   cmd->add_option("scene", o->scene, "Scene file (TOML) with a [drop] table")->required();
-  cmd->add_option("--precision,-p", o->precision, "Arithmetic: double (default) or long-double")->capture_default_str();
+  cmd->add_option("--precision,-p", o->precision, "Arithmetic: double (default), long-double, or auto (double, run again in long double when an order of events is not certified)")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON for programs instead of text");
   cmd->callback([o, &action] {
     action = [o] {

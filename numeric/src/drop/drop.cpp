@@ -491,7 +491,7 @@ DropResult drop(const Scene& scene, const Precision& precision) {
   if (!scene.drop.requested) throw InputError(scene.origin + ": has no [drop] table: superball drop follows a scene's [drop]");
   if (precision.kind != Precision::Kind::Double && precision.kind != Precision::Kind::LongDouble)
     throw std::invalid_argument("drop(): precision " + precision.name() +
-                                ": a drop runs in double, long-double or auto (a floor impact's time is a square root, and the "
+                                ": a drop runs in double or long-double, or auto from one to the other (a floor impact's time is a square root, and the "
                                 "flights are not exact)");
   // The checks of a scene (M positive semi-definite, masses), on the bodies at rest.
   Scene still = scene;
