@@ -285,6 +285,17 @@ TEST(DropDistant, ThePaperStackChattersBecauseBallOneReversesAtEveryCollision) {
   expect_balances(r);
 }
 
+TEST(DropDistant, OneBodyIsRefusedAndTwoBodiesAtRestTogetherNeverCollide) {
+  EXPECT_THROW(drop(scene("drop_height = 1\n[[body]]\nmass = 1\n[drop]\ndistant = true\n"), Precision::parse("double")), InputError);
+  const DropResult r = drop(scene("[[body]]\nmass = 1\nvelocity = 0\n[[body]]\nmass = 2\nvelocity = 0\n[dissipation]\nK = { \"1-2\" = 1 }\n"
+                                  "[drop]\ndistant = true\n"),
+                            SolvePrecision::parse("auto", std::nullopt));
+  EXPECT_TRUE(r.events.empty());
+  EXPECT_EQ(r.end, "no-more-events");
+  EXPECT_TRUE(r.orders_certified);
+  EXPECT_FALSE(r.escalated);
+}
+
 /// Three balls over a fixed floor, 1-2 and 2-3 closing at 0.1 s and 0.1 s + \p late.
 Scene two_contacts_at_once(const std::string& late) {
   return scene("drop_height = 1\n[[body]]\nmass = 1\ngap = 0.1\nvelocity = -1\n[[body]]\nmass = 1\ngap = 0.1" + late +
