@@ -87,7 +87,7 @@ void add_drop(CLI::App& app, Action& action) {
       "  superball drop cases/scenes/drop-three-balls.toml --plot out   # out/trajectories.png\n"
       "  superball drop cases/scenes/drop-paper-4.4.toml --gaps-to-zero");
   cmd->add_option("scene", o->scene, "Scene file (TOML) with a [drop] table")->required();
-  cmd->add_option("--precision,-p", o->precision, "Arithmetic: double (default) or long-double")->capture_default_str();
+  cmd->add_option("--precision,-p", o->precision, "Arithmetic: double (default), long-double, or auto (double, run again in long double when an order of events is not certified)")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON for programs instead of text");
   cmd->add_option("--plot", o->plot, "Folder for the trajectory plot (DIR/trajectories.png, .svg, .dat, .gp; with --gaps-to-zero DIR/gaps-to-zero.*)")
       ->check(non_empty());

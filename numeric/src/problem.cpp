@@ -321,6 +321,7 @@ int Problem<S>::check(const char* who) const {
     b = std::max(b, e.span());
   }
   if (outside) fail("an entry of M names a pair outside the bodies");
+  if (!constrained.empty() && static_cast<int>(constrained.size()) != n - 1) fail("constrained must be empty or have one flag per contact");
   return b;
 }
 

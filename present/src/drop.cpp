@@ -120,7 +120,7 @@ DropTrace drop_trace(const numeric::DropResult& r) {
 }
 
 PresentedDrop drop_scene(const Scene& scene, const std::string& precision) {
-  return {scene.origin, scene.title, numeric::drop(scene, numeric::Precision::parse(precision))};
+  return {scene.origin, scene.title, numeric::drop(scene, numeric::SolvePrecision::parse(precision, std::nullopt))};
 }
 
 nlohmann::json to_json(const PresentedDrop& d) {
@@ -143,6 +143,8 @@ nlohmann::json to_json(const PresentedDrop& d) {
                       {"bodies", {e.first_body, e.last_body}},
                       {"case", e.case_name},
                       {"closed", e.closed},
+                      {"apart", e.apart},
+                      {"order_certified", e.order_certified},
                       {"heights", e.heights},
                       {"velocities_before", e.velocities_before},
                       {"velocities_after", e.velocities_after},
@@ -165,6 +167,12 @@ nlohmann::json to_json(const PresentedDrop& d) {
   j["end_time"] = r.end_time;
   j["top_apex_ratio"] = std::isinf(r.top_apex_ratio) ? nlohmann::json(nullptr) : nlohmann::json(r.top_apex_ratio);
   j["near_ties"] = r.near_ties;
+  j["ties"] = r.ties;
+  j["orders_certified"] = r.orders_certified;
+  j["precision_asked"] = r.precision_asked;
+  j["escalated"] = r.escalated;
+  j["sequences_agree"] = r.sequences_agree;
+  j["distant"] = r.distant;
   return j;
 }
 
@@ -175,6 +183,14 @@ std::string to_text(const PresentedDrop& d) {
   os << "precision " << r.precision << ", g = " << number(r.g) << " m/s^2, " << r.events.size() << " collisions, ended by " << r.end
      << " at t = " << number(r.end_time, 8) << " s";
   if (r.near_ties > 0) os << ", " << r.near_ties << " near ties (see docs/DROP.md)";
+  if (r.distant) os << "\ndistant: every pair of M takes part in every collision";
+  os << "\norder of events: " << (r.orders_certified ? "every order certified" : "not every order certified") << " (ties " << r.ties << ", near ties "
+     << r.near_ties << ")";
+  if (r.escalated)
+    os << "; auto: double could not certify every order, long-double decided; the " << r.double_events << " events in double "
+       << (r.sequences_agree ? "are the same" : "differ");
+  else if (r.precision_asked == "auto")
+    os << "; auto: double decided";
   os << "\n\n  body        mass (kg)   release height (m)\n";
   for (std::size_t i = 0; i < r.masses.size(); ++i)
     os << "  " << std::setw(4) << i + 1 << "  " << std::setw(15) << number(r.masses[i]) << "  " << std::setw(19) << number(r.release_heights[i])

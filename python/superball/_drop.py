@@ -155,9 +155,10 @@ def drop(scene: Any, precision: str = "double") -> DropResult:
     form, each collision solved by the law of the touching cluster, bounce
     sequences on the fixed obstacle summed to their rest time, until the top
     body's apex (``until = "apex"``, the default) or a time.
-    ``precision``: ``"double"`` or ``"long-double"``; other arithmetics, a
-    scene without ``[drop]`` and ``distant = true`` are :class:`InputError`
-    with the command's message.  See docs/DROP.md.
+    ``precision``: ``"double"``, ``"long-double"`` or ``"auto"`` (double, run
+    again in long double when an order of events is not certified); other
+    arithmetics and a scene without ``[drop]`` are :class:`InputError` with
+    the command's message.  See docs/DROP.md.
     """
     from . import InputError, Scene
 

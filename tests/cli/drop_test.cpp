@@ -84,8 +84,6 @@ TEST(DropCli, BadInputIsOneLineExitTwo) {
        "drop.max_events: must be a whole number from 1 to 100000000 (got 0)"},
       {"drop_height = 1\n[[body]]\nmass = 1\ngap = -1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9, \"2-3\" = 9 }\n[drop]\n",
        "gap"},
-      {"drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9 }\n[drop]\ndistant = true\n",
-       "not implemented yet"},
       {"drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9 }\n[drop]\nuntil = -1\n", "drop.until"},
       {"drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9 }\n[drop]\nwhen = 3\n", "unknown key"},
   };

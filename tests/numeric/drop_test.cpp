@@ -4,10 +4,12 @@
 // laws at every collision.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "superball/cases/error.hpp"
 #include "superball/cases/scene_file.hpp"
+#include "superball/numeric/collision.hpp"
 #include "superball/numeric/drop.hpp"
 
 namespace superball::numeric {
@@ -83,8 +85,7 @@ TEST(Drop, RefusesWhatItDoesNotRun) {
   const Scene s = scene("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[drop]\n");
   EXPECT_THROW(drop(s, Precision::parse("exact")), std::invalid_argument);
   EXPECT_THROW(drop(scene("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n"), Precision::parse("double")), InputError);
-  EXPECT_THROW(drop(scene("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[drop]\ndistant = true\n"), Precision::parse("double")),
-               std::invalid_argument);
+  EXPECT_THROW(drop(s, SolvePrecision{true, {}, 1e-6}), std::invalid_argument);
 }
 
 TEST(Drop, BadKeysAreOneLineErrors) {
@@ -207,6 +208,216 @@ TEST(Drop, DataOutsideTheArithmeticsWindowAreRefusedNotRoundedToZeroOrInfinity) 
   EXPECT_EQ(high.end, "apex");
   EXPECT_GT(high.apexes[0].height, 0.99e308);
   EXPECT_LT(high.apexes[0].height, 1e308);
+/// The paper's §4.4 stack with 1 mm gaps (cases/scenes/drop-paper-4.4.toml), in the view \p distant, until \p until.
+Scene paper_stack(bool distant, const std::string& until) {
+  Scene s = load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/drop-paper-4.4.toml");
+  s.drop.distant = distant;
+  s.drop.until = Number::parse(until);
+  return s;
+}
+
+/// Every velocity of every event of \p a and \p b, bit for bit.
+void expect_same_events(const DropResult& a, const DropResult& b) {
+  ASSERT_EQ(a.events.size(), b.events.size());
+  for (std::size_t k = 0; k < a.events.size(); ++k) {
+    EXPECT_EQ(a.events[k].velocities_after, b.events[k].velocities_after) << "event " << k + 1;
+    EXPECT_EQ(a.events[k].time, b.events[k].time) << "event " << k + 1;
+    EXPECT_EQ(a.events[k].case_name, b.events[k].case_name) << "event " << k + 1;
+  }
+  EXPECT_EQ(a.end, b.end);
+  EXPECT_EQ(a.top_apex_ratio, b.top_apex_ratio);
+}
+
+/// The balance laws of every collision of \p r: kinetic energy never
+/// increases; the momentum of the finite bodies is conserved when the
+/// colliding bodies do not hold the fixed obstacle; contacts under
+/// impenetrability (closed at the instant: not apart) do not interpenetrate.
+void expect_balances(const DropResult& r) {
+  const int n = static_cast<int>(r.masses.size());
+  for (const DropEvent& ev : r.events) {
+    SCOPED_TRACE("event at t = " + std::to_string(ev.time));
+    EXPECT_LE(ev.kinetic_energy_after, ev.kinetic_energy_before * (1 + kBalanceTolerance));
+    if (!(r.fixed_bottom && ev.last_body == n)) EXPECT_NEAR(ev.momentum_after, ev.momentum_before, kBalanceTolerance * (1 + std::abs(ev.momentum_before)));
+    double speed = 0;
+    for (double v : ev.velocities_before) speed = std::max(speed, std::abs(v));
+    for (int c = ev.first_body - 1; c + 1 < ev.last_body; ++c) {
+      const std::string name = std::to_string(c + 1) + "-" + std::to_string(c + 2);
+      if (std::find(ev.apart.begin(), ev.apart.end(), name) != ev.apart.end()) continue;
+      EXPECT_GE(ev.velocities_after[c] - ev.velocities_after[c + 1], -kBalanceTolerance * speed) << "contact " << name;
+    }
+  }
+}
+
+TEST(DropDistant, AStackWithEveryContactClosedCollidesAsInTheTouchingView) {
+  // Every contact closed at the impact: the colliding system and its problem are the touching view's, bit for bit.
+  Scene s = scene("drop_height = 1\n[[body]]\nmass = 0.5\n[[body]]\nmass = 2\n[[body]]\nmass = 3\n[[body]]\nmass = \"inf\"\n"
+                  "[dissipation]\nK = { \"1-2\" = 3, \"2-3\" = 5, \"3-4\" = 7, \"1-4\" = 2 }\n[drop]\nmax_events = 1\n");
+  const DropResult touching = drop(s, Precision::parse("double"));
+  s.drop.distant = true;
+  const DropResult distant = drop(s, Precision::parse("double"));
+  ASSERT_EQ(distant.events.size(), 1u);
+  EXPECT_TRUE(distant.events[0].apart.empty());
+  expect_same_events(touching, distant);
+  EXPECT_TRUE(distant.distant);
+}
+
+TEST(DropDistant, NoPairOfMAcrossAnOpenGapGivesTheSameDrop) {
+  // One ball on the floor (bounces, then rest), and two free bodies meeting
+  // (finite bottom): M's only pair is the contact that closes.
+  for (const char* text :
+       {"drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9 }\n[drop]\nuntil = 10\n",
+        "[[body]]\nmass = 1\ngap = 0.5\nvelocity = -1\n[[body]]\nmass = 4\nvelocity = 1\n[dissipation]\nK = { \"1-2\" = 2 }\n[drop]\nuntil = 3\n"}) {
+    Scene s = scene(text);
+    const DropResult touching = drop(s, Precision::parse("double"));
+    s.drop.distant = true;
+    const DropResult distant = drop(s, Precision::parse("double"));
+    ASSERT_GT(distant.events.size(), 0u);
+    expect_same_events(touching, distant);
+    EXPECT_EQ(touching.rest.size(), distant.rest.size());
+    expect_balances(distant);
+  }
+}
+
+TEST(DropDistant, ThePaperStackBouncesAtTheFirstImpactAsTheSimultaneousCollision) {
+  // §4.4 with 1 mm gaps: all three balls reach the obstacle at the same speed
+  // a = sqrt(2 g 0.5), 3-4 closing first.  Touching view: ball 3 alone hits
+  // the obstacle, balls 1 and 2 fly on.  Distant view: every pair of M acts
+  // at that instant (K14 = 1500 couples ball 1 and the obstacle through the
+  // stack); the simultaneous collision of the paper ends in case 3.3 (every
+  // contact opens: no reaction), so impenetrability on 1-2 and 2-3 plays no
+  // part there, and the distant first impact is that collision.
+  const DropResult touching = drop(paper_stack(false, "0.5"), Precision::parse("double"));
+  const DropResult distant = drop(paper_stack(true, "0.5"), Precision::parse("double"));
+  ASSERT_GT(touching.events.size(), 1u);
+  ASSERT_GT(distant.events.size(), 1u);
+  const DropEvent &t1 = touching.events[0], &d1 = distant.events[0];
+  EXPECT_EQ(t1.contacts, std::vector<std::string>{"3-4"});
+  EXPECT_EQ(d1.contacts, std::vector<std::string>{"3-4"});
+  EXPECT_EQ(t1.first_body, 3);
+  EXPECT_EQ(d1.first_body, 1);
+  EXPECT_EQ(d1.apart, (std::vector<std::string>{"1-2", "2-3"}));
+  EXPECT_EQ(t1.velocities_after[0], t1.velocities_before[0]);  // ball 1 not in the touching cluster
+  EXPECT_GT(d1.velocities_after[0], 0);                         // ball 1 bounces at a distance
+  // The simultaneous collision of the same stack (no gaps), at the same speed.
+  Scene together = paper_stack(false, "0.5");
+  for (Body& b : together.bodies) b.gap.reset();
+  together.drop.requested = false;
+  const double a = -d1.velocities_before[2];
+  const Problem<double> p = Problem<double>::from(ExactScene::from(together));
+  const Solution<double> sim = solve(p);
+  ASSERT_EQ(sim.status, Status::Success);
+  for (int c = 0; c < 3; ++c) EXPECT_FALSE(sim.closed.closed(c)) << "case 3.3: every contact opens";
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(d1.velocities_after[i], sim.velocities_after[i] * p.unit, 1e-9 * a) << "ball " << i + 1;
+  expect_balances(touching);
+  expect_balances(distant);
+}
+
+TEST(DropDistant, AFiniteBottomMassConservesTheMomentumOfEveryCollision) {
+  // No fixed obstacle: every collision at a distance is internal to the stack.
+  Scene s = scene("[[body]]\nmass = 0.2\nvelocity = 0\ngap = 0.05\n[[body]]\nmass = 1\nvelocity = 0\ngap = 0.1\n[[body]]\nmass = 2\n"
+                  "velocity = 0\ngap = 0.02\n[[body]]\nmass = 5\nvelocity = 3\n[dissipation]\n"
+                  "K = { \"1-2\" = 4, \"2-3\" = 6, \"3-4\" = 8, \"1-4\" = 3, \"2-4\" = 1 }\n[drop]\ndistant = true\nuntil = 1.5\n");
+  for (const char* p : {"double", "long-double"}) {
+    const DropResult r = drop(s, Precision::parse(p));
+    ASSERT_GE(r.events.size(), 3u) << p;
+    for (const DropEvent& ev : r.events) {
+      EXPECT_EQ(ev.first_body, 1);  // M joins every body: the whole stack collides each time
+      EXPECT_EQ(ev.last_body, 4);
+    }
+    expect_balances(r);
+  }
+}
+
+TEST(DropDistant, AHugeKAtADistanceIsSolvedAndReversesTheLightBall) {
+  // K14 = 1e12 against m1 = 1e-3: the double solve fails its residual check
+  // and the collision is solved again in exact rationals, with the contacts
+  // left open there too; ball 1 leaves at minus its velocity, to 2 m1/K14.
+  Scene s = paper_stack(true, "0.35");
+  for (MatrixEntry& e : s.entries)
+    if (e.diagonal() && e.first.name() == "1-4") e.value = Number::parse("1e12");
+  const DropResult r = drop(s, Precision::parse("double"));
+  EXPECT_EQ(r.end, "until");
+  ASSERT_EQ(r.events.size(), 1u);
+  EXPECT_NEAR(r.events[0].velocities_after[0], -r.events[0].velocities_before[0], 1e-9);
+  expect_balances(r);
+}
+
+TEST(DropDistant, ThePaperStackChattersBecauseBallOneReversesAtEveryCollision) {
+  // Found by running it to the apex: with every pair of M in every
+  // collision and K14 = 1500 >> m1 = 1e-3, ball 1 reverses (U1+ ~ -U1-) at
+  // each collision of the stack below, however far it is, and each
+  // reversal kicks balls 2 and 3 through K12, K13 (about 1e-6 m/s): their
+  // bounces on the obstacle never die out, and the run ends on max_events.
+  Scene s = paper_stack(true, "1");
+  s.drop.until.reset();
+  s.drop.max_events = 60;
+  const DropResult r = drop(s, Precision::parse("double"));
+  EXPECT_EQ(r.end, "max-events");
+  ASSERT_EQ(r.events.size(), 60u);
+  for (std::size_t k = 1; k < r.events.size(); ++k) {
+    const DropEvent& ev = r.events[k];
+    EXPECT_LT(ev.velocities_before[0] * ev.velocities_after[0], 0) << "event " << k + 1;
+    EXPECT_NEAR(std::abs(ev.velocities_after[0]), std::abs(ev.velocities_before[0]), 0.05 * std::abs(ev.velocities_before[0])) << "event " << k + 1;
+  }
+  expect_balances(r);
+}
+
+TEST(DropDistant, OneBodyIsRefusedAndTwoBodiesAtRestTogetherNeverCollide) {
+  EXPECT_THROW(drop(scene("drop_height = 1\n[[body]]\nmass = 1\n[drop]\ndistant = true\n"), Precision::parse("double")), InputError);
+  const DropResult r = drop(scene("[[body]]\nmass = 1\nvelocity = 0\n[[body]]\nmass = 2\nvelocity = 0\n[dissipation]\nK = { \"1-2\" = 1 }\n"
+                                  "[drop]\ndistant = true\n"),
+                            SolvePrecision::parse("auto", std::nullopt));
+  EXPECT_TRUE(r.events.empty());
+  EXPECT_EQ(r.end, "no-more-events");
+  EXPECT_TRUE(r.orders_certified);
+  EXPECT_FALSE(r.escalated);
+}
+
+/// Three balls over a fixed floor, 1-2 and 2-3 closing at 0.1 s and 0.1 s + \p late.
+Scene two_contacts_at_once(const std::string& late) {
+  return scene("drop_height = 1\n[[body]]\nmass = 1\ngap = 0.1\nvelocity = -1\n[[body]]\nmass = 1\ngap = 0.1" + late +
+               "\nvelocity = 0\n[[body]]\nmass = 1\nvelocity = 1\n[[body]]\nmass = \"inf\"\n"
+               "[dissipation]\nK = { \"1-2\" = 5, \"2-3\" = 5, \"3-4\" = 5 }\n[drop]\nuntil = 0.3\n");
+}
+
+TEST(DropOrder, AnExactTieCollidesTogetherAndIsNotCertifiedInAnyPrecision) {
+  const SolvePrecision automatic = SolvePrecision::parse("auto", std::nullopt);
+  const DropResult r = drop(two_contacts_at_once(""), automatic);
+  ASSERT_GE(r.events.size(), 1u);
+  EXPECT_EQ(r.events[0].contacts, (std::vector<std::string>{"1-2", "2-3"}));
+  EXPECT_EQ(r.ties, 1);
+  EXPECT_FALSE(r.events[0].order_certified);
+  EXPECT_FALSE(r.orders_certified);
+  EXPECT_TRUE(r.escalated);
+  EXPECT_EQ(r.precision, "long-double");
+  EXPECT_EQ(r.precision_asked, "auto");
+  EXPECT_TRUE(r.sequences_agree);
+  // Momentum of the three balls conserved: the floor is not in the cluster 1-3.
+  expect_balances(r);
+}
+
+TEST(DropOrder, AutoRunsANearTieAgainInLongDoubleWhichCertifiesIt) {
+  // 1e-12 s apart: within the doubt bound of double (2^20 u t ~ 6e-11 s),
+  // outside long double's (~3e-14 s).
+  const Scene s = two_contacts_at_once("00000000001");
+  const DropResult d = drop(s, Precision::parse("double"));
+  EXPECT_EQ(d.near_ties, 1);
+  EXPECT_FALSE(d.orders_certified);
+  EXPECT_EQ(d.precision_asked, "double");
+  EXPECT_FALSE(d.escalated);
+  const DropResult r = drop(s, SolvePrecision::parse("auto", std::nullopt));
+  EXPECT_TRUE(r.escalated);
+  EXPECT_EQ(r.precision, "long-double");
+  EXPECT_TRUE(r.orders_certified);
+  EXPECT_EQ(r.near_ties, 0);
+  EXPECT_TRUE(r.sequences_agree);
+  EXPECT_EQ(r.double_events, static_cast<int>(d.events.size()));
+  EXPECT_EQ(r.events[0].contacts, std::vector<std::string>{"1-2"});
+  // A run whose orders are all certified in double stays in double.
+  const DropResult plain = drop(load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/drop-two-balls.toml"), SolvePrecision::parse("auto", std::nullopt));
+  EXPECT_TRUE(plain.orders_certified);
+  EXPECT_FALSE(plain.escalated);
+  EXPECT_EQ(plain.precision, "double");
 }
 
 }  // namespace

@@ -64,9 +64,10 @@ def test_bad_scenes_and_types():
     with pytest.raises(superball.InputError, match=r"has no \[drop\] table"):
         superball.drop(paper)
     for bad, message in (({"max_events": 0}, "drop.max_events: must be a whole number"), ({"until": -1}, "drop.until"),
-                         ({"when": 3}, "unknown key"), ({"distant": True}, "not implemented yet")):
+                         ({"when": 3}, "unknown key")):
         with pytest.raises(superball.InputError, match=message):
             superball.drop(superball.Scene(bodies=[1, "inf"], drop_height=1, K={"1-2": 9}, drop=bad))
+    assert superball.drop(superball.Scene(bodies=[1, "inf"], drop_height=1, K={"1-2": 9}, drop={"distant": True})).to_dict()["distant"]
     with pytest.raises(superball.InputError, match="gap"):
         superball.Scene(bodies=[{"mass": 1, "gap": -1}, 1, "inf"], drop_height=1, K={"1-2": 9, "2-3": 9}, drop=True)
     for call in (lambda: superball.drop(str(TWO)), lambda: superball.drop(superball.Scene.load(TWO), 2)):

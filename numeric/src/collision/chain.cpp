@@ -19,8 +19,8 @@ template <class S>
 void ChainSolver<S>::Impl::compute(const Problem<S>& p, Solution<S>& out) {
   const int b = p.check("ChainSolver::compute()");
   const int nc = p.n - 1, nf = p.fixed_bottom ? p.n - 1 : p.n;
-  if constexpr (ScalarTraits<S>::exact)  // the integer kernel, the same pivoting (exact_kernel.hpp)
-    if (settings_.integer_kernel &&
+  if constexpr (ScalarTraits<S>::exact)  // the integer kernel, the same pivoting (exact_kernel.hpp), when every contact is constrained
+    if (settings_.integer_kernel && p.constrained.empty() &&
         detail::exact_integer_solve(p, detail::ExactPivoting::Block, settings_.max_pivots_per_contact * std::max(nc, 1), settings_, out))
       return;
   system_.assemble(p, b);
@@ -29,7 +29,9 @@ void ChainSolver<S>::Impl::compute(const Problem<S>& p, Solution<S>& out) {
   // separate, all at once.  (From all-open, or from the contacts approaching
   // before the collision, closing travels up a chain one band per iteration:
   // O(n) iterations, measured in bench/bench_chain.cpp's history.)
+  // Contacts that are not constrained (Problem::constrained) stay open throughout.
   closed_.assign(static_cast<std::size_t>(nc), 1);
+  if (!p.constrained.empty()) closed_.assign(p.constrained.begin(), p.constrained.end());
   out.velocities_after.resize(static_cast<std::size_t>(p.n));
   auto& W = out.velocities_after;
 
@@ -47,7 +49,7 @@ void ChainSolver<S>::Impl::compute(const Problem<S>& p, Solution<S>& out) {
     }
     int wrong = 0, first = -1;
     for (int c = 0; c < nc; ++c) {
-      const bool bad = closed_[c] ? lambda_[c] < -ltol : S(W[c] - W[c + 1]) < -wtol;
+      const bool bad = closed_[c] ? lambda_[c] < -ltol : p.constrained_contact(c) && S(W[c] - W[c + 1]) < -wtol;
       if (bad) {
         ++wrong;
         if (first < 0) first = c;
@@ -66,7 +68,7 @@ void ChainSolver<S>::Impl::compute(const Problem<S>& p, Solution<S>& out) {
     }
     if (stall < block_pivot_patience) {  // block pivot: flip every wrong sign
       for (int c = 0; c < nc; ++c) {
-        const bool bad = closed_[c] ? lambda_[c] < -ltol : S(W[c] - W[c + 1]) < -wtol;
+        const bool bad = closed_[c] ? lambda_[c] < -ltol : p.constrained_contact(c) && S(W[c] - W[c + 1]) < -wtol;
         if (bad) closed_[c] ^= 1;
       }
     } else {  // Murty: the smallest index only

@@ -103,9 +103,13 @@ typename CollisionSolver<S>::Lcp CollisionSolver<S>::Impl::lcp(const Problem<S>&
 }
 
 template <class S>
-int CollisionSolver<S>::Impl::pivot() {
+int CollisionSolver<S>::Impl::pivot(const Problem<S>& problem) {
   // Murty's least-index principal pivoting: exchange w_p and λ_p for the
   // smallest p whose basic variable is negative.  Terminates for P-matrices.
+  // Only constrained contacts are pivoted (Problem::constrained): the others
+  // keep λ = 0 and any gap, and the pivots on the constrained ones act on
+  // their principal block as on the LCP of those contacts alone (a principal
+  // block of a P-matrix is one), so this is Murty's pivoting on that LCP.
   S scale = S(0);
   for (int c = 0; c < nc_; ++c) scale = std::max(scale, detail::abs_value<S>(t_(c)));
   const S tol = settings_.feasibility * scale;
@@ -114,7 +118,7 @@ int CollisionSolver<S>::Impl::pivot() {
   for (;;) {
     int p = -1;
     for (int c = 0; c < nc_ && p < 0; ++c)
-      if (t_(c) < -tol) p = c;
+      if (t_(c) < -tol && problem.constrained_contact(c)) p = c;
     if (p < 0) return pivots;
     if (++pivots > cap) return -1;
     if (!pivot_on(p)) return -2;
@@ -155,18 +159,21 @@ int CollisionSolver<S>::Impl::check(const Problem<S>& p) const {
 template <class S>
 void CollisionSolver<S>::Impl::compute(const Problem<S>& p, Solution<S>& out) {
   const int bandwidth = check(p);
+  // A problem with contacts that are not constrained takes the general path
+  // (the fixed-size path and the integer kernel pivot on every contact).
+  const bool every_contact = p.constrained.empty();
   if constexpr (std::is_floating_point<S>::value) {  // n <= 8: sizes known at compile time (small_solver.cpp)
-    if (settings_.small_sizes) {
+    if (settings_.small_sizes && every_contact) {
       if (p.n != small_n_) small_n_ = p.n, small_ = detail::small_solver_for<S>(p.n);
       if (small_ && small_(p, bandwidth, settings_, out)) return;
     }
   }
   if constexpr (ScalarTraits<S>::exact)  // the integer kernel, the same pivoting (exact_kernel.hpp)
-    if (settings_.integer_kernel &&
+    if (settings_.integer_kernel && every_contact &&
         detail::exact_integer_solve(p, detail::ExactPivoting::Murty, settings_.max_pivots_per_contact * std::max(p.n - 1, 1), settings_, out))
       return;
   start(p, bandwidth, out);
-  const int pivots = singular_ ? -2 : pivot();
+  const int pivots = singular_ ? -2 : pivot(p);
   out.status = pivots == -1 ? Status::NoConvergence : pivots == -2 ? Status::NumericalIssue : Status::Success;
   out.pivots = std::max(pivots, 0);
   finish(p, out, false);

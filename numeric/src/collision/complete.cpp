@@ -103,7 +103,7 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
     const auto k = static_cast<std::size_t>(c);
     out.gaps[k] = W[k] - W[k + 1];
     out.reactions[k] = active[k] ? S(-lambda[k]) : S(0);
-    out.closed.set_closed(c, active[k] || (!imposed && ScalarTraits<S>::exact && out.gaps[k] == S(0)));
+    out.closed.set_closed(c, active[k] || (!imposed && ScalarTraits<S>::exact && out.gaps[k] == S(0) && p.constrained_contact(c)));
   }
   // Energies and momentum of the finite bodies; dissipation P·X = 2XᵀMX + R·X.
   out.kinetic_energy_before = out.kinetic_energy_after = out.momentum_before = out.momentum_after = S(0);
@@ -172,7 +172,7 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
     if (active[k]) {
       if (!(w == S(0)) && vscale > S(0)) raise(comp_s, abs_value<S>(w) / vscale);
       if (l < S(0) && !imposed && lscale > S(0)) raise(comp_s, S(-l) / lscale);
-    } else if (w < S(0) && !imposed && vscale > S(0)) {
+    } else if (w < S(0) && !imposed && vscale > S(0) && p.constrained_contact(c)) {  // an open contact that is not constrained has no sign
       raise(comp_s, S(-w) / vscale);
     }
   }

@@ -35,7 +35,7 @@ class SUPERBALL_NUMERIC_NO_EXPORT CollisionSolver<S>::Impl {
   bool factorize();  ///< false (and singular_) at a pivot of A that is not positive
   void form_tableau();
   int check(const Problem<S>& p) const;  ///< Problem::check and the size limit; returns the bandwidth
-  int pivot();
+  int pivot(const Problem<S>& problem);  ///< Murty on the constrained contacts; the pivots taken, −1 over the cap, −2 at a pivot not positive
   bool pivot_on(int p);
   void finish(const Problem<S>& p, Solution<S>& out, bool imposed);
 

@@ -35,6 +35,7 @@ Solution<S> solve_collision(const Problem<S>& p) {
   Problem<cln::cl_RA> q;
   q.n = p.n;
   q.fixed_bottom = p.fixed_bottom;
+  q.constrained = p.constrained;
   for (int i = 0; i < p.n; ++i) q.mass.push_back(p.fixed_bottom && i == p.n - 1 ? cln::cl_RA(0) : to_exact(p.mass[i]));  // the obstacle's is unused
   for (const S& u : p.u) q.u.push_back(to_exact(u));
   for (const Entry<S>& e : p.entries) q.entries.push_back({e.i, e.j, e.k, e.l, to_exact(e.value)});
@@ -47,12 +48,25 @@ Solution<S> solve_collision(const Problem<S>& p) {
   return sol;
 }
 
+/// Whether \p a and \p b have the same events (contacts, bodies, case and
+/// contacts that stay closed, in order) and end the same way.
+bool same_sequence(const DropResult& a, const DropResult& b) {
+  if (a.events.size() != b.events.size() || a.end != b.end) return false;
+  for (std::size_t k = 0; k < a.events.size(); ++k) {
+    const DropEvent &x = a.events[k], &y = b.events[k];
+    if (x.contacts != y.contacts || x.first_body != y.first_body || x.last_body != y.last_body || x.case_name != y.case_name ||
+        x.closed != y.closed)
+      return false;
+  }
+  return true;
+}
+
 /// The state of every body between events, in S, and the run's record.
 template <class S>
 class DropRun {
  public:
   DropRun(const Scene& scene, const ExactScene& exact, const std::string& precision)
-      : scene_(scene), full_(Problem<S>::from(exact)), n_(full_.n), fixed_(full_.fixed_bottom) {
+      : scene_(scene), full_(Problem<S>::from(exact)), n_(full_.n), fixed_(full_.fixed_bottom), distant_(scene.drop.distant) {
     using T = ScalarTraits<S>;
     g_ = T::from(parse_rational(scene.g.fraction()), 0);
     u_ = T::unit_roundoff(0);
@@ -61,6 +75,15 @@ class DropRun {
     gap_.assign(n_ > 0 ? n_ - 1 : 0, S(0));
     supported_.assign(n_, false);
     if (fixed_) supported_[n_ - 1] = true;
+    m_group_.resize(static_cast<std::size_t>(n_));
+    for (int i = 0; i < n_; ++i) m_group_[i] = i;
+    const auto root = [this](int i) {
+      while (m_group_[i] != i) i = m_group_[i];
+      return i;
+    };
+    for (const Entry<S>& e : full_.entries)
+      if (e.value != S(0))
+        for (int b : {e.j, e.k, e.l}) m_group_[root(b)] = root(e.i);
     // Heights from the bottom: the obstacle at 0, the lowest free body at drop_height, each other one gap above.
     for (int i = n_ - 2; i >= 0; --i) {
       const auto& b = scene.bodies[static_cast<std::size_t>(i)];
@@ -78,7 +101,8 @@ class DropRun {
     last_t_.assign(n_, S(0));
     last_z_ = z_;
     last_v_ = v_;
-    r_.precision = precision;
+    r_.precision = r_.precision_asked = precision;
+    r_.distant = distant_;
     r_.g = T::to_double(g_);
     r_.fixed_bottom = fixed_;
     for (int i = 0; i < n_; ++i) {
@@ -93,7 +117,9 @@ class DropRun {
     const S until = to_apex ? S(0) : ScalarTraits<S>::from(parse_rational(scene_.drop.until->fraction()), 0);
     settle();
     for (;;) {
-      const auto [dt, closing] = next_event();
+      const Next next = next_event();
+      const S dt = next.delay;
+      const std::vector<int>& closing = next.closing;
       // The top body's apex, when it comes before anything else can touch it.
       if (to_apex && !supported_[0] && v_[0] > S(0) && S(v_[0] / g_) < dt) {
         advance(v_[0] / g_);
@@ -114,7 +140,9 @@ class DropRun {
         break;
       }
       advance(dt);
-      if (!collide(closing)) {
+      ties_ += next.ties;
+      near_ties_ += next.near_ties;
+      if (!collide(closing, next.ties == 0 && next.near_ties == 0)) {
         end("numerical-issue");
         break;
       }
@@ -147,8 +175,15 @@ class DropRun {
     return d > S(0) ? S((d + root) / g_) : S(2 * gap / (root - d));
   }
 
-  /// The next event: its delay and the contacts that close then (ties together).
-  std::pair<S, std::vector<int>> next_event() {
+  /// The next event: its delay, the contacts that close then (ties
+  /// together), and how many other contacts closed within the tie and the
+  /// doubt bounds of it.
+  struct Next {
+    S delay;
+    std::vector<int> closing;
+    int ties = 0, near_ties = 0;
+  };
+  Next next_event() const {
     const S inf = std::numeric_limits<S>::infinity();
     std::vector<S> times(static_cast<std::size_t>(n_ - 1));
     S first = inf;
@@ -156,18 +191,19 @@ class DropRun {
       times[c] = closing_time(c);
       first = std::min(first, times[c]);
     }
-    std::vector<int> closing;
-    if (first == inf) return {inf, closing};
+    Next next{first, {}};
+    if (first == inf) return next;
     const S scale = std::max(S(t_ + first), time_scale_);
     const S tie = S(drop_tie_ulps) * u_ * scale, doubt = S(drop_doubt_ulps) * u_ * scale;
     for (int c = 0; c + 1 < n_; ++c) {
       if (times[c] - first <= tie) {
-        closing.push_back(c);
+        next.closing.push_back(c);
       } else if (times[c] - first <= doubt) {
-        ++near_ties_;
+        ++next.near_ties;
       }
     }
-    return {first, closing};
+    next.ties = static_cast<int>(next.closing.size()) - 1;
+    return next;
   }
 
   /// Every body's flight over \p dt.
@@ -184,11 +220,37 @@ class DropRun {
 
   bool touching(int c) const { return gap_[c] == S(0) && v_[c] - v_[c + 1] <= S(0); }
 
-  /// The collisions of the clusters of the contacts in \p closing; false when a solve fails.
-  bool collide(const std::vector<int>& closing) {
+  /// The collisions of the contacts in \p closing (\p certified: their order
+  /// against every other contact is certified); false when a solve fails.
+  /// Touching view: each run of touching contacts that holds a closing one
+  /// collides, M restricted to it.  Distant view: each set of bodies joined
+  /// by M's pairs and by touching contacts that holds a closing one
+  /// collides, every pair of M among them acting, impenetrability on its
+  /// touching contacts only.
+  bool collide(const std::vector<int>& closing, bool certified) {
     for (int c : closing) gap_[c] = S(0);
     std::vector<bool> closes(static_cast<std::size_t>(n_ - 1), false);
     for (int c : closing) closes[c] = true;
+    const std::vector<System> systems = distant_ ? distant_systems(closes) : touching_clusters(closes);
+    for (const System& system : systems)
+      if (!collide_system(system, closes, certified)) return false;
+    settle();
+    return true;
+  }
+
+  /// The bodies of one collision: p … q, those of them that take part
+  /// (\p member, over all n bodies; an entry of M acts when its bodies all
+  /// do) and the contacts c of p … q under impenetrability (\p constrained,
+  /// c − p; empty: every one).
+  struct System {
+    int p = 0, q = 0;
+    std::vector<bool> member;
+    std::vector<char> constrained;
+  };
+
+  /// The runs of touching contacts that hold a contact of \p closes (the touching view).
+  std::vector<System> touching_clusters(const std::vector<bool>& closes) const {
+    std::vector<System> systems;
     for (int c = 0; c + 1 < n_;) {
       if (!touching(c)) {
         ++c;
@@ -197,26 +259,67 @@ class DropRun {
       int last = c;  // the run of touching contacts c … last
       bool any = false;
       for (; last + 1 < n_ && touching(last); ++last) any = any || closes[last];
-      if (any && !collide_cluster(c, last, closes)) return false;
+      if (any) {
+        System s;
+        s.p = c, s.q = last;
+        s.member.assign(static_cast<std::size_t>(n_), false);
+        for (int i = c; i <= last; ++i) s.member[i] = true;
+        systems.push_back(std::move(s));
+      }
       c = last + 1;
     }
-    settle();
-    return true;
+    return systems;
   }
 
-  /// The collision of bodies p … q (contacts p … q−1 touching).
-  bool collide_cluster(int p, int q, const std::vector<bool>& closes) {
+  /// The sets of bodies joined by M's pairs and the touching contacts that
+  /// hold a contact of \p closes, top to bottom (the distant view).
+  std::vector<System> distant_systems(const std::vector<bool>& closes) const {
+    std::vector<int> group = m_group_;
+    const auto root = [&group](int i) {
+      while (group[i] != i) i = group[i] = group[group[i]];
+      return i;
+    };
+    for (int c = 0; c + 1 < n_; ++c)
+      if (touching(c)) group[root(c)] = root(c + 1);
+    std::vector<System> systems;
+    std::vector<bool> done(static_cast<std::size_t>(n_), false);
+    for (int c = 0; c + 1 < n_; ++c) {
+      const int r = root(c);
+      if (!closes[c] || done[r]) continue;
+      done[r] = true;
+      System s;
+      s.member.assign(static_cast<std::size_t>(n_), false);
+      s.p = n_, s.q = -1;
+      for (int i = 0; i < n_; ++i)
+        if (root(i) == r) s.member[i] = true, s.p = std::min(s.p, i), s.q = std::max(s.q, i);
+      bool every = true;
+      for (int k = s.p; k < s.q; ++k) {
+        const bool on = touching(k) && s.member[k] && s.member[k + 1];
+        s.constrained.push_back(on ? 1 : 0);
+        every = every && on;
+      }
+      if (every) s.constrained.clear();  // all touching: the problem of the touching view, solved as it is
+      systems.push_back(std::move(s));
+    }
+    return systems;
+  }
+
+  /// The collision of \p system.
+  bool collide_system(const System& system, const std::vector<bool>& closes, bool certified) {
     using T = ScalarTraits<S>;
+    const int p = system.p, q = system.q;
+    const std::vector<bool>& member = system.member;
     Problem<S> sub;
     sub.n = q - p + 1;
     sub.fixed_bottom = obstacle(q);
     sub.in_range = full_.in_range;
+    sub.constrained = system.constrained;
     for (int i = p; i <= q; ++i) {
       sub.mass.push_back(full_.mass[i]);
       sub.u.push_back(v_[i]);
     }
     for (const Entry<S>& e : full_.entries)
-      if (std::min(e.i, e.k) >= p && std::max(e.j, e.l) <= q) sub.entries.push_back({e.i - p, e.j - p, e.k - p, e.l - p, e.value});
+      if (member[e.i] && member[e.j] && member[e.k] && member[e.l]) sub.entries.push_back({e.i - p, e.j - p, e.k - p, e.l - p, e.value});
     const Solution<S> sol = solve_collision(sub);
     DropEvent ev;
     ev.time = T::to_double(t_);
@@ -224,6 +327,9 @@ class DropRun {
       if (closes[c]) ev.contacts.push_back(Pair{c + 1, c + 2}.name());
     ev.first_body = p + 1;
     ev.last_body = q + 1;
+    ev.order_certified = certified;
+    for (int c = p; c < q; ++c)
+      if (!sub.constrained_contact(c - p)) ev.apart.push_back(Pair{c + 1, c + 2}.name());
     for (int i = 0; i < n_; ++i) {
       ev.velocities_before.push_back(T::to_double(v_[i]));
       ev.heights.push_back(T::to_double(z_[i]));
@@ -235,15 +341,19 @@ class DropRun {
     }
     S momentum_before = S(0), momentum_after = S(0), speed = S(0);
     for (int i = p; i <= q; ++i) {
+      if (!member[i]) continue;
       const bool finite = !obstacle(i);
       if (finite) momentum_before += full_.mass[i] * v_[i];
       speed = std::max({speed, S(std::abs(v_[i])), S(std::abs(sol.velocities_after[i - p]))});
       if (finite) v_[i] = sol.velocities_after[i - p];
     }
-    // Contacts that stay closed move as one: the group's velocity (its momentum over its mass, 0 on the obstacle).
+    // Contacts that stay closed move as one: the group's velocity (its
+    // momentum over its mass, 0 on the obstacle).  Only constrained contacts
+    // can: an open one stays apart whatever its bodies' velocities.
     ContactSet whole(n_);
     for (int c = p; c < q; ++c) {
-      const bool closed = sol.closed.closed(c - p) || std::abs(S(v_[c] - v_[c + 1])) <= S(drop_closed_ulps) * u_ * speed;
+      const bool closed = sub.constrained_contact(c - p) &&
+                          (sol.closed.closed(c - p) || std::abs(S(v_[c] - v_[c + 1])) <= S(drop_closed_ulps) * u_ * speed);
       whole.set_closed(c, closed);
     }
     for (int a = p; a <= q;) {
@@ -262,6 +372,7 @@ class DropRun {
     }
     const std::vector<bool> was_supported = supported_;
     for (int i = p; i <= q; ++i) {
+      if (!member[i]) continue;
       if (!obstacle(i)) momentum_after += full_.mass[i] * v_[i];
       last_t_[i] = t_;
       last_z_[i] = z_[i];
@@ -271,7 +382,7 @@ class DropRun {
     for (int c = p; c < q; ++c)
       if (whole.closed(c)) ev.closed.push_back(Pair{c + 1, c + 2}.name());
     const Vocabulary& paper = Vocabulary::paper();
-    if (sub.n == n_ && n_ == paper.bodies()) {
+    if (sub.n == n_ && n_ == paper.bodies() && sub.constrained.empty() && std::all_of(member.begin(), member.end(), [](bool m) { return m; })) {
       ev.case_name = paper.case_name(whole);
     } else {
       std::string set;
@@ -359,7 +470,9 @@ class DropRun {
     using T = ScalarTraits<S>;
     r_.end = why;
     r_.end_time = T::to_double(t_);
+    r_.ties = ties_;
     r_.near_ties = near_ties_;
+    r_.orders_certified = ties_ == 0 && near_ties_ == 0;
     for (int i = 0; i < n_; ++i) {
       if (obstacle(i)) continue;
       const S up = last_v_[i] > S(0) ? last_v_[i] : S(0);
@@ -373,11 +486,14 @@ class DropRun {
   Problem<S> full_;
   int n_;
   bool fixed_;
+  bool distant_;  ///< [drop] distant = true: every pair of M in every collision
+  /// Bodies joined by M's nonzero entries (an entry couples the bodies of its two pairs): union-find parents.
+  std::vector<int> m_group_;
   S g_, u_, t_ = S(0), time_scale_ = S(1), height_scale_ = S(1);
   std::vector<S> z_, v_, gap_;
   std::vector<bool> supported_;
   std::vector<S> last_t_, last_z_, last_v_;  ///< each body's state after its last collision (or release)
-  int near_ties_ = 0;
+  int ties_ = 0, near_ties_ = 0;
   DropResult r_;
 };
 
@@ -418,14 +534,10 @@ void check_window(const Scene& scene, const Precision& precision) {
 
 DropResult drop(const Scene& scene, const Precision& precision) {
   if (!scene.drop.requested) throw InputError(scene.origin + ": has no [drop] table: superball drop follows a scene's [drop]");
-  if (scene.drop.distant)
-    throw std::invalid_argument("drop(): " + scene.origin +
-                                ": drop.distant = true (every pair of M in every collision) is not implemented yet; the drop follows the "
-                                "touching cluster (distant = false)");
   if (precision.kind != Precision::Kind::Double && precision.kind != Precision::Kind::LongDouble)
     throw std::invalid_argument("drop(): precision " + precision.name() +
-                                ": a drop runs in double or long-double (a floor impact's time is a square root, and the flights "
-                                "are not exact)");
+                                ": a drop runs in double or long-double, or auto from one to the other (a floor impact's time is a square root, and the "
+                                "flights are not exact)");
   // The checks of a scene (M positive semi-definite, masses), on the bodies at rest.
   Scene still = scene;
   still.drop_height.reset();
@@ -436,6 +548,26 @@ DropResult drop(const Scene& scene, const Precision& precision) {
   if (precision.kind == Precision::Kind::LongDouble) check_window<long double>(scene, precision);
   if (precision.kind == Precision::Kind::Double) return DropRun<double>(scene, exact, precision.name()).run();
   return DropRun<long double>(scene, exact, precision.name()).run();
+}
+
+DropResult drop(const Scene& scene, const SolvePrecision& precision) {
+  if (!precision.automatic) return drop(scene, precision.fixed);
+  if (precision.rtol)
+    throw std::invalid_argument("drop(): precision auto takes no rtol: a drop's auto runs again in long double when an order of "
+                                "events is not certified");
+  Precision p;
+  DropResult in_double = drop(scene, p);
+  if (in_double.orders_certified) {
+    in_double.precision_asked = "auto";
+    return in_double;
+  }
+  p.kind = Precision::Kind::LongDouble;
+  DropResult r = drop(scene, p);
+  r.precision_asked = "auto";
+  r.escalated = true;
+  r.double_events = static_cast<int>(in_double.events.size());
+  r.sequences_agree = same_sequence(in_double, r);
+  return r;
 }
 
 }  // namespace superball::numeric

@@ -17,6 +17,10 @@
 /// when a pivot is needed: the case with every contact open is solved first
 /// (A W = b̃, by the banded cluster system); its gaps are q, and when q ≥ 0
 /// it is the answer, without forming N.
+///
+/// Contacts that Problem::constrained leaves out (open at the instant of a
+/// collision at a distance) have no λ: the LCP is the principal block of the
+/// constrained contacts, and their gaps take any sign.
 
 #include <Eigen/Core>
 #include <memory>
@@ -72,7 +76,7 @@ struct Solution {
   Status status = Status::Success;
   std::vector<S> velocities_after;   ///< U⁺, size n, top to bottom
   std::vector<S> reactions;          ///< R on contact c = (c+1, c+2), ≤ 0; 0 where open
-  std::vector<S> gaps;               ///< D_{c,c+1}(U⁺) ≥ 0
+  std::vector<S> gaps;               ///< D_{c,c+1}(U⁺), ≥ 0 on constrained contacts (Problem::constrained)
   ContactSet closed;                 ///< the evolution case
   S kinetic_energy_before = S(0);    ///< finite bodies only
   /// ½ Σ m (U⁺)² over finite bodies.
@@ -127,7 +131,8 @@ class CollisionSolver {
   /// and the others open (reaction 0, gap whatever it comes out), without
   /// any sign condition.  This is the paper's way of solving "an assumed
   /// evolution case" (§4.1); out.closed is \p closed, and the residual check
-  /// covers the equations of motion and the imposed gaps only.
+  /// covers the equations of motion and the imposed gaps only
+  /// (Problem::constrained plays no part: the case is imposed).
   void compute_case(const Problem<S>& problem, const ContactSet& closed, Solution<S>& out);
   /// The settings the solver was made with.
   const Settings<S>& settings() const;
@@ -136,7 +141,8 @@ class CollisionSolver {
   /// as compute() builds it (same operations, same rounding), before any
   /// pivot: N = C A⁻¹ Cᵀ, q = C A⁻¹ b̃ (minus the obstacle's velocity on the
   /// last contact when it is fixed), and the map back to the velocities of
-  /// the free bodies, W = W0 + Gλ with G = A⁻¹ C_Fᵀ, W0 = A⁻¹ b̃.  For
+  /// the free bodies, W = W0 + Gλ with G = A⁻¹ C_Fᵀ, W0 = A⁻¹ b̃, on every
+  /// contact (Problem::constrained selects a principal block of it).  For
   /// comparing other LCP solvers on the same instance.
   struct Lcp {
     /// The matrix N = C A⁻¹ Cᵀ of w = q + Nλ.

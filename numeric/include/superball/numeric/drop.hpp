@@ -5,8 +5,21 @@
 /// free body at drop_height over the obstacle, each other one `gap` above the
 /// body below it), at rest unless the scene gives a velocity; every flight is
 /// followed in closed form and every collision solved by the Frémond law
-/// (numeric::solve) of the bodies in contact at that instant: the touching
-/// cluster, M restricted to it.
+/// (numeric::solve) of the bodies that take part in it.
+///
+/// Who takes part.  By default (the touching view) the touching cluster: the
+/// run of contacts closed at that instant (gap 0) that holds the closing
+/// one, M restricted to it; the other bodies fly on.  With `[drop] distant =
+/// true` every pair declared in M takes part in every collision, as the
+/// paper's pseudo-potential φ(D((U⁺+U⁻)/2)) couples every pair of its
+/// matrix M whatever their distance (K₁₄ couples ball 1 and the obstacle
+/// through the stack): the colliding system is every body joined to the
+/// closing contact through M's nonzero entries and the closed contacts; the
+/// percussions of M act on all its pairs through X = D((U⁺+U⁻)/2) (paper
+/// (6)–(12)), and impenetrability (the reaction P^reac ∈ ∂I₊(D_c(U⁺)) and
+/// the choice "stays closed / opens") only on the contacts closed at that
+/// instant (Problem::constrained); an open contact carries no reaction and
+/// its relative velocity after takes any sign (the bodies are apart).
 ///
 /// Events.  Between two free bodies the gap is linear in time (one gravity);
 /// over a fixed obstacle, or a body resting on it, it is a parabola whose
@@ -19,6 +32,12 @@
 /// within drop_doubt_ulps is counted in DropResult::near_ties: its order is
 /// decided by fewer than drop_doubt_ulps roundoffs, and running in
 /// long double (64-bit significand) tells whether it changes the answer.
+/// An order is certified when every other contact closes later than the
+/// event's by more than the doubt bound: DropResult::orders_certified holds
+/// when every order of the run is (no ties, no near ties).  Precision auto
+/// (the overload taking a SolvePrecision) runs in double and, when an order
+/// is not certified, again in long double, whose run it reports with what
+/// double gave (DropResult::escalated, DropResult::sequences_agree).
 ///
 /// Rest.  A body (or a stack of touching bodies moving as one) bouncing
 /// alone on the fixed obstacle has velocities in a
@@ -67,6 +86,12 @@ struct DropEvent {
   std::string case_name;
   /// The contacts of the cluster that stay closed after it ("3-4").
   std::vector<std::string> closed;
+  /// The contacts of first_body … last_body that were open at the instant
+  /// (distant view only: they carry no reaction), top to bottom.
+  std::vector<std::string> apart;
+  /// Whether every contact that did not close at this instant closed later
+  /// by more than the doubt bound (drop_doubt_ulps; no tie, no near tie).
+  bool order_certified = true;
   ///@{
   /// Every body's velocity before and after (m/s, upward positive) and height (m) at the event.
   std::vector<double> velocities_before, velocities_after, heights;
@@ -106,8 +131,13 @@ struct DropRest {
 
 /// The whole drop, in SI units.
 struct DropResult {
-  /// The arithmetic of the run ("double", "long-double").
+  /// The arithmetic of the run reported, the one that decided the order of
+  /// events ("double", "long-double").
   std::string precision;
+  /// The arithmetic asked for: "auto", or #precision.
+  std::string precision_asked;
+  /// Whether every pair of M took part in every collision (`[drop] distant = true`).
+  bool distant = false;
   /// Why the run ended: "apex" (the top body's first apex after its last
   /// collision), "until" (the scene's time), "rest" (no body moves any more),
   /// "no-more-events" (nothing can collide again), "max-events" (the scene's
@@ -131,19 +161,42 @@ struct DropResult {
   std::vector<DropRest> rest;
   /// The top body's apex over its release height (its apexes entry / release_heights[0]; ∞ when released at 0).
   double top_apex_ratio = 0;
+  /// Contacts that closed within drop_tie_ulps of an event's first contact,
+  /// other than it, and collided with it.
+  int ties = 0;
   /// Contacts that closed within drop_doubt_ulps but not drop_tie_ulps of an event.
   int near_ties = 0;
+  /// Whether every order of events was certified: no ties and no near ties
+  /// (every event's order_certified).
+  bool orders_certified = true;
+  /// Precision auto: whether the run in double had an order it could not
+  /// certify, so that the drop was run again in long double (the run reported).
+  bool escalated = false;
+  /// When escalated: whether the runs in double and long double gave the
+  /// same events (each one's contacts, bodies, case and the contacts that
+  /// stay closed, in the same order) and ended the same way; true otherwise.
+  bool sequences_agree = true;
+  /// When escalated: the number of collisions of the run in double.
+  int double_events = 0;
 };
 
 /// The drop of \p scene (which must have a [drop] table) in \p precision:
 /// double or long double.  Throws superball::InputError naming the scene
 /// (M not positive semi-definite, no [drop] table) and
 /// std::invalid_argument("drop(): ...") for an arithmetic it does not run
-/// in (exact, digits:N: the times of floor impacts are square roots) and for
-/// `distant = true`, not implemented yet, and for a datum (g, drop_height,
-/// a gap, a velocity, a mass, until, the top release height) that is not 0 and lies
-/// outside the arithmetic's window [2^−w, 2^w] (w = safe_exponent<S>()).
+/// in (exact, digits:N: the times of floor impacts are square roots), and for
+/// a datum (g, drop_height, a gap, a velocity, a mass, until, the top release
+/// height) that is not 0 and lies outside the arithmetic's window [2^−w, 2^w]
+/// (w = safe_exponent<S>()).
 DropResult drop(const Scene& scene, const Precision& precision);
+/// The drop of \p scene in \p precision: a fixed one as drop(scene,
+/// precision.fixed), or auto: in double, and when an order of events is not
+/// certified (DropResult::orders_certified) again in long double, the run
+/// returned, with escalated, sequences_agree and double_events saying what
+/// double gave.  Throws as drop(scene, Precision), and
+/// std::invalid_argument("drop(): ...") for an rtol (a drop's auto certifies
+/// orders of events, not digits of velocities).
+DropResult drop(const Scene& scene, const SolvePrecision& precision);
 
 }  // namespace superball::numeric
 

@@ -122,6 +122,21 @@ struct Problem {
   /// Status::NumericalIssue (double and long double only; CLN types always
   /// hold the scene).
   bool in_range = true;
+  /// Per adjacent contact c (bodies c and c+1, 0-based): whether
+  /// impenetrability holds there, i.e. the contact is closed at the instant
+  /// of the collision and may stay closed (reaction λ_c ≥ 0, gap D_c(U⁺) ≥ 0,
+  /// λ_c·D_c(U⁺) = 0).  A contact that is not constrained is open at that
+  /// instant (the two bodies are apart): no reaction and no sign condition
+  /// on its gap, while M's percussions still act on its pair when M declares
+  /// it (interactions at a distance: a drop with `distant = true`,
+  /// numeric/drop.hpp).  Empty (the default): every contact is constrained,
+  /// and every solver takes the path it always took.  Otherwise n−1 flags;
+  /// the evolution cases are then enumerated over the constrained contacts
+  /// only.
+  std::vector<char> constrained;
+
+  /// Whether contact \p c is constrained (see #constrained).
+  bool constrained_contact(int c) const { return constrained.empty() || constrained[static_cast<std::size_t>(c)] != 0; }
 
   /// Convert \p scene to S.  Throws superball::InputError when S is exact and
   /// the scene needs an irrational number inside the solve.  A datum outside
@@ -135,7 +150,7 @@ struct Problem {
 
   /// Misuse check at a solver's entry point: at least 2 bodies, one mass
   /// and one velocity per body, every entry of M on pairs i < j, k < l of
-  /// bodies 0 … n−1.  Throws std::invalid_argument("<who>: ...").  Returns
+  /// bodies 0 … n−1, #constrained empty or one flag per contact.  Throws std::invalid_argument("<who>: ...").  Returns
   /// bandwidth(), found in the same pass over the entries.
   int check(const char* who) const;
 

@@ -25,8 +25,8 @@ struct PresentedDrop {
   numeric::DropResult result;
 };
 
-/// The drop of \p scene in \p precision ("double", the default, or
-/// "long-double"; Precision::parse() spellings).  Throws std::invalid_argument
+/// The drop of \p scene in \p precision ("double", the default,
+/// "long-double" or "auto": numeric::drop() with a SolvePrecision).  Throws std::invalid_argument
 /// for another arithmetic and superball::InputError for a scene without [drop].
 PresentedDrop drop_scene(const Scene& scene, const std::string& precision = "double");
 
@@ -34,7 +34,9 @@ PresentedDrop drop_scene(const Scene& scene, const std::string& precision = "dou
 /// (time, contacts, bodies, case, closed, velocities_before,
 /// velocities_after, heights, kinetic energies, momenta), `apexes` (body,
 /// height, time), `rest` (body, time, accumulation, ratio), `end`,
-/// `top_apex_ratio`, `near_ties`.
+/// `top_apex_ratio`, `near_ties`, `ties`, `orders_certified`,
+/// `precision_asked`, `escalated`, `sequences_agree`, `distant` (and per
+/// event `apart`, `order_certified`).
 nlohmann::json to_json(const PresentedDrop& d);
 /// \p d for people (`superball drop`).
 std::string to_text(const PresentedDrop& d);
