@@ -208,6 +208,8 @@ TEST(Drop, DataOutsideTheArithmeticsWindowAreRefusedNotRoundedToZeroOrInfinity) 
   EXPECT_EQ(high.end, "apex");
   EXPECT_GT(high.apexes[0].height, 0.99e308);
   EXPECT_LT(high.apexes[0].height, 1e308);
+}
+
 /// The paper's §4.4 stack with 1 mm gaps (cases/scenes/drop-paper-4.4.toml), in the view \p distant, until \p until.
 Scene paper_stack(bool distant, const std::string& until) {
   Scene s = load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/drop-paper-4.4.toml");
