@@ -109,6 +109,15 @@ package_check() {
   rm -rf "$work"
 }
 
+# sanitized_build [--target T]: build-asan, the build of stages 2 and 3: clang++, AddressSanitizer and
+# UndefinedBehaviorSanitizer, the test suite and the libFuzzer target.
+sanitized_build() {
+  BUILD_DIR="$ROOT/build-asan" configure_and_build -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSUPERBALL_BUILD_TESTS=ON -DSUPERBALL_BUILD_BENCH=OFF -DSUPERBALL_SANITIZE=address,undefined \
+    -DSUPERBALL_BUILD_HEADER_TESTS=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSUPERBALL_UNITY_TESTS=ON \
+    -DSUPERBALL_BUILD_FUZZ=ON "$@"
+}
+
 for stage in $STAGES; do
   stage_start=$SECONDS
   case "$stage" in
@@ -132,9 +141,7 @@ for stage in $STAGES; do
       # tests (stage 1) find nothing a sanitizer could: both only cost build time here.
       # -O1, as AddressSanitizer's documentation advises: on 2 cores it built in 611 s
       # against about 1,040 s at -O2 (the tree has grown since: about 920 s in a fresh clone).
-      BUILD_DIR="$ROOT/build-asan" configure_and_build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUPERBALL_BUILD_TESTS=ON \
-        -DSUPERBALL_BUILD_BENCH=OFF -DSUPERBALL_SANITIZE=address,undefined -DSUPERBALL_BUILD_HEADER_TESTS=OFF \
-        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSUPERBALL_UNITY_TESTS=ON
+      sanitized_build
       # Every process that loads CLN ends with a leak that tests/lsan.supp suppresses, and matching
       # the suppression started a symbolizer (llvm-symbolizer or addr2line): 0.3 s of CPU in each of
       # the thousands of processes of the suite (test programs, and every superball they start;
@@ -155,15 +162,15 @@ for stage in $STAGES; do
       ;;
     3)
       echo "== stage 3: libFuzzer, ${FUZZ_SECONDS} s"
-      BUILD_DIR="$ROOT/build-fuzz" configure_and_build -DCMAKE_CXX_COMPILER=clang++ -DSUPERBALL_BUILD_FUZZ=ON \
-        -DSUPERBALL_SANITIZE=address,undefined -DSUPERBALL_BUILD_BENCH=OFF --target fuzz_scene
+      # fuzz_scene is built in stage 2's folder: after stage 2, its link is all that is left to do.
+      sanitized_build --target fuzz_scene
       work="$(mktemp -d)"
       trap 'rm -rf "$work" "$summary"' EXIT
       # New inputs go to the scratch folder; the committed corpus is only read.
       # The seed is fixed (FUZZ_SEED) so that a run is reproducible: a slower
       # machine runs a prefix of the same sequence of inputs.
       status=0
-      "$ROOT/build-fuzz/tests/fuzz/fuzz_scene" "$work" "$ROOT/tests/fuzz/corpus" -dict="$ROOT/tests/fuzz/scene.dict" -seed="$FUZZ_SEED" \
+      "$ROOT/build-asan/tests/fuzz/fuzz_scene" "$work" "$ROOT/tests/fuzz/corpus" -dict="$ROOT/tests/fuzz/scene.dict" -seed="$FUZZ_SEED" \
         -max_total_time="$FUZZ_SECONDS" -artifact_prefix="$work/" -print_final_stats=1 > "$work/log" 2>&1 || status=$?
       tail -n 8 "$work/log"
       if [ "$status" -ne 0 ] || ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* >/dev/null 2>&1; then
@@ -171,7 +178,7 @@ for stage in $STAGES; do
         sed -n '/^fuzz_scene: finding\|^==[0-9]*==\|deadly signal\|^INFO: Running with/,$p' "$work/log" | grep -v "^#[0-9]" | head -n 80
         for f in "$work"/crash-* "$work"/leak-* "$work"/timeout-*; do
           [ -e "$f" ] || continue
-          echo "-- input $(basename "$f") ($(wc -c < "$f") bytes), replay: build-fuzz/tests/fuzz/fuzz_scene FILE"
+          echo "-- input $(basename "$f") ($(wc -c < "$f") bytes), replay: build-asan/tests/fuzz/fuzz_scene FILE"
           head -c 4096 "$f" | cat -v; echo
         done
         exit 1
