@@ -109,8 +109,9 @@ package_check() {
   rm -rf "$work"
 }
 
-# sanitized_build [--target T]: build-asan, the build of stages 2 and 3: clang++, AddressSanitizer and
-# UndefinedBehaviorSanitizer, the test suite and the libFuzzer target.
+# sanitized_build [--target T]: build-asan, the build of stages 2 and 3: clang++ (faster than g++
+# here, stage 2's comment), AddressSanitizer and UndefinedBehaviorSanitizer, the test suite and
+# the libFuzzer target.
 sanitized_build() {
   BUILD_DIR="$ROOT/build-asan" configure_and_build -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DSUPERBALL_BUILD_TESTS=ON -DSUPERBALL_BUILD_BENCH=OFF -DSUPERBALL_SANITIZE=address,undefined \
@@ -140,7 +141,12 @@ for stage in $STAGES; do
       # Line tables (-g1) are all a sanitizer's report needs, and the headers' compile-alone
       # tests (stage 1) find nothing a sanitizer could: both only cost build time here.
       # -O1, as AddressSanitizer's documentation advises: on 2 cores it built in 611 s
-      # against about 1,040 s at -O2 (the tree has grown since: about 920 s in a fresh clone).
+      # against about 1,040 s at -O2.  With g++ this build took 804 s in a fresh clone
+      # (ef8382a, 1,611 s of compile jobs), and stage 3 built cases and numeric again with
+      # clang (153 s).  clang++ compiles these flags with less CPU, CPU-s per translation unit,
+      # g++ against clang++: tests/numeric compute_case_test 56.0 / 30.8, switch_point_test
+      # 27.6 / 21.0, cli/reproduce.cpp 49.9 / 38.4, numeric small_solver.cpp 77.4 / 67.4 (94 with
+      # libFuzzer's coverage hooks, which cases and numeric carry here so that stage 3 reuses them).
       sanitized_build
       # Every process that loads CLN ends with a leak that tests/lsan.supp suppresses, and matching
       # the suppression started a symbolizer (llvm-symbolizer or addr2line): 0.3 s of CPU in each of
@@ -156,7 +162,9 @@ for stage in $STAGES; do
       # Side by side on 2 cores at load 4: the 69 tests BadSceneCli and OutputOverInput.Every…
       # took 273 s, 161 s with symbolize=0, 88 s with the small scale too; the 68 in-process
       # bad-scene tests 49 s and 23 s.  Fresh clone: the suite 940 s before these changes,
-      # 584 s after (863 tests).
+      # 584 s after (863 tests).  ctest -j starts the long tests first (their COST,
+      # superball_test_costs in tests/CMakeLists.txt): in the fresh clone of ef8382a (878 tests,
+      # 1,099 s of tests on 2 cores) the red-team classes of 21, 16, 13 and 12 s were started last.
       ASAN_OPTIONS="symbolize=0" SUPERBALL_TEST_SCALE=small SUPERBALL_PROPERTY_SCENES=200 SUPERBALL_EXTREME_SCENES=100 \
         run_ctest "$ROOT/build-asan" "suite under ASan+UBSan" "env PYTHONUNBUFFERED=1 asan_symbolize -d"
       ;;
