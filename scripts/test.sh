@@ -5,9 +5,10 @@
 #      examples/cpp built and run against it (CMake and pkg-config), the Python module
 #      imported from it and the notebook run against it, and the Debian package
 #      (cpack), installed with apt-get, used, purged
-#   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer, where the tests
+#   2. the same suite built with clang++, AddressSanitizer + UndefinedBehaviorSanitizer, where the tests
 #      whose work is repetition of one code path run fewer repetitions (SUPERBALL_TEST_SCALE=small)
-#   3. the libFuzzer target over scene parsing and solving, 60 s from tests/fuzz/corpus
+#   3. the libFuzzer target over scene parsing and solving (built in stage 2's folder), 60 s from
+#      tests/fuzz/corpus
 #   4. the red-team suite (tests/redteam), hostile scenes and command lines for 60 s
 # STAGES="1" (or "1 2", …) runs a subset; FUZZ_SECONDS changes stage 3's length, FUZZ_SEED its seed;
 # REDTEAM_SECONDS and REDTEAM_SEED the same for stage 4.
