@@ -11,7 +11,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev                         # tests and benchmarks
   texlive-latex-base gnuplot-nox python3-sympy          # LaTeX check, plots, the SymPy reference
   doxygen                                               # the API reference (docs/CMakeLists.txt)
-  clang libclang-rt-14-dev                              # libFuzzer (scripts/test.sh stage 3)
+  clang libclang-rt-14-dev                              # the sanitized build and libFuzzer (scripts/test.sh stages 2, 3)
   libopenmpi-dev openmpi-bin                            # the MPI runner (scripts/test.sh stage 1)
   pybind11-dev python3-dev python3-numpy                # the Python module (python/), for /usr/bin/python3
   python3-pytest python3-nbclient python3-ipykernel python3-matplotlib  # its tests and notebook

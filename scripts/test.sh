@@ -5,9 +5,10 @@
 #      examples/cpp built and run against it (CMake and pkg-config), the Python module
 #      imported from it and the notebook run against it, and the Debian package
 #      (cpack), installed with apt-get, used, purged
-#   2. the same suite built with AddressSanitizer + UndefinedBehaviorSanitizer, where the tests
+#   2. the same suite built with clang++, AddressSanitizer + UndefinedBehaviorSanitizer, where the tests
 #      whose work is repetition of one code path run fewer repetitions (SUPERBALL_TEST_SCALE=small)
-#   3. the libFuzzer target over scene parsing and solving, 60 s from tests/fuzz/corpus
+#   3. the libFuzzer target over scene parsing and solving (built in stage 2's folder), 60 s from
+#      tests/fuzz/corpus
 #   4. the red-team suite (tests/redteam), hostile scenes and command lines for 60 s
 # STAGES="1" (or "1 2", …) runs a subset; FUZZ_SECONDS changes stage 3's length, FUZZ_SEED its seed;
 # REDTEAM_SECONDS and REDTEAM_SEED the same for stage 4.
@@ -109,6 +110,16 @@ package_check() {
   rm -rf "$work"
 }
 
+# sanitized_build [--target T]: build-asan, the build of stages 2 and 3: clang++ (faster than g++
+# here, stage 2's comment), AddressSanitizer and UndefinedBehaviorSanitizer, the test suite and
+# the libFuzzer target.
+sanitized_build() {
+  BUILD_DIR="$ROOT/build-asan" configure_and_build -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DSUPERBALL_BUILD_TESTS=ON -DSUPERBALL_BUILD_BENCH=OFF -DSUPERBALL_SANITIZE=address,undefined \
+    -DSUPERBALL_BUILD_HEADER_TESTS=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSUPERBALL_UNITY_TESTS=ON \
+    -DSUPERBALL_BUILD_FUZZ=ON "$@"
+}
+
 for stage in $STAGES; do
   stage_start=$SECONDS
   case "$stage" in
@@ -131,10 +142,13 @@ for stage in $STAGES; do
       # Line tables (-g1) are all a sanitizer's report needs, and the headers' compile-alone
       # tests (stage 1) find nothing a sanitizer could: both only cost build time here.
       # -O1, as AddressSanitizer's documentation advises: on 2 cores it built in 611 s
-      # against about 1,040 s at -O2 (the tree has grown since: about 920 s in a fresh clone).
-      BUILD_DIR="$ROOT/build-asan" configure_and_build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSUPERBALL_BUILD_TESTS=ON \
-        -DSUPERBALL_BUILD_BENCH=OFF -DSUPERBALL_SANITIZE=address,undefined -DSUPERBALL_BUILD_HEADER_TESTS=OFF \
-        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSUPERBALL_UNITY_TESTS=ON
+      # against about 1,040 s at -O2.  With g++ this build took 804 s in a fresh clone
+      # (ef8382a, 1,611 s of compile jobs), and stage 3 built cases and numeric again with
+      # clang (153 s).  clang++ compiles these flags with less CPU, CPU-s per translation unit,
+      # g++ against clang++: tests/numeric compute_case_test 56.0 / 30.8, switch_point_test
+      # 27.6 / 21.0, cli/reproduce.cpp 49.9 / 38.4, numeric small_solver.cpp 77.4 / 67.4 (94 with
+      # libFuzzer's coverage hooks, which cases and numeric carry here so that stage 3 reuses them).
+      sanitized_build
       # Every process that loads CLN ends with a leak that tests/lsan.supp suppresses, and matching
       # the suppression started a symbolizer (llvm-symbolizer or addr2line): 0.3 s of CPU in each of
       # the thousands of processes of the suite (test programs, and every superball they start;
@@ -149,21 +163,24 @@ for stage in $STAGES; do
       # Side by side on 2 cores at load 4: the 69 tests BadSceneCli and OutputOverInput.Every…
       # took 273 s, 161 s with symbolize=0, 88 s with the small scale too; the 68 in-process
       # bad-scene tests 49 s and 23 s.  Fresh clone: the suite 940 s before these changes,
-      # 584 s after (863 tests).
+      # 584 s after (863 tests).  ctest -j starts the long tests first (their COST,
+      # superball_test_costs in tests/CMakeLists.txt): in the fresh clone of ef8382a (878 tests,
+      # 1,099 s of tests on 2 cores) the red-team classes of 21, 16, 13 and 12 s were started last.
+      # Distribute.ThreeShards… (clang build): 69.1 CPU-s at the full scale, 51.8 at the small one.
       ASAN_OPTIONS="symbolize=0" SUPERBALL_TEST_SCALE=small SUPERBALL_PROPERTY_SCENES=200 SUPERBALL_EXTREME_SCENES=100 \
         run_ctest "$ROOT/build-asan" "suite under ASan+UBSan" "env PYTHONUNBUFFERED=1 asan_symbolize -d"
       ;;
     3)
       echo "== stage 3: libFuzzer, ${FUZZ_SECONDS} s"
-      BUILD_DIR="$ROOT/build-fuzz" configure_and_build -DCMAKE_CXX_COMPILER=clang++ -DSUPERBALL_BUILD_FUZZ=ON \
-        -DSUPERBALL_SANITIZE=address,undefined -DSUPERBALL_BUILD_BENCH=OFF --target fuzz_scene
+      # fuzz_scene is built in stage 2's folder: after stage 2, its link is all that is left to do.
+      sanitized_build --target fuzz_scene
       work="$(mktemp -d)"
       trap 'rm -rf "$work" "$summary"' EXIT
       # New inputs go to the scratch folder; the committed corpus is only read.
       # The seed is fixed (FUZZ_SEED) so that a run is reproducible: a slower
       # machine runs a prefix of the same sequence of inputs.
       status=0
-      "$ROOT/build-fuzz/tests/fuzz/fuzz_scene" "$work" "$ROOT/tests/fuzz/corpus" -dict="$ROOT/tests/fuzz/scene.dict" -seed="$FUZZ_SEED" \
+      "$ROOT/build-asan/tests/fuzz/fuzz_scene" "$work" "$ROOT/tests/fuzz/corpus" -dict="$ROOT/tests/fuzz/scene.dict" -seed="$FUZZ_SEED" \
         -max_total_time="$FUZZ_SECONDS" -artifact_prefix="$work/" -print_final_stats=1 > "$work/log" 2>&1 || status=$?
       tail -n 8 "$work/log"
       if [ "$status" -ne 0 ] || ls "$work"/crash-* "$work"/leak-* "$work"/timeout-* >/dev/null 2>&1; then
@@ -171,7 +188,7 @@ for stage in $STAGES; do
         sed -n '/^fuzz_scene: finding\|^==[0-9]*==\|deadly signal\|^INFO: Running with/,$p' "$work/log" | grep -v "^#[0-9]" | head -n 80
         for f in "$work"/crash-* "$work"/leak-* "$work"/timeout-*; do
           [ -e "$f" ] || continue
-          echo "-- input $(basename "$f") ($(wc -c < "$f") bytes), replay: build-fuzz/tests/fuzz/fuzz_scene FILE"
+          echo "-- input $(basename "$f") ($(wc -c < "$f") bytes), replay: build-asan/tests/fuzz/fuzz_scene FILE"
           head -c 4096 "$f" | cat -v; echo
         done
         exit 1

@@ -213,7 +213,8 @@ namespace {
 bool certainly_irreducible(const GiNaC::ex& e, const std::vector<detail::Term>& ts) {
   std::vector<GiNaC::ex> seen;
   for (const detail::Term& t : ts)
-    for (const auto& [x, power] : t.powers) {
+    for (const auto& x_power : t.powers) {
+      const GiNaC::ex& x = x_power.first;  // C++17: a lambda cannot capture a structured binding
       if (std::any_of(seen.begin(), seen.end(), [&](const GiNaC::ex& y) { return y.is_equal(x); })) continue;
       seen.push_back(x);
       if (e.degree(x) != 1) continue;

@@ -34,8 +34,16 @@ void eigen_assertion_failed(const char* what, const char* file, int line) {
 }  // namespace superball::testing
 
 // Under AddressSanitizer malloc belongs to the sanitizer: the counter is left
-// out there (the Eigen check still runs).
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
+// out there (the Eigen check still runs).  GCC says AddressSanitizer with
+// __SANITIZE_ADDRESS__, clang with __has_feature(address_sanitizer).
+#if defined(__SANITIZE_ADDRESS__)
+#define SUPERBALL_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SUPERBALL_TEST_ASAN 1
+#endif
+#endif
+#if defined(__GLIBC__) && !defined(SUPERBALL_TEST_ASAN)
 extern "C" {
 void* __libc_malloc(std::size_t);
 void* __libc_calloc(std::size_t, std::size_t);
