@@ -161,18 +161,21 @@ TEST(GapsToZero, ADropEndedBeforeItsCascadeLeavesTheVerdictUndecided) {
 }
 
 TEST(GapsToZero, GapsTheArithmeticCannotTellFromContactAreRefusedWithTheDecadesThatCanBeTaken) {
-  // 1e-300 m resolves in double; 1e-308 m (eight decades down) joins the floor's collision as if it touched.
-  const Scene s = stack("drop_height = 1\n[[body]]\nmass = 0.001\ngap = 1e-300\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n"
+  // 1e-70 m is in double's window; eight decades down, 1e-78 m is not (drop() refuses it): the message says so, and how
+  // many decades can be taken.
+  const Scene s = stack("drop_height = 1\n[[body]]\nmass = 0.001\ngap = 1e-70\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n"
                         "[dissipation]\nK = { \"1-2\" = 1e6, \"2-3\" = 1e6 }\n[drop]\n");
   EXPECT_EQ(gaps_to_zero(s, Precision::parse("double"), GapLimitOptions{7}).verdict, GapVerdict::Differs);
   try {
     gaps_to_zero(s, Precision::parse("double"), GapLimitOptions{12});
-    ADD_FAILURE() << "1e-312 m taken as a gap";
+    ADD_FAILURE() << "1e-78 m taken as a gap";
   } catch (const InputError& e) {
-    const std::string m = e.what();
-    EXPECT_NE(m.find("t.toml: gaps x 1e-"), std::string::npos) << m;
-    EXPECT_NE(m.find("is below what double resolves: the contact collides as if it touched; take "), std::string::npos) << m;
+    EXPECT_EQ(std::string(e.what()).rfind("t.toml: gaps x 1e-8: body[1].gap = 1e-78 is outside what a drop in double computes with", 0), 0u)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("; take 7 decades or fewer"), std::string::npos) << e.what();
   }
+  // long double's window is wider: there the gaps go down to 1e-82 m.
+  EXPECT_EQ(gaps_to_zero(s, Precision::parse("long-double"), GapLimitOptions{12}).verdict, GapVerdict::Differs);
 }
 
 }  // namespace

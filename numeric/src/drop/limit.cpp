@@ -23,7 +23,12 @@ Scene scaled_gaps(const Scene& scene, int k) {
   Scene out = scene;
   for (Body& b : out.bodies) {
     if (!b.gap) continue;
-    b.gap = k < 0 ? Number::integer(0) : Number::parse(b.gap->numerator + "/" + b.gap->denominator + std::string(static_cast<std::size_t>(k), '0'));
+    if (k < 0) {
+      b.gap = Number::integer(0);
+    } else {
+      b.gap = Number::parse(b.gap->numerator + "/" + b.gap->denominator + std::string(static_cast<std::size_t>(k), '0'));
+      b.gap->text = to_string(b.gap->approx(), 6);  // for messages: 1e-308, not its fraction
+    }
   }
   return out;
 }
@@ -94,12 +99,19 @@ GapLimit gaps_to_zero(const Scene& scene, const Precision& precision, const GapL
     GapLimitStep step;
     step.scale = std::pow(10.0, -k);
     const Scene scaled = scaled_gaps(scene, k);
-    step.drop = drop(scaled, precision);
+    const std::string fewer = k == 0 ? std::string("widen the gaps") : "take " + std::to_string(k - 1) + " decades or fewer";
+    try {
+      step.drop = drop(scaled, precision);
+    } catch (const std::invalid_argument& e) {  // a gap below the arithmetic's window
+      if (k == 0) throw;
+      std::string why = without_function_prefix(e.what());
+      if (why.rfind(scene.origin + ": ", 0) == 0) why.erase(0, scene.origin.size() + 2);
+      throw InputError(scene.origin + ": gaps x 1e-" + std::to_string(k) + ": " + why + "; " + fewer);
+    }
     if (const int c = gapped_contact_in_first_collision(scaled, step.drop); c >= 0)
       throw InputError(scene.origin + ": gaps x 1e-" + std::to_string(k) + ": the gap of contact " + std::to_string(c + 1) + "-" +
-                       std::to_string(c + 2) + " (" + to_string(scaled.bodies[static_cast<std::size_t>(c)].gap->approx(), 3) + " m) is below what " +
-                       precision.name() + " resolves: the contact collides as if it touched; " +
-                       (k == 0 ? std::string("widen the gaps") : "take " + std::to_string(k - 1) + " decades or fewer"));
+                       std::to_string(c + 2) + " (" + scaled.bodies[static_cast<std::size_t>(c)].gap->text + " m) is below what " +
+                       precision.name() + " resolves: the contact collides as if it touched; " + fewer);
     step.cascade = first_cascade(step.drop, speed);
     if (step.cascade.complete && limit.simultaneous.cascade.complete && step.cascade.velocities.size() == reference.size()) {
       for (std::size_t i = 0; i < reference.size(); ++i)
