@@ -1,5 +1,6 @@
 #include "superball/present/drop_limit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -8,6 +9,9 @@
 
 namespace superball::present {
 namespace {
+
+/// The collisions of a cascade the text lists (the JSON has them all).
+constexpr std::size_t drop_limit_listed = 6;
 
 std::string number(double x, int significant = 6) {
   if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
@@ -71,8 +75,10 @@ std::string to_text(const PresentedGapLimit& g) {
     for (std::size_t i = 0; i < n; ++i)
       if (!std::isinf(s.drop.masses[i]))
         os << "  " << std::setw(10) << (i < s.cascade.velocities.size() ? number(s.cascade.velocities[i] / a) : std::string("-"));
-    std::string collisions;
-    for (const auto& c : s.cascade.collisions) collisions += (collisions.empty() ? "" : ", ") + c;
+    std::string collisions;  // at most drop_limit_listed of them, then how many more
+    const std::size_t shown = std::min(s.cascade.collisions.size(), drop_limit_listed);
+    for (std::size_t k = 0; k < shown; ++k) collisions += (collisions.empty() ? "" : ", ") + s.cascade.collisions[k];
+    if (shown < s.cascade.collisions.size()) collisions += ", ... (" + std::to_string(s.cascade.collisions.size() - shown) + " more)";
     os << "  " << std::setw(10) << number(s.drop.top_apex_ratio) << "  " << s.cascade.events << ": " << collisions
        << (s.cascade.complete ? "" : " (the drop ended before the bodies separated)") << '\n';
   };

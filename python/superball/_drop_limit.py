@@ -72,6 +72,7 @@ class GapLimit(_Report):
 
     @property
     def converges(self) -> bool:
+        """Whether the verdict is ``"converges"``: the gapped drops tend to the simultaneous collision."""
         return self.verdict == "converges"
 
     def __repr__(self) -> str:

@@ -33,9 +33,10 @@ Scene scaled_gaps(const Scene& scene, int k) {
   return out;
 }
 
-/// The first contact of the first collision of \p drop that had a gap > 0 at release in \p scene (0-based), or -1.
+/// The first contact of the first collision of \p drop that had a gap > 0 at release in \p scene (0-based), or -1;
+/// -1 in the distant view, where a collision takes in bodies across open gaps.
 int gapped_contact_in_first_collision(const Scene& scene, const DropResult& drop) {
-  if (drop.events.empty()) return -1;
+  if (drop.events.empty() || scene.drop.distant) return -1;
   const DropEvent& e = drop.events.front();
   for (int c = e.first_body - 1; c + 1 < e.last_body; ++c) {
     const auto& gap = scene.bodies[static_cast<std::size_t>(c)].gap;
