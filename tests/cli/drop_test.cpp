@@ -81,7 +81,7 @@ TEST(DropCli, BadInputIsOneLineExitTwo) {
     std::string text, expected;
   } bad[] = {
       {"drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9 }\n[drop]\nmax_events = 0\n",
-       "drop.max_events: must be a whole number from 1 to 100000000 (got 0)"},
+       "drop.max_events: must be a whole number from 1 to 1000000 (got 0)"},
       {"drop_height = 1\n[[body]]\nmass = 1\ngap = -1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9, \"2-3\" = 9 }\n[drop]\n",
        "gap"},
       {"drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9 }\n[drop]\nuntil = -1\n", "drop.until"},

@@ -101,7 +101,7 @@ TEST(Drop, BadKeysAreOneLineErrors) {
   EXPECT_EQ(message("drop_height = 1\n" + base), "t.toml:4:7: body[1].gap: must be >= 0 m (got -1)");
   EXPECT_NE(message("[[body]]\nmass = 1\nvelocity = 0\n[[body]]\nmass = \"inf\"\n[drop]\n").find("drop_height: a drop onto a fixed obstacle needs drop_height > 0"), std::string::npos);
   EXPECT_EQ(message("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[drop]\nmax_events = 0\n"),
-            "t.toml:7:14: drop.max_events: must be a whole number from 1 to 100000000 (got 0)");
+            "t.toml:7:14: drop.max_events: must be a whole number from 1 to 1000000 (got 0)");
   EXPECT_EQ(message("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[drop]\nuntil = -1\n"),
             "t.toml:7:9: drop.until: must be \"apex\" or a time in seconds > 0 (got -1)");
   EXPECT_NE(message("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[drop]\nwhen = 1\n").find("drop.when: unknown key"), std::string::npos);

@@ -171,7 +171,7 @@ BAD_DROPS = [
     ("drop_height = 1\n", {"drop": 'until = "soon"\n'}, 'drop.until: must be "apex" or a time in seconds > 0 (got "soon")'),
     ("drop_height = 1\n", {"drop": "until = 0\n"}, "drop.until: must be"),
     ("drop_height = 1\n", {"drop": "until = nan\n"}, "drop.until: must be a finite number (got nan)"),
-    ("drop_height = 1\n", {"drop": "max_events = 1e3\n"}, "drop.max_events: must be a whole number from 1 to 100000000 (got a float)"),
+    ("drop_height = 1\n", {"drop": "max_events = 1e3\n"}, "drop.max_events: must be a whole number from 1 to 1000000 (got a float)"),
     ("drop_height = 1\n", {"drop": "max_events = 1000000000000\n"}, "(got 1000000000000)"),
     ("drop_height = 1\n", {"top": "gap = -0.5\n"}, "body[1].gap: must be >= 0 m (got -0.5)"),
     ("drop_height = 1\n", {"top": "gap = inf\n"}, "body[1].gap: must be a finite number (got inf)"),

@@ -1338,7 +1338,7 @@ Case make_drop(Rng& rng, int index) {
     case 2: s.drop_height = "1e300", c.named = {"drop_height = 1e300"}; break;
     case 3: s.mass.back() = "100", s.until = "1e300", c.named = {"drop.until = 1e300"}; break;  // fell to -inf
     case 4:  // two touching balls: they bounced as one to the last denormal (354,588 events); now a rest
-      s.gap[0] = "", s.until = "1e6", s.max_events = "100000000", max_events = 3500, c.expect = Expect::Success;
+      s.gap[0] = "", s.until = "1e6", s.max_events = "1000000", max_events = 3500, c.expect = Expect::Success;
       c.named = {};
       break;
     case 5: s.until = "\"soon\"", c.named = {"drop.until"}; break;

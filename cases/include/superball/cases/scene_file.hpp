@@ -28,8 +28,11 @@ inline constexpr int max_scene_bodies = 100000;
 /// [...] } ]`); the limit is checked before the TOML parser, which recurses
 /// once per level, runs.
 inline constexpr int max_scene_nesting = 16;
-/// Largest `[drop] max_events` a scene may ask for.
-inline constexpr long long max_drop_events = 100000000;
+/// Largest `[drop] max_events` a scene may ask for: a drop keeps every
+/// collision (about 150 + 40 n bytes each, n bodies, and about 1 kB of its
+/// JSON), so 10⁶ of them is some 0.5 GB and a dozen seconds; 10⁸ was tens of
+/// gigabytes, past what a machine holds.
+inline constexpr long long max_drop_events = 1000000;
 /// The name of standard input in messages and in Scene::origin.
 inline constexpr std::string_view stdin_origin = "<stdin>";
 
