@@ -86,7 +86,7 @@ std::string label_of(const nlohmann::json& drop) {
 }
 
 TEST(DropSweepCli, EachValueIsTheDropOfTheSceneWithTheValueWrittenInBitForBit) {
-  for (const std::string& precision : {"double", "long-double"}) {
+  for (const char* precision : {"double", "long-double"}) {
     const RunResult r = run({"sweep", kThree, "--vary", "gap.1=0:0.004:5", "--csv", "--precision", precision});
     ASSERT_EQ(r.exit_code, 0) << describe(r);
     const auto rows = lines(r.out);

@@ -143,8 +143,12 @@ TEST(DropCli, PlotDrawsEveryBodysHeightAgainstTimeWithTheCollisionsAndTheRest) {
   for (std::size_t k = 0; k < b[0].x.size(); ++k) {
     EXPECT_GE(b[0].y[k], -1e-12) << b[0].x[k];
     EXPECT_LE(b[0].y[k], 1 + 1e-12) << b[0].x[k];
-    if (b[0].x[k] >= rest) EXPECT_EQ(b[0].y[k], 0) << b[0].x[k];
-    if (k > 0) EXPECT_GE(b[0].x[k], b[0].x[k - 1]);
+    if (b[0].x[k] >= rest) {
+      EXPECT_EQ(b[0].y[k], 0) << b[0].x[k];
+    }
+    if (k > 0) {
+      EXPECT_GE(b[0].x[k], b[0].x[k - 1]);
+    }
   }
   // The first fall is the closed form h − g t²/2.
   for (std::size_t k = 0; k < b[0].x.size() && b[0].x[k] <= std::sqrt(2 / g); ++k)
@@ -180,7 +184,9 @@ TEST(DropCli, PlotOfAStackBouncingAsOneEndsAtRestNotInThousandsOfBounces) {
     EXPECT_LT(b[i].x.size(), 100000u);
     EXPECT_EQ(b[i].x.back(), 1000);
     for (std::size_t k = 0; k < b[i].x.size(); ++k)
-      if (b[i].x[k] >= rest) EXPECT_EQ(b[i].y[k], 0) << b[i].x[k];
+      if (b[i].x[k] >= rest) {
+        EXPECT_EQ(b[i].y[k], 0) << b[i].x[k];
+      }
   }
   std::filesystem::remove_all(dir);
 }

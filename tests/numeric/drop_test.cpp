@@ -239,7 +239,9 @@ void expect_balances(const DropResult& r) {
   for (const DropEvent& ev : r.events) {
     SCOPED_TRACE("event at t = " + std::to_string(ev.time));
     EXPECT_LE(ev.kinetic_energy_after, ev.kinetic_energy_before * (1 + kBalanceTolerance));
-    if (!(r.fixed_bottom && ev.last_body == n)) EXPECT_NEAR(ev.momentum_after, ev.momentum_before, kBalanceTolerance * (1 + std::abs(ev.momentum_before)));
+    if (!(r.fixed_bottom && ev.last_body == n)) {
+      EXPECT_NEAR(ev.momentum_after, ev.momentum_before, kBalanceTolerance * (1 + std::abs(ev.momentum_before)));
+    }
     double speed = 0;
     for (double v : ev.velocities_before) speed = std::max(speed, std::abs(v));
     for (int c = ev.first_body - 1; c + 1 < ev.last_body; ++c) {
