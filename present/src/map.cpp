@@ -315,20 +315,31 @@ std::string map_figure_data(const Map& m, const std::vector<MapMark>& marks, con
   return os.str();
 }
 
-std::string map_figure_script(const Map& m, const std::vector<MapMark>& marks, bool derived, const std::string& title,
-                              const std::string& data, const std::string& terminal, const std::string& output) {
-  const std::vector<ContactSet> cases = cases_present(m);
-  const bool not_psd = std::any_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return !p.admissible; });
-  const double x0 = cln::double_approx(m.x.from), x1 = cln::double_approx(m.x.to);
-  const double y0 = cln::double_approx(m.y.from), y1 = cln::double_approx(m.y.to);
-  const std::string d = quoted(data);
-  std::ostringstream gp;
+namespace {
+
+/// The opening of a figure over the plane of \p x and \p y (map and drop map): terminal, output, ranges, axis labels,
+/// tics and fill style; numbers in 17 digits from here on.
+void plane_preamble(std::ostringstream& gp, const numeric::Axis& x, const numeric::Axis& y, const std::string& terminal,
+                    const std::string& output) {
+  const double x0 = cln::double_approx(x.from), x1 = cln::double_approx(x.to);
+  const double y0 = cln::double_approx(y.from), y1 = cln::double_approx(y.to);
   gp.precision(17);
   gp << "set terminal " << terminal << "\nset output " << output << '\n'
      << "set xrange [" << std::min(x0, x1) << ':' << std::max(x0, x1) << "] noextend\n"
      << "set yrange [" << std::min(y0, y1) << ':' << std::max(y0, y1) << "] noextend\n"
-     << "set xlabel " << quoted(axis_label(m.x.parameter.key())) << "\nset ylabel " << quoted(axis_label(m.y.parameter.key())) << '\n'
+     << "set xlabel " << quoted(axis_label(x.parameter.key())) << "\nset ylabel " << quoted(axis_label(y.parameter.key())) << '\n'
      << "set tics out nomirror\nset border lw 1\nset style fill solid 1.0 noborder\n";
+}
+
+}  // namespace
+
+std::string map_figure_script(const Map& m, const std::vector<MapMark>& marks, bool derived, const std::string& title,
+                              const std::string& data, const std::string& terminal, const std::string& output) {
+  const std::vector<ContactSet> cases = cases_present(m);
+  const bool not_psd = std::any_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return !p.admissible; });
+  const std::string d = quoted(data);
+  std::ostringstream gp;
+  plane_preamble(gp, m.x, m.y, terminal, output);
   // The contour lines of U1+/a, into a datablock, before the panels.
   double low = INFINITY, high = -INFINITY;
   for (const MapPoint& p : m.points)
@@ -498,17 +509,10 @@ std::string drop_map_figure_data(const numeric::DropMap& m) {
 std::string drop_map_figure_script(const numeric::DropMap& m, const std::string& title, const std::string& data, const std::string& terminal,
                                    const std::string& output) {
   const std::vector<std::string> labels = drop_map_labels(m);
-  const double x0 = cln::double_approx(m.x.from), x1 = cln::double_approx(m.x.to);
-  const double y0 = cln::double_approx(m.y.from), y1 = cln::double_approx(m.y.to);
   const std::string d = quoted(data);
   std::ostringstream gp;
-  gp.precision(17);
-  gp << "set terminal " << terminal << "\nset output " << output << '\n'
-     << "set xrange [" << std::min(x0, x1) << ':' << std::max(x0, x1) << "] noextend\n"
-     << "set yrange [" << std::min(y0, y1) << ':' << std::max(y0, y1) << "] noextend\n"
-     << "set xlabel " << quoted(axis_label(m.x.parameter.key())) << "\nset ylabel " << quoted(axis_label(m.y.parameter.key())) << '\n'
-     << "set tics out nomirror\nset border lw 1\nset style fill solid 1.0 noborder\n"
-     << "set multiplot title " << quoted(title) << " font ',13'\n"
+  plane_preamble(gp, m.x, m.y, terminal, output);
+  gp << "set multiplot title " << quoted(title) << " font ',13'\n"
      << "set tmargin at screen 0.89\nset bmargin at screen " << kLegendTop + 0.1 << '\n'
      << "set lmargin at screen 0.06\nset rmargin at screen 0.45\n";
   // Left: the labels, each in its colour (cycled after 10), named in the legend.

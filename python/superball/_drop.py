@@ -3,13 +3,13 @@ every collision in time order, the bodies that come to rest, each body's apex.""
 
 from __future__ import annotations
 
-import html as _html
 from dataclasses import dataclass
 from typing import Any, Dict, List, Tuple
 
 import numpy as np
 
 from . import _superball
+from ._report import _Report
 
 
 @dataclass(frozen=True)
@@ -56,7 +56,7 @@ class DropRest:
     ratio: float
 
 
-class DropResult:
+class DropResult(_Report):
     """A whole drop (``superball drop``).
 
     ``events``: the collisions in time order (:class:`DropEvent`); as arrays,
@@ -70,8 +70,7 @@ class DropResult:
     ``to_dict()`` its ``--json``, ``plot()`` the figure of ``--plot``."""
 
     def __init__(self, d: Dict[str, Any]) -> None:
-        self._dict = {k: v for k, v in d.items() if k not in ("text", "trace")}
-        self._text: str = d["text"]
+        super().__init__({k: v for k, v in d.items() if k != "trace"})
         self._trace: Dict[str, Any] = d["trace"]
         self.scene: str = d["scene"]
         self.title: str = d["title"]
@@ -97,10 +96,6 @@ class DropResult:
         self.end_time: float = d["end_time"]
         self.top_apex_ratio: float = d["top_apex_ratio"]
         self.near_ties: int = d["near_ties"]
-
-    def to_dict(self) -> Dict[str, Any]:
-        """The fields of ``superball drop --json``."""
-        return dict(self._dict)
 
     def trajectories(self) -> List[Tuple[np.ndarray, np.ndarray]]:
         """Each body's ``(time, height)`` samples, top to bottom (the fixed
@@ -137,15 +132,9 @@ class DropResult:
             ax.legend(fontsize=8, loc="best")
         return ax
 
-    def __str__(self) -> str:
-        return self._text
-
     def __repr__(self) -> str:
         return (f"<superball.DropResult {self.scene!r} ({self.precision}): {len(self.events)} collisions, {len(self.rest)} at rest, "
                 f"ended by {self.end} at t = {self.end_time:.6g} s; top apex {self.top_apex_ratio:.6g} x its release height>")
-
-    def _repr_html_(self) -> str:
-        return f"<pre>{_html.escape(self._text)}</pre>"
 
 
 def drop(scene: Any, precision: str = "double") -> DropResult:
