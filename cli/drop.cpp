@@ -87,7 +87,7 @@ void add_drop(CLI::App& app, Action& action) {
       "  superball drop cases/scenes/drop-three-balls.toml --plot out   # out/trajectories.png\n"
       "  superball drop cases/scenes/drop-paper-4.4.toml --gaps-to-zero");
   cmd->add_option("scene", o->scene, "Scene file (TOML) with a [drop] table")->required();
-  cmd->add_option("--precision,-p", o->precision, "Arithmetic: double (default), long-double, or auto (double, run again in long double when an order of events is not certified)")->capture_default_str();
+  cmd->add_option("--precision,-p", o->precision, "Arithmetic: double (default), long-double, digits:N, exact (as far as every event's time is rational: ends \"inexact\" at the first that is not), or auto (double, then long double, then exact, while an order of events is not certified)")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print JSON for programs instead of text");
   cmd->add_option("--plot", o->plot, "Folder for the trajectory plot (DIR/trajectories.png, .svg, .dat, .gp; with --gaps-to-zero DIR/gaps-to-zero.*)")
       ->check(non_empty());
@@ -109,7 +109,7 @@ void add_drop(CLI::App& app, Action& action) {
       const present::PresentedDrop d = present::drop_scene(load_scene(o->scene), o->precision);
       if (!o->plot.empty()) draw_drop(d, o->plot);
       write_output("", o->json ? present::to_json(d).dump(2) + "\n" : present::to_text(d));
-      return d.result.end == "max-events" || d.result.end == "numerical-issue" ? numerical_failure : ok;
+      return numeric::drop_finished(d.result.end) ? ok : numerical_failure;
     };
   });
 }

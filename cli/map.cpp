@@ -73,7 +73,7 @@ Exit drop_map(const Scene& scene, const numeric::Axis& x, const numeric::Axis& y
     render(present::drop_map_figure_script(m, title, plot + ".dat", svg, ""), plot + ".svg");
   }
   write_output("", text);
-  const bool unfinished = std::any_of(m.points.begin(), m.points.end(), [](const numeric::DropPoint& p) { return p.end == "max-events" || p.end == "numerical-issue"; });
+  const bool unfinished = std::any_of(m.points.begin(), m.points.end(), [](const numeric::DropPoint& p) { return !numeric::drop_finished(p.end); });
   return unfinished ? numerical_failure : ok;
 }
 

@@ -244,7 +244,7 @@ Exit drop_rows(const Scene& scene, const Range& r, const numeric::Precision& pre
       const numeric::DropPoint& p = points[k];
       os << decimal(values[k], 10) << sep << numeric::to_string(p.ratio, csv ? 17 : 9) << sep << p.events << sep << p.end << sep
          << (csv ? csv_field(p.label) : p.label) << '\n';
-      failed = failed || p.end == "max-events" || p.end == "numerical-issue";
+      failed = failed || !numeric::drop_finished(p.end);
     }
     out.write(os.str());
   }

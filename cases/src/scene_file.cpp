@@ -208,6 +208,8 @@ class SceneReader {
         body.gap = number(*g, field + ".gap");
         if (body.gap->is_negative()) fail(*g, field + ".gap", "must be >= 0 m (got " + body.gap->text + ")");
         if (k + 1 == list->size()) fail(*g, field + ".gap", "the bottom body has no body below it (drop_height is the lowest free body's height)");
+        if (k + 2 == list->size())
+          fail(*g, field + ".gap", "body " + std::to_string(k + 1) + "'s distance to the bottom body is drop_height, not a gap (give drop_height)");
       }
       if (!body.velocity && !falls && !body.infinite)
         fail(t, field, "no velocity before the collision: give velocity, or drop_height / fall_speed for the scene");

@@ -183,11 +183,14 @@ std::string to_text(const PresentedDrop& d) {
   os << "precision " << r.precision << ", g = " << number(r.g) << " m/s^2, " << r.events.size() << " collisions, ended by " << r.end
      << " at t = " << number(r.end_time, 8) << " s";
   if (r.near_ties > 0) os << ", " << r.near_ties << " near ties (see docs/DROP.md)";
+  if (r.end == "inexact")
+    os << "\nexact: the next event's time is an irrational square root (a body meeting the obstacle, or bodies at rest on it, from a "
+          "height): exact rationals end here; digits:N goes on";
   if (r.distant) os << "\ndistant: every pair of M takes part in every collision";
   os << "\norder of events: " << (r.orders_certified ? "every order certified" : "not every order certified") << " (ties " << r.ties << ", near ties "
      << r.near_ties << ")";
   if (r.escalated)
-    os << "; auto: double could not certify every order, long-double decided; the " << r.double_events << " events in double "
+    os << "; auto: double could not certify every order, " << r.precision << " decided; the " << r.double_events << " events in double "
        << (r.sequences_agree ? "are the same" : "differ");
   else if (r.precision_asked == "auto")
     os << "; auto: double decided";

@@ -468,7 +468,7 @@ std::string drop_map_summary(const numeric::DropMap& m, const Scene& scene, cons
   }
   for (const numeric::DropPoint& p : m.points) {
     low = std::min(low, p.ratio), high = std::max(high, p.ratio);
-    unfinished += p.end == "max-events" || p.end == "numerical-issue";
+    unfinished += !numeric::drop_finished(p.end);
   }
   os << "top apex ratio from " << numeric::to_string(low, 6) << " to " << numeric::to_string(high, 6) << '\n';
   if (unfinished) os << "runs ended by max-events or an unsolved collision: " << unfinished << " points\n";

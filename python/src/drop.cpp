@@ -31,6 +31,9 @@ py::dict drop(const Scene& scene, const std::string& precision) {
 
 }  // namespace
 
-void register_drop(py::module_& m) { m.def("drop", &drop, py::arg("scene"), py::arg("precision")); }
+void register_drop(py::module_& m) {
+  m.def("drop", &drop, py::arg("scene"), py::arg("precision"));
+  m.def("drop_finished", &numeric::drop_finished, py::arg("end"));
+}
 
 }  // namespace superball::python

@@ -690,8 +690,8 @@ class DropSweepResult:
 
     @property
     def ok(self) -> bool:
-        """Whether no run ended on max_events or on an unsolved collision (the command's exit 0)."""
-        return not any(e in ("max-events", "numerical-issue") for e in self.end)
+        """Whether every run ran its course: none ended on max_events, an unsolved collision or (exact) an irrational time (the command's exit 0)."""
+        return all(_superball.drop_finished(e) for e in self.end)
 
     def __len__(self) -> int:
         return len(self.values)

@@ -63,7 +63,8 @@ class DropResult(_Report):
     ``times`` (k,), ``velocities_after`` (k, n) and ``kinetic_energy_after``
     (k,); ``apexes`` (:class:`DropApex`), ``rest`` (:class:`DropRest`);
     ``end``: what ended the run (``"apex"``, ``"until"``, ``"rest"``,
-    ``"no-more-events"``, ``"max-events"``, ``"numerical-issue"``) at
+    ``"no-more-events"``, ``"max-events"``, ``"numerical-issue"``,
+    ``"inexact"``) at
     ``end_time``; ``top_apex_ratio``: the top body's apex over its release
     height; ``near_ties``: events that came closer than the doubt margin
     without being tied (docs/DROP.md).  ``str()`` is the command's text,
@@ -144,15 +145,17 @@ def drop(scene: Any, precision: str = "double") -> DropResult:
     form, each collision solved by the law of the touching cluster, bounce
     sequences on the fixed obstacle summed to their rest time, until the top
     body's apex (``until = "apex"``, the default) or a time.
-    ``precision``: ``"double"``, ``"long-double"`` or ``"auto"`` (double, run
-    again in long double when an order of events is not certified); other
-    arithmetics and a scene without ``[drop]`` are :class:`InputError` with
-    the command's message.  See docs/DROP.md.
+    ``precision``: ``"double"``, ``"long-double"``, ``"digits:N"``,
+    ``"exact"`` (as far as every event's time is rational; the run ends
+    ``"inexact"`` at the first that is not) or ``"auto"`` (double, then long
+    double, then exact, while an order of events is not certified); an
+    unknown arithmetic and a scene without ``[drop]`` are :class:`InputError`
+    with the command's message.  See docs/DROP.md.
     """
     from . import InputError, Scene
 
     if not isinstance(scene, Scene):
         raise InputError(f"drop: expected a superball.Scene, got {type(scene).__name__}")
     if not isinstance(precision, str):
-        raise InputError(f"drop: precision: expected 'double' or 'long-double', got {precision!r}")
+        raise InputError(f"drop: precision: expected a string such as 'double' or 'exact', got {precision!r}")
     return DropResult(_superball.drop(scene._scene, precision))

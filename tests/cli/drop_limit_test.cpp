@@ -48,7 +48,7 @@ TEST(DropGapsToZeroCli, BadInputIsOneLine) {
   expect_bad_input(run({"drop", kScenes + "drop-two-balls.toml", "--gaps-to-zero", "--decades", "13"}), {"decades must be a whole number from 1 to 12, got 13"});
   expect_bad_input(run({"drop", kScenes + "drop-one-ball.toml", "--gaps-to-zero"}), {"no body has a gap > 0"});
   expect_bad_input(run({"drop", kScenes + "drop-two-balls.toml", "--decades", "3"}), {"--decades requires --gaps-to-zero"});
-  expect_bad_input(run({"drop", kScenes + "drop-two-balls.toml", "--gaps-to-zero", "--precision", "exact"}), {"a drop runs in double or long-double"});
+  expect_bad_input(run({"drop", kScenes + "drop-two-balls.toml", "--gaps-to-zero", "--precision", "quad"}), {"precision"});
 }
 
 }  // namespace

@@ -84,9 +84,6 @@ TEST(DropMap, EachPointIsItsDropAndTheMapRefusesWhatItCannotDo) {
   MapSettings runner = settings;
   runner.runner = [](std::size_t, const std::function<std::string(std::size_t)>&) { return std::vector<std::string>{}; };
   EXPECT_THROW(drop_map(s, x, y, runner), std::invalid_argument);
-  MapSettings exact = settings;
-  exact.precision = Precision::parse("exact");
-  EXPECT_THROW(drop_map(s, x, y, exact), std::invalid_argument);
   EXPECT_THROW(drop_map(s, x, x, settings), std::invalid_argument);
   const Axis negative{Parameter::parse("gap.1", s), -1, 0, 3};
   EXPECT_THROW(drop_map(s, negative, y, settings), InputError);

@@ -83,7 +83,6 @@ TEST(Drop, EnergyIsConstantInFlight) {
 
 TEST(Drop, RefusesWhatItDoesNotRun) {
   const Scene s = scene("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[drop]\n");
-  EXPECT_THROW(drop(s, Precision::parse("exact")), std::invalid_argument);
   EXPECT_THROW(drop(scene("drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n"), Precision::parse("double")), InputError);
   EXPECT_THROW(drop(s, SolvePrecision{true, {}, 1e-6}), std::invalid_argument);
 }
@@ -270,7 +269,7 @@ TEST(DropDistant, NoPairOfMAcrossAnOpenGapGivesTheSameDrop) {
   // (finite bottom): M's only pair is the contact that closes.
   for (const char* text :
        {"drop_height = 1\n[[body]]\nmass = 1\n[[body]]\nmass = \"inf\"\n[dissipation]\nK = { \"1-2\" = 9 }\n[drop]\nuntil = 10\n",
-        "[[body]]\nmass = 1\ngap = 0.5\nvelocity = -1\n[[body]]\nmass = 4\nvelocity = 1\n[dissipation]\nK = { \"1-2\" = 2 }\n[drop]\nuntil = 3\n"}) {
+        "drop_height = 0.5\n[[body]]\nmass = 1\nvelocity = -1\n[[body]]\nmass = 4\nvelocity = 1\n[dissipation]\nK = { \"1-2\" = 2 }\n[drop]\nuntil = 3\n"}) {
     Scene s = scene(text);
     const DropResult touching = drop(s, Precision::parse("double"));
     s.drop.distant = true;
@@ -318,8 +317,8 @@ TEST(DropDistant, ThePaperStackBouncesAtTheFirstImpactAsTheSimultaneousCollision
 
 TEST(DropDistant, AFiniteBottomMassConservesTheMomentumOfEveryCollision) {
   // No fixed obstacle: every collision at a distance is internal to the stack.
-  Scene s = scene("[[body]]\nmass = 0.2\nvelocity = 0\ngap = 0.05\n[[body]]\nmass = 1\nvelocity = 0\ngap = 0.1\n[[body]]\nmass = 2\n"
-                  "velocity = 0\ngap = 0.02\n[[body]]\nmass = 5\nvelocity = 3\n[dissipation]\n"
+  Scene s = scene("drop_height = 0.02\n[[body]]\nmass = 0.2\nvelocity = 0\ngap = 0.05\n[[body]]\nmass = 1\nvelocity = 0\ngap = 0.1\n[[body]]\nmass = 2\n"
+                  "velocity = 0\n[[body]]\nmass = 5\nvelocity = 3\n[dissipation]\n"
                   "K = { \"1-2\" = 4, \"2-3\" = 6, \"3-4\" = 8, \"1-4\" = 3, \"2-4\" = 1 }\n[drop]\ndistant = true\nuntil = 1.5\n");
   for (const char* p : {"double", "long-double"}) {
     const DropResult r = drop(s, Precision::parse(p));
@@ -384,18 +383,30 @@ Scene two_contacts_at_once(const std::string& late) {
                "[dissipation]\nK = { \"1-2\" = 5, \"2-3\" = 5, \"3-4\" = 5 }\n[drop]\nuntil = 0.3\n");
 }
 
-TEST(DropOrder, AnExactTieCollidesTogetherAndIsNotCertifiedInAnyPrecision) {
-  const SolvePrecision automatic = SolvePrecision::parse("auto", std::nullopt);
-  const DropResult r = drop(two_contacts_at_once(""), automatic);
+TEST(DropOrder, AnExactTieCollidesTogetherAndOnlyExactArithmeticCertifiesIt) {
+  const Scene s = two_contacts_at_once("");
+  for (const char* p : {"double", "long-double", "digits:40"}) {
+    const DropResult r = drop(s, Precision::parse(p));
+    ASSERT_GE(r.events.size(), 1u) << p;
+    EXPECT_EQ(r.events[0].contacts, (std::vector<std::string>{"1-2", "2-3"})) << p;
+    EXPECT_EQ(r.ties, 1) << p;
+    EXPECT_FALSE(r.orders_certified) << p;
+  }
+  // Auto: double and long double cannot order the two contacts; exact
+  // rationals (every time here is rational: no body flies over the floor)
+  // find them equal, a certified tie.
+  const DropResult r = drop(s, SolvePrecision::parse("auto", std::nullopt));
   ASSERT_GE(r.events.size(), 1u);
   EXPECT_EQ(r.events[0].contacts, (std::vector<std::string>{"1-2", "2-3"}));
   EXPECT_EQ(r.ties, 1);
-  EXPECT_FALSE(r.events[0].order_certified);
-  EXPECT_FALSE(r.orders_certified);
+  EXPECT_TRUE(r.events[0].order_certified);
+  EXPECT_TRUE(r.orders_certified);
   EXPECT_TRUE(r.escalated);
-  EXPECT_EQ(r.precision, "long-double");
+  EXPECT_EQ(r.precision, "exact");
   EXPECT_EQ(r.precision_asked, "auto");
   EXPECT_TRUE(r.sequences_agree);
+  EXPECT_EQ(r.end, "until");
+  EXPECT_EQ(r.end_time, 0.3);
   // Momentum of the three balls conserved: the floor is not in the cluster 1-3.
   expect_balances(r);
 }
@@ -422,6 +433,86 @@ TEST(DropOrder, AutoRunsANearTieAgainInLongDoubleWhichCertifiesIt) {
   EXPECT_TRUE(plain.orders_certified);
   EXPECT_FALSE(plain.escalated);
   EXPECT_EQ(plain.precision, "double");
+}
+
+/// A drop in \p p of the scene file \p name (cases/scenes).
+DropResult drop_file(const std::string& name, const char* p) {
+  return drop(load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/" + name), Precision::parse(p));
+}
+
+/// Whether \p a and \p b have the same events (contacts, bodies, case, in
+/// order) with times, velocities and the top apex ratio within \p rel.
+void expect_same_drop(const DropResult& a, const DropResult& b, double rel) {
+  ASSERT_EQ(a.events.size(), b.events.size());
+  for (std::size_t k = 0; k < a.events.size(); ++k) {
+    SCOPED_TRACE("event " + std::to_string(k + 1));
+    EXPECT_EQ(a.events[k].contacts, b.events[k].contacts);
+    EXPECT_EQ(a.events[k].case_name, b.events[k].case_name);
+    EXPECT_NEAR(a.events[k].time, b.events[k].time, rel * b.events[k].time);
+    for (std::size_t i = 0; i < a.events[k].velocities_after.size(); ++i)
+      EXPECT_NEAR(a.events[k].velocities_after[i], b.events[k].velocities_after[i], rel * (1 + std::abs(b.events[k].velocities_after[i])));
+  }
+  EXPECT_EQ(a.end, b.end);
+  EXPECT_NEAR(a.top_apex_ratio, b.top_apex_ratio, rel * b.top_apex_ratio);
+}
+
+TEST(DropPrecision, DigitsRunsTheSameDropsAsDoubleAndLongDouble) {
+  // The classical scenes (stiff contacts included: K/m = 10^15 in the three
+  // balls, re-solved exactly from the rounded data as in double) in MPFR
+  // floats of 30 and 100 digits: the same sequences; 30 digits against 100
+  // to double's last bits, long double against 100 digits to 1e-9 (the
+  // 25 collisions of the 1:2:4 stack amplify long double's roundoff to 1e-12).
+  for (const char* name : {"drop-two-balls.toml", "drop-three-balls.toml", "drop-paper-4.4.toml", "drop-three-balls-1-2-4.toml", "drop-one-ball.toml"}) {
+    SCOPED_TRACE(name);
+    const DropResult hundred = drop_file(name, "digits:100"), thirty = drop_file(name, "digits:30");
+    EXPECT_EQ(hundred.precision, "digits:100");
+    expect_same_drop(thirty, hundred, 1e-14);
+    expect_same_drop(drop_file(name, "long-double"), hundred, 1e-9);
+    expect_balances(thirty);
+    expect_balances(hundred);
+  }
+}
+
+TEST(DropExact, TheBounceSequenceIsExactToItsRestTime) {
+  // One ball over a fixed floor, released at rest: in units of its landing
+  // speed every time and velocity is rational, its bounces to the rest are
+  // exact; the rest time is t∞ = √(2h/g)(1 + e)/(1 − e) to double's
+  // rounding, where double's own run is 1e-9 (drop_one_ball: e = 0.8).
+  const DropResult r = drop_file("drop-one-ball.toml", "exact");
+  EXPECT_EQ(r.precision, "exact");
+  EXPECT_TRUE(r.orders_certified);
+  ASSERT_EQ(r.rest.size(), 1u);
+  const double h = r.release_heights[0], e = r.rest[0].ratio, g = r.g;
+  EXPECT_EQ(e, 0.8);
+  EXPECT_NEAR(r.rest[0].time, std::sqrt(2 * h / g) * (1 + e) / (1 - e), 4e-15 * r.rest[0].time);
+  const double a = std::sqrt(2 * g * h);
+  for (std::size_t k = 0; k < r.events.size(); ++k) {
+    const double up = r.events[k].velocities_after[0];  // e^(k+1) a
+    EXPECT_NEAR(up, std::pow(e, static_cast<double>(k + 1)) * a, 1e-14 * a) << "bounce " << k + 1;
+  }
+  expect_same_drop(r, drop_file("drop-one-ball.toml", "double"), 1e-9);
+}
+
+TEST(DropExact, EndsWhereAnEventTimeIsNotRational) {
+  // Two balls with a gap: the lower one lands at 2h (rational in units of
+  // a), the upper one meets it at a rational time, and then the lower one
+  // falls back onto the floor from a height: the root of a quadratic whose
+  // discriminant is not a square.  Exact goes that far and says so; its
+  // events are those of 100 digits to double's last bits.
+  const DropResult r = drop_file("drop-two-balls.toml", "exact");
+  const DropResult d = drop_file("drop-two-balls.toml", "digits:100");
+  EXPECT_EQ(r.end, "inexact");
+  ASSERT_GE(r.events.size(), 2u);
+  ASSERT_GT(d.events.size(), r.events.size());
+  for (std::size_t k = 0; k < r.events.size(); ++k) {
+    SCOPED_TRACE("event " + std::to_string(k + 1));
+    EXPECT_EQ(r.events[k].contacts, d.events[k].contacts);
+    EXPECT_NEAR(r.events[k].time, d.events[k].time, 1e-15 * d.events[k].time);
+    for (std::size_t i = 0; i < d.events[k].velocities_after.size(); ++i)
+      EXPECT_NEAR(r.events[k].velocities_after[i], d.events[k].velocities_after[i], 1e-15 * (1 + std::abs(d.events[k].velocities_after[i])));
+  }
+  EXPECT_EQ(r.end_time, r.events.back().time);  // (it ends at its last collision)
+  expect_balances(r);
 }
 
 }  // namespace

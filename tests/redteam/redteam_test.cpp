@@ -1360,7 +1360,7 @@ Case make_drop(Rng& rng, int index) {
     }; break;
     case 13: args = {"drop", "@/scene.toml", "--plot", "@/missing-folder"}, c.expect = Expect::OutputFailure; break;
     case 14: s.mass = {"1"}, s.gap = {""}, s.velocity = {""}, s.K = {}, c.named = {"body"}; break;  // one body
-    case 15: args.insert(args.end(), {"--precision", "exact"}), c.named = {"double or long-double"}; break;
+    case 15: args.insert(args.end(), {"--precision", "quad"}), c.named = {"unknown precision 'quad'"}; break;
     case 16: s.velocity[0] = "3", s.velocity[1] = "10", s.g = "\"1/10\"", c.expect = Expect::Success; break;  // thrown upward, weak g
     default: s = random_drop(rng), c.expect = Expect::Any;
   }

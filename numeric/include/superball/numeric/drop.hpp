@@ -34,10 +34,12 @@
 /// long double (64-bit significand) tells whether it changes the answer.
 /// An order is certified when every other contact closes later than the
 /// event's by more than the doubt bound: DropResult::orders_certified holds
-/// when every order of the run is (no ties, no near ties).  Precision auto
-/// (the overload taking a SolvePrecision) runs in double and, when an order
-/// is not certified, again in long double, whose run it reports with what
-/// double gave (DropResult::escalated, DropResult::sequences_agree).
+/// when every order of the run is (no ties, no near ties); in exact
+/// arithmetic every order is certified, a tie being an exact equality.
+/// Precision auto (the overload taking a SolvePrecision) runs in double and,
+/// when an order is not certified, again in long double, then in exact
+/// rationals, and reports the last run with what double gave
+/// (DropResult::escalated, DropResult::sequences_agree).
 ///
 /// Rest.  A body (or a stack of touching bodies moving as one) bouncing
 /// alone on the fixed obstacle has velocities in a
@@ -141,7 +143,8 @@ struct DropResult {
   /// Why the run ended: "apex" (the top body's first apex after its last
   /// collision), "until" (the scene's time), "rest" (no body moves any more),
   /// "no-more-events" (nothing can collide again), "max-events" (the scene's
-  /// cap reached), "numerical-issue" (a collision's solve failed).
+  /// cap reached), "numerical-issue" (a collision's solve failed), "inexact"
+  /// (exact arithmetic: the next event's time is an irrational square root).
   std::string end;
   /// The time the run ended (s).
   double end_time = 0;
@@ -170,7 +173,7 @@ struct DropResult {
   /// (every event's order_certified).
   bool orders_certified = true;
   /// Precision auto: whether the run in double had an order it could not
-  /// certify, so that the drop was run again in long double (the run reported).
+  /// certify, so that the drop was run again in long double, or exact (the run reported).
   bool escalated = false;
   /// When escalated: whether the runs in double and long double gave the
   /// same events (each one's contacts, bodies, case and the contacts that
@@ -180,20 +183,29 @@ struct DropResult {
   int double_events = 0;
 };
 
+/// Whether a drop that ended by \p end (DropResult::end) ran the course its
+/// scene asked for: false for "max-events" (the cap reached),
+/// "numerical-issue" (a collision not solved) and "inexact" (exact
+/// arithmetic met an event at an irrational time), the ends the command
+/// exits 1 on.
+SUPERBALL_NUMERIC_EXPORT bool drop_finished(const std::string& end);
+
 /// The drop of \p scene (which must have a [drop] table) in \p precision:
-/// double or long double.  Throws superball::InputError naming the scene
+/// double, long double, digits:N (MPFR) or exact (rationals, in units of
+/// the landing speed when every body is released at rest over a fixed
+/// obstacle, until an event's time is an irrational square root: end
+/// "inexact").  Throws superball::InputError naming the scene
 /// (M not positive semi-definite, no [drop] table) and
-/// std::invalid_argument("drop(): ...") for an arithmetic it does not run
-/// in (exact, digits:N: the times of floor impacts are square roots), and for
-/// a datum (g, drop_height, a gap, a velocity, a mass, until, the top release
+/// std::invalid_argument("drop(): ...") for a datum (g, drop_height, a gap, a velocity, a mass, until, the top release
 /// height) that is not 0 and lies outside the arithmetic's window [2^−w, 2^w]
 /// (w = safe_exponent<S>()).
 DropResult drop(const Scene& scene, const Precision& precision);
 /// The drop of \p scene in \p precision: a fixed one as drop(scene,
 /// precision.fixed), or auto: in double, and when an order of events is not
-/// certified (DropResult::orders_certified) again in long double, the run
-/// returned, with escalated, sequences_agree and double_events saying what
-/// double gave.  Throws as drop(scene, Precision), and
+/// certified (DropResult::orders_certified) again in long double, and when
+/// that is not certified either, in exact rationals if they run the whole
+/// drop (end not "inexact"); the last run returned, with escalated,
+/// sequences_agree and double_events saying what double gave.  Throws as drop(scene, Precision), and
 /// std::invalid_argument("drop(): ...") for an rtol (a drop's auto certifies
 /// orders of events, not digits of velocities).
 DropResult drop(const Scene& scene, const SolvePrecision& precision);
