@@ -191,15 +191,40 @@ std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b) {
   return changed;
 }
 
-std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work, Eigen::LLT<Eigen::MatrixXd>& llt) {
+namespace {
+
+/// Whether the Cholesky factorization of \p a (its lower triangle, in
+/// place) meets only positive pivots: the plain unblocked algorithm, whose
+/// backward error is that of any Cholesky's (a few n·u·‖a‖), without the
+/// blocked machinery Eigen::LLT runs for a matrix of a few rows.
+bool cholesky_succeeds(Eigen::MatrixXd& a) {
+  const Eigen::Index n = a.rows();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double d = a(j, j);
+    for (Eigen::Index k = 0; k < j; ++k) d -= a(j, k) * a(j, k);
+    if (!(d > 0)) return false;
+    d = std::sqrt(d);
+    a(j, j) = d;
+    for (Eigen::Index i = j + 1; i < n; ++i) {
+      double s = a(i, j);
+      for (Eigen::Index k = 0; k < j; ++k) s -= a(i, k) * a(j, k);
+      a(i, j) = s / d;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work) {
   const double tau = map_psd_margin * M.norm();
   if (!std::isfinite(tau)) return std::nullopt;
   work = M;
   work.diagonal().array() -= tau;
-  if (llt.compute(work).info() == Eigen::Success) return true;
+  if (cholesky_succeeds(work)) return true;
   work = M;
   work.diagonal().array() += tau;
-  if (llt.compute(work).info() != Eigen::Success) return false;
+  if (!cholesky_succeeds(work)) return false;
   return std::nullopt;
 }
 
@@ -219,11 +244,10 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
     Batch<S> batch;    ///< the corner's problem, its two entries set at each point
     std::vector<std::pair<int, int>> at;  ///< entry k of M at (row, column) of the matrix on its pairs
     Eigen::MatrixXd M, work;
-    Eigen::LLT<Eigen::MatrixXd> llt;
   };
   auto make_state = [&] {
     const ExactScene exact = ExactScene::from(corner, ExactScene::MCheck::Caller);
-    State st{exact, Batch<S>(exact, {kx, ky}, digits), {}, {}, {}, {}};
+    State st{exact, Batch<S>(exact, {kx, ky}, digits), {}, {}, {}};
     std::vector<std::pair<int, int>> pairs;
     for (const auto& e : st.exact.entries) pairs.push_back({e.i, e.j}), pairs.push_back({e.k, e.l});
     std::sort(pairs.begin(), pairs.end());
@@ -244,7 +268,7 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
       const auto [r, c] = st.at[e];
       st.M(r, c) = st.M(c, r) = static_cast<double>(p.entries[e].value);
     }
-    std::optional<bool> psd = psd_by_floating_point(st.M, st.work, st.llt);
+    std::optional<bool> psd = psd_by_floating_point(st.M, st.work);
     if (!psd) {  // too close to the edge of the cone for floating point: exactly
       st.exact.entries[kx].value = parse_rational(tx[i]);
       st.exact.entries[ky].value = parse_rational(ty[j]);

@@ -4,7 +4,6 @@
 // semi-definiteness, the grid points of a map along two entries of M, and
 // the plain text in which a MapSettings::runner's tasks come back.
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <cmath>
@@ -39,9 +38,9 @@ bool held(const S& v, bool is_zero) {
 /// with τ = map_psd_margin·‖M‖_F, a Cholesky factorization of M − τI that
 /// succeeds proves λ_min(M) >= τ − (its backward error) > 0 (true); one of
 /// M + τI that fails proves λ_min(M) < −τ + (its backward error) < 0
-/// (false); otherwise nullopt, to be decided exactly.  \p work and \p llt
-/// are reused storage.
-std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work, Eigen::LLT<Eigen::MatrixXd>& llt);
+/// (false); otherwise nullopt, to be decided exactly.  \p work is reused
+/// storage.
+std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work);
 
 /// The grid points a task of entry_points() solves in a row on one thread:
 /// enough that the task's overhead is small beside them, few enough that
