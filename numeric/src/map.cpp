@@ -193,22 +193,22 @@ std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b) {
 
 namespace {
 
-/// Whether the Cholesky factorization of \p a (its lower triangle, in
-/// place) meets only positive pivots: the plain unblocked algorithm, whose
-/// backward error is that of any Cholesky's (a few n·u·‖a‖), without the
-/// blocked machinery Eigen::LLT runs for a matrix of a few rows.
-bool cholesky_succeeds(Eigen::MatrixXd& a) {
+/// Whether the LDLᵀ factorization of \p a (symmetric; overwritten: L
+/// below the diagonal, L·D above it) meets only positive pivots D: the
+/// plain unblocked algorithm without square roots, whose backward error is
+/// that of a Cholesky factorization (a few n·u·‖a‖), without the blocked
+/// machinery Eigen::LLT runs for a matrix of a few rows.
+bool ldlt_succeeds(Eigen::MatrixXd& a) {
   const Eigen::Index n = a.rows();
   for (Eigen::Index j = 0; j < n; ++j) {
     double d = a(j, j);
-    for (Eigen::Index k = 0; k < j; ++k) d -= a(j, k) * a(j, k);
+    for (Eigen::Index k = 0; k < j; ++k) d -= a(j, k) * a(k, j);
     if (!(d > 0)) return false;
-    d = std::sqrt(d);
-    a(j, j) = d;
     for (Eigen::Index i = j + 1; i < n; ++i) {
       double s = a(i, j);
-      for (Eigen::Index k = 0; k < j; ++k) s -= a(i, k) * a(j, k);
-      a(i, j) = s / d;
+      for (Eigen::Index k = 0; k < j; ++k) s -= a(i, k) * a(k, j);
+      a(j, i) = s;      // L_ij·D_j
+      a(i, j) = s / d;  // L_ij
     }
   }
   return true;
@@ -221,10 +221,10 @@ std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::Matri
   if (!std::isfinite(tau)) return std::nullopt;
   work = M;
   work.diagonal().array() -= tau;
-  if (cholesky_succeeds(work)) return true;
+  if (ldlt_succeeds(work)) return true;
   work = M;
   work.diagonal().array() += tau;
-  if (!cholesky_succeeds(work)) return false;
+  if (!ldlt_succeeds(work)) return false;
   return std::nullopt;
 }
 
