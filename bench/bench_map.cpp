@@ -2,7 +2,10 @@
 // point: the paper scene (§4.4, alpha_2 reading) over K34 in [0, 20] and
 // alpha_2 in [-100, 0] (M positive semi-definite throughout), double, one
 // thread, the grid points only (no boundaries).  items_per_second = points
-// (or solves) per second.
+// (or solves) per second.  solve/paper/double/0 is bench_solve's single
+// solve (issue 28 measures a grid point and a sweep value against it, in the
+// same run); batch/paper/double/128x128 the grid's points through a
+// numeric::Batch alone (batch.hpp), without the PSD filter and the MapPoint.
 #include <benchmark/benchmark.h>
 
 #include <optional>
