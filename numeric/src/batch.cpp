@@ -1,6 +1,7 @@
 #include "superball/numeric/batch.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -9,6 +10,20 @@
 #include "map_internal.hpp"
 
 namespace superball::numeric {
+
+namespace {
+
+/// Whether \p x is 0 or finite with a binary exponent inside the safe
+/// window of S (−w < e <= w, |x| = f·2^e, 1/2 <= f < 1): where scaling_of()
+/// leaves a datum as it is.
+template <class S>
+bool inside_window(const S& x) {
+  static const S low = std::ldexp(S(1), -safe_exponent<S>()), high = std::ldexp(S(1), safe_exponent<S>());
+  const S a = std::fabs(x);
+  return a == S(0) || (a >= low && a < high);
+}
+
+}  // namespace
 
 template <class S>
 Batch<S>::Batch(const ExactScene& base, std::vector<std::size_t> varying, int digits)
@@ -26,9 +41,13 @@ Batch<S>::Batch(const ExactScene& base, std::vector<std::size_t> varying, int di
   ExactScene ones = base;
   for (const std::size_t e : varying_) ones.entries[e].value = 1;
   others_in_range_ = Problem<S>::from(ones, digits).in_range;
-  for (std::size_t k = 0; k < varying_.size(); ++k) {
-    if constexpr (std::is_floating_point<S>::value)
+  if constexpr (std::is_floating_point<S>::value) {
+    for (std::size_t k = 0; k < varying_.size(); ++k)
       held_[k] = detail::held(problem_.entries[varying_[k]].value, cln::zerop(base.entries[varying_[k]].value));
+    others_inside_ = std::all_of(problem_.mass.begin(), problem_.mass.end(), inside_window<S>) &&
+                     std::all_of(problem_.u.begin(), problem_.u.end(), inside_window<S>);
+    for (std::size_t e = 0; e < problem_.entries.size(); ++e)
+      if (std::find(varying_.begin(), varying_.end(), e) == varying_.end()) others_inside_ = others_inside_ && inside_window(problem_.entries[e].value);
   }
 }
 
@@ -49,8 +68,17 @@ template <class S>
 const Solution<S>& Batch<S>::solve() {
   // solve()'s choice (chain.cpp): as given inside the safe window, else its
   // scaled solve, which this batch leaves to it.
-  const Scaling scaling = scaling_of(problem_);
-  if (!(scaling.identity() && scaling.fits)) return out_ = numeric::solve(problem_);
+  // Every datum inside the window: scaling_of() is the identity, and fits;
+  // the check on the varying entries alone, the others' made once.
+  bool inside = false;
+  if constexpr (std::is_floating_point<S>::value) {
+    inside = others_inside_;
+    for (const std::size_t e : varying_) inside = inside && inside_window(problem_.entries[e].value);
+  }
+  if (!inside) {
+    const Scaling scaling = scaling_of(problem_);
+    if (!(scaling.identity() && scaling.fits)) return out_ = numeric::solve(problem_);
+  }
   if (chain_)
     banded_.compute(problem_, out_);
   else

@@ -155,6 +155,26 @@ TEST(Batch, RandomScenesWhateverBranchTheSceneBeforeTook) {
   EXPECT_TRUE(statuses.count("numerical-issue"));  // out of range or A not positive definite: the failures are met too
 }
 
+TEST(Batch, ScenesWhoseOtherDataLeaveTheWindowOfDouble) {
+  // Masses, M and velocities scaled by 10^±20 to 10^±300: the batch's check
+  // of the window on the varying entries alone must send the same scenes
+  // to solve()'s scaled solve as scaling_of() of the whole problem.
+  int scaled = 0;
+  for (std::uint64_t seed = 300; seed < 340; ++seed) {
+    const ExtremeScene x = random_extreme_scene(seed);
+    SCOPED_TRACE(x.describe());
+    const ExactScene base = x.exact(ExactScene::from(x.base.scene()));
+    if (base.entries.empty()) continue;
+    const std::vector<std::size_t> varying{static_cast<std::size_t>(seed % base.entries.size())};
+    std::vector<std::vector<cl_RA>> rows;
+    for (const cl_RA& v : around(base.entries[varying[0]].value)) rows.push_back({v});
+    expect_batch_is_solve<double>(base, varying, rows);
+    expect_batch_is_solve<long double>(base, varying, rows);
+    if (!numeric::scaling_of(Problem<double>::from(base)).identity()) ++scaled;
+  }
+  EXPECT_GT(scaled, 10);  // most of these scenes are solved scaled
+}
+
 TEST(Batch, TheEntriesMustExistAndBeDistinct) {
   const ExactScene base = ExactScene::from(load_scene(kPaperScene));
   EXPECT_THROW(numeric::Batch<double>(base, {base.entries.size()}), std::invalid_argument);

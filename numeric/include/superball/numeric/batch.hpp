@@ -63,6 +63,7 @@ class Batch {
   std::vector<std::size_t> varying_;
   std::vector<char> held_;    ///< per varying entry: its value is held as Problem::from() requires
   bool others_in_range_ = true;  ///< Problem::from()'s verdict on every datum but the varying entries
+  bool others_inside_ = false;   ///< every datum but the varying entries is 0 or inside the safe window of S (scaling_of())
   Problem<S> problem_;
   bool chain_ = false;           ///< solves_as_chain(problem_): the banded solver (a property of the structure)
   CollisionSolver<S> dense_;
