@@ -2,14 +2,19 @@
 // point: the paper scene (§4.4, alpha_2 reading) over K34 in [0, 20] and
 // alpha_2 in [-100, 0] (M positive semi-definite throughout), double, one
 // thread, the grid points only (no boundaries).  items_per_second = points
-// (or solves) per second.
+// (or solves) per second.  solve/paper/double/0 is bench_solve's single
+// solve (issue 28 measures a grid point and a sweep value against it, in the
+// same run); batch/paper/double/128x128 the grid's points through a
+// numeric::Batch alone (batch.hpp), without the PSD filter and the MapPoint.
 #include <benchmark/benchmark.h>
 
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "superball/cases/scene_file.hpp"
+#include "superball/numeric/batch.hpp"
 #include "superball/numeric/map.hpp"
 #include "superball/numeric/problem.hpp"
 #include "superball/numeric/sweep.hpp"
@@ -30,6 +35,50 @@ void BM_Solve(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_Solve)->Name("solve/paper/double");
+
+/// The baseline of issue 28's goal, bench_solve's solve/paper/double/0 here
+/// too (so that a ratio comes from one run): a CollisionSolver and its
+/// Solution made once, the same problem solved again and again.
+void BM_SolveReused(benchmark::State& state) {
+  const auto problem = numeric::Problem<double>::from(numeric::ExactScene::from(paper_scene()));
+  numeric::CollisionSolver<double> solver(numeric::Settings<double>::defaults());
+  numeric::Solution<double> out;
+  solver.compute(problem, out);
+  for (auto _ : state) {
+    solver.compute(problem, out);
+    benchmark::DoNotOptimize(out.velocities_after.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SolveReused)->Name("solve/paper/double/0");
+
+/// A Batch (batch.hpp) over K34 and alpha_2: each item one point of the
+/// 128 × 128 grid of BM_MapPoints set and solved, without the map around it
+/// (no PSD check, no MapPoint).
+void BM_BatchPoints(benchmark::State& state) {
+  const Scene& s = paper_scene();
+  const auto exact = numeric::ExactScene::from(s);
+  auto entry = [&](int i, int j, int k, int l) {
+    for (std::size_t e = 0; e < exact.entries.size(); ++e)
+      if (exact.entries[e].i == i && exact.entries[e].j == j && exact.entries[e].k == k && exact.entries[e].l == l) return e;
+    throw std::logic_error("no such entry");
+  };
+  const std::size_t kx = entry(2, 3, 2, 3), ky = entry(0, 1, 0, 3);  // K34, alpha_2 (pairs 1-2 and 1-4)
+  numeric::Batch<double> batch(exact, {kx, ky});
+  std::vector<double> xs, ys;
+  for (const auto& v : numeric::linspace(0, 20, 128)) xs.push_back(cln::double_approx(v));
+  for (const auto& v : numeric::linspace(-100, 0, 128)) ys.push_back(cln::double_approx(v));
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const std::size_t i = k % 128, j = (k / 128) % 128;
+    batch.set(0, xs[i], i == 0);
+    batch.set(1, ys[j], j == 127);
+    benchmark::DoNotOptimize(batch.solve().velocities_after.data());
+    ++k;
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_BatchPoints)->Name("batch/paper/double/128x128");
 
 /// A sweep of 16384 values of K34 on one thread (`superball sweep`'s points).
 void BM_SweepPoints(benchmark::State& state) {

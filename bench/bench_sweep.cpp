@@ -6,6 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include "superball/cases/scene_file.hpp"
+#include "superball/numeric/collision.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/sweep.hpp"
 
@@ -17,6 +18,21 @@ const Scene& paper_scene() {
   static const Scene s = load_scene(SUPERBALL_SCENES_DIR "/paper-4.4-alpha2.toml");
   return s;
 }
+
+/// The single solve a sweep point is measured against (issue 28), as
+/// bench_solve's solve/paper/double/0: one CollisionSolver and one Solution,
+/// the paper scene solved again and again.
+void BM_SolveReused(benchmark::State& state) {
+  const auto problem = numeric::Problem<double>::from(numeric::ExactScene::from(paper_scene()));
+  numeric::CollisionSolver<double> solver(numeric::Settings<double>::defaults());
+  numeric::Solution<double> out;
+  for (auto _ : state) {
+    solver.compute(problem, out);
+    benchmark::DoNotOptimize(out.velocities_after.data());
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_SolveReused)->Name("solve/paper/double/0");
 
 /// numeric::sweep over \p points values of K34 on state.range(0) threads.
 void BM_Sweep(benchmark::State& state, const char* precision, int points) {

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "superball/cases/error.hpp"
+#include "superball/numeric/batch.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/problem.hpp"
 
@@ -190,15 +191,40 @@ std::optional<std::size_t> entry_changed(const Scene& a, const Scene& b) {
   return changed;
 }
 
-std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work, Eigen::LLT<Eigen::MatrixXd>& llt) {
+namespace {
+
+/// Whether the LDLᵀ factorization of \p a (symmetric; overwritten: L
+/// below the diagonal, L·D above it) meets only positive pivots D: the
+/// plain unblocked algorithm without square roots, whose backward error is
+/// that of a Cholesky factorization (a few n·u·‖a‖), without the blocked
+/// machinery Eigen::LLT runs for a matrix of a few rows.
+bool ldlt_succeeds(Eigen::MatrixXd& a) {
+  const Eigen::Index n = a.rows();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double d = a(j, j);
+    for (Eigen::Index k = 0; k < j; ++k) d -= a(j, k) * a(k, j);
+    if (!(d > 0)) return false;
+    for (Eigen::Index i = j + 1; i < n; ++i) {
+      double s = a(i, j);
+      for (Eigen::Index k = 0; k < j; ++k) s -= a(i, k) * a(k, j);
+      a(j, i) = s;      // L_ij·D_j
+      a(i, j) = s / d;  // L_ij
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work) {
   const double tau = map_psd_margin * M.norm();
   if (!std::isfinite(tau)) return std::nullopt;
   work = M;
   work.diagonal().array() -= tau;
-  if (llt.compute(work).info() == Eigen::Success) return true;
+  if (ldlt_succeeds(work)) return true;
   work = M;
   work.diagonal().array() += tau;
-  if (llt.compute(work).info() != Eigen::Success) return false;
+  if (!ldlt_succeeds(work)) return false;
   return std::nullopt;
 }
 
@@ -214,19 +240,14 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
   for (const auto& v : x.values()) sx.push_back(T::from(v, digits)), zx.push_back(cln::zerop(v));
   for (const auto& v : y.values()) sy.push_back(T::from(v, digits)), zy.push_back(cln::zerop(v));
   struct State {
-    ExactScene exact;    ///< the corner's, its two entries set at each exact fallback
-    Problem<S> problem;  ///< the corner's, its two entries set at each point
-    bool in_range = true;  ///< Problem::from()'s verdict on everything but the two entries
+    ExactScene exact;  ///< the corner's, its two entries set at each exact fallback
+    Batch<S> batch;    ///< the corner's problem, its two entries set at each point
     std::vector<std::pair<int, int>> at;  ///< entry k of M at (row, column) of the matrix on its pairs
     Eigen::MatrixXd M, work;
-    Eigen::LLT<Eigen::MatrixXd> llt;
   };
   auto make_state = [&] {
-    State st{ExactScene::from(corner, ExactScene::MCheck::Caller), {}, true, {}, {}, {}, {}};
-    ExactScene ones = st.exact;
-    ones.entries[kx].value = ones.entries[ky].value = 1;
-    st.in_range = Problem<S>::from(ones, digits).in_range;
-    st.problem = Problem<S>::from(st.exact, digits);
+    const ExactScene exact = ExactScene::from(corner, ExactScene::MCheck::Caller);
+    State st{exact, Batch<S>(exact, {kx, ky}, digits), {}, {}, {}};
     std::vector<std::pair<int, int>> pairs;
     for (const auto& e : st.exact.entries) pairs.push_back({e.i, e.j}), pairs.push_back({e.k, e.l});
     std::sort(pairs.begin(), pairs.end());
@@ -238,29 +259,36 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
     st.work.resize(size, size);
     return st;
   };
-  const std::size_t nx = tx.size(), count = nx * ty.size();
-  first = std::min(first, count);
-  size = std::min(size, count - first);
-  return parallel_map(size, settings.threads, make_state, [&](State& st, std::size_t at) {
-    const std::size_t k = first + at, i = k % nx, j = k / nx;
-    Problem<S>& p = st.problem;
-    p.entries[kx].value = sx[i];
-    p.entries[ky].value = sy[j];
-    p.in_range = st.in_range && held(sx[i], zx[i]) && held(sy[j], zy[j]);
+  auto point = [&](State& st, std::size_t k) {
+    const std::size_t i = k % tx.size(), j = k / tx.size();
+    st.batch.set(0, sx[i], zx[i]);
+    st.batch.set(1, sy[j], zy[j]);
+    const Problem<S>& p = st.batch.problem();
     for (std::size_t e = 0; e < p.entries.size(); ++e) {
       const auto [r, c] = st.at[e];
       st.M(r, c) = st.M(c, r) = static_cast<double>(p.entries[e].value);
     }
-    std::optional<bool> psd = psd_by_floating_point(st.M, st.work, st.llt);
+    std::optional<bool> psd = psd_by_floating_point(st.M, st.work);
     if (!psd) {  // too close to the edge of the cone for floating point: exactly
       st.exact.entries[kx].value = parse_rational(tx[i]);
       st.exact.entries[ky].value = parse_rational(ty[j]);
       psd = positive_semidefinite(st.exact);
     }
-    MapPoint point;
-    if (*psd) solved(point, p, solve(p));
-    return point;
+    MapPoint out;
+    if (*psd) solved(out, p, st.batch.solve());
+    return out;
+  };
+  const std::size_t count = tx.size() * ty.size();
+  first = std::min(first, count);
+  size = std::min(size, count - first);
+  // Runs of map_run points per task, each point written in its place: a
+  // task's overhead is shared by its run, and no slot per point is copied.
+  std::vector<MapPoint> points(size);
+  (void)parallel_map((size + map_run - 1) / map_run, settings.threads, make_state, [&](State& st, std::size_t r) {
+    for (std::size_t at = r * map_run; at < std::min(size, (r + 1) * map_run); ++at) points[at] = point(st, first + at);
+    return 0;
   });
+  return points;
 }
 
 template std::vector<MapPoint> entry_points<double>(const Scene&, std::size_t, std::size_t, const Axis&, const Axis&, const MapSettings&,
@@ -469,9 +497,10 @@ class GridSolver {
 
   /// The grid points first … first + size − 1 (k = j·nx + i), on settings.threads.
   std::vector<MapPoint> operator()(std::size_t first, std::size_t size) const {
-    if (kx_ && ky_ && settings_.precision.kind == Precision::Kind::Double)
+    const bool entries = kx_ && ky_ && *kx_ != *ky_;
+    if (entries && settings_.precision.kind == Precision::Kind::Double)
       return detail::entry_points<double>(corner_, *kx_, *ky_, x_, y_, settings_, first, size);
-    if (kx_ && ky_ && settings_.precision.kind == Precision::Kind::LongDouble)
+    if (entries && settings_.precision.kind == Precision::Kind::LongDouble)
       return detail::entry_points<long double>(corner_, *kx_, *ky_, x_, y_, settings_, first, size);
     const std::size_t nx = tx.size();
     return parallel_map(size, settings_.threads, [this] { return scene_; }, [&](Scene& s, std::size_t at) {

@@ -4,7 +4,6 @@
 // semi-definiteness, the grid points of a map along two entries of M, and
 // the plain text in which a MapSettings::runner's tasks come back.
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <cmath>
@@ -39,15 +38,21 @@ bool held(const S& v, bool is_zero) {
 /// with τ = map_psd_margin·‖M‖_F, a Cholesky factorization of M − τI that
 /// succeeds proves λ_min(M) >= τ − (its backward error) > 0 (true); one of
 /// M + τI that fails proves λ_min(M) < −τ + (its backward error) < 0
-/// (false); otherwise nullopt, to be decided exactly.  \p work and \p llt
-/// are reused storage.
-std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work, Eigen::LLT<Eigen::MatrixXd>& llt);
+/// (false); otherwise nullopt, to be decided exactly.  \p work is reused
+/// storage.
+std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::MatrixXd& work);
+
+/// The grid points a task of entry_points() solves in a row on one thread:
+/// enough that the task's overhead is small beside them, few enough that
+/// threads share a grid's last points evenly.
+inline constexpr std::size_t map_run = 64;
 
 /// The grid points of a map whose axes vary the entries \p kx and \p ky of
 /// M of \p corner (the scene at (x_0, y_0)) in S (double or long double):
-/// each thread converts the corner once and then sets only the two entries
-/// at each point, in S for the solve and, when psd_by_floating_point() does
-/// not decide, exactly for positive_semidefinite().  The problem solved is
+/// each thread converts the corner once into a Batch (batch.hpp) and then
+/// sets only the two entries at each point, in S for the solve and, when
+/// psd_by_floating_point() does not decide, exactly for
+/// positive_semidefinite().  \p kx and \p ky differ.  The problem solved is
 /// Problem<S>::from() of the point's scene, bit for bit, so the points are
 /// those of solving each scene from scratch.
 /// Only the grid points first … first + size − 1 (k = j·x.steps + i) are

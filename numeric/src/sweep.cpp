@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "superball/cases/error.hpp"
+#include "superball/numeric/batch.hpp"
 #include "superball/numeric/certify.hpp"
 #include "collision/cluster.hpp"
 #include "map_internal.hpp"
@@ -430,7 +431,7 @@ namespace {
 
 /// sweep() of a parameter that is the entry \p entry of M of \p first (the
 /// scene at the first value), in S (double or long double): each thread
-/// converts \p first once and sets only that entry at each value.  The
+/// converts \p first once into a Batch and sets only that entry at each value.  The
 /// problem solved is Problem<S>::from() of the value's scene, so the points
 /// are those of converting each scene, bit for bit; M stays positive
 /// semi-definite between the checked ends (check_range()).
@@ -442,22 +443,29 @@ std::vector<SweepPoint> entry_sweep(const Scene& first, std::size_t entry, const
   std::vector<char> zero;
   for (const auto& v : values) converted.push_back(T::from(v, precision.digits)), zero.push_back(cln::zerop(v));
   struct State {
-    EntryProblem<S> line;
+    Batch<S> line;
     double unit = 1;
   };
   auto make_state = [&] {
     const ExactScene exact = ExactScene::from(first);
-    State st{EntryProblem<S>(exact, entry, precision.digits), 1};
-    const Problem<S>& p = st.line.problem;
+    State st{Batch<S>(exact, {entry}, precision.digits), 1};
+    const Problem<S>& p = st.line.problem();
     st.unit = p.unit_exact ? T::to_double(p.unit) : std::sqrt(cln::double_approx(exact.unit_squared()));
     return st;
   };
-  auto points = parallel_map(values.size(), threads, make_state, [&](State& st, std::size_t k) {
-    st.line.set(converted[k], zero[k]);
-    const auto sol = solve(st.line.problem);
-    SweepPoint p{0, {}, sol.closed, sol.status};
-    for (const auto& w : sol.velocities_after) p.velocities_after.push_back(T::to_double(w) * st.unit);
-    return p;
+  // Runs of detail::map_run values per task, each point written in its
+  // place, as a map's grid points.
+  std::vector<SweepPoint> points(values.size());
+  (void)parallel_map((values.size() + detail::map_run - 1) / detail::map_run, threads, make_state, [&](State& st, std::size_t r) {
+    for (std::size_t k = r * detail::map_run; k < std::min(values.size(), (r + 1) * detail::map_run); ++k) {
+      st.line.set(0, converted[k], zero[k]);
+      const Solution<S>& sol = st.line.solve();
+      SweepPoint& p = points[k];
+      p.closed = sol.closed;
+      p.status = sol.status;
+      for (const auto& w : sol.velocities_after) p.velocities_after.push_back(T::to_double(w) * st.unit);
+    }
+    return 0;
   });
   // The values, copied on the calling thread (the workers never touch the caller's CLN objects).
   for (std::size_t k = 0; k < points.size(); ++k) points[k].value = values[k];

@@ -125,14 +125,13 @@ TEST(Map, AxesOtherThanEntriesOfMSolveEachSceneFromScratch) {
 
 TEST(Map, TheFloatingPointFilterOfPsdDecidesOnlyClearCases) {
   Eigen::MatrixXd work;
-  Eigen::LLT<Eigen::MatrixXd> llt;
   Eigen::MatrixXd M(2, 2);
   M << 7, -100, -100, 1500;  // det 500 > 0: inside the cone
-  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work, llt), std::optional<bool>(true));
+  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work), std::optional<bool>(true));
   M << 7, -110, -110, 1500;  // det −1600 < 0: outside
-  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work, llt), std::optional<bool>(false));
+  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work), std::optional<bool>(false));
   M << 15, -150, -150, 1500;  // det 0: on the edge, left to exact arithmetic
-  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work, llt), std::nullopt);
+  EXPECT_EQ(numeric::detail::psd_by_floating_point(M, work), std::nullopt);
 }
 
 TEST(Map, EachBoundaryBracketHoldsTwoRegionsAtItsEnds) {

@@ -1,0 +1,189 @@
+// numeric::Batch (batch.hpp): each scene of a batch is numeric::solve() of
+// the problem Problem<S>::from() makes of it, bit for bit, in double, long
+// double and exact, whatever the scenes before it in the batch did (another
+// case, pivots, a failed solve, a scaled solve, a datum out of range).
+#include <gtest/gtest.h>
+
+#include <cln/rational.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "superball/numeric/batch.hpp"
+#include "superball/numeric/collision.hpp"
+#include "superball/numeric/problem.hpp"
+#include "support.hpp"
+
+namespace superball::testing {
+namespace batch_test {
+
+const std::string kPaperScene = std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml";
+
+/// The same bits (memcmp) for floating values, equality for exact ones.
+template <class S>
+bool same(const S& a, const S& b) {
+  if constexpr (std::is_floating_point<S>::value)
+    return std::memcmp(&a, &b, sizeof(S)) == 0 || (std::isnan(a) && std::isnan(b));  // long double: 6 padding bytes
+  else
+    return a == b;
+}
+
+/// Field by field; floating fields compared by value bits (a long double's
+/// padding bytes carry nothing).
+template <class S>
+bool same_value_bits(const S& a, const S& b) {
+  if constexpr (std::is_same<S, long double>::value)
+    return (std::isnan(a) && std::isnan(b)) || (a == b && std::signbit(a) == std::signbit(b));
+  else
+    return same(a, b);
+}
+
+template <class S>
+void expect_identical(const Solution<S>& a, const Solution<S>& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.closed, b.closed) << a.closed.to_string() << " against " << b.closed.to_string();
+  EXPECT_EQ(a.pivots, b.pivots);
+  auto vectors = [](const std::vector<S>& x, const std::vector<S>& y, const char* what) {
+    ASSERT_EQ(x.size(), y.size()) << what;
+    for (std::size_t i = 0; i < x.size(); ++i) EXPECT_TRUE(same_value_bits(x[i], y[i])) << what << "[" << i << "]";
+  };
+  vectors(a.velocities_after, b.velocities_after, "velocities_after");
+  vectors(a.reactions, b.reactions, "reactions");
+  vectors(a.gaps, b.gaps, "gaps");
+  EXPECT_TRUE(same_value_bits(a.kinetic_energy_before, b.kinetic_energy_before));
+  EXPECT_TRUE(same_value_bits(a.kinetic_energy_after, b.kinetic_energy_after));
+  EXPECT_TRUE(same_value_bits(a.dissipation, b.dissipation));
+  EXPECT_TRUE(same_value_bits(a.momentum_before, b.momentum_before));
+  EXPECT_TRUE(same_value_bits(a.momentum_after, b.momentum_after));
+  EXPECT_TRUE(same(a.residual_motion, b.residual_motion)) << a.residual_motion << " against " << b.residual_motion;
+  EXPECT_TRUE(same(a.residual_complementarity, b.residual_complementarity));
+}
+
+/// Solves \p values (one row per scene, one value per entry of \p varying)
+/// with one Batch<S> on \p base, and each scene from scratch; returns the
+/// statuses, the cases and the pivot counts met, to show the branches taken.
+template <class S>
+std::vector<std::string> expect_batch_is_solve(const ExactScene& base, const std::vector<std::size_t>& varying,
+                                               const std::vector<std::vector<cl_RA>>& values) {
+  using T = ScalarTraits<S>;
+  numeric::Batch<S> batch(base, varying);
+  std::vector<std::string> met;
+  for (std::size_t row = 0; row < values.size(); ++row) {
+    ExactScene scene = base;
+    for (std::size_t k = 0; k < varying.size(); ++k) {
+      scene.entries[varying[k]].value = values[row][k];
+      batch.set(k, T::from(values[row][k], 0), cln::zerop(values[row][k]));
+    }
+    const Problem<S> problem = Problem<S>::from(scene);
+    EXPECT_EQ(batch.problem().in_range, problem.in_range) << "scene " << row;
+    const Solution<S> alone = numeric::solve(problem);
+    SCOPED_TRACE("scene " + std::to_string(row));
+    expect_identical(batch.solve(), alone);
+    met.push_back(std::string(numeric::to_string(alone.status)) + " " + alone.closed.to_string() + " " + std::to_string(alone.pivots));
+  }
+  return met;
+}
+
+/// Values of an entry around \p v: 0, fractions and multiples of it, one a
+/// double rounds to zero (out of range) and one that needs scaling.
+std::vector<cl_RA> around(const cl_RA& v) {
+  const cl_RA x = cln::zerop(v) ? cl_RA(1) : v;
+  return {x, 0, x / 2, x * 2, x * 10, -x, x / 100, x * cln::expt(cl_RA(10), 200), x * cln::expt(cl_RA(10), -400), x * 3 / 7, x};
+}
+
+TEST(Batch, EveryScenesOfAGridIsTheSolveOfItsSceneBitForBit) {
+  // The paper scene over K34 and alpha_2: the three cases of its map ({},
+  // {3-4} and {2-3}, one pivot or none), M not positive semi-definite below
+  // alpha_2 ≈ -102.5, and K34 = 0.
+  const ExactScene base = ExactScene::from(load_scene(kPaperScene));
+  std::size_t k34 = base.entries.size(), alpha2 = base.entries.size();
+  for (std::size_t e = 0; e < base.entries.size(); ++e) {
+    const auto& x = base.entries[e];
+    if (x.i == 2 && x.j == 3 && x.k == 2 && x.l == 3) k34 = e;
+    if (x.i == 0 && x.j == 1 && x.k == 0 && x.l == 3) alpha2 = e;
+  }
+  ASSERT_LT(k34, base.entries.size());
+  ASSERT_LT(alpha2, base.entries.size());
+  std::vector<std::vector<cl_RA>> grid;
+  for (int j = 0; j <= 12; ++j)
+    for (int i = 0; i <= 20; ++i) grid.push_back({cl_RA(i), cl_RA(-120 + 10 * j)});
+  const auto met = expect_batch_is_solve<double>(base, {k34, alpha2}, grid);
+  std::set<std::string> cases(met.begin(), met.end());
+  EXPECT_TRUE(cases.count("success {} 0")) << ::testing::PrintToString(cases);
+  EXPECT_TRUE(cases.count("success {3-4} 1")) << ::testing::PrintToString(cases);
+  EXPECT_TRUE(cases.count("success {2-3} 1")) << ::testing::PrintToString(cases);
+  expect_batch_is_solve<long double>(base, {k34, alpha2}, grid);
+  std::vector<std::vector<cl_RA>> coarse;
+  for (std::size_t r = 0; r < grid.size(); r += 17) coarse.push_back(grid[r]);
+  expect_batch_is_solve<cl_RA>(base, {k34, alpha2}, coarse);
+}
+
+TEST(Batch, RandomScenesWhateverBranchTheSceneBeforeTook) {
+  // Scenes of 2 to 10 bodies (the fixed-size path, the general dense path,
+  // the banded solver), one or two entries varied through values that take
+  // other cases, lose the definiteness of A, need scaling or leave the range
+  // of double; every scene follows a scene that took another branch.
+  std::set<std::string> statuses;
+  for (std::uint64_t seed = 9100; seed < 9160; ++seed) {
+    const RandomScene r = random_scene(seed, {2, 10});
+    SCOPED_TRACE(r.describe());
+    const ExactScene base = ExactScene::from(r.scene());
+    if (base.entries.empty()) continue;
+    std::vector<std::size_t> varying{static_cast<std::size_t>(seed % base.entries.size())};
+    if (base.entries.size() > 1) varying.push_back((varying[0] + 1) % base.entries.size());
+    std::vector<std::vector<cl_RA>> rows;
+    const std::vector<cl_RA> first = around(base.entries[varying[0]].value);
+    for (std::size_t a = 0; a < first.size(); ++a) {
+      std::vector<cl_RA> row{first[a]};
+      if (varying.size() > 1) row.push_back(around(base.entries[varying[1]].value)[(a * 5) % first.size()]);
+      rows.push_back(row);
+    }
+    for (const std::string& s : expect_batch_is_solve<double>(base, varying, rows)) statuses.insert(s.substr(0, s.find(' ')));
+    expect_batch_is_solve<long double>(base, varying, rows);
+    if (seed % 6 == 0) {  // exact: the data outside double's range are no concern of it; fewer scenes (its solves are slower)
+      rows.resize(4);
+      expect_batch_is_solve<cl_RA>(base, varying, rows);
+    }
+  }
+  EXPECT_TRUE(statuses.count("success"));
+  EXPECT_TRUE(statuses.count("numerical-issue"));  // out of range or A not positive definite: the failures are met too
+}
+
+TEST(Batch, ScenesWhoseOtherDataLeaveTheWindowOfDouble) {
+  // Masses, M and velocities scaled by 10^±20 to 10^±300: the batch's check
+  // of the window on the varying entries alone must send the same scenes
+  // to solve()'s scaled solve as scaling_of() of the whole problem.
+  int scaled = 0;
+  for (std::uint64_t seed = 300; seed < 340; ++seed) {
+    const ExtremeScene x = random_extreme_scene(seed);
+    SCOPED_TRACE(x.describe());
+    const ExactScene base = x.exact(ExactScene::from(x.base.scene()));
+    if (base.entries.empty()) continue;
+    const std::vector<std::size_t> varying{static_cast<std::size_t>(seed % base.entries.size())};
+    std::vector<std::vector<cl_RA>> rows;
+    for (const cl_RA& v : around(base.entries[varying[0]].value)) rows.push_back({v});
+    expect_batch_is_solve<double>(base, varying, rows);
+    expect_batch_is_solve<long double>(base, varying, rows);
+    if (!numeric::scaling_of(Problem<double>::from(base)).identity()) ++scaled;
+  }
+  EXPECT_GT(scaled, 10);  // most of these scenes are solved scaled
+}
+
+TEST(Batch, TheEntriesMustExistAndBeDistinct) {
+  const ExactScene base = ExactScene::from(load_scene(kPaperScene));
+  EXPECT_THROW(numeric::Batch<double>(base, {base.entries.size()}), std::invalid_argument);
+  EXPECT_THROW(numeric::Batch<double>(base, {1, 1}), std::invalid_argument);
+  numeric::Batch<double> batch(base, {0});
+  EXPECT_THROW(batch.set(1, 1.0, false), std::out_of_range);
+  // Until set, an entry holds the scene's value: the batch solves the scene itself.
+  expect_identical(batch.solve(), numeric::solve(Problem<double>::from(base)));
+}
+
+}  // namespace batch_test
+}  // namespace superball::testing
