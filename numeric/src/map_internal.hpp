@@ -56,6 +56,16 @@ template <class S>
 std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::size_t ky, const Axis& x, const Axis& y,
                                    const MapSettings& settings, std::size_t first = 0, std::size_t size = static_cast<std::size_t>(-1));
 
+/// label_changes() between the values \p a and \p b of the entry \p entry of
+/// M of \p line (an exact scene; M positive semi-definite from a to b), on
+/// the calling thread: the exact labels at a and b, and when they differ,
+/// the changes between them to 2^-bits of |b − a|, the same brackets and
+/// labels as label_changes() of the scene along the parameter that is that
+/// entry.  Nothing is parsed or copied per step: the exact solve sets the
+/// entry of \p line.  Throws std::invalid_argument unless 1 <= bits <= max_bits.
+std::vector<LabelChange> entry_label_changes(const ExactScene& line, std::size_t entry, const cln::cl_RA& a, const cln::cl_RA& b,
+                                             const Label& label, const ProvenLabel& proven, int bits);
+
 /// Grid points as plain text, for MapSettings::runner: one line per point,
 /// "ADMISSIBLE STATUS SUPERBALL RATIO CLOSED" with the ratio as a C99
 /// hexadecimal floating literal (exact, NaN as "nan") and CLOSED the

@@ -286,60 +286,108 @@ struct ExactCases {
 };
 
 /// A thread's means of labelling the exact solution at a value: its own copy
-/// of the scene for the exact solve, and, with a ProvenLabel along an entry
+/// of the line (a scene and the parameter, or an exact scene and the entry of
+/// M that varies) for the exact solve, and, with a ProvenLabel along an entry
 /// of M, the shortcuts tried first: a certified double solve, then the cases
-/// met last checked exactly.
+/// met last checked exactly.  Labels are numbered as they are met (ids), so
+/// that a bisection compares numbers and makes no text but for the labels
+/// themselves; a proven label is remembered by what was proven.
 struct Labeller {
-  Scene scene;
-  const Parameter& parameter;
+  Scene scene;                        ///< the line, when it is a scene and a parameter
+  const Parameter* parameter = nullptr;
+  std::optional<ExactScene> line;     ///< the line, when it is an exact scene and an entry of M
+  std::size_t line_entry = 0;
   const Label& label;
   const ProvenLabel& proven;
   std::optional<EntryProblem<double>> in_double;
   std::optional<ExactCases> exactly;
   std::array<std::atomic<std::size_t>, 3>& found_by;  ///< in double, by a case, solved
+  std::vector<std::string> names;     ///< the labels met, by id
+  std::vector<std::pair<ProvenPoint, std::optional<std::size_t>>> known;  ///< what proven() said of each point proven so far
 
+  /// Along \p p of the scene \p s, from \p low to \p high; \p entry: the entry of M \p p is, if it is one.
   Labeller(const Scene& s, const Parameter& p, const Label& l, const ProvenLabel& pl, std::optional<std::size_t> entry,
-           const std::string& low, const std::string& high, std::array<std::atomic<std::size_t>, 3>& counts)
-      : scene(s), parameter(p), label(l), proven(pl), found_by(counts) {
-    if (!entry || !proven) return;
-    const ExactScene exact = ExactScene::from(scene);
-    in_double.emplace(exact, *entry);
-    exactly.emplace(exact, *entry, parse_rational(low), parse_rational(high));
+           const cln::cl_RA& low, const cln::cl_RA& high, std::array<std::atomic<std::size_t>, 3>& counts)
+      : scene(s), parameter(&p), label(l), proven(pl), found_by(counts) {
+    if (entry && proven) shortcuts(ExactScene::from(scene), *entry, low, high);
   }
 
-  /// The label of the exact solution at \p value (\p text: the same value
-  /// as text): proven in double, else by the cases met last, else from the
-  /// exact solve.
-  std::string operator()(const cln::cl_RA& value, const std::string& text) {
+  /// Along the entry \p entry of M of \p exact, from \p low to \p high (M positive semi-definite between them).
+  Labeller(const ExactScene& exact, std::size_t entry, const Label& l, const ProvenLabel& pl, const cln::cl_RA& low,
+           const cln::cl_RA& high, std::array<std::atomic<std::size_t>, 3>& counts)
+      : line(exact), line_entry(entry), label(l), proven(pl), found_by(counts) {
+    if (proven) shortcuts(exact, entry, low, high);
+  }
+
+  void shortcuts(const ExactScene& exact, std::size_t entry, const cln::cl_RA& low, const cln::cl_RA& high) {
+    in_double.emplace(exact, entry);
+    exactly.emplace(exact, entry, low, high);
+  }
+
+  /// The id of the label \p name.
+  std::size_t id(const std::string& name) {
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at != names.end()) return static_cast<std::size_t>(at - names.begin());
+    names.push_back(name);
+    return names.size() - 1;
+  }
+
+  /// What proven() says of \p p, as an id.
+  std::optional<std::size_t> proven_id(const ProvenPoint& p) {
+    for (const auto& [q, l] : known)
+      if (q.closed == p.closed && q.superball == p.superball) return l;
+    const std::optional<std::string> l = proven(p);
+    known.push_back({p, l ? std::optional<std::size_t>(id(*l)) : std::nullopt});
+    return known.back().second;
+  }
+
+  /// The exact solution at \p value.
+  ExactPoint solve_at(const cln::cl_RA& value) {
+    if (!line) return solve_exact(set_value(scene, *parameter, to_string(value)));
+    line->entries[line_entry].value = value;
+    auto problem = Problem<cln::cl_RA>::from(*line);
+    auto solution = solve(problem);
+    return {std::move(problem), std::move(solution)};
+  }
+
+  /// The id of the label of the exact solution at \p value: proven in
+  /// double, else by the cases met last, else from the exact solve.
+  std::size_t operator()(const cln::cl_RA& value) {
     if (exactly) {
-      std::optional<std::string> l;
+      std::optional<std::size_t> l;
       std::optional<ProvenPoint> p;
       std::size_t by = 0;
       for (; by < 2 && !l; ++by) {
         p = by == 0 ? in_double->prove(value) : exactly->prove(value);
-        if (p) l = proven(*p);
+        if (p) l = proven_id(*p);
       }
       if (l) {
         ++found_by[by - 1];
         exactly->met(p->closed);
-        return std::move(*l);
+        return *l;
       }
     }
     ++found_by[2];
-    const ExactPoint e = solve_exact(set_value(scene, parameter, text));
+    const ExactPoint e = solve_at(value);
     if (exactly) exactly->met(e.solution.closed);
-    return label(e);
+    return id(label(e));
   }
+};
+
+/// A change of label, the labels as Labeller ids.
+struct IdChange {
+  cln::cl_RA low, high;
+  std::size_t below, above;
 };
 
 /// Every change of label inside \p c (c.below at c.low, c.above at
 /// c.high, different), found by \p bits halvings, appended to \p out from
 /// c.low to c.high: where the midpoint's label is neither end's, both halves
 /// hold a change and both are searched.
-void bisect(Labeller& label_at, LabelChange c, int bits, std::vector<LabelChange>& out) {
+void bisect(Labeller& label_at, IdChange c, int bits, std::vector<LabelChange>& out) {
   for (; bits > 0; --bits) {
     const cln::cl_RA mid = (c.low + c.high) / 2;
-    std::string l = label_at(mid, to_string(mid));
+    const std::size_t l = label_at(mid);
     if (l == c.below) {
       c.low = mid;
     } else if (l == c.above) {
@@ -347,10 +395,16 @@ void bisect(Labeller& label_at, LabelChange c, int bits, std::vector<LabelChange
     } else {
       bisect(label_at, {c.low, mid, c.below, l}, bits - 1, out);
       c.low = mid;
-      c.below = std::move(l);
+      c.below = l;
     }
   }
-  out.push_back(std::move(c));
+  out.push_back({c.low, c.high, label_at.names[c.below], label_at.names[c.above]});
+}
+
+void check_bits(int bits, const char* function) {
+  if (bits < 1 || bits > max_bits)
+    throw std::invalid_argument(std::string(function) + ": bits must be a whole number from 1 to " + std::to_string(max_bits) + ", got " +
+                                std::to_string(bits));
 }
 
 }  // namespace
@@ -359,8 +413,7 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
                                        const Label& label, int bits, int threads, const ProvenLabel& proven, LabelCounts* counts) {
   check_threads(threads);
   refuse_drop(scene, "label_changes()");
-  if (bits < 1 || bits > max_bits)
-    throw std::invalid_argument("label_changes(): bits must be a whole number from 1 to " + std::to_string(max_bits) + ", got " + std::to_string(bits));
+  check_bits(bits, "label_changes()");
   for (std::size_t k = 1; k < values.size(); ++k)
     if (values[k] == values[k - 1] || (values[k] > values[k - 1]) != (values[1] > values[0]))
       throw std::invalid_argument("label_changes(): the values must be strictly increasing or strictly decreasing");
@@ -378,15 +431,14 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
   // (the cases met at the values are the first the bisections try).
   const bool one_thread = thread_count(threads) == 1 || values.size() < 2;
   std::shared_ptr<Labeller> only;
-  const std::string& low = texts.front();
-  const std::string& high = texts.back();
-  if (one_thread) only = std::make_shared<Labeller>(first, parameter, label, proven, entry, low, high, found_by);
-  auto make_labeller = [&] {
-    return one_thread ? only : std::make_shared<Labeller>(first, parameter, label, proven, entry, low, high, found_by);
+  auto make = [&] {
+    return std::make_shared<Labeller>(first, parameter, label, proven, entry, parse_rational(texts.front()), parse_rational(texts.back()), found_by);
   };
+  if (one_thread) only = make();
+  auto make_labeller = [&] { return one_thread ? only : make(); };
   using Own = std::shared_ptr<Labeller>;
   const std::vector<std::string> labels = parallel_map(texts.size(), threads, make_labeller, [&](Own& label_at, std::size_t k) {
-    return (*label_at)(parse_rational(texts[k]), texts[k]);
+    return label_at->names[(*label_at)(parse_rational(texts[k]))];
   });
   std::vector<std::size_t> changes;  // k: the label changes between values k − 1 and k
   for (std::size_t k = 1; k < texts.size(); ++k)
@@ -394,7 +446,7 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
   const auto found = parallel_map(changes.size(), threads, make_labeller, [&](Own& label_at, std::size_t m) {
     const std::size_t k = changes[m];
     std::vector<LabelChange> out;
-    bisect(*label_at, {parse_rational(texts[k - 1]), parse_rational(texts[k]), labels[k - 1], labels[k]}, bits, out);
+    bisect(*label_at, {parse_rational(texts[k - 1]), parse_rational(texts[k]), label_at->id(labels[k - 1]), label_at->id(labels[k])}, bits, out);
     return out;
   });
   std::vector<LabelChange> all;
@@ -402,6 +454,23 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
   if (counts) *counts = {found_by[0], found_by[1], found_by[2]};
   return all;
 }
+
+namespace detail {
+
+std::vector<LabelChange> entry_label_changes(const ExactScene& line, std::size_t entry, const cln::cl_RA& a, const cln::cl_RA& b,
+                                             const Label& label, const ProvenLabel& proven, int bits) {
+  check_bits(bits, "entry_label_changes()");
+  const cln::cl_RA& low = a < b ? a : b;
+  const cln::cl_RA& high = a < b ? b : a;
+  std::array<std::atomic<std::size_t>, 3> found_by{};
+  Labeller label_at(line, entry, label, proven, low, high, found_by);
+  const std::size_t below = label_at(low), above = label_at(high);
+  std::vector<LabelChange> out;
+  if (below != above) bisect(label_at, {low, high, below, above}, bits, out);
+  return out;
+}
+
+}  // namespace detail
 
 std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int first, int count) {
   if (steps < 2) throw std::invalid_argument("linspace(): steps must be at least 2, got " + std::to_string(steps));
