@@ -614,9 +614,18 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   const std::optional<std::size_t> kx = detail::entry_changed(corner, with_value(corner, x.parameter, x.to));
   const std::optional<std::size_t> ky = kx ? detail::entry_changed(corner, with_value(corner, y.parameter, y.to)) : std::nullopt;
   struct Lines {
-    std::optional<ExactScene> corner;  ///< this thread's, when kx and ky
+    std::optional<ExactScene> corner;              ///< this thread's, when kx and ky
+    std::shared_ptr<detail::PlaneSigns> plane;  ///< its cases' polynomials over the map
   };
-  auto make_lines = [&] { return Lines{kx && ky ? std::optional<ExactScene>(ExactScene::from(corner, ExactScene::MCheck::Caller)) : std::nullopt}; };
+  auto make_lines = [&] {
+    Lines lines;
+    if (!kx || !ky) return lines;
+    lines.corner = ExactScene::from(corner, ExactScene::MCheck::Caller);
+    // The ends from their texts: a thread never touches the caller's CLN objects.
+    lines.plane = detail::plane_signs(*lines.corner, *kx, *ky, parse_rational(tx.front()), parse_rational(tx.back()), parse_rational(ty.front()),
+                                      parse_rational(ty.back()));
+    return lines;
+  };
   const auto bisect = [&](Lines& lines, std::size_t k) {
     const Pending& p = pending[k];
     // The line through the two neighbours: the other parameter fixed at its grid value.
@@ -647,7 +656,7 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
       out.back().j = p.j;
       return out;
     }
-    const std::vector<LabelChange> changes = exact ? detail::entry_label_changes(*exact, entry, a, b, by_region, proven_region, settings.bits)
+    const std::vector<LabelChange> changes = exact ? detail::entry_label_changes(*exact, entry, a, b, by_region, proven_region, settings.bits, lines.plane.get())
                                                    : label_changes(*line, along.parameter, {a, b}, by_region, settings.bits, 1, proven_region);
     for (const LabelChange& c : changes)
       out.push_back({p.along_x, p.i, p.j, c.low, c.high, Region::parse(c.below, bodies), Region::parse(c.above, bodies)});

@@ -163,44 +163,51 @@ struct CaseSigns {
   }
 };
 
-/// The exact problem of a line, only the entry of M set at each value, for
-/// the shortcut of label_changes() where floating point cannot decide: the
-/// two cases met last are checked at the value.  A case whose every closed
-/// contact has a reaction < 0 and every open one a gap > 0, exactly, is the
-/// exact solution's case: the velocities after the collision are unique and
-/// strict complementarity fixes the closed set, so a solve finds the same
-/// case and the same velocities.  Each case is checked by its CaseSigns,
-/// made once per line from its cluster system (detail::ClusterSystem: one
-/// banded solve, no pivoting) at CaseSigns::degree + 2 values, or, where
-/// those do not check out, by its cluster system at the value itself.
-struct ExactCases {
+/// The coefficients c_0 … c_d (d = t.size() − 1) of the polynomial through
+/// (t_j, y_j), by Newton's divided differences.
+std::vector<cln::cl_RA> through(const std::vector<cln::cl_RA>& t, std::vector<cln::cl_RA> dd) {
+  const std::size_t d = t.size() - 1;
+  for (std::size_t level = 1; level <= d; ++level)
+    for (std::size_t j = d; j >= level; --j) dd[j] = (dd[j] - dd[j - 1]) / (t[j] - t[j - level]);
+  std::vector<cln::cl_RA> c(d + 1, 0);
+  c[0] = dd[d];
+  for (std::size_t j = d; j-- > 0;) {  // c(t) <- c(t)·(t − t_j) + dd_j
+    for (std::size_t m = d; m >= 1; --m) c[m] = c[m - 1] - t[j] * c[m];
+    c[0] = dd[j] - t[j] * c[0];
+  }
+  return c;
+}
+
+/// The value at \p t of the polynomial of coefficients \p c.
+cln::cl_RA value_at(const std::vector<cln::cl_RA>& c, const cln::cl_RA& t) {
+  cln::cl_RA at = 0;
+  for (std::size_t m = c.size(); m-- > 0;) at = at * t + c[m];
+  return at;
+}
+
+/// \p c times the positive lcm of its denominators: integers of the same signs.
+std::vector<cln::cl_I> cleared(const std::vector<cln::cl_RA>& c) {
+  cln::cl_I common = 1;
+  for (const auto& x : c) common = cln::lcm(common, cln::denominator(x));
+  std::vector<cln::cl_I> a;
+  for (const auto& x : c) a.push_back(cln::exquo(cln::numerator(x) * common, cln::denominator(x)));
+  return a;
+}
+
+/// An exact problem and the storage of its cluster solves.
+struct CaseSolver {
   Problem<cln::cl_RA> problem;
-  std::size_t entry;
   int bandwidth;
-  cln::cl_RA low, high;  ///< the checked range: M positive semi-definite on it
   detail::ClusterSystem<cln::cl_RA> system;
   std::vector<cln::cl_RA> W, lambda;
   std::vector<char> flags;
-  std::vector<ContactSet> recent;  ///< the cases met last, the latest first
-  std::vector<CaseSigns> signs;    ///< per case met on this line
-  std::vector<cln::cl_I> pp, qq;   ///< powers of the value's numerator and denominator
 
-  ExactCases(const ExactScene& exact, std::size_t k, const cln::cl_RA& from, const cln::cl_RA& to)
-      : problem(Problem<cln::cl_RA>::from(exact, 0)), entry(k), bandwidth(problem.bandwidth()), low(from), high(to) {}
+  explicit CaseSolver(const ExactScene& exact) : problem(Problem<cln::cl_RA>::from(exact, 0)), bandwidth(problem.bandwidth()) {}
 
-  /// Remember \p closed as the latest case met (two are kept: a bisection's
-  /// bracket has a case at each end).
-  void met(const ContactSet& closed) {
-    const auto at = std::find(recent.begin(), recent.end(), closed);
-    if (at != recent.end()) recent.erase(at);
-    recent.insert(recent.begin(), closed);
-    if (recent.size() > 2) recent.pop_back();
-  }
-
-  /// Solve case \p closed at \p value by its cluster system: the quantities
-  /// whose signs decide it (CaseSigns), times Δ when \p times_determinant.
-  bool quantities(const ContactSet& closed, const cln::cl_RA& value, bool times_determinant, std::vector<cln::cl_RA>& q) {
-    problem.entries[entry].value = value;
+  /// Solve case \p closed by its cluster system at the problem's entries as
+  /// set: the quantities whose signs decide it (CaseSigns), times Δ when \p
+  /// times_determinant.
+  bool quantities(const ContactSet& closed, bool times_determinant, std::vector<cln::cl_RA>& q) {
     system.assemble(problem, bandwidth);
     flags.assign(static_cast<std::size_t>(closed.contacts()), 0);
     for (int c = 0; c < closed.contacts(); ++c) flags[static_cast<std::size_t>(c)] = closed.closed(c);
@@ -214,11 +221,170 @@ struct ExactCases {
     q.push_back(delta * (W[0] - cln::abs(problem.u[0])));
     return true;
   }
+};
 
-  /// The CaseSigns of \p closed on this line, made on first use.
+}  // namespace
+
+namespace detail {
+
+/// The polynomials of CaseSigns over the plane of two entries ex and ey of M
+/// (a map whose two axes are entries of M), per case: each Δ·quantity is a
+/// polynomial of degree at most CaseSigns::degree in each of the two entries
+/// (the argument of CaseSigns, for either entry), interpolated exactly on a
+/// grid of (degree + 1)² nodes and checked at two more points; along a line
+/// of the map (one entry fixed) it gives that line's CaseSigns without a
+/// solve.  A case whose nodes do not all solve, or that fails a check, is not
+/// valid, and its lines make their own.
+struct PlaneSigns {
+  static constexpr int degree = 4;
+  CaseSolver solver;
+  std::size_t ex, ey;
+  std::vector<cln::cl_RA> xs, ys;  ///< the nodes
+  std::array<std::pair<cln::cl_RA, cln::cl_RA>, 2> checks;
+  struct Case {
+    ContactSet closed;
+    bool valid = false;
+    std::vector<std::vector<std::vector<cln::cl_RA>>> c;  ///< c[k][m][n]: of x^m y^n in quantity k
+  };
+  std::vector<Case> cases;
+
+  PlaneSigns(const ExactScene& exact, std::size_t kx, std::size_t ky, const cln::cl_RA& x0, const cln::cl_RA& x1, const cln::cl_RA& y0,
+             const cln::cl_RA& y1)
+      : solver(exact), ex(kx), ey(ky) {
+    for (int j = 0; j <= degree; ++j) xs.push_back(x0 + (x1 - x0) * j / degree), ys.push_back(y0 + (y1 - y0) * j / degree);
+    checks = {std::pair<cln::cl_RA, cln::cl_RA>{x0 + (x1 - x0) * 3 / 8, y0 + (y1 - y0) * 5 / 8}, {x0 + (x1 - x0) * 7 / 8, y0 + (y1 - y0) / 8}};
+  }
+
+  bool quantities(const ContactSet& closed, const cln::cl_RA& x, const cln::cl_RA& y, std::vector<cln::cl_RA>& q) {
+    solver.problem.entries[ex].value = x;
+    solver.problem.entries[ey].value = y;
+    return solver.quantities(closed, true, q);
+  }
+
+  const Case& of(const ContactSet& closed) {
+    for (const Case& c : cases)
+      if (c.closed == closed) return c;
+    Case made;
+    made.closed = closed;
+    const std::size_t n = static_cast<std::size_t>(degree) + 1;
+    std::vector<std::vector<std::vector<cln::cl_RA>>> y(n, std::vector<std::vector<cln::cl_RA>>(n));  // y[i][j][k] at (xs_i, ys_j)
+    bool solved = true;
+    for (std::size_t i = 0; i < n && solved; ++i)
+      for (std::size_t j = 0; j < n && solved; ++j) solved = quantities(closed, xs[i], ys[j], y[i][j]);
+    if (solved) {
+      made.valid = true;
+      const std::size_t count = y[0][0].size();
+      for (std::size_t k = 0; k < count; ++k) {
+        // Along x at each ys_j, then each coefficient along y.
+        std::vector<std::vector<cln::cl_RA>> along_x(n);  // along_x[j][m]
+        for (std::size_t j = 0; j < n; ++j) {
+          std::vector<cln::cl_RA> v;
+          for (std::size_t i = 0; i < n; ++i) v.push_back(y[i][j][k]);
+          along_x[j] = through(xs, v);
+        }
+        std::vector<std::vector<cln::cl_RA>> c(n);
+        for (std::size_t m = 0; m < n; ++m) {
+          std::vector<cln::cl_RA> v;
+          for (std::size_t j = 0; j < n; ++j) v.push_back(along_x[j][m]);
+          c[m] = through(ys, v);
+        }
+        made.c.push_back(std::move(c));
+      }
+      std::vector<cln::cl_RA> q;
+      for (const auto& [cx, cy] : checks) {
+        if (!made.valid || !quantities(closed, cx, cy, q)) {
+          made.valid = false;
+          break;
+        }
+        for (std::size_t k = 0; k < count && made.valid; ++k) made.valid = at(made.c[k], cx, cy) == q[k];
+      }
+    }
+    cases.push_back(std::move(made));
+    return cases.back();
+  }
+
+  static cln::cl_RA at(const std::vector<std::vector<cln::cl_RA>>& c, const cln::cl_RA& x, const cln::cl_RA& y) {
+    std::vector<cln::cl_RA> in_x;
+    for (const auto& row : c) in_x.push_back(value_at(row, y));
+    return value_at(in_x, x);
+  }
+
+  /// The CaseSigns of \p closed along the line where entry \p entry (ex or
+  /// ey) varies and the other is \p fixed.
+  CaseSigns along(const ContactSet& closed, std::size_t entry, const cln::cl_RA& fixed) {
+    CaseSigns s;
+    s.closed = closed;
+    const Case& plane = of(closed);
+    s.valid = plane.valid;
+    if (!s.valid) return s;
+    const std::size_t n = static_cast<std::size_t>(degree) + 1;
+    for (const auto& c : plane.c) {
+      std::vector<cln::cl_RA> line(n);
+      for (std::size_t v = 0; v < n; ++v) {
+        std::vector<cln::cl_RA> other(n);
+        for (std::size_t w = 0; w < n; ++w) other[w] = entry == ex ? c[v][w] : c[w][v];
+        line[v] = value_at(other, fixed);
+      }
+      s.polys.push_back(cleared(line));
+    }
+    return s;
+  }
+};
+
+}  // namespace detail
+
+namespace {
+
+/// The exact problem of a line, only the entry of M set at each value, for
+/// the shortcut of label_changes() where floating point cannot decide: the
+/// two cases met last are checked at the value.  A case whose every closed
+/// contact has a reaction < 0 and every open one a gap > 0, exactly, is the
+/// exact solution's case: the velocities after the collision are unique and
+/// strict complementarity fixes the closed set, so a solve finds the same
+/// case and the same velocities.  Each case is checked by its CaseSigns,
+/// made once per line from its cluster system (detail::ClusterSystem: one
+/// banded solve, no pivoting) at CaseSigns::degree + 2 values, or, where
+/// those do not check out, by its cluster system at the value itself.
+struct ExactCases {
+  CaseSolver solver;
+  std::size_t entry;
+  cln::cl_RA low, high;  ///< the checked range: M positive semi-definite on it
+  detail::PlaneSigns* plane;  ///< the polynomials over the map's plane, when the line is one of its lines
+  std::vector<ContactSet> recent;  ///< the cases met last, the latest first
+  std::vector<CaseSigns> signs;    ///< per case met on this line
+  std::vector<cln::cl_I> pp, qq;   ///< powers of the value's numerator and denominator
+
+  ExactCases(const ExactScene& exact, std::size_t k, const cln::cl_RA& from, const cln::cl_RA& to, detail::PlaneSigns* in_plane = nullptr)
+      : solver(exact), entry(k), low(from), high(to), plane(in_plane) {}
+
+  /// Remember \p closed as the latest case met (two are kept: a bisection's
+  /// bracket has a case at each end).
+  void met(const ContactSet& closed) {
+    const auto at = std::find(recent.begin(), recent.end(), closed);
+    if (at != recent.end()) recent.erase(at);
+    recent.insert(recent.begin(), closed);
+    if (recent.size() > 2) recent.pop_back();
+  }
+
+  /// Solve case \p closed at \p value by its cluster system (CaseSolver::quantities()).
+  bool quantities(const ContactSet& closed, const cln::cl_RA& value, bool times_determinant, std::vector<cln::cl_RA>& q) {
+    solver.problem.entries[entry].value = value;
+    return solver.quantities(closed, times_determinant, q);
+  }
+
+  /// The CaseSigns of \p closed on this line, made on first use: from the
+  /// plane's when it has a valid one, else interpolated on the line.
   const CaseSigns& signs_of(const ContactSet& closed) {
     for (const CaseSigns& s : signs)
       if (s.closed == closed) return s;
+    if (plane) {
+      const std::size_t fixed = entry == plane->ex ? plane->ey : plane->ex;
+      CaseSigns s = plane->along(closed, entry, solver.problem.entries[fixed].value);
+      if (s.valid) {
+        signs.push_back(std::move(s));
+        return signs.back();
+      }
+    }
     CaseSigns s;
     s.closed = closed;
     constexpr int d = CaseSigns::degree;
@@ -232,29 +398,14 @@ struct ExactCases {
     }
     if (solved) {
       s.valid = true;
+      const std::vector<cln::cl_RA> nodes(t.begin(), t.begin() + d + 1);
       for (std::size_t k = 0; k < y[0].size() && s.valid; ++k) {
-        // Newton's divided differences through t_0 … t_d, then the monomial coefficients.
-        std::vector<cln::cl_RA> dd(static_cast<std::size_t>(d + 1));
-        for (int j = 0; j <= d; ++j) dd[static_cast<std::size_t>(j)] = y[static_cast<std::size_t>(j)][k];
-        for (int level = 1; level <= d; ++level)
-          for (int j = d; j >= level; --j)
-            dd[static_cast<std::size_t>(j)] = (dd[static_cast<std::size_t>(j)] - dd[static_cast<std::size_t>(j - 1)]) /
-                                              (t[static_cast<std::size_t>(j)] - t[static_cast<std::size_t>(j - level)]);
-        std::vector<cln::cl_RA> c(static_cast<std::size_t>(d + 1), 0);
-        c[0] = dd[static_cast<std::size_t>(d)];
-        for (int j = d - 1; j >= 0; --j) {  // c(t) <- c(t)·(t − t_j) + dd_j
-          for (int m = d; m >= 1; --m) c[static_cast<std::size_t>(m)] = c[static_cast<std::size_t>(m - 1)] - t[static_cast<std::size_t>(j)] * c[static_cast<std::size_t>(m)];
-          c[0] = dd[static_cast<std::size_t>(j)] - t[static_cast<std::size_t>(j)] * c[0];
-        }
+        std::vector<cln::cl_RA> v;
+        for (int j = 0; j <= d; ++j) v.push_back(y[static_cast<std::size_t>(j)][k]);
+        const std::vector<cln::cl_RA> c = through(nodes, v);
         // The check at the extra value t_{d+1}.
-        cln::cl_RA at = 0;
-        for (int m = d; m >= 0; --m) at = at * t[static_cast<std::size_t>(d + 1)] + c[static_cast<std::size_t>(m)];
-        if (at != y[static_cast<std::size_t>(d + 1)][k]) s.valid = false;
-        cln::cl_I common = 1;
-        for (const auto& x : c) common = cln::lcm(common, cln::denominator(x));
-        std::vector<cln::cl_I> a;
-        for (const auto& x : c) a.push_back(cln::exquo(cln::numerator(x) * common, cln::denominator(x)));
-        s.polys.push_back(std::move(a));
+        if (value_at(c, t[static_cast<std::size_t>(d + 1)]) != y[static_cast<std::size_t>(d + 1)][k]) s.valid = false;
+        s.polys.push_back(cleared(c));
       }
     }
     signs.push_back(std::move(s));
@@ -313,15 +464,16 @@ struct Labeller {
   }
 
   /// Along the entry \p entry of M of \p exact, from \p low to \p high (M positive semi-definite between them).
+  /// \p plane: the case polynomials over a map's plane this line lies in, or none.
   Labeller(const ExactScene& exact, std::size_t entry, const Label& l, const ProvenLabel& pl, const cln::cl_RA& low,
-           const cln::cl_RA& high, std::array<std::atomic<std::size_t>, 3>& counts)
+           const cln::cl_RA& high, std::array<std::atomic<std::size_t>, 3>& counts, detail::PlaneSigns* plane)
       : line(exact), line_entry(entry), label(l), proven(pl), found_by(counts) {
-    if (proven) shortcuts(exact, entry, low, high);
+    if (proven) shortcuts(exact, entry, low, high, plane);
   }
 
-  void shortcuts(const ExactScene& exact, std::size_t entry, const cln::cl_RA& low, const cln::cl_RA& high) {
+  void shortcuts(const ExactScene& exact, std::size_t entry, const cln::cl_RA& low, const cln::cl_RA& high, detail::PlaneSigns* plane = nullptr) {
     in_double.emplace(exact, entry);
-    exactly.emplace(exact, entry, low, high);
+    exactly.emplace(exact, entry, low, high, plane);
   }
 
   /// The id of the label \p name.
@@ -457,13 +609,18 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
 
 namespace detail {
 
+std::shared_ptr<PlaneSigns> plane_signs(const ExactScene& corner, std::size_t kx, std::size_t ky, const cln::cl_RA& x0, const cln::cl_RA& x1,
+                                        const cln::cl_RA& y0, const cln::cl_RA& y1) {
+  return std::make_shared<PlaneSigns>(corner, kx, ky, x0, x1, y0, y1);
+}
+
 std::vector<LabelChange> entry_label_changes(const ExactScene& line, std::size_t entry, const cln::cl_RA& a, const cln::cl_RA& b,
-                                             const Label& label, const ProvenLabel& proven, int bits) {
+                                             const Label& label, const ProvenLabel& proven, int bits, PlaneSigns* plane) {
   check_bits(bits, "entry_label_changes()");
   const cln::cl_RA& low = a < b ? a : b;
   const cln::cl_RA& high = a < b ? b : a;
   std::array<std::atomic<std::size_t>, 3> found_by{};
-  Labeller label_at(line, entry, label, proven, low, high, found_by);
+  Labeller label_at(line, entry, label, proven, low, high, found_by, plane);
   const std::size_t below = label_at(low), above = label_at(high);
   std::vector<LabelChange> out;
   if (below != above) bisect(label_at, {low, high, below, above}, bits, out);
