@@ -146,11 +146,55 @@ struct EntryProblem {
 /// more; its coefficients are then integers (a positive factor cleared), and
 /// its sign at t = p/q (q > 0) is that of Σ a_k p^k q^(d−k): products of
 /// integers, no gcd.
+/// \p n as a long double, its magnitude cut to 64 bits: within 2^-63·|n|
+/// (two units of roundoff) of n; infinite beyond the range of long double.
+long double truncated(const cln::cl_I& n) {
+  const cln::cl_I m = cln::abs(n);
+  const long shift = std::min(std::max(0L, static_cast<long>(cln::integer_length(m)) - 64), 1L << 20);
+  const long double v = std::ldexp(static_cast<long double>(cln::cl_I_to_UQ(cln::ash(m, -shift))), static_cast<int>(shift));
+  return cln::minusp(n) ? -v : v;
+}
+
+/// The rounding allowed when CaseSigns::sign_near() evaluates a polynomial of
+/// degree d = CaseSigns::degree in long double, in units of its unit roundoff
+/// u times Σ|a_k||t|^k: coefficients within 2u (truncated()), t within 5u (a
+/// quotient of two truncated integers), so t^k within 5ku, and Horner's
+/// rounding within γ_2d; in all (2 + 5d + 2d)u = 30u at d = 4, doubled for
+/// the rounding of Σ|a_k||t|^k itself and room.
+constexpr long double sign_filter_rounding = 64;
+
 struct CaseSigns {
   static constexpr int degree = 4;
   ContactSet closed;
   bool valid = false;                          ///< interpolated and checked at the extra point
   std::vector<std::vector<cln::cl_I>> polys;  ///< per contact, then the superball's: a_0 … a_degree
+  std::vector<std::vector<long double>> near;  ///< the same coefficients, truncated()
+
+  /// Append the polynomial of coefficients \p a.
+  void add(std::vector<cln::cl_I> a) {
+    near.emplace_back();
+    for (const auto& x : a) near.back().push_back(truncated(x));
+    polys.push_back(std::move(a));
+  }
+
+  /// Sign of polynomial \p k at t, from \p t_near (t within 5u), when long
+  /// double decides it: the value beyond sign_filter_rounding·u·Σ|a_k||t|^k.
+  std::optional<int> sign_near(std::size_t k, long double t_near) const {
+    long double v = 0, size = 0;
+    const long double at = std::fabs(t_near);
+    for (int j = degree; j >= 0; --j) {
+      const long double a = near[k][static_cast<std::size_t>(j)];
+      v = v * t_near + a;
+      size = size * at + std::fabs(a);
+    }
+    if (size == 0) return 0;  // every coefficient is 0 (truncated() keeps 0 and only 0)
+    // Far from overflow and underflow, or exactly.
+    if (!std::isfinite(v) || !std::isfinite(size) || size < std::ldexp(std::numeric_limits<long double>::min(), 128)) return std::nullopt;
+    const long double bound = sign_filter_rounding * ScalarTraits<long double>::unit_roundoff(0) * size;
+    if (v > bound) return 1;
+    if (v < -bound) return -1;
+    return std::nullopt;
+  }
 
   /// Sign of polynomial \p k at p/q (q > 0), given p^j and q^j for j = 0 … degree.
   int sign_at(std::size_t k, const std::vector<cln::cl_I>& pp, const std::vector<cln::cl_I>& qq) const {
@@ -325,7 +369,7 @@ struct PlaneSigns {
         for (std::size_t w = 0; w < n; ++w) other[w] = entry == ex ? c[v][w] : c[w][v];
         line[v] = value_at(other, fixed);
       }
-      s.polys.push_back(cleared(line));
+      s.add(cleared(line));
     }
     return s;
   }
@@ -405,7 +449,7 @@ struct ExactCases {
         const std::vector<cln::cl_RA> c = through(nodes, v);
         // The check at the extra value t_{d+1}.
         if (value_at(c, t[static_cast<std::size_t>(d + 1)]) != y[static_cast<std::size_t>(d + 1)][k]) s.valid = false;
-        s.polys.push_back(cleared(c));
+        s.add(cleared(c));
       }
     }
     signs.push_back(std::move(s));
@@ -416,16 +460,28 @@ struct ExactCases {
   /// cases met last holds there strictly, else nothing.
   std::optional<ProvenPoint> prove(const cln::cl_RA& value) {
     const cln::cl_I p = cln::numerator(value), q = cln::denominator(value);
-    pp.assign(1, 1), qq.assign(1, 1);
-    for (int j = 1; j <= CaseSigns::degree; ++j) pp.push_back(pp.back() * p), qq.push_back(qq.back() * q);
+    const long double t = truncated(p) / truncated(q);
+    // t within 5u of p/q: neither overflowed nor (unless 0) underflowed.
+    const bool t_held = std::isfinite(t) && (cln::zerop(p) || std::fabs(t) >= std::ldexp(std::numeric_limits<long double>::min(), 64));
+    pp.clear(), qq.clear();
+    // The sign in long double where it decides, else exactly (the powers made once).
+    auto sign = [&](const CaseSigns& s, std::size_t k) {
+      if (t_held)
+        if (const std::optional<int> near = s.sign_near(k, t)) return *near;
+      if (pp.empty()) {
+        pp.assign(1, 1), qq.assign(1, 1);
+        for (int j = 1; j <= CaseSigns::degree; ++j) pp.push_back(pp.back() * p), qq.push_back(qq.back() * q);
+      }
+      return s.sign_at(k, pp, qq);
+    };
     std::vector<cln::cl_RA> at;
     for (const ContactSet& closed : recent) {
       const CaseSigns& s = signs_of(closed);
       const std::size_t contacts = static_cast<std::size_t>(closed.contacts());
       bool strict = true;
       if (s.valid) {
-        for (std::size_t k = 0; k < contacts && strict; ++k) strict = s.sign_at(k, pp, qq) > 0;
-        if (strict) return ProvenPoint{closed, s.sign_at(contacts, pp, qq) > 0};
+        for (std::size_t k = 0; k < contacts && strict; ++k) strict = sign(s, k) > 0;
+        if (strict) return ProvenPoint{closed, sign(s, contacts) > 0};
         continue;
       }
       if (!quantities(closed, value, false, at)) continue;
