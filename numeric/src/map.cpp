@@ -170,9 +170,24 @@ std::vector<MapCurve> chain(const Map& m) {
 /// halvings: along a line the PSD set is an interval, so there is one change.
 template <class At>
 MapBoundary psd_edge(const At& at, cln::cl_RA a, cln::cl_RA b, bool a_psd, int bits) {
+  Eigen::MatrixXd M, work;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  // M on its pairs in double, decided by detail::psd_by_floating_point() where it can, else exactly.
+  auto psd = [&](const ExactScene& s) {
+    std::vector<std::pair<int, int>> pairs;
+    for (const auto& e : s.entries) pairs.push_back({e.i, e.j}), pairs.push_back({e.k, e.l});
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    auto index = [&](int i, int j) { return static_cast<Eigen::Index>(std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(i, j)) - pairs.begin()); };
+    const auto size = static_cast<Eigen::Index>(pairs.size());
+    M = Eigen::MatrixXd::Zero(size, size);
+    for (const auto& e : s.entries) M(index(e.i, e.j), index(e.k, e.l)) = M(index(e.k, e.l), index(e.i, e.j)) = cln::double_approx(e.value);
+    const std::optional<bool> clear = detail::psd_by_floating_point(M, work, llt);
+    return clear ? *clear : positive_semidefinite(s);
+  };
   for (; bits > 0; --bits) {
     const cln::cl_RA mid = (a + b) / 2;
-    (positive_semidefinite(at(mid)) == a_psd ? a : b) = mid;
+    (psd(at(mid)) == a_psd ? a : b) = mid;
   }
   MapBoundary e;
   e.low = a < b ? a : b;
