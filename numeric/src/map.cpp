@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <limits>
 #include <map>
 #include <set>
@@ -83,7 +84,7 @@ std::vector<std::string> texts(const Axis& a) {
 std::vector<MapCurve> chain(const Map& m) {
   // The kind of curve a boundary point is on: the two cases, or the superball edge.
   std::map<std::string, std::vector<std::size_t>> kinds;
-  std::vector<std::pair<ContactSet, std::string>> names;  // each case's name, made once
+  std::deque<std::pair<ContactSet, std::string>> names;  // each case's name, made once (a deque: references stay valid)
   auto name = [&](const ContactSet& c) -> const std::string& {
     for (const auto& n : names)
       if (n.first == c) return n.second;
