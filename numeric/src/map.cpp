@@ -612,12 +612,20 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   const int ix = x.steps, iy = y.steps;
   // Two neighbours differ when one is solved and the other not, or both are, in different regions.
   auto differ = [](const MapPoint& a, const MapPoint& b) { return a.admissible != b.admissible || (a.admissible && a.region != b.region); };
-  for (int j = 0; j < iy; ++j)
-    for (int i = 0; i + 1 < ix; ++i)
-      if (differ(m.at(i, j), m.at(i + 1, j))) pending.push_back({true, i, j});
-  for (int i = 0; i < ix; ++i)
-    for (int j = 0; j + 1 < iy; ++j)
-      if (differ(m.at(i, j), m.at(i, j + 1))) pending.push_back({false, i, j});
+  // Each row, then each column, scanned on settings.threads (no CLN object read).
+  auto scan = [&](bool along_x) {
+    const std::size_t lines = static_cast<std::size_t>(along_x ? iy : ix);
+    return parallel_map(lines, settings.threads, [] { return 0; }, [&](int&, std::size_t line) {
+      std::vector<Pending> found;
+      const int l = static_cast<int>(line), n = along_x ? ix : iy;
+      for (int k = 0; k + 1 < n; ++k)
+        if (along_x ? differ(m.at(k, l), m.at(k + 1, l)) : differ(m.at(l, k), m.at(l, k + 1)))
+          found.push_back(along_x ? Pending{true, k, l} : Pending{false, l, k});
+      return found;
+    });
+  };
+  for (const bool along_x : {true, false})
+    for (const auto& found : scan(along_x)) pending.insert(pending.end(), found.begin(), found.end());
   const Label by_region = [](const ExactPoint& e) { return Region::of(e).label(); };
   const ProvenLabel proven_region = [](const ProvenPoint& p) -> std::optional<std::string> {
     if (!p.superball) return std::nullopt;
