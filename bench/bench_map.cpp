@@ -126,6 +126,24 @@ void BM_Boundaries(benchmark::State& state) {
 }
 BENCHMARK(BM_Boundaries)->Name("map/paper/boundaries/shortcut")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+/// The boundary stage of a map as map() runs it: a 64 × 64 map of (K34,
+/// alpha_2) over [0, 20] × [-110, 0] (its four curves: two case boundaries,
+/// the superball edge and the edge of M positive semi-definite) on one
+/// thread, with its boundaries (state.range(0) = 1) or the grid alone (0).
+/// The cost of a boundary point is the difference over the boundary points
+/// (counter "boundaries"); items_per_second = maps per second.
+void BM_MapBoundaries(benchmark::State& state) {
+  const Scene& s = paper_scene();
+  const numeric::Axis x{Parameter::parse("K.3-4", s), 0, 20, 64}, y{Parameter::parse("alpha.2", s), -110, 0, 64};
+  numeric::MapSettings settings;
+  settings.boundaries = state.range(0) != 0;
+  std::size_t boundaries = 0;
+  for (auto _ : state) boundaries = numeric::map(s, x, y, settings).boundaries.size();
+  state.counters["boundaries"] = static_cast<double>(boundaries);
+  state.SetItemsProcessed(state.iterations());
+}
+BENCHMARK(BM_MapBoundaries)->Name("map/paper/64x64/boundaries")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();

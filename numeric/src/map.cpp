@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <limits>
 #include <map>
 #include <set>
@@ -84,10 +85,17 @@ std::vector<std::string> texts(const Axis& a) {
 std::vector<MapCurve> chain(const Map& m) {
   // The kind of curve a boundary point is on: the two cases, or the superball edge.
   std::map<std::string, std::vector<std::size_t>> kinds;
+  std::deque<std::pair<ContactSet, std::string>> names;  // each case's name, made once (a deque: references stay valid)
+  auto name = [&](const ContactSet& c) -> const std::string& {
+    for (const auto& n : names)
+      if (n.first == c) return n.second;
+    names.push_back({c, c.to_string()});
+    return names.back().second;
+  };
   for (std::size_t k = 0; k < m.boundaries.size(); ++k) {
     const MapBoundary& b = m.boundaries[k];
     if (b.below_psd && b.above_psd && b.below.closed != b.above.closed) {
-      const std::string p = b.below.closed.to_string(), q = b.above.closed.to_string();
+      const std::string &p = name(b.below.closed), &q = name(b.above.closed);
       kinds["case " + std::min(p, q) + " " + std::max(p, q)].push_back(k);
     }
     if (b.below_psd != b.above_psd)
@@ -104,25 +112,33 @@ std::vector<MapCurve> chain(const Map& m) {
     for (std::size_t k : members) on_edge[{m.boundaries[k].along_x, m.boundaries[k].i, m.boundaries[k].j}].push_back(k);
     std::map<std::size_t, std::vector<std::size_t>> joined;
     for (std::size_t k : members) joined[k];
-    for (int j = 0; j + 1 < m.y.steps; ++j)
-      for (int i = 0; i + 1 < m.x.steps; ++i) {
-        std::vector<std::size_t> in_cell;
-        for (const auto& edge : {std::tuple<bool, int, int>{true, i, j}, {false, i + 1, j}, {true, i, j + 1}, {false, i, j}}) {
-          const auto found = on_edge.find(edge);
-          if (found != on_edge.end()) in_cell.insert(in_cell.end(), found->second.begin(), found->second.end());
-        }
-        for (std::size_t a = 0; a + 1 < in_cell.size(); a += 2) {
-          joined[in_cell[a]].push_back(in_cell[a + 1]);
-          joined[in_cell[a + 1]].push_back(in_cell[a]);
-        }
+    // The cells with a member on an edge, row by row (j, then i): an edge
+    // along x at (i, j) is the bottom of cell (i, j) and the top of (i, j − 1),
+    // one along y the left of cell (i, j) and the right of (i − 1, j).
+    std::set<std::pair<int, int>> cells;  // (j, i)
+    for (std::size_t k : members) {
+      const MapBoundary& b = m.boundaries[k];
+      for (const auto& [ci, cj] : {std::pair<int, int>{b.i, b.j}, b.along_x ? std::pair<int, int>{b.i, b.j - 1} : std::pair<int, int>{b.i - 1, b.j}})
+        if (ci >= 0 && cj >= 0 && ci + 1 < m.x.steps && cj + 1 < m.y.steps) cells.insert({cj, ci});
+    }
+    for (const auto& [j, i] : cells) {
+      std::vector<std::size_t> in_cell;
+      for (const auto& edge : {std::tuple<bool, int, int>{true, i, j}, {false, i + 1, j}, {true, i, j + 1}, {false, i, j}}) {
+        const auto found = on_edge.find(edge);
+        if (found != on_edge.end()) in_cell.insert(in_cell.end(), found->second.begin(), found->second.end());
       }
+      for (std::size_t a = 0; a + 1 < in_cell.size(); a += 2) {
+        joined[in_cell[a]].push_back(in_cell[a + 1]);
+        joined[in_cell[a + 1]].push_back(in_cell[a]);
+      }
+    }
     std::map<std::size_t, bool> used;
     auto walk = [&](std::size_t start) {
       MapCurve c;
       c.kind = kind == "superball" ? MapCurve::Kind::Superball : kind == "psd" ? MapCurve::Kind::Psd : MapCurve::Kind::Case;
       if (c.kind == MapCurve::Kind::Case) {
         const MapBoundary& b = m.boundaries[start];
-        const bool in_order = b.below.closed.to_string() < b.above.closed.to_string();
+        const bool in_order = name(b.below.closed) < name(b.above.closed);
         c.first = in_order ? b.below.closed : b.above.closed;
         c.second = in_order ? b.above.closed : b.below.closed;
       }
@@ -151,14 +167,29 @@ std::vector<MapCurve> chain(const Map& m) {
 }
 
 /// The edge of the PSD cone between \p a (where M is positive
-/// semi-definite when \p a_psd) and \p b (where it is when !a_psd) along
-/// \p parameter of \p line (a copy, changed), to \p bits halvings: along a
-/// line the PSD set is an interval, so there is one change.
-MapBoundary psd_edge(Scene& line, const Parameter& parameter, cln::cl_RA a, cln::cl_RA b, bool a_psd, int bits) {
+/// semi-definite when \p a_psd) and \p b (where it is when !a_psd) on a line
+/// whose exact scene (M unchecked) at a value v is \p at(v), to \p bits
+/// halvings: along a line the PSD set is an interval, so there is one change.
+template <class At>
+MapBoundary psd_edge(const At& at, cln::cl_RA a, cln::cl_RA b, bool a_psd, int bits) {
+  Eigen::MatrixXd M, work;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  // M on its pairs in double, decided by detail::psd_by_floating_point() where it can, else exactly.
+  auto psd = [&](const ExactScene& s) {
+    std::vector<std::pair<int, int>> pairs;
+    for (const auto& e : s.entries) pairs.push_back({e.i, e.j}), pairs.push_back({e.k, e.l});
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    auto index = [&](int i, int j) { return static_cast<Eigen::Index>(std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(i, j)) - pairs.begin()); };
+    const auto size = static_cast<Eigen::Index>(pairs.size());
+    M = Eigen::MatrixXd::Zero(size, size);
+    for (const auto& e : s.entries) M(index(e.i, e.j), index(e.k, e.l)) = M(index(e.k, e.l), index(e.i, e.j)) = cln::double_approx(e.value);
+    const std::optional<bool> clear = detail::psd_by_floating_point(M, work, llt);
+    return clear ? *clear : positive_semidefinite(s);
+  };
   for (; bits > 0; --bits) {
     const cln::cl_RA mid = (a + b) / 2;
-    parameter.assign(line, Number::parse(to_string(mid)));
-    (positive_semidefinite(ExactScene::from(line, ExactScene::MCheck::Caller)) == a_psd ? a : b) = mid;
+    (psd(at(mid)) == a_psd ? a : b) = mid;
   }
   MapBoundary e;
   e.low = a < b ? a : b;
@@ -166,8 +197,8 @@ MapBoundary psd_edge(Scene& line, const Parameter& parameter, cln::cl_RA a, cln:
   e.below_psd = a < b ? a_psd : !a_psd;
   e.above_psd = !e.below_psd;
   // The region at the bracket's end inside the cone, from the exact solution there.
-  parameter.assign(line, Number::parse(to_string(a_psd ? a : b)));
-  (e.below_psd ? e.below : e.above) = Region::of(solve_exact_at(line, parameter, a_psd ? a : b));
+  const auto problem = Problem<cln::cl_RA>::from(at(a_psd ? a : b));
+  (e.below_psd ? e.below : e.above) = Region::of(ExactPoint{problem, solve(problem)});
   return e;
 }
 
@@ -610,45 +641,83 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   const int ix = x.steps, iy = y.steps;
   // Two neighbours differ when one is solved and the other not, or both are, in different regions.
   auto differ = [](const MapPoint& a, const MapPoint& b) { return a.admissible != b.admissible || (a.admissible && a.region != b.region); };
-  for (int j = 0; j < iy; ++j)
-    for (int i = 0; i + 1 < ix; ++i)
-      if (differ(m.at(i, j), m.at(i + 1, j))) pending.push_back({true, i, j});
-  for (int i = 0; i < ix; ++i)
-    for (int j = 0; j + 1 < iy; ++j)
-      if (differ(m.at(i, j), m.at(i, j + 1))) pending.push_back({false, i, j});
+  // Each row, then each column, scanned on settings.threads (no CLN object read).
+  auto scan = [&](bool along_x) {
+    const std::size_t lines = static_cast<std::size_t>(along_x ? iy : ix);
+    return parallel_map(lines, settings.threads, [] { return 0; }, [&](int&, std::size_t line) {
+      std::vector<Pending> found;
+      const int l = static_cast<int>(line), n = along_x ? ix : iy;
+      for (int k = 0; k + 1 < n; ++k)
+        if (along_x ? differ(m.at(k, l), m.at(k + 1, l)) : differ(m.at(l, k), m.at(l, k + 1)))
+          found.push_back(along_x ? Pending{true, k, l} : Pending{false, l, k});
+      return found;
+    });
+  };
+  for (const bool along_x : {true, false})
+    for (const auto& found : scan(along_x)) pending.insert(pending.end(), found.begin(), found.end());
   const Label by_region = [](const ExactPoint& e) { return Region::of(e).label(); };
   const ProvenLabel proven_region = [](const ProvenPoint& p) -> std::optional<std::string> {
     if (!p.superball) return std::nullopt;
     return Region{p.closed, *p.superball}.label();
   };
   const int bodies = scene.size();
-  const auto bisect = [&](std::size_t k) {
+  // Both axes entries of M (the usual map): each thread converts the corner
+  // once and sets the two entries at each line; else each line is a scene.
+  const Scene corner = with_value(with_value(scene, x.parameter, x.from), y.parameter, y.from);
+  const std::optional<std::size_t> kx = detail::entry_changed(corner, with_value(corner, x.parameter, x.to));
+  const std::optional<std::size_t> ky = kx ? detail::entry_changed(corner, with_value(corner, y.parameter, y.to)) : std::nullopt;
+  struct Lines {
+    std::optional<ExactScene> corner;              ///< this thread's, when kx and ky
+    std::shared_ptr<detail::PlaneSigns> plane;  ///< its cases' polynomials over the map
+  };
+  auto make_lines = [&] {
+    Lines lines;
+    if (!kx || !ky) return lines;
+    lines.corner = ExactScene::from(corner, ExactScene::MCheck::Caller);
+    // The ends from their texts: a thread never touches the caller's CLN objects.
+    lines.plane = detail::plane_signs(*lines.corner, *kx, *ky, parse_rational(tx.front()), parse_rational(tx.back()), parse_rational(ty.front()),
+                                      parse_rational(ty.back()));
+    return lines;
+  };
+  const auto bisect = [&](Lines& lines, std::size_t k) {
     const Pending& p = pending[k];
     // The line through the two neighbours: the other parameter fixed at its grid value.
     const Axis& along = p.along_x ? x : y;
     const Axis& fixed = p.along_x ? y : x;
     const std::string& fixed_text = p.along_x ? ty[static_cast<std::size_t>(p.j)] : tx[static_cast<std::size_t>(p.i)];
-    const std::string& a = p.along_x ? tx[static_cast<std::size_t>(p.i)] : ty[static_cast<std::size_t>(p.j)];
-    const std::string& b = p.along_x ? tx[static_cast<std::size_t>(p.i) + 1] : ty[static_cast<std::size_t>(p.j) + 1];
-    Scene line = with_value(scene, fixed.parameter, parse_rational(fixed_text));
+    const cln::cl_RA a = parse_rational(p.along_x ? tx[static_cast<std::size_t>(p.i)] : ty[static_cast<std::size_t>(p.j)]);
+    const cln::cl_RA b = parse_rational(p.along_x ? tx[static_cast<std::size_t>(p.i) + 1] : ty[static_cast<std::size_t>(p.j) + 1]);
     std::vector<MapBoundary> out;
     const MapPoint& first = m.at(p.i, p.j);
     const MapPoint& second = p.along_x ? m.at(p.i + 1, p.j) : m.at(p.i, p.j + 1);
+    std::optional<ExactScene> exact = lines.corner;
+    const std::size_t entry = exact ? (p.along_x ? *kx : *ky) : 0;
+    if (exact) exact->entries[p.along_x ? *ky : *kx].value = parse_rational(fixed_text);
+    std::optional<Scene> line;
+    if (!exact) line = with_value(scene, fixed.parameter, parse_rational(fixed_text));
     if (first.admissible != second.admissible) {
-      out.push_back(psd_edge(line, along.parameter, parse_rational(a), parse_rational(b), first.admissible, settings.bits));
+      if (exact)
+        out.push_back(psd_edge([&](const cln::cl_RA& v) -> const ExactScene& { return exact->entries[entry].value = v, *exact; }, a, b,
+                               first.admissible, settings.bits));
+      else
+        out.push_back(psd_edge([&](const cln::cl_RA& v) {
+          along.parameter.assign(*line, Number::parse(to_string(v)));
+          return ExactScene::from(*line, ExactScene::MCheck::Caller);
+        }, a, b, first.admissible, settings.bits));
       out.back().along_x = p.along_x;
       out.back().i = p.i;
       out.back().j = p.j;
       return out;
     }
-    for (const LabelChange& c : label_changes(line, along.parameter, {parse_rational(a), parse_rational(b)}, by_region, settings.bits, 1,
-                                              proven_region))
+    const std::vector<LabelChange> changes = exact ? detail::entry_label_changes(*exact, entry, a, b, by_region, proven_region, settings.bits, lines.plane.get())
+                                                   : label_changes(*line, along.parameter, {a, b}, by_region, settings.bits, 1, proven_region);
+    for (const LabelChange& c : changes)
       out.push_back({p.along_x, p.i, p.j, c.low, c.high, Region::parse(c.below, bodies), Region::parse(c.above, bodies)});
     return out;
   };
   // The boundaries of the pairs first … first + size − 1, in order, on settings.threads.
   auto boundaries = [&](std::size_t first, std::size_t size) {
-    const auto found = parallel_map(size, settings.threads, [] { return 0; }, [&](int&, std::size_t at) { return bisect(first + at); });
+    const auto found = parallel_map(size, settings.threads, make_lines, [&](Lines& lines, std::size_t at) { return bisect(lines, first + at); });
     std::vector<MapBoundary> all;
     for (const auto& f : found) all.insert(all.end(), f.begin(), f.end());
     return all;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,6 +61,27 @@ inline constexpr std::size_t map_run = 64;
 template <class S>
 std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::size_t ky, const Axis& x, const Axis& y,
                                    const MapSettings& settings, std::size_t first = 0, std::size_t size = static_cast<std::size_t>(-1));
+
+/// The exact polynomials that decide each case over the plane of two entries
+/// \p kx and \p ky of M of \p corner (sweep.cpp), made on first use of a case
+/// from exact solves at nodes spread over [x0, x1] × [y0, y1]: each line of a
+/// map then has its cases' polynomials without a solve.  Not thread-safe
+/// (CLN): one per thread.
+struct PlaneSigns;
+std::shared_ptr<PlaneSigns> plane_signs(const ExactScene& corner, std::size_t kx, std::size_t ky, const cln::cl_RA& x0, const cln::cl_RA& x1,
+                                        const cln::cl_RA& y0, const cln::cl_RA& y1);
+
+/// label_changes() between the values \p a and \p b of the entry \p entry of
+/// M of \p line (an exact scene; M positive semi-definite from a to b), on
+/// the calling thread: the exact labels at a and b, and when they differ,
+/// the changes between them to 2^-bits of |b − a|, the same brackets and
+/// labels as label_changes() of the scene along the parameter that is that
+/// entry.  Nothing is parsed or copied per step: the exact solve sets the
+/// entry of \p line; with \p plane (of a map whose lines \p line is one of),
+/// the cases' polynomials come from it.  Throws std::invalid_argument unless
+/// 1 <= bits <= max_bits.
+std::vector<LabelChange> entry_label_changes(const ExactScene& line, std::size_t entry, const cln::cl_RA& a, const cln::cl_RA& b,
+                                             const Label& label, const ProvenLabel& proven, int bits, PlaneSigns* plane = nullptr);
 
 /// Grid points as plain text, for MapSettings::runner: one line per point,
 /// "ADMISSIBLE STATUS SUPERBALL RATIO CLOSED" with the ratio as a C99

@@ -147,11 +147,55 @@ struct EntryProblem {
 /// more; its coefficients are then integers (a positive factor cleared), and
 /// its sign at t = p/q (q > 0) is that of Σ a_k p^k q^(d−k): products of
 /// integers, no gcd.
+/// \p n as a long double, its magnitude cut to 64 bits: within 2^-63·|n|
+/// (two units of roundoff) of n; infinite beyond the range of long double.
+long double truncated(const cln::cl_I& n) {
+  const cln::cl_I m = cln::abs(n);
+  const long shift = std::min(std::max(0L, static_cast<long>(cln::integer_length(m)) - 64), 1L << 20);
+  const long double v = std::ldexp(static_cast<long double>(cln::cl_I_to_UQ(cln::ash(m, -shift))), static_cast<int>(shift));
+  return cln::minusp(n) ? -v : v;
+}
+
+/// The rounding allowed when CaseSigns::sign_near() evaluates a polynomial of
+/// degree d = CaseSigns::degree in long double, in units of its unit roundoff
+/// u times Σ|a_k||t|^k: coefficients within 2u (truncated()), t within 5u (a
+/// quotient of two truncated integers), so t^k within 5ku, and Horner's
+/// rounding within γ_2d; in all (2 + 5d + 2d)u = 30u at d = 4, doubled for
+/// the rounding of Σ|a_k||t|^k itself and room.
+constexpr long double sign_filter_rounding = 64;
+
 struct CaseSigns {
   static constexpr int degree = 4;
   ContactSet closed;
   bool valid = false;                          ///< interpolated and checked at the extra point
   std::vector<std::vector<cln::cl_I>> polys;  ///< per contact, then the superball's: a_0 … a_degree
+  std::vector<std::vector<long double>> near;  ///< the same coefficients, truncated()
+
+  /// Append the polynomial of coefficients \p a.
+  void add(std::vector<cln::cl_I> a) {
+    near.emplace_back();
+    for (const auto& x : a) near.back().push_back(truncated(x));
+    polys.push_back(std::move(a));
+  }
+
+  /// Sign of polynomial \p k at t, from \p t_near (t within 5u), when long
+  /// double decides it: the value beyond sign_filter_rounding·u·Σ|a_k||t|^k.
+  std::optional<int> sign_near(std::size_t k, long double t_near) const {
+    long double v = 0, size = 0;
+    const long double at = std::fabs(t_near);
+    for (int j = degree; j >= 0; --j) {
+      const long double a = near[k][static_cast<std::size_t>(j)];
+      v = v * t_near + a;
+      size = size * at + std::fabs(a);
+    }
+    if (size == 0) return 0;  // every coefficient is 0 (truncated() keeps 0 and only 0)
+    // Far from overflow and underflow, or exactly.
+    if (!std::isfinite(v) || !std::isfinite(size) || size < std::ldexp(std::numeric_limits<long double>::min(), 128)) return std::nullopt;
+    const long double bound = sign_filter_rounding * ScalarTraits<long double>::unit_roundoff(0) * size;
+    if (v > bound) return 1;
+    if (v < -bound) return -1;
+    return std::nullopt;
+  }
 
   /// Sign of polynomial \p k at p/q (q > 0), given p^j and q^j for j = 0 … degree.
   int sign_at(std::size_t k, const std::vector<cln::cl_I>& pp, const std::vector<cln::cl_I>& qq) const {
@@ -164,44 +208,51 @@ struct CaseSigns {
   }
 };
 
-/// The exact problem of a line, only the entry of M set at each value, for
-/// the shortcut of label_changes() where floating point cannot decide: the
-/// two cases met last are checked at the value.  A case whose every closed
-/// contact has a reaction < 0 and every open one a gap > 0, exactly, is the
-/// exact solution's case: the velocities after the collision are unique and
-/// strict complementarity fixes the closed set, so a solve finds the same
-/// case and the same velocities.  Each case is checked by its CaseSigns,
-/// made once per line from its cluster system (detail::ClusterSystem: one
-/// banded solve, no pivoting) at CaseSigns::degree + 2 values, or, where
-/// those do not check out, by its cluster system at the value itself.
-struct ExactCases {
+/// The coefficients c_0 … c_d (d = t.size() − 1) of the polynomial through
+/// (t_j, y_j), by Newton's divided differences.
+std::vector<cln::cl_RA> through(const std::vector<cln::cl_RA>& t, std::vector<cln::cl_RA> dd) {
+  const std::size_t d = t.size() - 1;
+  for (std::size_t level = 1; level <= d; ++level)
+    for (std::size_t j = d; j >= level; --j) dd[j] = (dd[j] - dd[j - 1]) / (t[j] - t[j - level]);
+  std::vector<cln::cl_RA> c(d + 1, 0);
+  c[0] = dd[d];
+  for (std::size_t j = d; j-- > 0;) {  // c(t) <- c(t)·(t − t_j) + dd_j
+    for (std::size_t m = d; m >= 1; --m) c[m] = c[m - 1] - t[j] * c[m];
+    c[0] = dd[j] - t[j] * c[0];
+  }
+  return c;
+}
+
+/// The value at \p t of the polynomial of coefficients \p c.
+cln::cl_RA value_at(const std::vector<cln::cl_RA>& c, const cln::cl_RA& t) {
+  cln::cl_RA at = 0;
+  for (std::size_t m = c.size(); m-- > 0;) at = at * t + c[m];
+  return at;
+}
+
+/// \p c times the positive lcm of its denominators: integers of the same signs.
+std::vector<cln::cl_I> cleared(const std::vector<cln::cl_RA>& c) {
+  cln::cl_I common = 1;
+  for (const auto& x : c) common = cln::lcm(common, cln::denominator(x));
+  std::vector<cln::cl_I> a;
+  for (const auto& x : c) a.push_back(cln::exquo(cln::numerator(x) * common, cln::denominator(x)));
+  return a;
+}
+
+/// An exact problem and the storage of its cluster solves.
+struct CaseSolver {
   Problem<cln::cl_RA> problem;
-  std::size_t entry;
   int bandwidth;
-  cln::cl_RA low, high;  ///< the checked range: M positive semi-definite on it
   detail::ClusterSystem<cln::cl_RA> system;
   std::vector<cln::cl_RA> W, lambda;
   std::vector<char> flags;
-  std::vector<ContactSet> recent;  ///< the cases met last, the latest first
-  std::vector<CaseSigns> signs;    ///< per case met on this line
-  std::vector<cln::cl_I> pp, qq;   ///< powers of the value's numerator and denominator
 
-  ExactCases(const ExactScene& exact, std::size_t k, const cln::cl_RA& from, const cln::cl_RA& to)
-      : problem(Problem<cln::cl_RA>::from(exact, 0)), entry(k), bandwidth(problem.bandwidth()), low(from), high(to) {}
+  explicit CaseSolver(const ExactScene& exact) : problem(Problem<cln::cl_RA>::from(exact, 0)), bandwidth(problem.bandwidth()) {}
 
-  /// Remember \p closed as the latest case met (two are kept: a bisection's
-  /// bracket has a case at each end).
-  void met(const ContactSet& closed) {
-    const auto at = std::find(recent.begin(), recent.end(), closed);
-    if (at != recent.end()) recent.erase(at);
-    recent.insert(recent.begin(), closed);
-    if (recent.size() > 2) recent.pop_back();
-  }
-
-  /// Solve case \p closed at \p value by its cluster system: the quantities
-  /// whose signs decide it (CaseSigns), times Δ when \p times_determinant.
-  bool quantities(const ContactSet& closed, const cln::cl_RA& value, bool times_determinant, std::vector<cln::cl_RA>& q) {
-    problem.entries[entry].value = value;
+  /// Solve case \p closed by its cluster system at the problem's entries as
+  /// set: the quantities whose signs decide it (CaseSigns), times Δ when \p
+  /// times_determinant.
+  bool quantities(const ContactSet& closed, bool times_determinant, std::vector<cln::cl_RA>& q) {
     system.assemble(problem, bandwidth);
     flags.assign(static_cast<std::size_t>(closed.contacts()), 0);
     for (int c = 0; c < closed.contacts(); ++c) flags[static_cast<std::size_t>(c)] = closed.closed(c);
@@ -215,11 +266,170 @@ struct ExactCases {
     q.push_back(delta * (W[0] - cln::abs(problem.u[0])));
     return true;
   }
+};
 
-  /// The CaseSigns of \p closed on this line, made on first use.
+}  // namespace
+
+namespace detail {
+
+/// The polynomials of CaseSigns over the plane of two entries ex and ey of M
+/// (a map whose two axes are entries of M), per case: each Δ·quantity is a
+/// polynomial of degree at most CaseSigns::degree in each of the two entries
+/// (the argument of CaseSigns, for either entry), interpolated exactly on a
+/// grid of (degree + 1)² nodes and checked at two more points; along a line
+/// of the map (one entry fixed) it gives that line's CaseSigns without a
+/// solve.  A case whose nodes do not all solve, or that fails a check, is not
+/// valid, and its lines make their own.
+struct PlaneSigns {
+  static constexpr int degree = 4;
+  CaseSolver solver;
+  std::size_t ex, ey;
+  std::vector<cln::cl_RA> xs, ys;  ///< the nodes
+  std::array<std::pair<cln::cl_RA, cln::cl_RA>, 2> checks;
+  struct Case {
+    ContactSet closed;
+    bool valid = false;
+    std::vector<std::vector<std::vector<cln::cl_RA>>> c;  ///< c[k][m][n]: of x^m y^n in quantity k
+  };
+  std::vector<Case> cases;
+
+  PlaneSigns(const ExactScene& exact, std::size_t kx, std::size_t ky, const cln::cl_RA& x0, const cln::cl_RA& x1, const cln::cl_RA& y0,
+             const cln::cl_RA& y1)
+      : solver(exact), ex(kx), ey(ky) {
+    for (int j = 0; j <= degree; ++j) xs.push_back(x0 + (x1 - x0) * j / degree), ys.push_back(y0 + (y1 - y0) * j / degree);
+    checks = {std::pair<cln::cl_RA, cln::cl_RA>{x0 + (x1 - x0) * 3 / 8, y0 + (y1 - y0) * 5 / 8}, {x0 + (x1 - x0) * 7 / 8, y0 + (y1 - y0) / 8}};
+  }
+
+  bool quantities(const ContactSet& closed, const cln::cl_RA& x, const cln::cl_RA& y, std::vector<cln::cl_RA>& q) {
+    solver.problem.entries[ex].value = x;
+    solver.problem.entries[ey].value = y;
+    return solver.quantities(closed, true, q);
+  }
+
+  const Case& of(const ContactSet& closed) {
+    for (const Case& c : cases)
+      if (c.closed == closed) return c;
+    Case made;
+    made.closed = closed;
+    const std::size_t n = static_cast<std::size_t>(degree) + 1;
+    std::vector<std::vector<std::vector<cln::cl_RA>>> y(n, std::vector<std::vector<cln::cl_RA>>(n));  // y[i][j][k] at (xs_i, ys_j)
+    bool solved = true;
+    for (std::size_t i = 0; i < n && solved; ++i)
+      for (std::size_t j = 0; j < n && solved; ++j) solved = quantities(closed, xs[i], ys[j], y[i][j]);
+    if (solved) {
+      made.valid = true;
+      const std::size_t count = y[0][0].size();
+      for (std::size_t k = 0; k < count; ++k) {
+        // Along x at each ys_j, then each coefficient along y.
+        std::vector<std::vector<cln::cl_RA>> along_x(n);  // along_x[j][m]
+        for (std::size_t j = 0; j < n; ++j) {
+          std::vector<cln::cl_RA> v;
+          for (std::size_t i = 0; i < n; ++i) v.push_back(y[i][j][k]);
+          along_x[j] = through(xs, v);
+        }
+        std::vector<std::vector<cln::cl_RA>> c(n);
+        for (std::size_t m = 0; m < n; ++m) {
+          std::vector<cln::cl_RA> v;
+          for (std::size_t j = 0; j < n; ++j) v.push_back(along_x[j][m]);
+          c[m] = through(ys, v);
+        }
+        made.c.push_back(std::move(c));
+      }
+      std::vector<cln::cl_RA> q;
+      for (const auto& [cx, cy] : checks) {
+        if (!made.valid || !quantities(closed, cx, cy, q)) {
+          made.valid = false;
+          break;
+        }
+        for (std::size_t k = 0; k < count && made.valid; ++k) made.valid = at(made.c[k], cx, cy) == q[k];
+      }
+    }
+    cases.push_back(std::move(made));
+    return cases.back();
+  }
+
+  static cln::cl_RA at(const std::vector<std::vector<cln::cl_RA>>& c, const cln::cl_RA& x, const cln::cl_RA& y) {
+    std::vector<cln::cl_RA> in_x;
+    for (const auto& row : c) in_x.push_back(value_at(row, y));
+    return value_at(in_x, x);
+  }
+
+  /// The CaseSigns of \p closed along the line where entry \p entry (ex or
+  /// ey) varies and the other is \p fixed.
+  CaseSigns along(const ContactSet& closed, std::size_t entry, const cln::cl_RA& fixed) {
+    CaseSigns s;
+    s.closed = closed;
+    const Case& plane = of(closed);
+    s.valid = plane.valid;
+    if (!s.valid) return s;
+    const std::size_t n = static_cast<std::size_t>(degree) + 1;
+    for (const auto& c : plane.c) {
+      std::vector<cln::cl_RA> line(n);
+      for (std::size_t v = 0; v < n; ++v) {
+        std::vector<cln::cl_RA> other(n);
+        for (std::size_t w = 0; w < n; ++w) other[w] = entry == ex ? c[v][w] : c[w][v];
+        line[v] = value_at(other, fixed);
+      }
+      s.add(cleared(line));
+    }
+    return s;
+  }
+};
+
+}  // namespace detail
+
+namespace {
+
+/// The exact problem of a line, only the entry of M set at each value, for
+/// the shortcut of label_changes() where floating point cannot decide: the
+/// two cases met last are checked at the value.  A case whose every closed
+/// contact has a reaction < 0 and every open one a gap > 0, exactly, is the
+/// exact solution's case: the velocities after the collision are unique and
+/// strict complementarity fixes the closed set, so a solve finds the same
+/// case and the same velocities.  Each case is checked by its CaseSigns,
+/// made once per line from its cluster system (detail::ClusterSystem: one
+/// banded solve, no pivoting) at CaseSigns::degree + 2 values, or, where
+/// those do not check out, by its cluster system at the value itself.
+struct ExactCases {
+  CaseSolver solver;
+  std::size_t entry;
+  cln::cl_RA low, high;  ///< the checked range: M positive semi-definite on it
+  detail::PlaneSigns* plane;  ///< the polynomials over the map's plane, when the line is one of its lines
+  std::vector<ContactSet> recent;  ///< the cases met last, the latest first
+  std::vector<CaseSigns> signs;    ///< per case met on this line
+  std::vector<cln::cl_I> pp, qq;   ///< powers of the value's numerator and denominator
+
+  ExactCases(const ExactScene& exact, std::size_t k, const cln::cl_RA& from, const cln::cl_RA& to, detail::PlaneSigns* in_plane = nullptr)
+      : solver(exact), entry(k), low(from), high(to), plane(in_plane) {}
+
+  /// Remember \p closed as the latest case met (two are kept: a bisection's
+  /// bracket has a case at each end).
+  void met(const ContactSet& closed) {
+    const auto at = std::find(recent.begin(), recent.end(), closed);
+    if (at != recent.end()) recent.erase(at);
+    recent.insert(recent.begin(), closed);
+    if (recent.size() > 2) recent.pop_back();
+  }
+
+  /// Solve case \p closed at \p value by its cluster system (CaseSolver::quantities()).
+  bool quantities(const ContactSet& closed, const cln::cl_RA& value, bool times_determinant, std::vector<cln::cl_RA>& q) {
+    solver.problem.entries[entry].value = value;
+    return solver.quantities(closed, times_determinant, q);
+  }
+
+  /// The CaseSigns of \p closed on this line, made on first use: from the
+  /// plane's when it has a valid one, else interpolated on the line.
   const CaseSigns& signs_of(const ContactSet& closed) {
     for (const CaseSigns& s : signs)
       if (s.closed == closed) return s;
+    if (plane) {
+      const std::size_t fixed = entry == plane->ex ? plane->ey : plane->ex;
+      CaseSigns s = plane->along(closed, entry, solver.problem.entries[fixed].value);
+      if (s.valid) {
+        signs.push_back(std::move(s));
+        return signs.back();
+      }
+    }
     CaseSigns s;
     s.closed = closed;
     constexpr int d = CaseSigns::degree;
@@ -233,29 +443,14 @@ struct ExactCases {
     }
     if (solved) {
       s.valid = true;
+      const std::vector<cln::cl_RA> nodes(t.begin(), t.begin() + d + 1);
       for (std::size_t k = 0; k < y[0].size() && s.valid; ++k) {
-        // Newton's divided differences through t_0 … t_d, then the monomial coefficients.
-        std::vector<cln::cl_RA> dd(static_cast<std::size_t>(d + 1));
-        for (int j = 0; j <= d; ++j) dd[static_cast<std::size_t>(j)] = y[static_cast<std::size_t>(j)][k];
-        for (int level = 1; level <= d; ++level)
-          for (int j = d; j >= level; --j)
-            dd[static_cast<std::size_t>(j)] = (dd[static_cast<std::size_t>(j)] - dd[static_cast<std::size_t>(j - 1)]) /
-                                              (t[static_cast<std::size_t>(j)] - t[static_cast<std::size_t>(j - level)]);
-        std::vector<cln::cl_RA> c(static_cast<std::size_t>(d + 1), 0);
-        c[0] = dd[static_cast<std::size_t>(d)];
-        for (int j = d - 1; j >= 0; --j) {  // c(t) <- c(t)·(t − t_j) + dd_j
-          for (int m = d; m >= 1; --m) c[static_cast<std::size_t>(m)] = c[static_cast<std::size_t>(m - 1)] - t[static_cast<std::size_t>(j)] * c[static_cast<std::size_t>(m)];
-          c[0] = dd[static_cast<std::size_t>(j)] - t[static_cast<std::size_t>(j)] * c[0];
-        }
+        std::vector<cln::cl_RA> v;
+        for (int j = 0; j <= d; ++j) v.push_back(y[static_cast<std::size_t>(j)][k]);
+        const std::vector<cln::cl_RA> c = through(nodes, v);
         // The check at the extra value t_{d+1}.
-        cln::cl_RA at = 0;
-        for (int m = d; m >= 0; --m) at = at * t[static_cast<std::size_t>(d + 1)] + c[static_cast<std::size_t>(m)];
-        if (at != y[static_cast<std::size_t>(d + 1)][k]) s.valid = false;
-        cln::cl_I common = 1;
-        for (const auto& x : c) common = cln::lcm(common, cln::denominator(x));
-        std::vector<cln::cl_I> a;
-        for (const auto& x : c) a.push_back(cln::exquo(cln::numerator(x) * common, cln::denominator(x)));
-        s.polys.push_back(std::move(a));
+        if (value_at(c, t[static_cast<std::size_t>(d + 1)]) != y[static_cast<std::size_t>(d + 1)][k]) s.valid = false;
+        s.add(cleared(c));
       }
     }
     signs.push_back(std::move(s));
@@ -266,16 +461,28 @@ struct ExactCases {
   /// cases met last holds there strictly, else nothing.
   std::optional<ProvenPoint> prove(const cln::cl_RA& value) {
     const cln::cl_I p = cln::numerator(value), q = cln::denominator(value);
-    pp.assign(1, 1), qq.assign(1, 1);
-    for (int j = 1; j <= CaseSigns::degree; ++j) pp.push_back(pp.back() * p), qq.push_back(qq.back() * q);
+    const long double t = truncated(p) / truncated(q);
+    // t within 5u of p/q: neither overflowed nor (unless 0) underflowed.
+    const bool t_held = std::isfinite(t) && (cln::zerop(p) || std::fabs(t) >= std::ldexp(std::numeric_limits<long double>::min(), 64));
+    pp.clear(), qq.clear();
+    // The sign in long double where it decides, else exactly (the powers made once).
+    auto sign = [&](const CaseSigns& s, std::size_t k) {
+      if (t_held)
+        if (const std::optional<int> near = s.sign_near(k, t)) return *near;
+      if (pp.empty()) {
+        pp.assign(1, 1), qq.assign(1, 1);
+        for (int j = 1; j <= CaseSigns::degree; ++j) pp.push_back(pp.back() * p), qq.push_back(qq.back() * q);
+      }
+      return s.sign_at(k, pp, qq);
+    };
     std::vector<cln::cl_RA> at;
     for (const ContactSet& closed : recent) {
       const CaseSigns& s = signs_of(closed);
       const std::size_t contacts = static_cast<std::size_t>(closed.contacts());
       bool strict = true;
       if (s.valid) {
-        for (std::size_t k = 0; k < contacts && strict; ++k) strict = s.sign_at(k, pp, qq) > 0;
-        if (strict) return ProvenPoint{closed, s.sign_at(contacts, pp, qq) > 0};
+        for (std::size_t k = 0; k < contacts && strict; ++k) strict = sign(s, k) > 0;
+        if (strict) return ProvenPoint{closed, sign(s, contacts) > 0};
         continue;
       }
       if (!quantities(closed, value, false, at)) continue;
@@ -287,60 +494,109 @@ struct ExactCases {
 };
 
 /// A thread's means of labelling the exact solution at a value: its own copy
-/// of the scene for the exact solve, and, with a ProvenLabel along an entry
+/// of the line (a scene and the parameter, or an exact scene and the entry of
+/// M that varies) for the exact solve, and, with a ProvenLabel along an entry
 /// of M, the shortcuts tried first: a certified double solve, then the cases
-/// met last checked exactly.
+/// met last checked exactly.  Labels are numbered as they are met (ids), so
+/// that a bisection compares numbers and makes no text but for the labels
+/// themselves; a proven label is remembered by what was proven.
 struct Labeller {
-  Scene scene;
-  const Parameter& parameter;
+  Scene scene;                        ///< the line, when it is a scene and a parameter
+  const Parameter* parameter = nullptr;
+  std::optional<ExactScene> line;     ///< the line, when it is an exact scene and an entry of M
+  std::size_t line_entry = 0;
   const Label& label;
   const ProvenLabel& proven;
   std::optional<EntryProblem<double>> in_double;
   std::optional<ExactCases> exactly;
   std::array<std::atomic<std::size_t>, 3>& found_by;  ///< in double, by a case, solved
+  std::vector<std::string> names;     ///< the labels met, by id
+  std::vector<std::pair<ProvenPoint, std::optional<std::size_t>>> known;  ///< what proven() said of each point proven so far
 
+  /// Along \p p of the scene \p s, from \p low to \p high; \p entry: the entry of M \p p is, if it is one.
   Labeller(const Scene& s, const Parameter& p, const Label& l, const ProvenLabel& pl, std::optional<std::size_t> entry,
-           const std::string& low, const std::string& high, std::array<std::atomic<std::size_t>, 3>& counts)
-      : scene(s), parameter(p), label(l), proven(pl), found_by(counts) {
-    if (!entry || !proven) return;
-    const ExactScene exact = ExactScene::from(scene);
-    in_double.emplace(exact, *entry);
-    exactly.emplace(exact, *entry, parse_rational(low), parse_rational(high));
+           const cln::cl_RA& low, const cln::cl_RA& high, std::array<std::atomic<std::size_t>, 3>& counts)
+      : scene(s), parameter(&p), label(l), proven(pl), found_by(counts) {
+    if (entry && proven) shortcuts(ExactScene::from(scene), *entry, low, high);
   }
 
-  /// The label of the exact solution at \p value (\p text: the same value
-  /// as text): proven in double, else by the cases met last, else from the
-  /// exact solve.
-  std::string operator()(const cln::cl_RA& value, const std::string& text) {
+  /// Along the entry \p entry of M of \p exact, from \p low to \p high (M positive semi-definite between them).
+  /// \p plane: the case polynomials over a map's plane this line lies in, or none.
+  Labeller(const ExactScene& exact, std::size_t entry, const Label& l, const ProvenLabel& pl, const cln::cl_RA& low,
+           const cln::cl_RA& high, std::array<std::atomic<std::size_t>, 3>& counts, detail::PlaneSigns* plane)
+      : line(exact), line_entry(entry), label(l), proven(pl), found_by(counts) {
+    if (proven) shortcuts(exact, entry, low, high, plane);
+  }
+
+  void shortcuts(const ExactScene& exact, std::size_t entry, const cln::cl_RA& low, const cln::cl_RA& high, detail::PlaneSigns* plane = nullptr) {
+    in_double.emplace(exact, entry);
+    exactly.emplace(exact, entry, low, high, plane);
+  }
+
+  /// The id of the label \p name.
+  std::size_t id(const std::string& name) {
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at != names.end()) return static_cast<std::size_t>(at - names.begin());
+    names.push_back(name);
+    return names.size() - 1;
+  }
+
+  /// What proven() says of \p p, as an id.
+  std::optional<std::size_t> proven_id(const ProvenPoint& p) {
+    for (const auto& [q, l] : known)
+      if (q.closed == p.closed && q.superball == p.superball) return l;
+    const std::optional<std::string> l = proven(p);
+    known.push_back({p, l ? std::optional<std::size_t>(id(*l)) : std::nullopt});
+    return known.back().second;
+  }
+
+  /// The exact solution at \p value.
+  ExactPoint solve_at(const cln::cl_RA& value) {
+    if (!line) return solve_exact(set_value(scene, *parameter, to_string(value)));
+    line->entries[line_entry].value = value;
+    auto problem = Problem<cln::cl_RA>::from(*line);
+    auto solution = solve(problem);
+    return {std::move(problem), std::move(solution)};
+  }
+
+  /// The id of the label of the exact solution at \p value: proven in
+  /// double, else by the cases met last, else from the exact solve.
+  std::size_t operator()(const cln::cl_RA& value) {
     if (exactly) {
-      std::optional<std::string> l;
+      std::optional<std::size_t> l;
       std::optional<ProvenPoint> p;
       std::size_t by = 0;
       for (; by < 2 && !l; ++by) {
         p = by == 0 ? in_double->prove(value) : exactly->prove(value);
-        if (p) l = proven(*p);
+        if (p) l = proven_id(*p);
       }
       if (l) {
         ++found_by[by - 1];
         exactly->met(p->closed);
-        return std::move(*l);
+        return *l;
       }
     }
     ++found_by[2];
-    const ExactPoint e = solve_exact(set_value(scene, parameter, text));
+    const ExactPoint e = solve_at(value);
     if (exactly) exactly->met(e.solution.closed);
-    return label(e);
+    return id(label(e));
   }
+};
+
+/// A change of label, the labels as Labeller ids.
+struct IdChange {
+  cln::cl_RA low, high;
+  std::size_t below, above;
 };
 
 /// Every change of label inside \p c (c.below at c.low, c.above at
 /// c.high, different), found by \p bits halvings, appended to \p out from
 /// c.low to c.high: where the midpoint's label is neither end's, both halves
 /// hold a change and both are searched.
-void bisect(Labeller& label_at, LabelChange c, int bits, std::vector<LabelChange>& out) {
+void bisect(Labeller& label_at, IdChange c, int bits, std::vector<LabelChange>& out) {
   for (; bits > 0; --bits) {
     const cln::cl_RA mid = (c.low + c.high) / 2;
-    std::string l = label_at(mid, to_string(mid));
+    const std::size_t l = label_at(mid);
     if (l == c.below) {
       c.low = mid;
     } else if (l == c.above) {
@@ -348,10 +604,16 @@ void bisect(Labeller& label_at, LabelChange c, int bits, std::vector<LabelChange
     } else {
       bisect(label_at, {c.low, mid, c.below, l}, bits - 1, out);
       c.low = mid;
-      c.below = std::move(l);
+      c.below = l;
     }
   }
-  out.push_back(std::move(c));
+  out.push_back({c.low, c.high, label_at.names[c.below], label_at.names[c.above]});
+}
+
+void check_bits(int bits, const char* function) {
+  if (bits < 1 || bits > max_bits)
+    throw std::invalid_argument(std::string(function) + ": bits must be a whole number from 1 to " + std::to_string(max_bits) + ", got " +
+                                std::to_string(bits));
 }
 
 }  // namespace
@@ -360,8 +622,7 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
                                        const Label& label, int bits, int threads, const ProvenLabel& proven, LabelCounts* counts) {
   check_threads(threads);
   refuse_drop(scene, "label_changes()");
-  if (bits < 1 || bits > max_bits)
-    throw std::invalid_argument("label_changes(): bits must be a whole number from 1 to " + std::to_string(max_bits) + ", got " + std::to_string(bits));
+  check_bits(bits, "label_changes()");
   for (std::size_t k = 1; k < values.size(); ++k)
     if (values[k] == values[k - 1] || (values[k] > values[k - 1]) != (values[1] > values[0]))
       throw std::invalid_argument("label_changes(): the values must be strictly increasing or strictly decreasing");
@@ -379,15 +640,14 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
   // (the cases met at the values are the first the bisections try).
   const bool one_thread = thread_count(threads) == 1 || values.size() < 2;
   std::shared_ptr<Labeller> only;
-  const std::string& low = texts.front();
-  const std::string& high = texts.back();
-  if (one_thread) only = std::make_shared<Labeller>(first, parameter, label, proven, entry, low, high, found_by);
-  auto make_labeller = [&] {
-    return one_thread ? only : std::make_shared<Labeller>(first, parameter, label, proven, entry, low, high, found_by);
+  auto make = [&] {
+    return std::make_shared<Labeller>(first, parameter, label, proven, entry, parse_rational(texts.front()), parse_rational(texts.back()), found_by);
   };
+  if (one_thread) only = make();
+  auto make_labeller = [&] { return one_thread ? only : make(); };
   using Own = std::shared_ptr<Labeller>;
   const std::vector<std::string> labels = parallel_map(texts.size(), threads, make_labeller, [&](Own& label_at, std::size_t k) {
-    return (*label_at)(parse_rational(texts[k]), texts[k]);
+    return label_at->names[(*label_at)(parse_rational(texts[k]))];
   });
   std::vector<std::size_t> changes;  // k: the label changes between values k − 1 and k
   for (std::size_t k = 1; k < texts.size(); ++k)
@@ -395,7 +655,7 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
   const auto found = parallel_map(changes.size(), threads, make_labeller, [&](Own& label_at, std::size_t m) {
     const std::size_t k = changes[m];
     std::vector<LabelChange> out;
-    bisect(*label_at, {parse_rational(texts[k - 1]), parse_rational(texts[k]), labels[k - 1], labels[k]}, bits, out);
+    bisect(*label_at, {parse_rational(texts[k - 1]), parse_rational(texts[k]), label_at->id(labels[k - 1]), label_at->id(labels[k])}, bits, out);
     return out;
   });
   std::vector<LabelChange> all;
@@ -403,6 +663,28 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
   if (counts) *counts = {found_by[0], found_by[1], found_by[2]};
   return all;
 }
+
+namespace detail {
+
+std::shared_ptr<PlaneSigns> plane_signs(const ExactScene& corner, std::size_t kx, std::size_t ky, const cln::cl_RA& x0, const cln::cl_RA& x1,
+                                        const cln::cl_RA& y0, const cln::cl_RA& y1) {
+  return std::make_shared<PlaneSigns>(corner, kx, ky, x0, x1, y0, y1);
+}
+
+std::vector<LabelChange> entry_label_changes(const ExactScene& line, std::size_t entry, const cln::cl_RA& a, const cln::cl_RA& b,
+                                             const Label& label, const ProvenLabel& proven, int bits, PlaneSigns* plane) {
+  check_bits(bits, "entry_label_changes()");
+  const cln::cl_RA& low = a < b ? a : b;
+  const cln::cl_RA& high = a < b ? b : a;
+  std::array<std::atomic<std::size_t>, 3> found_by{};
+  Labeller label_at(line, entry, label, proven, low, high, found_by, plane);
+  const std::size_t below = label_at(low), above = label_at(high);
+  std::vector<LabelChange> out;
+  if (below != above) bisect(label_at, {low, high, below, above}, bits, out);
+  return out;
+}
+
+}  // namespace detail
 
 std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int first, int count) {
   if (steps < 2) throw std::invalid_argument("linspace(): steps must be at least 2, got " + std::to_string(steps));

@@ -5,12 +5,14 @@
 // the number of threads, and bad axes are refused before anything is solved.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 #include <string>
@@ -252,6 +254,76 @@ TEST(Map, TheMapDoesNotDependOnTheThreads) {
   expect_same_maps(a, b);
 }
 
+
+/// The regions as map() labels them, exactly and from a proven solve.
+const numeric::Label by_region = [](const numeric::ExactPoint& e) { return numeric::Region::of(e).label(); };
+const numeric::ProvenLabel proven_region = [](const numeric::ProvenPoint& p) -> std::optional<std::string> {
+  if (!p.superball) return std::nullopt;
+  return numeric::Region{p.closed, *p.superball}.label();
+};
+
+TEST(Map, ABoundaryAlongAnEntryOfMIsTheBisectionOfExactSolves) {
+  // The map's bisection (one exact scene, the entry set per value, labels
+  // proven in double or by the cases met last) against label_changes() with
+  // every label from an exact solve of the scene written with its value:
+  // the same brackets and regions, ascending and descending.
+  const Scene scene = load_scene(kPaper);
+  const Parameter k34 = Parameter::parse("K.3-4", scene), alpha2 = Parameter::parse("alpha.2", scene);
+  int compared = 0;
+  for (const int alpha : {-100, -40, -15}) {
+    const Scene line = numeric::with_value(scene, alpha2, alpha);
+    const auto entry = numeric::detail::entry_changed(line, numeric::with_value(line, k34, 20));
+    ASSERT_TRUE(entry);
+    const ExactScene exact = ExactScene::from(line, ExactScene::MCheck::Caller);
+    const auto values = numeric::linspace(0, 20, 9);
+    for (std::size_t k = 0; k + 1 < values.size(); ++k)
+      for (const bool ascending : {true, false}) {
+        const cl_RA& a = ascending ? values[k] : values[k + 1];
+        const cl_RA& b = ascending ? values[k + 1] : values[k];
+        const auto reference = numeric::label_changes(line, k34, {a, b}, by_region, 64, 1);
+        const auto fast = numeric::detail::entry_label_changes(exact, *entry, a, b, by_region, proven_region, 64);
+        ASSERT_EQ(fast.size(), reference.size()) << "alpha.2 = " << alpha << ", K.3-4 from " << approx(a);
+        for (std::size_t c = 0; c < fast.size(); ++c) {
+          EXPECT_TRUE(fast[c].low == reference[c].low && fast[c].high == reference[c].high);
+          EXPECT_EQ(fast[c].below, reference[c].below);
+          EXPECT_EQ(fast[c].above, reference[c].above);
+          ++compared;
+        }
+      }
+  }
+  EXPECT_GE(compared, 6);  // each line crosses a boundary: case or superball edge, both directions
+  EXPECT_THROW(numeric::detail::entry_label_changes(ExactScene::from(scene), 0, 0, 1, by_region, proven_region, 0), std::invalid_argument);
+}
+
+TEST(Map, TheBoundaryStageDoesNotDependOnTheThreadsAlongEntriesOfMOrNot) {
+  // The paper map along two entries of M (case boundaries, the superball and
+  // the PSD edges), and one along a mass (each line a scene): 1 and 3 threads
+  // give the same map, and every boundary of the first is the bisection of
+  // exact solves along its grid step.
+  const Scene scene = load_scene(kPaper);
+  numeric::MapSettings one, three;
+  three.threads = 3;
+  const auto x = axis(scene, "K.3-4", 20, 0, 9), y = axis(scene, "alpha.2", -150, 0, 7);
+  const numeric::Map a = numeric::map(scene, x, y, one), b = numeric::map(scene, x, y, three);
+  expect_same_maps(a, b);
+  int bisected = 0;
+  for (const numeric::MapBoundary& c : a.boundaries) {
+    if (c.below_psd != c.above_psd) continue;
+    const Scene line = c.along_x ? numeric::with_value(scene, y.parameter, y.values()[static_cast<std::size_t>(c.j)])
+                                 : numeric::with_value(scene, x.parameter, x.values()[static_cast<std::size_t>(c.i)]);
+    const numeric::Axis& along = c.along_x ? x : y;
+    const std::size_t at = static_cast<std::size_t>(c.along_x ? c.i : c.j);
+    const auto reference = numeric::label_changes(line, along.parameter, {along.values()[at], along.values()[at + 1]}, by_region, 64, 1);
+    const bool found = std::any_of(reference.begin(), reference.end(), [&](const numeric::LabelChange& r) {
+      return r.low == c.low && r.high == c.high && r.below == c.below.label() && r.above == c.above.label();
+    });
+    EXPECT_TRUE(found) << "boundary (" << c.i << ", " << c.j << ")";
+    ++bisected;
+  }
+  EXPECT_GT(bisected, 0);
+  const auto m = axis(scene, "mass.1", 1, 3, 5);
+  expect_same_maps(numeric::map(scene, m, y, one), numeric::map(scene, m, y, three));
+}
 
 TEST(Map, PointsAndBoundariesAsTextReadBackExactly) {
   // Hand-made fields at the edges of what the text must carry: ratios that
