@@ -62,42 +62,237 @@ void widen(MpFloat& x, long bits) {
   r.prec = bits;  // the low bits below the old precision are zero already
 }
 
+// Products and quotients of two regular numbers of one precision p of 2 to
+// MpFloat::inline_limbs words, computed here on the words: mpfr_mul takes
+// about twice the instructions at these sizes (callgrind: 105 against 226 at
+// 127 bits; its dispatch on precision, flags in thread-local storage).  Each result is the exact one
+// rounded once to nearest, ties to even: what MPFR gives, bit for bit
+// (tests/numeric/mpfloat_arithmetic_test.cpp compares them on random operands).
+namespace fast {
+
+__extension__ typedef unsigned __int128 Wide;  // GCC and Clang's 128-bit integer
+using Limb = std::uint64_t;
+/// Exponents this far from 0 leave the work to MPFR (its range is ±(2^30 − 1)).
+constexpr long kSafeExp = 1L << 29;
+
+/// Rounds 0.W × 2^E (W: N + 1 words, the top bit of W[N] set; \p sticky:
+/// nonzero bits below W) to p bits into \p out's significand, exponent and
+/// precision (the sign is the caller's), to nearest, ties to even.  False,
+/// out untouched, when E leaves the safe range.
+template <int N>
+bool round_into(const Limb* W, bool sticky, long E, long p, MpFloat::Raw& out) {
+  if (E < -kSafeExp || E > kSafeExp) return false;  // before out is touched: out may be an operand
+  const int unused = static_cast<int>(64L * N - p);  // low bits of the lowest word, 0 … 63
+  bool half;                                         // the bit just below the last one kept
+  if (unused > 0) {
+    half = ((W[1] >> (unused - 1)) & 1) != 0;
+    sticky = sticky || W[0] != 0 || (W[1] & ((Limb(1) << (unused - 1)) - 1)) != 0;
+  } else {
+    half = (W[0] >> 63) != 0;
+    sticky = sticky || (W[0] << 1) != 0;
+  }
+  Limb* d = out.d;
+  const Limb ulp = Limb(1) << unused;
+  d[0] = W[1] & ~(ulp - 1);
+  for (int k = 1; k < N; ++k) d[k] = W[k + 1];
+  if (half && (sticky || (d[0] & ulp) != 0)) {  // up: past the half, or a tie with an odd last bit
+    d[0] += ulp;
+    bool carry = d[0] < ulp;
+    for (int k = 1; k < N; ++k) {
+      d[k] += carry ? 1 : 0;
+      carry = carry && d[k] == 0;
+    }
+    if (carry) {  // all ones rounded up: 0.1 × 2^(E + 1)
+      d[N - 1] = Limb(1) << 63;
+      ++E;
+    }
+  }
+  out.exp = E;
+  out.prec = p;
+  return true;
+}
+
+/// a × b, both regular, of p bits in N words, into out.
+template <int N>
+bool mul(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+  Limb P[2 * N];
+  for (int j = 0; j < N; ++j) {  // the first row
+    const Wide t = Wide(a.d[0]) * b.d[j] + (j > 0 ? P[j] : 0);
+    P[j] = static_cast<Limb>(t), P[j + 1] = static_cast<Limb>(t >> 64);
+  }
+  for (int i = 1; i < N; ++i) {
+    Limb carry = 0;
+    for (int j = 0; j < N; ++j) {
+      const Wide t = Wide(a.d[i]) * b.d[j] + P[i + j] + carry;
+      P[i + j] = static_cast<Limb>(t), carry = static_cast<Limb>(t >> 64);
+    }
+    P[i + N] = carry;
+  }
+  long E = a.exp + b.exp;
+  if ((P[2 * N - 1] >> 63) == 0) {  // 0.01…: one place left
+    for (int k = 2 * N - 1; k > 0; --k) P[k] = (P[k] << 1) | (P[k - 1] >> 63);
+    P[0] <<= 1;
+    --E;
+  }
+  bool sticky = false;
+  for (int k = 0; k < N - 1; ++k) sticky = sticky || P[k] != 0;
+  const int sign = a.sign * b.sign;
+  if (!round_into<N>(P + N - 1, sticky, E, p, out)) return false;
+  out.sign = sign;
+  return true;
+}
+
+/// a / b, both regular, of p bits in N words, into out.
+template <int N>
+bool div(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+  // q = ⌊A·2^(64(N+1)) / B⌋ on N + 2 words: A/B in (1/2, 2), so q has
+  // 64(N + 1) bits or one more; the remainder is the sticky bit.
+  Limb num[2 * N + 1] = {}, q[N + 2], rem[N];
+  for (int k = 0; k < N; ++k) num[N + 1 + k] = a.d[k];
+  mpn_tdiv_qr(q, rem, 0, num, 2 * N + 1, b.d, N);
+  bool sticky = false;
+  for (int k = 0; k < N; ++k) sticky = sticky || rem[k] != 0;
+  long E = a.exp - b.exp;  // A/B = 0.q[0 … N] × 2^E when q[N + 1] = 0
+  if (q[N + 1] != 0) {
+    sticky = sticky || (q[0] & 1) != 0;
+    for (int k = 0; k <= N; ++k) q[k] = (q[k] >> 1) | (q[k + 1] << 63);
+    ++E;
+  }
+  const int sign = a.sign * b.sign;
+  if (!round_into<N>(q, sticky, E, p, out)) return false;
+  out.sign = sign;
+  return true;
+}
+
+/// round_into() for N = 2 on 128-bit numbers: S (top bit set) + F/2^128,
+/// \p sticky for nonzero bits below F.
+bool round_into2(Wide S, Wide F, bool sticky, long E, long p, MpFloat::Raw& out) {
+  if (E < -kSafeExp || E > kSafeExp) return false;
+  const int unused = static_cast<int>(128 - p);  // 0 … 63
+  bool half;
+  Wide ulp = 1;
+  if (unused > 0) {
+    const Wide h = Wide(1) << (unused - 1);
+    half = (S & h) != 0;
+    sticky = sticky || (S & (h - 1)) != 0 || F != 0;
+    ulp = h << 1;
+    S &= ~(ulp - 1);
+  } else {
+    half = (F >> 127) != 0;
+    sticky = sticky || (F << 1) != 0;
+  }
+  if (half && (sticky || (S & ulp) != 0)) {
+    S += ulp;
+    if (S == 0) S = Wide(1) << 127, ++E;  // all ones rounded up
+  }
+  out.d[0] = static_cast<Limb>(S), out.d[1] = static_cast<Limb>(S >> 64);
+  out.exp = E;
+  out.prec = p;
+  return true;
+}
+
+template <>
+bool mul<2>(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+  const Wide ll = Wide(a.d[0]) * b.d[0], lh = Wide(a.d[0]) * b.d[1], hl = Wide(a.d[1]) * b.d[0], hh = Wide(a.d[1]) * b.d[1];
+  const Wide mid = (ll >> 64) + static_cast<Limb>(lh) + static_cast<Limb>(hl);  // < 3 · 2^64
+  Wide H = hh + (lh >> 64) + (hl >> 64) + (mid >> 64);
+  Wide L = (mid << 64) | static_cast<Limb>(ll);
+  long E = a.exp + b.exp;
+  if ((H >> 127) == 0) {  // 0.01…: one place left
+    H = (H << 1) | (L >> 127), L <<= 1;
+    --E;
+  }
+  const int sign = a.sign * b.sign;
+  if (!round_into2(H, L, false, E, p, out)) return false;
+  out.sign = sign;
+  return true;
+}
+
+enum class Kind { add, sub, mul, div };
+
+template <int N>
+bool apply(Kind kind, const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+  return kind == Kind::mul ? mul<N>(a, b, p, out) : div<N>(a, b, p, out);
+}
+
+/// out = a × b or a / b here when both are regular of one precision of 2 …
+/// 6 words (false, out untouched, when MPFR must do it).  Sums are left to
+/// MPFR (a 2-word sum written here made the solve no faster), and so are
+/// quotients of 2 words (mpfr_div's 2-word path beats mpn_tdiv_qr).
+bool operate(Kind kind, const MpFloat::Raw& a, const MpFloat::Raw& b, MpFloat::Raw& out) {
+  if (kind == Kind::add || kind == Kind::sub || a.prec != b.prec || a.exp <= __MPFR_EXP_INF || b.exp <= __MPFR_EXP_INF) return false;
+  switch ((a.prec + 63) / 64) {
+    case 2: return kind == Kind::mul && mul<2>(a, b, a.prec, out);
+    case 3: return apply<3>(kind, a, b, a.prec, out);
+    case 4: return apply<4>(kind, a, b, a.prec, out);
+    case 5: return apply<5>(kind, a, b, a.prec, out);
+    case 6: return apply<6>(kind, a, b, a.prec, out);
+    default: return false;
+  }
+}
+static_assert(MpFloat::inline_limbs == 6, "operate() takes 2 … inline_limbs words");
+
+}  // namespace fast
+
+/// x × y or x / y (\p kind) exactly when y, of lower precision than x (a
+/// constant of the solver, as the 2 of x / 2), is ±2^k and x is regular: x's
+/// significand, its exponent moved, into \p out (x's precision, as MPFR
+/// rounds it: exact).  False otherwise.
+bool power_of_two(fast::Kind kind, const MpFloat& x, const MpFloat& y, MpFloat& out) {
+  const MpFloat::Raw& rx = *x.raw();
+  const MpFloat::Raw& ry = *y.raw();
+  if (rx.exp <= __MPFR_EXP_INF || ry.exp <= __MPFR_EXP_INF) return false;
+  const long n = words(ry.prec);
+  if (ry.d[n - 1] != std::uint64_t(1) << 63) return false;
+  for (long k = 0; k + 1 < n; ++k)
+    if (ry.d[k] != 0) return false;
+  const long e = kind == fast::Kind::mul ? rx.exp + ry.exp - 1 : rx.exp - ry.exp + 1;  // y = 2^(ey − 1)
+  if (e < -fast::kSafeExp || e > fast::kSafeExp) return false;
+  const int sign = rx.sign * ry.sign;
+  if (&out != &x) out = x;
+  out.raw()->exp = e, out.raw()->sign = sign;
+  return true;
+}
+
 /// a op b rounded to the larger precision; an operand of lower precision
 /// (a constant) is first widened exactly to the larger one, so that MPFR
 /// takes its paths for operands of one precision (2–3× faster below 192 bits).
-MpFloat binary(const MpFloat& a, const MpFloat& b, Op op) {
+MpFloat binary(const MpFloat& a, const MpFloat& b, Op op, fast::Kind kind) {
   const long p = std::max(a.precision(), b.precision());
   MpFloat r = MpFloat::zero(p);
   if (a.precision() == b.precision()) {
-    op(mp(r), mp(a), mp(b), MPFR_RNDN);
+    if (!fast::operate(kind, *a.raw(), *b.raw(), *r.raw())) op(mp(r), mp(a), mp(b), MPFR_RNDN);
   } else {
-    MpFloat wide = a.precision() < p ? a : b;
+    const bool a_low = a.precision() < p;
+    const bool scales = kind == fast::Kind::mul || (kind == fast::Kind::div && !a_low);
+    if (scales && power_of_two(kind, a_low ? b : a, a_low ? a : b, r)) return r;
+    MpFloat wide = a_low ? a : b;
     widen(wide, p);
-    if (a.precision() < p)
-      op(mp(r), mp(wide), mp(b), MPFR_RNDN);
-    else
-      op(mp(r), mp(a), mp(wide), MPFR_RNDN);
+    const MpFloat& x = a.precision() < p ? wide : a;
+    const MpFloat& y = a.precision() < p ? b : wide;
+    if (!fast::operate(kind, *x.raw(), *y.raw(), *r.raw())) op(mp(r), mp(x), mp(y), MPFR_RNDN);
   }
   return r;
 }
 
 /// x op= y, in place: x is widened first when y is the more precise.
-MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op) {
-  if (x.precision() < y.precision() && x.raw()->exp == __MPFR_EXP_ZERO && y.raw()->exp > __MPFR_EXP_INF &&
-      (op == static_cast<Op>(mpfr_add) || op == static_cast<Op>(mpfr_sub))) {  // 0 ± y: exact, the sum started at S(0)
-    x = y;
-    if (op == static_cast<Op>(mpfr_sub)) x.raw()->sign = -x.raw()->sign;
+MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op, fast::Kind kind) {
+  const bool additive = kind == fast::Kind::add || kind == fast::Kind::sub;
+  if (x.precision() < y.precision() && x.raw()->exp == __MPFR_EXP_ZERO && y.raw()->exp > __MPFR_EXP_INF && additive) {
+    x = y;  // 0 ± y: exact, the sum started at S(0)
+    if (kind == fast::Kind::sub) x.raw()->sign = -x.raw()->sign;
     return x;
   }
   if (x.precision() == y.precision()) {
-    op(mp(x), mp(x), mp(y), MPFR_RNDN);
+    if (!fast::operate(kind, *x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
   } else if (x.precision() > y.precision()) {
+    if ((kind == fast::Kind::mul || kind == fast::Kind::div) && power_of_two(kind, x, y, x)) return x;
     MpFloat wide = y;
     widen(wide, x.precision());
-    op(mp(x), mp(x), mp(wide), MPFR_RNDN);
+    if (!fast::operate(kind, *x.raw(), *wide.raw(), *x.raw())) op(mp(x), mp(x), mp(wide), MPFR_RNDN);
   } else {
     widen(x, y.precision());
-    op(mp(x), mp(x), mp(y), MPFR_RNDN);
+    if (!fast::operate(kind, *x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
   }
   return x;
 }
@@ -166,15 +361,15 @@ MpFloat& MpFloat::operator=(MpFloat&& other) noexcept {
   return *this;
 }
 
-MpFloat& MpFloat::operator+=(const MpFloat& x) { return in_place(*this, x, mpfr_add); }
-MpFloat& MpFloat::operator-=(const MpFloat& x) { return in_place(*this, x, mpfr_sub); }
-MpFloat& MpFloat::operator*=(const MpFloat& x) { return in_place(*this, x, mpfr_mul); }
-MpFloat& MpFloat::operator/=(const MpFloat& x) { return in_place(*this, x, mpfr_div); }
+MpFloat& MpFloat::operator+=(const MpFloat& x) { return in_place(*this, x, mpfr_add, fast::Kind::add); }
+MpFloat& MpFloat::operator-=(const MpFloat& x) { return in_place(*this, x, mpfr_sub, fast::Kind::sub); }
+MpFloat& MpFloat::operator*=(const MpFloat& x) { return in_place(*this, x, mpfr_mul, fast::Kind::mul); }
+MpFloat& MpFloat::operator/=(const MpFloat& x) { return in_place(*this, x, mpfr_div, fast::Kind::div); }
 
-MpFloat operator+(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_add); }
-MpFloat operator-(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_sub); }
-MpFloat operator*(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_mul); }
-MpFloat operator/(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_div); }
+MpFloat operator+(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_add, fast::Kind::add); }
+MpFloat operator-(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_sub, fast::Kind::sub); }
+MpFloat operator*(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_mul, fast::Kind::mul); }
+MpFloat operator/(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_div, fast::Kind::div); }
 MpFloat sqrt(const MpFloat& x) {
   MpFloat r = MpFloat::zero(x.precision());
   mpfr_sqrt(mp(r), mp(x), MPFR_RNDN);
