@@ -170,21 +170,27 @@ std::vector<MapCurve> chain(const Map& m) {
 /// semi-definite when \p a_psd) and \p b (where it is when !a_psd) on a line
 /// whose exact scene (M unchecked) at a value v is \p at(v), to \p bits
 /// halvings: along a line the PSD set is an interval, so there is one change.
+/// Where each entry of M sits in M written on its pairs (sorted): (row,
+/// column) per entry of \p entries, and the number of pairs.
+std::pair<std::vector<std::pair<int, int>>, Eigen::Index> entry_positions(const std::vector<Entry<cln::cl_RA>>& entries) {
+  std::vector<std::pair<int, int>> pairs, at;
+  for (const auto& e : entries) pairs.push_back({e.i, e.j}), pairs.push_back({e.k, e.l});
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  auto index = [&](int i, int j) { return static_cast<int>(std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(i, j)) - pairs.begin()); };
+  for (const auto& e : entries) at.push_back({index(e.i, e.j), index(e.k, e.l)});
+  return {at, static_cast<Eigen::Index>(pairs.size())};
+}
+
 template <class At>
 MapBoundary psd_edge(const At& at, cln::cl_RA a, cln::cl_RA b, bool a_psd, int bits) {
   Eigen::MatrixXd M, work;
-  Eigen::LLT<Eigen::MatrixXd> llt;
   // M on its pairs in double, decided by detail::psd_by_floating_point() where it can, else exactly.
   auto psd = [&](const ExactScene& s) {
-    std::vector<std::pair<int, int>> pairs;
-    for (const auto& e : s.entries) pairs.push_back({e.i, e.j}), pairs.push_back({e.k, e.l});
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    auto index = [&](int i, int j) { return static_cast<Eigen::Index>(std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(i, j)) - pairs.begin()); };
-    const auto size = static_cast<Eigen::Index>(pairs.size());
+    const auto [at, size] = entry_positions(s.entries);
     M = Eigen::MatrixXd::Zero(size, size);
-    for (const auto& e : s.entries) M(index(e.i, e.j), index(e.k, e.l)) = M(index(e.k, e.l), index(e.i, e.j)) = cln::double_approx(e.value);
-    const std::optional<bool> clear = detail::psd_by_floating_point(M, work, llt);
+    for (std::size_t k = 0; k < at.size(); ++k) M(at[k].first, at[k].second) = M(at[k].second, at[k].first) = cln::double_approx(s.entries[k].value);
+    const std::optional<bool> clear = detail::psd_by_floating_point(M, work);
     return clear ? *clear : positive_semidefinite(s);
   };
   for (; bits > 0; --bits) {
@@ -279,13 +285,8 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
   auto make_state = [&] {
     const ExactScene exact = ExactScene::from(corner, ExactScene::MCheck::Caller);
     State st{exact, Batch<S>(exact, {kx, ky}, digits), {}, {}, {}};
-    std::vector<std::pair<int, int>> pairs;
-    for (const auto& e : st.exact.entries) pairs.push_back({e.i, e.j}), pairs.push_back({e.k, e.l});
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    auto index = [&](int i, int j) { return static_cast<int>(std::lower_bound(pairs.begin(), pairs.end(), std::make_pair(i, j)) - pairs.begin()); };
-    for (const auto& e : st.exact.entries) st.at.push_back({index(e.i, e.j), index(e.k, e.l)});
-    const auto size = static_cast<Eigen::Index>(pairs.size());
+    Eigen::Index size = 0;
+    std::tie(st.at, size) = entry_positions(st.exact.entries);
     st.M = Eigen::MatrixXd::Zero(size, size);
     st.work.resize(size, size);
     return st;
