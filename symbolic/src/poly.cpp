@@ -516,12 +516,14 @@ GiNaC::ex Poly::to_ex(const Symbols& symbols) const {
       if (const int e = exponent(t, k)) factors.push_back(e == 1 ? symbols.all()[static_cast<std::size_t>(k)].symbol
                                                                   : GiNaC::pow(symbols.all()[static_cast<std::size_t>(k)].symbol, e));
     const GiNaC::numeric c{cln::cl_N(coef_[t])};
-    if (factors.empty())
+    if (factors.empty()) {
       terms.push_back(c);
-    else if (factors.size() == 1 && c.is_equal(1))
+    } else if (factors.size() == 1 && c.is_equal(1)) {
       terms.push_back(factors.front());
-    else
-      terms.push_back(GiNaC::ex(GiNaC::mul(factors)) * c);
+    } else {
+      if (!c.is_equal(1)) factors.push_back(c);  // one product, its coefficient in it
+      terms.push_back(GiNaC::mul(factors));
+    }
   }
   if (terms.empty()) return 0;
   if (terms.size() == 1) return terms.front();
