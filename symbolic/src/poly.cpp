@@ -508,26 +508,27 @@ cln::cl_I Poly::evaluate(const std::vector<cln::cl_I>& point) const {
 
 GiNaC::ex Poly::to_ex(const Symbols& symbols) const {
   if (static_cast<int>(symbols.all().size()) != vars_) throw std::invalid_argument("Poly::to_ex(): the symbols do not match");
-  GiNaC::exvector terms;
-  terms.reserve(size());
+  // The sum as (monomial, coefficient) pairs and the constant term apart, as
+  // GiNaC keeps it: no term is split into that form again.
+  GiNaC::epvector pairs;
+  pairs.reserve(size());
+  GiNaC::ex constant = 0;
   for (std::size_t t = 0; t < size(); ++t) {
-    GiNaC::exvector factors;
+    GiNaC::epvector powers;
     for (int k = 0; k < vars_; ++k)
-      if (const int e = exponent(t, k)) factors.push_back(e == 1 ? symbols.all()[static_cast<std::size_t>(k)].symbol
-                                                                  : GiNaC::pow(symbols.all()[static_cast<std::size_t>(k)].symbol, e));
+      if (const int e = exponent(t, k)) powers.emplace_back(symbols.all()[static_cast<std::size_t>(k)].symbol, e);
     const GiNaC::numeric c{cln::cl_N(coef_[t])};
-    if (factors.empty()) {
-      terms.push_back(c);
-    } else if (factors.size() == 1 && c.is_equal(1)) {
-      terms.push_back(factors.front());
+    if (powers.empty()) {
+      constant = c;
+    } else if (powers.size() == 1) {
+      const GiNaC::expair& p = powers.front();
+      pairs.emplace_back(p.coeff.is_equal(1) ? p.rest : GiNaC::pow(p.rest, p.coeff), c);
     } else {
-      if (!c.is_equal(1)) factors.push_back(c);  // one product, its coefficient in it
-      terms.push_back(GiNaC::mul(factors));
+      pairs.emplace_back(GiNaC::mul(std::move(powers)), c);
     }
   }
-  if (terms.empty()) return 0;
-  if (terms.size() == 1) return terms.front();
-  return GiNaC::ex(GiNaC::add(terms));
+  if (pairs.empty()) return constant;
+  return GiNaC::add(std::move(pairs), constant);
 }
 
 Poly determinant(const std::vector<Poly>& m, int n, int vars) {
