@@ -36,7 +36,7 @@ void add_derive(CLI::App& app, Action& action) {
     DistributeOptions distribute;
     std::string format = "text", output;
     int jobs = 0;
-    bool expanded = false;
+    bool expanded = false, task_cpu = false;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("derive", "Solve evolution cases symbolically: velocities, reactions and the conditions, exact and asymptotic");
@@ -104,6 +104,8 @@ void add_derive(CLI::App& app, Action& action) {
   cmd->add_option("--jobs,-j", o->jobs,
                   "Worker processes (default 0: all cores; at most " + std::to_string(numeric::max_threads) + "); the output does not depend on it")
       ->capture_default_str();
+  // Hidden: how evenly the work is split (the share of the largest task), for measurements.
+  cmd->add_flag("--task-cpu", o->task_cpu, "After the run, say on standard error the CPU of the tasks and the largest one's share")->group("");
   cmd->callback([o, cmd, &action] {
     action = [o, cmd]() -> int {
       const present::DeriveFormat format = present::parse_derive_format(o->format);
@@ -202,6 +204,7 @@ void add_derive(CLI::App& app, Action& action) {
                   throw OutputError(e.what());
                 }
               });
+          if (o->task_cpu && workers) std::cerr << "derive: " << task_cpu_summary(workers->task_cpu_seconds(), [&](std::size_t j) { return name(run.todo()[j]); }) << "\n";
           if (!writes) return ok;  // a part file, or a rank other than 0
           if (json && shared) emit("]\n");
         }  // either way the progress line is erased before anything is written to standard output

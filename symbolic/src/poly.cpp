@@ -80,11 +80,75 @@ Poly Poly::variable(int vars, int k) {
   return p;
 }
 
+namespace {
+
+/// Reads \p e term by term when it is already an expanded polynomial with
+/// integer coefficients (a sum of integer multiples of products of powers of
+/// symbols): no expand(), which rebuilds every term.  False for anything
+/// else (Poly::from_ex() then drops what was read and expands it).
+bool read_expanded(const GiNaC::ex& e, const Symbols& symbols, int words, std::vector<std::uint64_t>& mono, std::vector<cln::cl_I>& coef) {
+  std::vector<std::uint64_t> m(static_cast<std::size_t>(words));
+  auto factor = [&](const GiNaC::ex& f, cln::cl_I& c) {
+    if (GiNaC::is_a<GiNaC::numeric>(f)) {
+      const auto& n = GiNaC::ex_to<GiNaC::numeric>(f);
+      if (!n.is_integer()) return false;
+      c = c * cln::the<cln::cl_I>(n.to_cl_N());
+      return true;
+    }
+    GiNaC::ex base = f;
+    int power = 1;
+    if (GiNaC::is_a<GiNaC::power>(f)) {
+      base = f.op(0);
+      const GiNaC::ex exponent = f.op(1);
+      if (!exponent.info(GiNaC::info_flags::posint) || GiNaC::ex_to<GiNaC::numeric>(exponent) > Poly::max_exponent) return false;
+      power = GiNaC::ex_to<GiNaC::numeric>(exponent).to_int();
+    }
+    const SymbolInfo* info = GiNaC::is_a<GiNaC::symbol>(base) ? symbols.find(base) : nullptr;
+    if (!info) return false;
+    const int k = info->rank;
+    const std::uint64_t shifted = static_cast<std::uint64_t>(power) << shift_of(k);
+    if (m[static_cast<std::size_t>(k / 8)] & (std::uint64_t{0xFF} << shift_of(k))) return false;  // a symbol twice: not canonical
+    m[static_cast<std::size_t>(k / 8)] |= shifted;
+    return true;
+  };
+  auto term = [&](const GiNaC::ex& t) {
+    std::fill(m.begin(), m.end(), 0);
+    cln::cl_I c = 1;
+    if (GiNaC::is_a<GiNaC::mul>(t)) {
+      for (std::size_t k = 0; k < t.nops(); ++k)
+        if (!factor(t.op(k), c)) return false;
+    } else if (!factor(t, c)) {
+      return false;
+    }
+    if (cln::zerop(c)) return false;
+    mono.insert(mono.end(), m.begin(), m.end());
+    coef.push_back(c);
+    return true;
+  };
+  if (e.is_zero()) return true;
+  if (GiNaC::is_a<GiNaC::add>(e)) {
+    for (std::size_t k = 0; k < e.nops(); ++k)
+      if (!term(e.op(k))) return false;
+    return true;
+  }
+  return term(e);
+}
+
+}  // namespace
+
 Poly Poly::from_ex(const GiNaC::ex& e, const Symbols& symbols) {
   const int vars = static_cast<int>(symbols.all().size());
   std::vector<std::uint64_t> mono;
   std::vector<cln::cl_I> coef;
   const int w = words_for(vars);
+  if (read_expanded(e, symbols, w, mono, coef)) {
+    Poly p = from_terms(vars, std::move(mono), std::move(coef));
+    bool distinct = true;  // GiNaC's sums hold each monomial once; else expand below
+    for (std::size_t t = 1; t < p.size() && distinct; ++t) distinct = !same(p.mono(t - 1), p.mono(t), w);
+    if (distinct) return p;
+  }
+  mono.clear();  // what was read before a term that is not a monomial
+  coef.clear();
   for (const Monomial& t : symbols.monomials(e)) {
     if (!t.coefficient.is_integer()) throw std::invalid_argument("Poly::from_ex(): a coefficient is not an integer");
     std::vector<std::uint64_t> m(static_cast<std::size_t>(w), 0);
@@ -147,8 +211,56 @@ Poly Poly::operator+(const Poly& q) const {
 
 Poly Poly::operator-(const Poly& q) const { return *this + (-q); }
 
+namespace {
+
+/// Products with a factor of at most this many terms are merges of shifted copies (Poly::operator*).
+constexpr std::size_t merge_factor_terms = 8;
+
+}  // namespace
+
+Poly Poly::times_small(const Poly& q) const {
+  // Adding the same exponent vector to every term keeps the order, so P · c_j m_j is
+  // P's term list shifted, and the product is a merge of q.size() sorted lists.
+  const int w = words_;
+  const std::size_t lists = q.size();
+  std::vector<std::size_t> head(lists, 0);
+  std::vector<std::uint64_t> top(lists * static_cast<std::size_t>(w));  // the monomial at each list's head
+  auto load = [&](std::size_t j) {
+    if (head[j] == size()) return;
+    const std::uint64_t *a = mono(head[j]), *b = q.mono(j);
+    for (int k = 0; k < w; ++k) {
+      top[j * w + k] = a[k] + b[k];
+      if (top[j * w + k] & high_bits) throw std::overflow_error("Poly::operator*(): an exponent exceeds " + std::to_string(max_exponent));
+    }
+  };
+  for (std::size_t j = 0; j < lists; ++j) load(j);
+  Poly out(vars_);
+  out.mono_.reserve(mono_.size() * lists);
+  out.coef_.reserve(size() * lists);
+  for (;;) {
+    std::size_t best = lists;
+    for (std::size_t j = 0; j < lists; ++j)
+      if (head[j] < size() && (best == lists || greater(&top[j * w], &top[best * w], w))) best = j;
+    if (best == lists) break;
+    const std::uint64_t* m = &top[best * w];
+    cln::cl_I c = coef_[head[best]] * q.coef_[best];
+    for (std::size_t j = best + 1; j < lists; ++j)
+      if (head[j] < size() && same(&top[j * w], m, w)) {
+        c = c + coef_[head[j]] * q.coef_[j];
+        ++head[j];
+        load(j);
+      }
+    if (!cln::zerop(c)) out.push(m, c);
+    ++head[best];
+    load(best);
+  }
+  return out;
+}
+
 Poly Poly::operator*(const Poly& q) const {
   if (is_zero() || q.is_zero()) return Poly(vars_);
+  if (q.size() <= merge_factor_terms && q.size() <= size()) return times_small(q);
+  if (size() <= merge_factor_terms) return q.times_small(*this);
   const int w = words_;
   std::vector<std::uint64_t> res_mono;
   std::vector<cln::cl_I> res_coef;
@@ -396,24 +508,27 @@ cln::cl_I Poly::evaluate(const std::vector<cln::cl_I>& point) const {
 
 GiNaC::ex Poly::to_ex(const Symbols& symbols) const {
   if (static_cast<int>(symbols.all().size()) != vars_) throw std::invalid_argument("Poly::to_ex(): the symbols do not match");
-  GiNaC::exvector terms;
-  terms.reserve(size());
+  // The sum as (monomial, coefficient) pairs and the constant term apart, as
+  // GiNaC keeps it: no term is split into that form again.
+  GiNaC::epvector pairs;
+  pairs.reserve(size());
+  GiNaC::ex constant = 0;
   for (std::size_t t = 0; t < size(); ++t) {
-    GiNaC::exvector factors;
+    GiNaC::epvector powers;
     for (int k = 0; k < vars_; ++k)
-      if (const int e = exponent(t, k)) factors.push_back(e == 1 ? symbols.all()[static_cast<std::size_t>(k)].symbol
-                                                                  : GiNaC::pow(symbols.all()[static_cast<std::size_t>(k)].symbol, e));
+      if (const int e = exponent(t, k)) powers.emplace_back(symbols.all()[static_cast<std::size_t>(k)].symbol, e);
     const GiNaC::numeric c{cln::cl_N(coef_[t])};
-    if (factors.empty())
-      terms.push_back(c);
-    else if (factors.size() == 1 && c.is_equal(1))
-      terms.push_back(factors.front());
-    else
-      terms.push_back(GiNaC::ex(GiNaC::mul(factors)) * c);
+    if (powers.empty()) {
+      constant = c;
+    } else if (powers.size() == 1) {
+      const GiNaC::expair& p = powers.front();
+      pairs.emplace_back(p.coeff.is_equal(1) ? p.rest : GiNaC::pow(p.rest, p.coeff), c);
+    } else {
+      pairs.emplace_back(GiNaC::mul(std::move(powers)), c);
+    }
   }
-  if (terms.empty()) return 0;
-  if (terms.size() == 1) return terms.front();
-  return GiNaC::ex(GiNaC::add(terms));
+  if (pairs.empty()) return constant;
+  return GiNaC::add(std::move(pairs), constant);
 }
 
 Poly determinant(const std::vector<Poly>& m, int n, int vars) {

@@ -123,6 +123,11 @@ const SymbolInfo& Symbols::info(const GiNaC::ex& s) const {
   return all_[it->second];
 }
 
+const SymbolInfo* Symbols::find(const GiNaC::ex& s) const {
+  const auto it = index_.find(s);
+  return it == index_.end() ? nullptr : &all_[it->second];
+}
+
 bool Symbols::is_coupling(const GiNaC::ex& s) const {
   const auto it = index_.find(s);
   return it != index_.end() && all_[it->second].kind == SymbolKind::Coupling;

@@ -12,7 +12,9 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <map>
 #include <stdexcept>
 #include <vector>
@@ -50,13 +52,21 @@ bool read_all(int fd, void* data, std::size_t size) {
   return true;
 }
 
-/// A worker's loop: read a task index, run it, send (index, kind, code, length, text); exit on kStop.
+/// The CPU time of this process so far, in seconds.
+double cpu_seconds() {
+  timespec t{};
+  ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+/// A worker's loop: read a task index, run it, send (index, kind, code, CPU seconds, length, text); exit on kStop.
 [[noreturn]] void work(int tasks_fd, int results_fd, const std::function<std::string(std::size_t)>& task) {
   std::uint64_t k = 0;
   while (read_all(tasks_fd, &k, sizeof k) && k != kStop) {
     Kind kind = Kind::Result;
     std::int32_t code = 0;
     std::string text;
+    const double start = cpu_seconds();
     try {
       text = task(static_cast<std::size_t>(k));
     } catch (const TaskError& e) {  // e.g. a checkpoint file the task could not write
@@ -74,8 +84,9 @@ bool read_all(int fd, void* data, std::size_t size) {
       text = e.what();
     }
     const std::uint64_t size = text.size();
+    const double seconds = cpu_seconds() - start;
     if (!write_all(results_fd, &k, sizeof k) || !write_all(results_fd, &kind, sizeof kind) || !write_all(results_fd, &code, sizeof code) ||
-        !write_all(results_fd, &size, sizeof size) ||
+        !write_all(results_fd, &seconds, sizeof seconds) || !write_all(results_fd, &size, sizeof size) ||
         !write_all(results_fd, text.data(), text.size()))
       ::_exit(3);
     if (kind != Kind::Result) ::_exit(1);
@@ -161,10 +172,14 @@ void Workers::run(const Deliver& deliver, const Interrupt& interrupted) {
   auto check = [&] {
     if (interrupted && interrupted()) throw Interrupted("interrupted");
   };
+  cpu_.assign(count, 0.0);
   if (workers_.empty()) {
     for (std::size_t k = 0; k < count; ++k) {
       check();
-      deliver(k, task_(k));
+      const double start = cpu_seconds();
+      std::string text = task_(k);
+      cpu_[k] = cpu_seconds() - start;
+      deliver(k, std::move(text));
     }
     return;
   }
@@ -237,9 +252,10 @@ void Workers::run(const Deliver& deliver, const Interrupt& interrupted) {
       std::uint64_t k = 0, size = 0;
       Kind kind = Kind::Result;
       std::int32_t code = 0;
+      double seconds = 0;
       std::string text;
       bool ok = read_all(w.results, &k, sizeof k) && read_all(w.results, &kind, sizeof kind) && read_all(w.results, &code, sizeof code) &&
-                read_all(w.results, &size, sizeof size);
+                read_all(w.results, &seconds, sizeof seconds) && read_all(w.results, &size, sizeof size);
       if (ok) {
         text.resize(static_cast<std::size_t>(size));
         ok = read_all(w.results, text.data(), text.size());
@@ -258,6 +274,7 @@ void Workers::run(const Deliver& deliver, const Interrupt& interrupted) {
         fail(static_cast<std::size_t>(k), kind, code, std::move(text));
         continue;
       }
+      cpu_[static_cast<std::size_t>(k)] = seconds;
       hand_out(w);
       waiting.emplace(static_cast<std::size_t>(k), std::move(text));
       for (auto it = waiting.find(delivered); delivered < failed && it != waiting.end(); it = waiting.find(delivered)) {
@@ -290,6 +307,21 @@ void Workers::run(const Deliver& deliver, const Interrupt& interrupted) {
 }  // namespace superball::symbolic
 
 namespace superball::symbolic {
+
+std::string task_cpu_summary(const std::vector<double>& seconds, const std::function<std::string(std::size_t)>& name) {
+  double total = 0;
+  std::size_t largest = 0;
+  for (std::size_t k = 0; k < seconds.size(); ++k) {
+    total += seconds[k];
+    if (seconds[k] > seconds[largest]) largest = k;
+  }
+  char line[160];
+  std::snprintf(line, sizeof line, "%zu tasks, %.3g s of CPU", seconds.size(), total);
+  std::string out = line;
+  if (seconds.empty()) return out;
+  std::snprintf(line, sizeof line, "; the largest: %.3g s (%.1f %%), ", seconds[largest], total > 0 ? 100 * seconds[largest] / total : 0.0);
+  return out + line + name(largest);
+}
 
 void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
                   const std::function<std::string(std::size_t, const Derivation&)>& write, const Workers::Deliver& deliver, const DeriveRun& run) {

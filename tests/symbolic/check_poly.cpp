@@ -69,6 +69,30 @@ TEST(CheckPoly, ArithmeticAgreesWithGinac) {
   }
 }
 
+TEST(CheckPoly, ProductsByFewTermsAndUnexpandedInputAgreeWithGinac) {
+  const Symbols& s = symbols();
+  Random random(20261127);
+  for (int round = 0; round < 200; ++round) {
+    // A factor of at most 8 terms is merged (shifted copies of the other), a larger one hashed.
+    const GiNaC::ex small = random.polynomial(s, 8), large = random.polynomial(s, 60);
+    const Poly ps = Poly::from_ex(small, s), pl = Poly::from_ex(large, s);
+    const Poly product = pl * ps;
+    EXPECT_TRUE(same(product, small * large, s)) << "round " << round;
+    EXPECT_EQ(product, ps * pl);
+    EXPECT_EQ(product, Poly::from_ex(GiNaC::expand(small * large), s));
+    EXPECT_TRUE((pl * (ps - ps)).is_zero());
+    EXPECT_TRUE((pl * ps - ps * pl).is_zero());
+    // An expression that is not an expanded sum of monomials (a product of sums among
+    // its terms) is expanded first, whatever was read before that term.
+    const GiNaC::ex unexpanded = small * large + GiNaC::pow(small, 2);
+    EXPECT_TRUE(same(Poly::from_ex(unexpanded, s), unexpanded, s)) << "round " << round;
+  }
+  const GiNaC::ex& x = s.all()[3].symbol;
+  const Poly high = Poly::from_ex(GiNaC::pow(x, 100) + 1, s);
+  EXPECT_THROW((void)(high * high), std::overflow_error);
+  EXPECT_THROW((void)Poly::from_ex(x / 2 + 1, s), std::invalid_argument);
+}
+
 TEST(CheckPoly, MonomialDivisionContentAndSpecialisation) {
   const Symbols& s = symbols();
   Random random(7);

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <ctime>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -52,6 +53,30 @@ TEST(Workers, ResultsInTaskOrderWhateverTheNumberOfWorkers) {
     EXPECT_TRUE(no_children()) << jobs;
   }
   EXPECT_TRUE(run(0, 4, task).empty());
+}
+
+TEST(Workers, EachTasksCpuIsMeasuredWhereItRan) {
+  // Task 1 computes for at least 50 ms of this process's CPU; the others return at once.
+  auto task = [](std::size_t k) {
+    if (k == 1) {
+      const std::clock_t start = std::clock();
+      volatile double x = 0;
+      while (std::clock() - start < CLOCKS_PER_SEC / 20) x = x + 1;
+    }
+    return std::to_string(k);
+  };
+  for (int jobs : {0, 1, 2}) {
+    Workers workers(3, jobs, task);
+    workers.run([](std::size_t, std::string&&) {});
+    const std::vector<double>& cpu = workers.task_cpu_seconds();
+    ASSERT_EQ(cpu.size(), 3u) << jobs << " workers";
+    EXPECT_GE(cpu[1], 0.05) << jobs << " workers";
+    EXPECT_LT(cpu[0], cpu[1]) << jobs << " workers";
+    EXPECT_LT(cpu[2], cpu[1]) << jobs << " workers";
+    const std::string line = task_cpu_summary(cpu, [](std::size_t k) { return "task " + std::to_string(k); });
+    EXPECT_EQ(line.rfind("3 tasks, ", 0), 0u) << line;
+    EXPECT_NE(line.find("), task 1"), std::string::npos) << line;
+  }
 }
 
 TEST(Workers, ATaskExceptionComesBackWithItsTypeAndMessage) {

@@ -84,6 +84,8 @@ class Symbols {
   const std::vector<SymbolInfo>& all() const { return all_; }
   /// The record of symbol \p s; throws std::invalid_argument("Symbols::info(): ...") for a foreign symbol.
   const SymbolInfo& info(const GiNaC::ex& s) const;
+  /// The record of symbol \p s, or nullptr when it is not a symbol of this pattern.
+  const SymbolInfo* find(const GiNaC::ex& s) const;
   /// Whether \p s is one of the couplings.
   bool is_coupling(const GiNaC::ex& s) const;
   /// The symbol whose ASCII name is \p name; throws std::invalid_argument("Symbols::by_name(): ...").

@@ -77,6 +77,9 @@ class Workers {
   ~Workers();
   /// Runs the tasks (once) and delivers their results in order.
   void run(const Deliver& deliver, const Interrupt& interrupted = {});
+  /// After run(): the CPU seconds each task took in the process that ran it
+  /// (0 for a task not run), to see how evenly the work is split.
+  const std::vector<double>& task_cpu_seconds() const { return cpu_; }
   /// One forked process and its two pipes (workers.cpp).
   struct Worker;
 
@@ -84,7 +87,13 @@ class Workers {
   std::size_t count_;
   Task task_;
   std::vector<Worker> workers_;
+  std::vector<double> cpu_;
 };
+
+/// One line on how evenly \p seconds (Workers::task_cpu_seconds()) split
+/// the work: "64 tasks, 14.6 s of CPU; the largest: 4.89 s (33.4 %), {}",
+/// naming the largest task by \p name.
+std::string task_cpu_summary(const std::vector<double>& seconds, const std::function<std::string(std::size_t)>& name);
 
 /// How often a run with an `interrupted` hook polls it while workers compute.
 inline constexpr int kPollIntervalMs = 100;
