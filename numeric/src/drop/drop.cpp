@@ -30,17 +30,8 @@ cln::cl_RA to_exact(S x) {
   return x < S(0) ? cln::cl_RA(-r) : r;
 }
 
-/// The exact rational value of an MPFR float: its significand words as an
-/// integer times 2^(exponent − 64·words) (MPFR's x = 0.d₁d₂… · 2^exp).
-cln::cl_RA to_exact(const MpFloat& x) {
-  const MpFloat::Raw& r = *x.raw();
-  if (!MpFloat::zero_or_regular(x) || x.is_zero()) return 0;
-  const long words = (r.prec + 63) / 64;
-  cln::cl_I m = 0;
-  for (long k = words; k-- > 0;) m = cln::ash(m, 64) + cln::cl_I(static_cast<unsigned long long>(r.d[k]));
-  const cln::cl_RA v = m * cln::expt(cln::cl_RA(2), r.exp - 64 * words);
-  return r.sign < 0 ? cln::cl_RA(-v) : v;
-}
+/// The exact rational value of an MPFR float (numeric::rational()).
+cln::cl_RA to_exact(const MpFloat& x) { return rational(x); }
 
 /// The collision of \p p solved in S, and again in exact rationals from the
 /// same (rounded) data when S's solve fails its residual check (stiff
@@ -150,7 +141,7 @@ class DropRun {
       using std::sqrt;
       time_scale_ = top > S(0) ? S(sqrt(S(2) * top / g_)) : S(1);
     }
-    height_scale_ = top > S(0) ? top : S(1);
+    rest_height_ = T::from(to_exact(drop_rest_fraction), digits_) * (top > S(0) ? top : S(1));
     last_t_.assign(n_, S(0));
     last_z_ = z_;
     last_v_ = v_;
@@ -545,7 +536,7 @@ class DropRun {
     const S e = after / before;
     if (!(e < S(1))) return;
     // Bounces are followed one by one down to drop_rest_fraction of the release height.
-    if (S(after * after / (2 * g_)) > T::from(to_exact(drop_rest_fraction), digits_) * height_scale_) return;
+    if (S(after * after / (2 * g_)) > rest_height_) return;
     const S span = (2 * after / g_) / (1 - e);
     if (until_ && beyond_until(t_ + span)) return;
     // The top body's apex comes first: the run ends there.
@@ -603,7 +594,8 @@ class DropRun {
   bool distant_;  ///< [drop] distant = true: every pair of M in every collision
   /// Bodies joined by M's nonzero entries (an entry couples the bodies of its two pairs): union-find parents.
   std::vector<int> m_group_;
-  S g_, u_, t_ = S(0), time_scale_ = S(1), height_scale_ = S(1);
+  S g_, u_, t_ = S(0), time_scale_ = S(1);
+  S rest_height_;  ///< drop_rest_fraction of the top body's release height: bounces below it are summed
   std::optional<S> until_;  ///< the scene's until (s), none: to the top body's apex
   /// A rational run's unit of speed squared, a² = 2·g·h (m²/s²), and a in double; none and 1 otherwise.
   std::optional<S> a2_;
