@@ -32,7 +32,8 @@ def same_map(a, b):
 
 
 def tasks(folder):
-    return sorted(f for f in os.listdir(folder) if f.startswith("task-"))
+    """The finished task files: a worker stopped by an interrupt may leave a task-N.tmpXXXXXX write cut short, which the next run removes."""
+    return sorted(f for f in os.listdir(folder) if re.fullmatch(r"task-[0-9]{8}", f))
 
 
 @pytest.fixture(scope="module")
