@@ -226,7 +226,7 @@ Problem<S> Problem<S>::from(const ExactScene& s, int digits) {
   p.digits = digits;
   // x converted from r; a nonzero r that S rounds to zero, a subnormal or
   // infinity means S cannot hold the scene.
-  auto held = [&p](const S& x, bool nonzero) {
+  auto held = [&](const S& x, bool nonzero) {
     if constexpr (std::is_floating_point<S>::value)
       if (!std::isfinite(x) || (nonzero && !(std::fabs(x) >= std::numeric_limits<S>::min()))) p.in_range = false;
     return x;

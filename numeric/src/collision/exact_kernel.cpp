@@ -50,8 +50,6 @@ struct Wide {
   friend Wide operator*(Wide a, Wide b) { return raw(a.v * b.v); }
   Wide& operator+=(Wide b) { return v += b.v, *this; }
   Wide& operator-=(Wide b) { return v -= b.v, *this; }
-  friend bool operator==(Wide a, Wide b) { return a.v == b.v; }
-  friend bool operator!=(Wide a, Wide b) { return a.v != b.v; }
 };
 
 int sign_of(Wide x) {
