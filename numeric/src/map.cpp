@@ -1,4 +1,5 @@
 #include "map_internal.hpp"
+#include "psd_filter.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -281,14 +282,16 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
     Batch<S> batch;    ///< the corner's problem, its two entries set at each point
     std::vector<std::pair<int, int>> at;  ///< entry k of M at (row, column) of the matrix on its pairs
     Eigen::MatrixXd M, work;
+    std::optional<PsdFilter> filter;  ///< M in fixed arrays when it has at most PsdFilter::max_rows rows (psd_filter.hpp)
   };
   auto make_state = [&] {
     const ExactScene exact = ExactScene::from(corner, ExactScene::MCheck::Caller);
-    State st{exact, Batch<S>(exact, {kx, ky}, digits), {}, {}, {}};
+    State st{exact, Batch<S>(exact, {kx, ky}, digits), {}, {}, {}, {}};
     Eigen::Index size = 0;
     std::tie(st.at, size) = entry_positions(st.exact.entries);
     st.M = Eigen::MatrixXd::Zero(size, size);
     st.work.resize(size, size);
+    if (size <= PsdFilter::max_rows) st.filter.emplace(static_cast<int>(size));
     return st;
   };
   auto point = [&](State& st, std::size_t k) {
@@ -298,9 +301,12 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
     const Problem<S>& p = st.batch.problem();
     for (std::size_t e = 0; e < p.entries.size(); ++e) {
       const auto [r, c] = st.at[e];
-      st.M(r, c) = st.M(c, r) = static_cast<double>(p.entries[e].value);
+      if (st.filter)
+        st.filter->set(r, c, static_cast<double>(p.entries[e].value));
+      else
+        st.M(r, c) = st.M(c, r) = static_cast<double>(p.entries[e].value);
     }
-    std::optional<bool> psd = psd_by_floating_point(st.M, st.work);
+    std::optional<bool> psd = st.filter ? st.filter->decide() : psd_by_floating_point(st.M, st.work);
     if (!psd) {  // too close to the edge of the cone for floating point: exactly
       st.exact.entries[kx].value = parse_rational(tx[i]);
       st.exact.entries[ky].value = parse_rational(ty[j]);

@@ -9,12 +9,17 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <optional>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "map_internal.hpp"
+#include "psd_filter.hpp"
 #include "superball/numeric/batch.hpp"
 #include "superball/numeric/collision.hpp"
 #include "superball/numeric/problem.hpp"
@@ -183,6 +188,47 @@ TEST(Batch, TheEntriesMustExistAndBeDistinct) {
   EXPECT_THROW(batch.set(1, 1.0, false), std::out_of_range);
   // Until set, an entry holds the scene's value: the batch solves the scene itself.
   expect_identical(batch.solve(), numeric::solve(Problem<double>::from(base)));
+}
+
+TEST(PsdFilter, GivesTheVerdictsOfPsdByFloatingPoint) {
+  // A map point's filter of M's positive semi-definiteness (psd_filter.hpp)
+  // is detail::psd_by_floating_point() bit for bit: the same verdict on
+  // random symmetric matrices of 1 to 8 rows, on Gram matrices B·Bᵀ of
+  // deficient rank (the edge of the cone) and on those shifted by multiples
+  // of the margin τ near ±τ, where the verdict turns from true to "decide
+  // exactly" to false.
+  std::mt19937_64 rng(2808);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::set<int> verdicts;  // 1 true, 0 false, -1 nullopt
+  Eigen::MatrixXd work;
+  auto expect_same = [&](const Eigen::MatrixXd& M) {
+    const int n = static_cast<int>(M.rows());
+    numeric::detail::PsdFilter filter(n);
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c <= r; ++c) filter.set(r, c, M(r, c));
+    const std::optional<bool> want = numeric::detail::psd_by_floating_point(M, work), got = filter.decide();
+    EXPECT_EQ(got, want) << M;
+    verdicts.insert(want ? int(*want) : -1);
+  };
+  for (int trial = 0; trial < 4000; ++trial) {
+    const int n = 1 + trial % numeric::detail::PsdFilter::max_rows;
+    Eigen::MatrixXd M(n, n);
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c <= r; ++c) M(r, c) = M(c, r) = 100 * unit(rng);
+    if (trial % 2 == 1) {  // B·Bᵀ with B of rank n − 1 (n > 1), shifted near ±τ
+      Eigen::MatrixXd B(n, std::max(n - 1, 1));
+      for (Eigen::Index k = 0; k < B.size(); ++k) B(k) = 10 * unit(rng);
+      M = B * B.transpose();
+      const double tau = numeric::map_psd_margin * M.norm();
+      const double shifts[] = {0, 2, 1 + 1e-6, 1 - 1e-6, 0.5, -0.5, -1 + 1e-6, -1 - 1e-6, -2};
+      M.diagonal().array() += shifts[(trial / 2) % 9] * tau;
+    }
+    expect_same(M);
+  }
+  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(3, 3);
+  M(1, 2) = M(2, 1) = std::numeric_limits<double>::infinity();  // ‖M‖ not finite: left to exact arithmetic
+  expect_same(M);
+  EXPECT_EQ(verdicts, (std::set<int>{-1, 0, 1}));
 }
 
 }  // namespace batch_test
