@@ -22,6 +22,8 @@
 #include "psd_filter.hpp"
 #include "superball/numeric/batch.hpp"
 #include "superball/numeric/collision.hpp"
+#include "superball/numeric/map.hpp"
+#include "superball/numeric/sweep.hpp"
 #include "superball/numeric/problem.hpp"
 #include "support.hpp"
 
@@ -229,6 +231,55 @@ TEST(PsdFilter, GivesTheVerdictsOfPsdByFloatingPoint) {
   M(1, 2) = M(2, 1) = std::numeric_limits<double>::infinity();  // ‖M‖ not finite: left to exact arithmetic
   expect_same(M);
   EXPECT_EQ(verdicts, (std::set<int>{-1, 0, 1}));
+}
+
+TEST(PsdFilter, AMapSkipsItOnlyBetweenPointsWhereMIsPsd) {
+  // The grid points of a map over two entries of M (entry_points()): a
+  // row's run of points whose two ends have M positive semi-definite skips
+  // the filter (M is affine in the entry, the cone convex).  Rows along
+  // alpha_2 that cross the edge of the cone, both ways, of 19 points cut
+  // by runs of 64 and by ranges of points (a runner's tasks): each point is
+  // still marked exactly where M is not positive semi-definite, and
+  // otherwise is the solve of its scene, bit for bit.
+  const Scene scene = load_scene(kPaperScene);
+  for (const bool rising : {true, false}) {
+    const numeric::Axis x{Parameter::parse("alpha.2", scene), rising ? -130 : 0, rising ? 0 : -130, 19},
+        y{Parameter::parse("K.3-4", scene), 0, 20, 13};
+    const std::vector<cl_RA> xs = x.values(), ys = y.values();
+    const Scene corner_scene = numeric::with_value(numeric::with_value(scene, x.parameter, xs[0]), y.parameter, ys[0]);
+    const ExactScene corner = ExactScene::from(corner_scene, ExactScene::MCheck::Caller);
+    std::size_t kx = 0, ky = 0;
+    for (std::size_t e = 0; e < corner.entries.size(); ++e) {
+      const auto& c = corner.entries[e];
+      if (c.i == 0 && c.j == 1 && c.k == 0 && c.l == 3) kx = e;
+      if (c.i == 2 && c.j == 3 && c.k == 2 && c.l == 3) ky = e;
+    }
+    for (const std::size_t first : {std::size_t{0}, std::size_t{37}}) {
+      const auto points = numeric::detail::entry_points<double>(corner_scene, kx, ky, x, y, numeric::MapSettings{}, first, 150);
+      ASSERT_EQ(points.size(), 150u);
+      int marked = 0, solved = 0;
+      for (std::size_t at = 0; at < points.size(); ++at) {
+        const std::size_t k = first + at, i = k % xs.size(), j = k / xs.size();
+        SCOPED_TRACE("grid point " + std::to_string(i) + ", " + std::to_string(j));
+        ExactScene e = corner;
+        e.entries[kx].value = xs[i], e.entries[ky].value = ys[j];
+        ASSERT_EQ(points[at].admissible, numeric::positive_semidefinite(e));
+        if (!points[at].admissible) {
+          ++marked;
+          continue;
+        }
+        ++solved;
+        const auto problem = Problem<double>::from(e);
+        const auto sol = numeric::solve(problem);
+        EXPECT_EQ(points[at].status, sol.status);
+        EXPECT_EQ(points[at].region.closed, sol.closed);
+        const double ratio = sol.velocities_after[0] / std::fabs(problem.u[0]);
+        EXPECT_TRUE(same(points[at].ratio, ratio)) << points[at].ratio << " " << ratio;
+      }
+      EXPECT_GT(marked, 20);
+      EXPECT_GT(solved, 50);
+    }
+  }
 }
 
 }  // namespace batch_test
