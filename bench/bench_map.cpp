@@ -80,25 +80,36 @@ void BM_BatchPoints(benchmark::State& state) {
 }
 BENCHMARK(BM_BatchPoints)->Name("batch/paper/double/128x128");
 
-/// A sweep of 16384 values of K34 on one thread (`superball sweep`'s points).
+/// A sweep of state.range(0) values of K34 on one thread (`superball
+/// sweep`'s points).  16384 values: the cost of a value, the sweep's fixed
+/// cost (its checks of the scene at the ends, the batch's conversion) shared
+/// by them; 2 values: that fixed cost alone, so that a value's own cost is
+/// (t(16384) − t(2)) / 16382.
 void BM_SweepPoints(benchmark::State& state) {
   const Parameter k34 = Parameter::parse("K.3-4", paper_scene());
-  const auto values = numeric::linspace(0, 20, 16384);
+  const int count = static_cast<int>(state.range(0));
+  const auto values = numeric::linspace(0, 20, count);
   for (auto _ : state) benchmark::DoNotOptimize(numeric::sweep(paper_scene(), k34, values, numeric::Precision{}, 1));
-  state.SetItemsProcessed(state.iterations() * 16384);
+  state.SetItemsProcessed(state.iterations() * count);
 }
-BENCHMARK(BM_SweepPoints)->Name("sweep/paper/double/16384")->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SweepPoints)->Name("sweep/paper/double")->Arg(16384)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
-/// A 128 × 128 map of (K34, alpha_2) on one thread, grid points only.
-void BM_MapPoints(benchmark::State& state) {
+/// A steps × steps map of (K34, alpha_2) on one thread, grid points only.  128: the cost of a point with map()'s fixed cost (its
+/// checks of the scene, the axes' values and texts) shared by 16384 points;
+/// 2: that fixed cost with 4 points, so that a point's own cost is
+/// (t(128) − t(2)) / 16380.
+void map_points(benchmark::State& state, int steps) {
   const Scene& s = paper_scene();
-  const numeric::Axis x{Parameter::parse("K.3-4", s), 0, 20, 128}, y{Parameter::parse("alpha.2", s), -100, 0, 128};
+  const numeric::Axis x{Parameter::parse("K.3-4", s), 0, 20, steps}, y{Parameter::parse("alpha.2", s), -100, 0, steps};
   numeric::MapSettings settings;
   settings.boundaries = false;
   for (auto _ : state) benchmark::DoNotOptimize(numeric::map(s, x, y, settings));
-  state.SetItemsProcessed(state.iterations() * 128 * 128);
+  state.SetItemsProcessed(state.iterations() * steps * steps);
 }
+void BM_MapPoints(benchmark::State& state) { map_points(state, 128); }
 BENCHMARK(BM_MapPoints)->Name("map/paper/double/128x128")->UseRealTime()->Unit(benchmark::kMillisecond);
+void BM_MapFixed(benchmark::State& state) { map_points(state, 2); }
+BENCHMARK(BM_MapFixed)->Name("map/paper/double/2x2")->UseRealTime()->Unit(benchmark::kMillisecond);
 
 /// The exact boundary points of a map: the bisections of label_changes()
 /// on the K34 segments between neighbours of different region along the

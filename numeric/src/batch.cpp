@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "collision/small_solver.hpp"
 #include "map_internal.hpp"
 
 namespace superball::numeric {
@@ -41,7 +42,10 @@ Batch<S>::Batch(const ExactScene& base, std::vector<std::size_t> varying, int di
   ExactScene ones = base;
   for (const std::size_t e : varying_) ones.entries[e].value = 1;
   others_in_range_ = Problem<S>::from(ones, digits).in_range;
+  bandwidth_ = problem_.check("Batch::Batch()");
   if constexpr (std::is_floating_point<S>::value) {
+    // CollisionSolver::compute()'s choice of its fixed-size path, made once: the same settings, every contact constrained.
+    if (dense_.settings().small_sizes && problem_.constrained.empty()) small_ = detail::small_solver_for<S>(problem_.n);
     for (std::size_t k = 0; k < varying_.size(); ++k)
       held_[k] = detail::held(problem_.entries[varying_[k]].value, cln::zerop(base.entries[varying_[k]].value));
     others_inside_ = std::all_of(problem_.mass.begin(), problem_.mass.end(), inside_window<S>) &&
@@ -81,8 +85,8 @@ const Solution<S>& Batch<S>::solve() {
   }
   if (chain_)
     banded_.compute(problem_, out_);
-  else
-    dense_.compute(problem_, out_);
+  else if (!(small_ && small_(problem_, bandwidth_, dense_.settings(), out_)))
+    dense_.compute(problem_, out_);  // the general path (the fixed-size one handed over, or none)
   // A failed solve leaves in its storage what the steps it took wrote there
   // (Solution: only a success's fields are meaningful), part of it the
   // scene's before: solved again afresh, it has solve()'s fields too.

@@ -1,4 +1,5 @@
 #include "map_internal.hpp"
+#include "psd_filter.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -281,33 +282,47 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
     Batch<S> batch;    ///< the corner's problem, its two entries set at each point
     std::vector<std::pair<int, int>> at;  ///< entry k of M at (row, column) of the matrix on its pairs
     Eigen::MatrixXd M, work;
+    std::optional<PsdFilter> filter;  ///< M in fixed arrays when it has at most PsdFilter::max_rows rows (psd_filter.hpp)
   };
   auto make_state = [&] {
     const ExactScene exact = ExactScene::from(corner, ExactScene::MCheck::Caller);
-    State st{exact, Batch<S>(exact, {kx, ky}, digits), {}, {}, {}};
+    State st{exact, Batch<S>(exact, {kx, ky}, digits), {}, {}, {}, {}};
     Eigen::Index size = 0;
     std::tie(st.at, size) = entry_positions(st.exact.entries);
     st.M = Eigen::MatrixXd::Zero(size, size);
     st.work.resize(size, size);
+    if (size <= PsdFilter::max_rows) st.filter.emplace(static_cast<int>(size));
     return st;
   };
-  auto point = [&](State& st, std::size_t k) {
+  // M's positive semi-definiteness at the grid point k, the point's two entries set in the batch.
+  auto psd_at = [&](State& st, std::size_t k) {
     const std::size_t i = k % tx.size(), j = k / tx.size();
     st.batch.set(0, sx[i], zx[i]);
     st.batch.set(1, sy[j], zy[j]);
     const Problem<S>& p = st.batch.problem();
     for (std::size_t e = 0; e < p.entries.size(); ++e) {
       const auto [r, c] = st.at[e];
-      st.M(r, c) = st.M(c, r) = static_cast<double>(p.entries[e].value);
+      if (st.filter)
+        st.filter->set(r, c, static_cast<double>(p.entries[e].value));
+      else
+        st.M(r, c) = st.M(c, r) = static_cast<double>(p.entries[e].value);
     }
-    std::optional<bool> psd = psd_by_floating_point(st.M, st.work);
+    std::optional<bool> psd = st.filter ? st.filter->decide() : psd_by_floating_point(st.M, st.work);
     if (!psd) {  // too close to the edge of the cone for floating point: exactly
       st.exact.entries[kx].value = parse_rational(tx[i]);
       st.exact.entries[ky].value = parse_rational(ty[j]);
       psd = positive_semidefinite(st.exact);
     }
+    return *psd;
+  };
+  // The grid point k; \p inside: M is known to be positive semi-definite there.
+  auto point = [&](State& st, std::size_t k, bool inside) {
+    if (inside) {
+      st.batch.set(0, sx[k % tx.size()], zx[k % tx.size()]);
+      st.batch.set(1, sy[k / tx.size()], zy[k / tx.size()]);
+    }
     MapPoint out;
-    if (*psd) solved(out, p, st.batch.solve());
+    if (inside || psd_at(st, k)) solved(out, st.batch.problem(), st.batch.solve());
     return out;
   };
   const std::size_t count = tx.size() * ty.size();
@@ -315,9 +330,18 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
   size = std::min(size, count - first);
   // Runs of map_run points per task, each point written in its place: a
   // task's overhead is shared by its run, and no slot per point is copied.
+  // A run's points on one row of the grid differ in x alone, the value of
+  // the entry kx of M itself: M is affine in it, and x between the row's
+  // two ends, so M positive semi-definite at both ends is so at every point
+  // between (the cone is convex), whose filter is then skipped.
   std::vector<MapPoint> points(size);
   (void)parallel_map((size + map_run - 1) / map_run, settings.threads, make_state, [&](State& st, std::size_t r) {
-    for (std::size_t at = r * map_run; at < std::min(size, (r + 1) * map_run); ++at) points[at] = point(st, first + at);
+    const std::size_t end = std::min(size, (r + 1) * map_run);
+    for (std::size_t at = r * map_run; at < end;) {
+      const std::size_t row_end = std::min(end, at + (tx.size() - (first + at) % tx.size()));
+      const bool inside = row_end - at > 2 && psd_at(st, first + at) && psd_at(st, first + row_end - 1);
+      for (; at < row_end; ++at) points[at] = point(st, first + at, inside);
+    }
     return 0;
   });
   return points;

@@ -9,14 +9,21 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
+#include <optional>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "map_internal.hpp"
+#include "psd_filter.hpp"
 #include "superball/numeric/batch.hpp"
 #include "superball/numeric/collision.hpp"
+#include "superball/numeric/map.hpp"
+#include "superball/numeric/sweep.hpp"
 #include "superball/numeric/problem.hpp"
 #include "support.hpp"
 
@@ -183,6 +190,96 @@ TEST(Batch, TheEntriesMustExistAndBeDistinct) {
   EXPECT_THROW(batch.set(1, 1.0, false), std::out_of_range);
   // Until set, an entry holds the scene's value: the batch solves the scene itself.
   expect_identical(batch.solve(), numeric::solve(Problem<double>::from(base)));
+}
+
+TEST(PsdFilter, GivesTheVerdictsOfPsdByFloatingPoint) {
+  // A map point's filter of M's positive semi-definiteness (psd_filter.hpp)
+  // is detail::psd_by_floating_point() bit for bit: the same verdict on
+  // random symmetric matrices of 1 to 8 rows, on Gram matrices B·Bᵀ of
+  // deficient rank (the edge of the cone) and on those shifted by multiples
+  // of the margin τ near ±τ, where the verdict turns from true to "decide
+  // exactly" to false.
+  std::mt19937_64 rng(2808);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::set<int> verdicts;  // 1 true, 0 false, -1 nullopt
+  Eigen::MatrixXd work;
+  auto expect_same = [&](const Eigen::MatrixXd& M) {
+    const int n = static_cast<int>(M.rows());
+    numeric::detail::PsdFilter filter(n);
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c <= r; ++c) filter.set(r, c, M(r, c));
+    const std::optional<bool> want = numeric::detail::psd_by_floating_point(M, work), got = filter.decide();
+    EXPECT_EQ(got, want) << M;
+    verdicts.insert(want ? int(*want) : -1);
+  };
+  for (int trial = 0; trial < 4000; ++trial) {
+    const int n = 1 + trial % numeric::detail::PsdFilter::max_rows;
+    Eigen::MatrixXd M(n, n);
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c <= r; ++c) M(r, c) = M(c, r) = 100 * unit(rng);
+    if (trial % 2 == 1) {  // B·Bᵀ with B of rank n − 1 (n > 1), shifted near ±τ
+      Eigen::MatrixXd B(n, std::max(n - 1, 1));
+      for (Eigen::Index k = 0; k < B.size(); ++k) B(k) = 10 * unit(rng);
+      M = B * B.transpose();
+      const double tau = numeric::map_psd_margin * M.norm();
+      const double shifts[] = {0, 2, 1 + 1e-6, 1 - 1e-6, 0.5, -0.5, -1 + 1e-6, -1 - 1e-6, -2};
+      M.diagonal().array() += shifts[(trial / 2) % 9] * tau;
+    }
+    expect_same(M);
+  }
+  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(3, 3);
+  M(1, 2) = M(2, 1) = std::numeric_limits<double>::infinity();  // ‖M‖ not finite: left to exact arithmetic
+  expect_same(M);
+  EXPECT_EQ(verdicts, (std::set<int>{-1, 0, 1}));
+}
+
+TEST(PsdFilter, AMapSkipsItOnlyBetweenPointsWhereMIsPsd) {
+  // The grid points of a map over two entries of M (entry_points()): a
+  // row's run of points whose two ends have M positive semi-definite skips
+  // the filter (M is affine in the entry, the cone convex).  Rows along
+  // alpha_2 that cross the edge of the cone, both ways, of 19 points cut
+  // by runs of 64 and by ranges of points (a runner's tasks): each point is
+  // still marked exactly where M is not positive semi-definite, and
+  // otherwise is the solve of its scene, bit for bit.
+  const Scene scene = load_scene(kPaperScene);
+  for (const bool rising : {true, false}) {
+    const numeric::Axis x{Parameter::parse("alpha.2", scene), rising ? -130 : 0, rising ? 0 : -130, 19},
+        y{Parameter::parse("K.3-4", scene), 0, 20, 13};
+    const std::vector<cl_RA> xs = x.values(), ys = y.values();
+    const Scene corner_scene = numeric::with_value(numeric::with_value(scene, x.parameter, xs[0]), y.parameter, ys[0]);
+    const ExactScene corner = ExactScene::from(corner_scene, ExactScene::MCheck::Caller);
+    std::size_t kx = 0, ky = 0;
+    for (std::size_t e = 0; e < corner.entries.size(); ++e) {
+      const auto& c = corner.entries[e];
+      if (c.i == 0 && c.j == 1 && c.k == 0 && c.l == 3) kx = e;
+      if (c.i == 2 && c.j == 3 && c.k == 2 && c.l == 3) ky = e;
+    }
+    for (const std::size_t first : {std::size_t{0}, std::size_t{37}}) {
+      const auto points = numeric::detail::entry_points<double>(corner_scene, kx, ky, x, y, numeric::MapSettings{}, first, 150);
+      ASSERT_EQ(points.size(), 150u);
+      int marked = 0, solved = 0;
+      for (std::size_t at = 0; at < points.size(); ++at) {
+        const std::size_t k = first + at, i = k % xs.size(), j = k / xs.size();
+        SCOPED_TRACE("grid point " + std::to_string(i) + ", " + std::to_string(j));
+        ExactScene e = corner;
+        e.entries[kx].value = xs[i], e.entries[ky].value = ys[j];
+        ASSERT_EQ(points[at].admissible, numeric::positive_semidefinite(e));
+        if (!points[at].admissible) {
+          ++marked;
+          continue;
+        }
+        ++solved;
+        const auto problem = Problem<double>::from(e);
+        const auto sol = numeric::solve(problem);
+        EXPECT_EQ(points[at].status, sol.status);
+        EXPECT_EQ(points[at].region.closed, sol.closed);
+        const double ratio = sol.velocities_after[0] / std::fabs(problem.u[0]);
+        EXPECT_TRUE(same(points[at].ratio, ratio)) << points[at].ratio << " " << ratio;
+      }
+      EXPECT_GT(marked, 20);
+      EXPECT_GT(solved, 50);
+    }
+  }
 }
 
 }  // namespace batch_test

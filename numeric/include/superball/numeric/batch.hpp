@@ -66,6 +66,10 @@ class Batch {
   bool others_inside_ = false;   ///< every datum but the varying entries is 0 or inside the safe window of S (scaling_of())
   Problem<S> problem_;
   bool chain_ = false;           ///< solves_as_chain(problem_): the banded solver (a property of the structure)
+  int bandwidth_ = 0;            ///< Problem::check() of problem_: DᵀMD's bandwidth (a property of the structure)
+  /// The dense solver's fixed-size path for problem_ (double and long double, nullptr otherwise), called
+  /// directly: CollisionSolver::compute() without re-checking the structure at each scene.
+  bool (*small_)(const Problem<S>&, int, const Settings<S>&, Solution<S>&) = nullptr;
   CollisionSolver<S> dense_;
   ChainSolver<S> banded_;
   Solution<S> out_;
