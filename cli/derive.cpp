@@ -158,8 +158,9 @@ void add_derive(CLI::App& app, Action& action) {
           // One case's text: its report, or its JSON as the array's dump(2) would
           // write it (each line indented by two more).  Runs in a worker process.
           std::vector<nlohmann::ordered_json> psd;  // JSON: the conditions on M, made once per process
+          std::vector<std::string> prepared(count);  // the largest cases' first stage (prepare_cases()), inherited by the workers
           auto task = [&](std::size_t k) {
-            const Derivation d = deriver.derive(selection.cases[k]);
+            const Derivation d = deriver.derive(selection.cases[k], prepared[k]);
             if (!json) return report(d, deriver, Style::Text, !shared) + "\n";
             // Compact, several cases: the conditions on M in the first case only (as the text writes them once).
           const std::string element = derivation_json(d, deriver, psd, o->expanded, o->expanded || !shared || k == 0).dump(2);
@@ -182,8 +183,16 @@ void add_derive(CLI::App& app, Action& action) {
               throw TaskError(output_error, e.what());
             }
           };
-          if (run.local()) workers.emplace(run.todo().size(), plan.workers, in_worker);
-          const InterruptHandler interrupt;
+          const InterruptHandler interrupt;  // Ctrl-C stops the first stage too
+          std::vector<double> first_cpu;
+          std::vector<std::size_t> first;  // the tasks of todo() prepared in the first stage
+          if (run.local()) {
+            std::vector<ContactSet> todo;
+            for (std::size_t k : run.todo()) todo.push_back(selection.cases[k]);
+            std::vector<std::string> ahead = prepare_cases(deriver, todo, plan.workers, &InterruptHandler::requested, &first_cpu, &first);
+            for (std::size_t j : first) prepared[run.todo()[j]] = std::move(ahead[j]);
+            workers.emplace(run.todo().size(), plan.workers, in_worker);
+          }
           const bool writes = run.writes_output();
           std::optional<StepProgress> progress;
           if (writes) progress.emplace("derive", "case", static_cast<int>(count), o->progress.mode());
@@ -204,7 +213,15 @@ void add_derive(CLI::App& app, Action& action) {
                   throw OutputError(e.what());
                 }
               });
-          if (o->task_cpu && workers) std::cerr << "derive: " << task_cpu_summary(workers->task_cpu_seconds(), [&](std::size_t j) { return name(run.todo()[j]); }) << "\n";
+          if (o->task_cpu && workers) {  // the first stage's tasks, then one per case
+            std::vector<double> cpu = first_cpu;
+            cpu.insert(cpu.end(), workers->task_cpu_seconds().begin(), workers->task_cpu_seconds().end());
+            std::cerr << "derive: "
+                      << task_cpu_summary(cpu, [&](std::size_t j) {
+                           return j < first.size() ? "prepare " + name(run.todo()[first[j]]) : name(run.todo()[j - first.size()]);
+                         })
+                      << "\n";
+          }
           if (!writes) return ok;  // a part file, or a rank other than 0
           if (json && shared) emit("]\n");
         }  // either way the progress line is erased before anything is written to standard output
