@@ -73,8 +73,8 @@ void add_derive(CLI::App& app, Action& action) {
       "and the pattern's width (1 for near, 2 for near2, 3 with its couplings, n-1 for all).  Before a run\n"
       "estimated over " + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kProgressDelay).count()) +
       " s one line says its estimate (not with --quiet), from the growth measured per width\n"
-      "(docs/SYMBOLIC.md, Limits): \"derive: deriving every case of 7 bodies, a pattern of width 3: about 21 s on\n"
-      "one core, 2 workers, about 317 MB each (22.7 GB available)\".  Only a run whose one process would not fit in\n"
+      "(docs/SYMBOLIC.md, Limits): \"derive: deriving every case of 7 bodies, a pattern of width 3: about 8.6 s on\n"
+      "one core, 2 workers, about 166.4 MB each (23.9 GB available)\".  Only a run whose one process would not fit in\n"
       "the memory available is refused (exit 2); fewer workers are used when they would not all fit.  Ctrl-C\n"
       "stops the workers and exits with 130 and one line, writing nothing (no partial output file).\n\n"
       "JSON.  Compact by default: a form the case writes through its elimination (long forms, from about 5\n"
