@@ -7,7 +7,10 @@
 #
 # NEW_ARGS adds options to the new build's command only: a build whose JSON
 # is compact (every build since the elimination forms) is compared with an
-# older one as NEW_ARGS=--expanded.
+# older one as NEW_ARGS=--expanded.  ARGS adds options to both commands
+# (ARGS="-j 2": two worker processes, where the largest cases are derived in
+# two stages), SIZES the body counts of the near2 patterns (default "4 5 6";
+# SIZES="5 6 7" for the split cases' byte identity at 7 bodies).
 #
 # The patterns are those of docs/SYMBOLIC.md ("Representation"): the paper's
 # four bodies with the seven α's, and 4 to 6 bodies with nearest and
@@ -17,6 +20,7 @@ old="${1:?usage: derive_side_by_side.sh OLD NEW [RUNS]}"
 new="${2:?usage: derive_side_by_side.sh OLD NEW [RUNS]}"
 runs="${3:-3}"
 read -r -a new_args <<< "${NEW_ARGS:-}"
+read -r -a both_args <<< "${ARGS:-}"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 seconds() { local t0 t1; t0=$(date +%s.%N); "$@" > /dev/null 2>&1; t1=$(date +%s.%N); echo "$t1 - $t0" | bc; }
@@ -24,8 +28,8 @@ measure() {
   local label="$1"; shift
   for ((r = 1; r <= runs; ++r)); do
     local before after same
-    before=$(seconds "$old" derive "$@" --format json -o "$work/old.json")
-    after=$(seconds "$new" derive "$@" "${new_args[@]}" --format json -o "$work/new.json")
+    before=$(seconds "$old" derive "$@" "${both_args[@]}" --format json -o "$work/old.json")
+    after=$(seconds "$new" derive "$@" "${both_args[@]}" "${new_args[@]}" --format json -o "$work/new.json")
     if cmp -s "$work/old.json" "$work/new.json"; then same="same bytes"
     elif python3 - "$work/old.json" "$work/new.json" <<'PY'
 import json, sys
@@ -44,5 +48,5 @@ PY
 }
 uptime
 measure "n=4 seven alphas" --all --alphas 1,2,3,4,5,6,7
-for n in 4 5 6; do measure "n=$n near2+coupling" --bodies "$n" --pairs near2 --coupling near2 --all; done
+for n in ${SIZES:-4 5 6}; do measure "n=$n near2+coupling" --bodies "$n" --pairs near2 --coupling near2 --all; done
 uptime

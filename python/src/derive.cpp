@@ -74,11 +74,13 @@ std::string case_record(const symbolic::Derivation& d, const symbolic::Deriver& 
 /// (the run: the selection as given, the scene's content, \p expanded), run
 /// by the worker processes, each writing its case to the folder as soon as
 /// it has it (Distribution::keeping(), as the command's derive); only the
-/// cases not there are derived.  deliver(k, text) for every case in order;
+/// cases not there are derived, the largest of them in two stages: their
+/// symbolic::prepare_cases() first, into \p prepared (by case), which
+/// \p task reads.  deliver(k, text) for every case in order;
 /// progress(done, total) once with the cases found in the folder, then after
 /// each case derived.
 void derive_kept(const std::string& folder, const py::dict& options, const present::Selection& sel, bool expanded, int workers,
-                 const std::function<std::string(std::size_t)>& task,
+                 std::vector<std::string>& prepared, const std::function<std::string(std::size_t)>& task,
                  const std::function<void(std::size_t, std::string&&, const std::string& origin)>& deliver,
                  const std::function<void(std::size_t, std::size_t)>& progress, const symbolic::Workers::Interrupt& interrupted) {
   SelectionRun id = selection_run(options);
@@ -90,6 +92,11 @@ void derive_kept(const std::string& folder, const py::dict& options, const prese
   std::size_t done = count - run.todo().size();
   progress(done, count);
   const py::gil_scoped_release release;
+  std::vector<ContactSet> todo;
+  for (std::size_t k : run.todo()) todo.push_back(sel.cases[k]);
+  std::vector<std::size_t> first;
+  std::vector<std::string> ahead = symbolic::prepare_cases(*sel.deriver, todo, workers, interrupted, nullptr, &first);
+  for (std::size_t j : first) prepared[run.todo()[j]] = std::move(ahead[j]);
   // Forked before anything here starts a thread; a task file the worker cannot write crosses back as a TaskError.
   constexpr int kCannotWrite = 3;
   symbolic::Workers pool(run.todo().size(), workers, [&, kept = run.keeping(task)](std::size_t j) {
@@ -150,10 +157,11 @@ py::list derive(const py::dict& options, bool expanded, int jobs, const py::obje
   try {
     if (!checkpoint.empty()) {
       // As the command's JSON: compact with several cases, the conditions on M in the first case only.
+      std::vector<std::string> prepared(sel.cases.size());  // the largest cases' first stage, inherited by the workers
       auto task = [&](std::size_t k) {
-        return case_record(deriver.derive(sel.cases[k]), deriver, expanded, expanded || sel.cases.size() == 1 || k == 0, psd);
+        return case_record(deriver.derive(sel.cases[k], prepared[k]), deriver, expanded, expanded || sel.cases.size() == 1 || k == 0, psd);
       };
-      derive_kept(checkpoint, options, sel, expanded, plan.workers, task,
+      derive_kept(checkpoint, options, sel, expanded, plan.workers, prepared, task,
                   [&](std::size_t k, std::string&& text, const std::string& origin) {
                     if (!nlohmann::ordered_json::accept(text))  // a task file edited so that its checksum holds
                       throw std::invalid_argument(origin + ": a damaged result (its JSON does not read)");

@@ -118,7 +118,7 @@ class Rules {
   /// \p limit: whether that form gives the ε⁰ part).
   Condition make_condition(ConditionKind kind, const std::string& about, Relation relation, const Poly& raw,
                            const detail::Denominator& determinant, const std::vector<const Poly*>& parts, Naming& naming,
-                           const EliminatedForm* eliminated = nullptr, bool limit = false) const;
+                           const EliminatedForm* eliminated = nullptr, bool limit = false, const bool* coprime = nullptr) const;
   /// The isolated or grouped form of \p p, naming the part it divides by.
   std::optional<Readable> readable(const Poly& p, Naming& naming) const;
   /// The lowest ε-order of the terms of \p p (throws for p = 0).
@@ -541,14 +541,14 @@ std::size_t terms_of(const GiNaC::ex& p) { return GiNaC::is_a<GiNaC::add>(p) ? p
 
 Condition Rules::make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
                                   const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts,
-                                  Naming& naming, const EliminatedForm* eliminated, bool limit) const {
+                                  Naming& naming, const EliminatedForm* eliminated, bool limit, const bool* coprime) const {
   const Symbols& sy = sy_;
   Condition c;
   c.kind = kind;
   c.about = about;
   c.relation = relation;
   // raw / det(ZᵀAZ) in lowest terms (at most one numer_denom per condition).
-  const detail::Denominator::Reduced reduced = determinant.lowest_terms(raw, false);
+  const detail::Denominator::Reduced reduced = determinant.lowest_terms(raw, false, coprime);
   const GiNaC::ex& denominator = reduced.denominator;
   int sign = 1;
   ConditionForm form;
@@ -864,9 +864,9 @@ struct Stored {
 
 /// Phase 4: \p numerator / D in lowest terms, its denominator positive at
 /// the reference point \p ref.
-Stored normalise(const Poly& numerator, const detail::Denominator& denominator, const GiNaC::exmap& ref) {
+Stored normalise(const Poly& numerator, const detail::Denominator& denominator, const GiNaC::exmap& ref, const bool* coprime) {
   Stored s;
-  s.reduced = denominator.lowest_terms(numerator);
+  s.reduced = denominator.lowest_terms(numerator, true, coprime);
   s.fraction = {s.reduced.numerator, s.reduced.denominator};
   const int sign = s.reduced.whole ? denominator.sign_at_reference() : detail::evaluate(s.fraction.denominator, ref).csgn();
   if (sign < 0) {
@@ -876,16 +876,38 @@ Stored normalise(const Poly& numerator, const detail::Denominator& denominator, 
   return s;
 }
 
-/// Phase 5: the stored fractions times D are the polynomials Wh, −Lh, and
-/// these satisfy the unreduced equations exactly.  Everything is multiplied
-/// by D = det(ZᵀAZ) ≠ 0 first, so each identity is between polynomials,
-/// compared term by term.  Throws std::logic_error on a failure; returns
-/// what was checked, in words (Derivation::check).
+/// Phase 5, its first half: the polynomials Wh and λD satisfy the unreduced
+/// equations exactly.  Everything is multiplied by D = det(ZᵀAZ) ≠ 0 first,
+/// so each identity is between polynomials, compared term by term.  Throws
+/// std::logic_error on a failure.
+void check_equations(const System& s, const ContactSet& closed, const Solution& x) {
+  const Symbols& sy = *s.sy;
+  const int n = s.n;
+  const std::size_t N = s.size();
+  const std::vector<Poly>& W = x.Wh;
+  const std::vector<Poly>& L = x.Lh;
+  for (int i = 0; i < s.free_bodies; ++i) {
+    Poly r = inertia_of(s, i, W, x.uD) + dissipation_of(s, i, W, x.uD);
+    if (i + 1 < n) r -= L[static_cast<std::size_t>(i)];
+    if (i > 0) r += L[static_cast<std::size_t>(i - 1)];
+    if (!r.is_zero())
+      throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the equation of motion of body " + std::to_string(i + 1) +
+                             " is not satisfied by the solution (residual " + show(GiNaC::normal(r.to_ex(sy) / x.D.to_ex(sy))) + ")");
+  }
+  for (int c = 0; c + 1 < n; ++c)
+    if (closed.closed(c) && W[static_cast<std::size_t>(c)] != W[static_cast<std::size_t>(c + 1)])
+      throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": contact " + Pair{c + 1, c + 2}.name() + " does not stay closed");
+  if (s.fixed && W[N - 1] != x.uD[N - 1]) throw std::logic_error("Deriver::derive(): the fixed obstacle moves");
+}
+
+/// Phase 5, its second half: the stored fractions times D are the
+/// polynomials Wh and −λD (check_equations() holds for these), read back
+/// from GiNaC.  Throws std::logic_error on a failure; returns what was
+/// checked, in words (Derivation::check).
 std::string check_solution(const System& s, const ContactSet& closed, const Solution& x, const detail::Denominator& denominator,
                            const std::vector<Stored>& velocities, const std::vector<Stored>& reactions) {
   const Symbols& sy = *s.sy;
   const int n = s.n;
-  const std::size_t N = s.size();
   auto times_D = [&](const Stored& st, const char* what) {
     const Fraction& f = st.fraction;
     if (st.reduced.whole) {  // numerator = ±P / content, denominator = ±D / content
@@ -901,22 +923,14 @@ std::string check_solution(const System& s, const ContactSet& closed, const Solu
       throw std::logic_error(std::string("Deriver::derive(): the denominator of ") + what + " does not divide det(Z^T A Z)");
     return Poly::from_ex(GiNaC::expand(f.numerator * q), sy);
   };
-  std::vector<Poly> W(N, Poly(s.vars)), L(N - 1, Poly(s.vars));
-  for (int i = 0; i < n; ++i) W[static_cast<std::size_t>(i)] = times_D(velocities[static_cast<std::size_t>(i)], "a velocity");
+  for (int i = 0; i < n; ++i)
+    if (times_D(velocities[static_cast<std::size_t>(i)], "a velocity") != x.Wh[static_cast<std::size_t>(i)])
+      throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the velocity of body " + std::to_string(i + 1) +
+                             " as stored is not the solution");
   for (int c = 0; c + 1 < n; ++c)
-    if (closed.closed(c)) L[static_cast<std::size_t>(c)] = -times_D(reactions[static_cast<std::size_t>(c)], "a reaction");
-  for (int i = 0; i < s.free_bodies; ++i) {
-    Poly r = inertia_of(s, i, W, x.uD) + dissipation_of(s, i, W, x.uD);
-    if (i + 1 < n) r -= L[static_cast<std::size_t>(i)];
-    if (i > 0) r += L[static_cast<std::size_t>(i - 1)];
-    if (!r.is_zero())
-      throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the equation of motion of body " + std::to_string(i + 1) +
-                             " is not satisfied by the solution (residual " + show(GiNaC::normal(r.to_ex(sy) / denominator.value())) + ")");
-  }
-  for (int c = 0; c + 1 < n; ++c)
-    if (closed.closed(c) && W[static_cast<std::size_t>(c)] != W[static_cast<std::size_t>(c + 1)])
-      throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": contact " + Pair{c + 1, c + 2}.name() + " does not stay closed");
-  if (s.fixed && W[N - 1] != x.uD[N - 1]) throw std::logic_error("Deriver::derive(): the fixed obstacle moves");
+    if (closed.closed(c) && -times_D(reactions[static_cast<std::size_t>(c)], "a reaction") != x.Lh[static_cast<std::size_t>(c)])
+      throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the reaction on contact " + Pair{c + 1, c + 2}.name() +
+                             " as stored is not the solution");
   return "substituted back: the " + std::to_string(s.free_bodies) +
          " equations of motion with the reactions hold exactly (times det(Z^T A Z) they expand to 0), closed contacts keep equal "
          "velocities" + std::string(s.fixed ? ", the obstacle stays at rest" : "");
@@ -1105,14 +1119,108 @@ void set_actual(Derivation& d) {
 
 }  // namespace
 
-Derivation Deriver::derive(const ContactSet& closed) const {
+namespace {
+
+/// What Deriver::prepare() hands to Deriver::derive(): the solution's
+/// polynomials and whether each numerator (the velocities, the closed
+/// contacts' reactions, the conditions, in that order) is coprime with D.
+struct Prepared {
+  Solution x;
+  std::vector<char> coprime;
+};
+
+/// The first bytes of a prepared case (Deriver::prepare()).
+constexpr char kPreparedTag[] = "superball-prepared-1";
+
+/// The numerators derive() reduces by D, in the order it reduces them
+/// (Prepared::coprime): each body's velocity, each closed contact's −λD, each condition.
+std::vector<const Poly*> reduced_numerators(const System& s, const ContactSet& closed, const Solution& x, const std::vector<Poly>& negated_reactions,
+                                            const std::vector<Pending>& pending) {
+  std::vector<const Poly*> out;
+  for (const Poly& w : x.Wh) out.push_back(&w);
+  for (int c = 0; c + 1 < s.n; ++c)
+    if (closed.closed(c)) out.push_back(&negated_reactions[static_cast<std::size_t>(c)]);
+  for (const Pending& p : pending) out.push_back(&p.raw);
+  return out;
+}
+
+/// −λD on each contact (zero where open).
+std::vector<Poly> negated(const std::vector<Poly>& Lh) {
+  std::vector<Poly> out;
+  for (const Poly& l : Lh) out.push_back(-l);
+  return out;
+}
+
+/// The solution of \p s read back from Deriver::prepare()'s \p text.
+Prepared read_prepared(const System& s, const ContactSet& closed, const std::string& text) {
+  const std::size_t tag = sizeof kPreparedTag - 1;
+  if (text.compare(0, tag, kPreparedTag) != 0 || text.size() < tag + closed.to_string().size() + 1 ||
+      text.compare(tag, closed.to_string().size() + 1, closed.to_string() + ";") != 0)
+    throw std::invalid_argument("Deriver::derive(): the prepared work is not that of case " + closed.to_string());
+  std::size_t at = tag + closed.to_string().size() + 1;
+  Prepared p;
+  Solution& x = p.x;
+  const std::size_t N = s.size();
+  x.D = Poly::read(text, at, s.vars);
+  x.aD = s.symbol(s.sy->fall_speed()) * x.D;
+  x.uD.assign(N, Poly(s.vars));
+  for (std::size_t j = 0; j < N; ++j) x.uD[j] = s.u[j] * x.D;
+  for (std::size_t c = 0; c < s.k(); ++c) x.Vh.push_back(Poly::read(text, at, s.vars));
+  x.Wh.assign(N, Poly(s.vars));
+  for (std::size_t i = 0; i < N; ++i) {
+    const int ci = s.clusters.of[i];
+    x.Wh[i] = ci == s.clusters.fixed ? x.uD[N - 1] : x.Vh[static_cast<std::size_t>(ci)];
+  }
+  for (std::vector<Poly>* v : {&x.Lh, &x.inertia, &x.dissipation})
+    for (std::size_t c = 0; c + 1 < N; ++c) v->push_back(Poly::read(text, at, s.vars));
+  if (at >= text.size()) throw std::invalid_argument("Poly::read(): the record is truncated");
+  p.coprime.assign(text.begin() + static_cast<std::ptrdiff_t>(at), text.end());
+  return p;
+}
+
+}  // namespace
+
+std::string Deriver::prepare(const ContactSet& closed) const {
+  const Symbols& sy = *symbols_;
+  if (closed.bodies() != sy.bodies())
+    throw std::invalid_argument("Deriver::prepare(): the case " + closed.to_string() + " is for " + std::to_string(closed.bodies()) +
+                                " bodies, the pattern has " + std::to_string(sy.bodies()));
+  const System s = system_of(sy, closed);
+  const Solution x = solve(s, closed);
+  check_equations(s, closed, x);
+  const detail::Denominator denominator(x.D, sy);
+  const std::vector<Poly> minus_L = negated(x.Lh);
+  const Conditions conditions = conditions_of(s, closed, x);
+  std::string out = kPreparedTag + closed.to_string() + ";";
+  x.D.write(out);
+  for (const Poly& v : x.Vh) v.write(out);
+  for (const std::vector<Poly>* v : {&x.Lh, &x.inertia, &x.dissipation})
+    for (const Poly& p : *v) p.write(out);
+  for (const Poly* p : reduced_numerators(s, closed, x, minus_L, conditions.pending)) out += !p->is_zero() && denominator.coprime_with(*p) ? '1' : '0';
+  return out;
+}
+
+Derivation Deriver::derive(const ContactSet& closed) const { return derive(closed, std::string()); }
+
+Derivation Deriver::derive(const ContactSet& closed, const std::string& prepared) const {
   const Symbols& sy = *symbols_;
   if (closed.bodies() != sy.bodies())
     throw std::invalid_argument("Deriver::derive(): the case " + closed.to_string() + " is for " + std::to_string(closed.bodies()) +
                                 " bodies, the pattern has " + std::to_string(sy.bodies()));
   const System s = system_of(sy, closed);  // phases 1 and 2
-  const Solution x = solve(s, closed);     // phase 3
-  const detail::Denominator denominator(x.D, sy);
+  // Phase 3 (and the check of phase 5's equations), or its results from prepare().
+  const Prepared ahead = prepared.empty() ? Prepared{solve(s, closed), {}} : read_prepared(s, closed, prepared);
+  const Solution& x = ahead.x;
+  if (prepared.empty()) check_equations(s, closed, x);
+  const detail::Denominator denominator(x.D, sy, prepared.empty());
+  std::size_t asked = 0;  // the next numerator reduced by D (reduced_numerators())
+  auto coprime = [&]() -> const bool* {
+    static const bool yes = true, no = false;
+    const std::size_t q = asked++;
+    if (prepared.empty()) return nullptr;
+    if (q >= ahead.coprime.size()) throw std::invalid_argument("Deriver::derive(): the prepared work of case " + closed.to_string() + " is short");
+    return ahead.coprime[q] == '1' ? &yes : &no;
+  };
 
   Derivation out;  // phase 4: the results in lowest terms
   out.symbols = symbols_;
@@ -1122,12 +1230,12 @@ Derivation Deriver::derive(const ContactSet& closed) const {
   out.free_clusters = s.clusters.free;
   const GiNaC::exmap ref = reference_point(sy);
   std::vector<Stored> velocities, reactions;
-  for (int i = 0; i < s.n; ++i) velocities.push_back(normalise(x.Wh[static_cast<std::size_t>(i)], denominator, ref));
+  for (int i = 0; i < s.n; ++i) velocities.push_back(normalise(x.Wh[static_cast<std::size_t>(i)], denominator, ref, coprime()));
   for (int c = 0; c + 1 < s.n; ++c)
-    reactions.push_back(closed.closed(c) ? normalise(-x.Lh[static_cast<std::size_t>(c)], denominator, ref) : Stored{});
+    reactions.push_back(closed.closed(c) ? normalise(-x.Lh[static_cast<std::size_t>(c)], denominator, ref, coprime()) : Stored{});
   for (const Stored& v : velocities) out.velocities.push_back(v.fraction);
   for (const Stored& r : reactions) out.reactions.push_back(r.fraction);
-  out.check = check_solution(s, closed, x, denominator, velocities, reactions);  // phase 5
+  out.check = check_solution(s, closed, x, denominator, velocities, reactions);  // phase 5: the stored results are the solution
 
   const Conditions conditions = conditions_of(s, closed, x);  // phase 6
   const std::vector<Pending>& pending = conditions.pending;
@@ -1146,7 +1254,7 @@ Derivation Deriver::derive(const ContactSet& closed) const {
     const Pending& p = pending[q];
     const EliminatedForm form = out.elimination ? eliminated_form(p.form, sy) : EliminatedForm{};
     out.conditions.push_back(rules.make_condition(p.kind, p.about, p.relation, p.raw, denominator, p.parts, naming,
-                                            out.elimination ? &form : nullptr, limit[q] != 0));
+                                            out.elimination ? &form : nullptr, limit[q] != 0, coprime()));
   }
   if (out.elimination && !elimination_used(out)) {  // the elimination is kept only when something is written through it
     out.elimination.reset();

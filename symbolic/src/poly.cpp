@@ -1,6 +1,9 @@
 #include "poly.hpp"
 
 #include <algorithm>
+#include <cstring>
+#include <sstream>
+#include <cln/integer_io.h>
 #include <functional>
 #include <numeric>
 #include <stdexcept>
@@ -529,6 +532,65 @@ GiNaC::ex Poly::to_ex(const Symbols& symbols) const {
   }
   if (pairs.empty()) return constant;
   return GiNaC::add(std::move(pairs), constant);
+}
+
+namespace {
+
+template <class T>
+void put(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
+template <class T>
+T get(const std::string& in, std::size_t& at) {
+  if (in.size() - at < sizeof(T) || at > in.size()) throw std::invalid_argument("Poly::read(): the record is truncated");
+  T v;
+  std::memcpy(&v, in.data() + at, sizeof v);
+  at += sizeof v;
+  return v;
+}
+
+}  // namespace
+
+void Poly::write(std::string& out) const {
+  // Terms, then per term its packed exponents and its coefficient: a machine
+  // integer when it fits in 62 bits (tag 0), else its decimal digits (tag 1).
+  put<std::uint64_t>(out, size());
+  out.append(reinterpret_cast<const char*>(mono_.data()), mono_.size() * sizeof(std::uint64_t));
+  for (const cln::cl_I& c : coef_) {
+    if (cln::integer_length(c) <= 62) {
+      put<std::uint8_t>(out, 0);
+      put<std::int64_t>(out, cln::cl_I_to_Q(c));
+    } else {
+      std::ostringstream digits;
+      digits << c;
+      put<std::uint8_t>(out, 1);
+      put<std::uint64_t>(out, digits.str().size());
+      out += digits.str();
+    }
+  }
+}
+
+Poly Poly::read(const std::string& in, std::size_t& at, int vars) {
+  Poly p(vars);
+  const auto terms = get<std::uint64_t>(in, at);
+  const std::size_t words = static_cast<std::size_t>(p.words_);
+  if (terms > (in.size() - at) / (words * sizeof(std::uint64_t) + 1)) throw std::invalid_argument("Poly::read(): the record is truncated");
+  p.mono_.resize(terms * words);
+  std::memcpy(p.mono_.data(), in.data() + at, p.mono_.size() * sizeof(std::uint64_t));
+  at += p.mono_.size() * sizeof(std::uint64_t);
+  p.coef_.reserve(terms);
+  for (std::uint64_t t = 0; t < terms; ++t) {
+    if (get<std::uint8_t>(in, at) == 0) {
+      p.coef_.emplace_back(static_cast<long long>(get<std::int64_t>(in, at)));
+    } else {
+      const auto size = get<std::uint64_t>(in, at);
+      if (size > in.size() - at) throw std::invalid_argument("Poly::read(): the record is truncated");
+      p.coef_.push_back(cln::cl_I(in.substr(at, size).c_str()));
+      at += size;
+    }
+  }
+  return p;
 }
 
 Poly determinant(const std::vector<Poly>& m, int n, int vars) {

@@ -17,6 +17,7 @@
 #include <ginac/ginac.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "superball/symbolic/symbols.hpp"
@@ -99,6 +100,15 @@ class Poly {
   /// The same polynomial as a GiNaC expression in \p symbols (an add of
   /// products, built without re-expanding).
   GiNaC::ex to_ex(const Symbols& symbols) const;
+
+  /// Appends the polynomial to \p out in a compact binary form (its packed
+  /// exponents and coefficients), read back by read(), for a polynomial that
+  /// crosses processes (Deriver::prepare()).
+  void write(std::string& out) const;
+  /// The polynomial write() put at \p at in \p in, in \p vars symbols;
+  /// \p at moves past it.  Throws std::invalid_argument("Poly::read(): ...")
+  /// on a truncated or malformed record.
+  static Poly read(const std::string& in, std::size_t& at, int vars);
 
  private:
   int vars_ = 0, words_ = 0;

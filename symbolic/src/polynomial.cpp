@@ -89,14 +89,22 @@ GiNaC::ex univariate_ex(const std::vector<cln::cl_I>& c, const GiNaC::ex& x) {
 
 }  // namespace
 
-Denominator::Denominator(const Poly& q, const Symbols& symbols) : symbols_(&symbols), q_(q), q_ex_(q.to_ex(symbols)) {
+const GiNaC::ex& Denominator::value() const {
+  if (!have_ex_) {
+    q_ex_ = q_.to_ex(*symbols_);
+    have_ex_ = true;
+  }
+  return q_ex_;
+}
+
+Denominator::Denominator(const Poly& q, const Symbols& symbols, bool probe) : symbols_(&symbols), q_(q) {
   static const int values[] = {3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97};
   constexpr int count = sizeof(values) / sizeof(values[0]);
   const int vars = q.vars();
   std::vector<cln::cl_I> ref(static_cast<std::size_t>(vars));
   for (int k = 0; k < vars; ++k) ref[static_cast<std::size_t>(k)] = symbols.all()[static_cast<std::size_t>(k)].kind == SymbolKind::Coupling ? 0 : 1;
   sign_ = cln::signum(q.evaluate(ref)) > 0 ? 1 : cln::zerop(q.evaluate(ref)) ? 0 : -1;
-  if (q_.is_constant()) return;
+  if (q_.is_constant() || !probe) return;
   for (int x = 0; x < vars; ++x) {
     const int degree = q_.degree(x);
     if (!degree) continue;
@@ -137,21 +145,21 @@ bool Denominator::coprime_with(const Poly& p) const {
   return true;
 }
 
-Denominator::Reduced Denominator::lowest_terms(const Poly& num, bool with_numerator) const {
+Denominator::Reduced Denominator::lowest_terms(const Poly& num, bool with_numerator, const bool* coprime) const {
   Reduced r;
   if (num.is_zero()) {
     r.numerator = 0;
     r.denominator = 1;
     return r;
   }
-  if (coprime_with(num)) {
+  if (coprime ? *coprime : coprime_with(num)) {
     r.whole = true;
     r.content = cln::gcd(num.content(), q_.content());
     if (with_numerator) r.numerator = num.divided(r.content).to_ex(*symbols_);
-    r.denominator = r.content == 1 ? q_ex_ : q_.divided(r.content).to_ex(*symbols_);
+    r.denominator = r.content == 1 ? value() : q_.divided(r.content).to_ex(*symbols_);
     return r;
   }
-  const GiNaC::ex nd = GiNaC::numer_denom(num.to_ex(*symbols_) / q_ex_);
+  const GiNaC::ex nd = GiNaC::numer_denom(num.to_ex(*symbols_) / value());
   GiNaC::ex n = GiNaC::expand(nd.op(0)), d = GiNaC::expand(nd.op(1));
   // Common rational content.
   GiNaC::numeric top = 0, bottom = 1;

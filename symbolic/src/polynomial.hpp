@@ -42,11 +42,13 @@ bool certainly_nonnegative(const GiNaC::ex& p, const Symbols& symbols);
 /// symbols where the leading coefficient of q in x does not vanish, and q there.
 class Denominator {
  public:
-  Denominator(const Poly& q, const Symbols& symbols);
+  /// \p probe false: no probe points (coprime_with() is then not to be
+  /// called; lowest_terms() is told whether a numerator is coprime).
+  Denominator(const Poly& q, const Symbols& symbols, bool probe = true);
   /// q.
   const Poly& poly() const { return q_; }
   /// q as a GiNaC expression.
-  const GiNaC::ex& value() const { return q_ex_; }
+  const GiNaC::ex& value() const;
   /// The sign (−1, 0, 1) of q at reference_point() (masses, K's, a = 1, couplings 0).
   int sign_at_reference() const { return sign_; }
   /// Whether gcd(p, q) is a constant, proved by specialisation: for every
@@ -68,8 +70,9 @@ class Denominator {
   /// (GiNaC::numer_denom, once, unless coprime_with() proves there are none)
   /// and the common rational content divided out.
   /// \p with_numerator false leaves Reduced::numerator unset when whole
-  /// (the caller keeps num / content as a Poly).
-  Reduced lowest_terms(const Poly& num, bool with_numerator = true) const;
+  /// (the caller keeps num / content as a Poly).  \p coprime: what
+  /// coprime_with(num) answers, when already known (Deriver::prepare()).
+  Reduced lowest_terms(const Poly& num, bool with_numerator = true, const bool* coprime = nullptr) const;
 
  private:
   struct Probe {
@@ -80,7 +83,8 @@ class Denominator {
   };
   const Symbols* symbols_;
   Poly q_;
-  GiNaC::ex q_ex_;
+  mutable GiNaC::ex q_ex_;      ///< q as GiNaC, made on first use
+  mutable bool have_ex_ = false;
   int sign_ = 0;
   std::vector<Probe> probes_;
   std::vector<int> unprobed_;  ///< symbols of q without a usable point

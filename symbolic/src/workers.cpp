@@ -323,9 +323,34 @@ std::string task_cpu_summary(const std::vector<double>& seconds, const std::func
   return out + line + name(largest);
 }
 
+bool split_case(const Deriver& deriver, const ContactSet& closed) {
+  const int n = deriver.symbols().bodies(), fixed = deriver.symbols().obstacle() == Obstacle::Infinite ? 1 : 0;
+  int open = 0;
+  for (int c = 0; c + 1 < n; ++c) open += closed.closed(c) ? 0 : 1;
+  const int free = open + 1 - fixed;
+  return open >= n - 2 && free >= 4;
+}
+
+std::vector<std::string> prepare_cases(const Deriver& deriver, const std::vector<ContactSet>& cases, int jobs, const Workers::Interrupt& interrupted,
+                                       std::vector<double>* cpu, std::vector<std::size_t>* prepared) {
+  std::vector<std::string> out(cases.size());
+  std::vector<std::size_t> which;
+  if (jobs >= 2)
+    for (std::size_t k = 0; k < cases.size(); ++k)
+      if (split_case(deriver, cases[k])) which.push_back(k);
+  if (prepared) *prepared = which;
+  if (cpu) cpu->clear();
+  if (which.empty()) return out;
+  Workers workers(which.size(), jobs, [&](std::size_t j) { return deriver.prepare(cases[which[j]]); });
+  workers.run([&](std::size_t j, std::string&& text) { out[which[j]] = std::move(text); }, interrupted);
+  if (cpu) *cpu = workers.task_cpu_seconds();
+  return out;
+}
+
 void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
                   const std::function<std::string(std::size_t, const Derivation&)>& write, const Workers::Deliver& deliver, const DeriveRun& run) {
-  Workers workers(cases.size(), run.jobs, [&](std::size_t k) { return write(k, deriver.derive(cases[k])); });
+  const std::vector<std::string> prepared = prepare_cases(deriver, cases, run.jobs, run.interrupted);
+  Workers workers(cases.size(), run.jobs, [&](std::size_t k) { return write(k, deriver.derive(cases[k], prepared[k])); });
   if (run.progress) run.progress(0, cases.size());
   workers.run(
       [&](std::size_t k, std::string&& text) {

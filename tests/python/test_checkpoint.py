@@ -362,3 +362,14 @@ def test_a_map_folder_is_one_run_for_the_command_and_the_module(paper, tmp_path)
         superball.map(paper, X, "alpha.2=-110:0:10", progress=False, checkpoint=folder)
     assert code == 2 and out == "" and err == f"superball: {python.value}\n"
     assert str(python.value).startswith(f"--checkpoint {folder / 'points'}: holds run ")
+
+
+def test_derive_all_in_two_stages_with_a_checkpoint_is_the_one_process_derivation(tmp_path):
+    # A finite obstacle at 5 bodies: with several workers {} and the four cases of one closed contact are derived
+    # in two stages (symbolic::prepare_cases()), also when each case is kept in a checkpoint folder.
+    kw = dict(bodies=5, pairs="near2", coupling="near2", obstacle="finite", progress=False)
+    one = superball.derive_all(**kw, jobs=1)
+    folder = tmp_path / "d"
+    assert derived(superball.derive_all(**kw, jobs=2, checkpoint=folder)) == derived(one)
+    assert tasks(folder) == [f"task-{k:08d}" for k in range(len(one))]
+    assert derived(superball.derive_all(**kw, jobs=2, checkpoint=folder)) == derived(one)  # read back

@@ -232,6 +232,11 @@ TEST(CliDerive, TheOutputDoesNotDependOnTheNumberOfWorkers) {
       EXPECT_EQ(many.out, one.out) << format << ", -j " << jobs;
     }
   }
+  // A finite obstacle: five of the sixteen cases are derived in two stages with several workers (split_case()).
+  const RunResult one = run({"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--obstacle", "finite", "--all", "--format", "json", "-j", "1"});
+  const RunResult two = run({"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--obstacle", "finite", "--all", "--format", "json", "-j", "2"});
+  ASSERT_EQ(one.exit_code, 0) << superball::test::describe(one);
+  EXPECT_EQ(two.out, one.out);
   const RunResult bad = run({"derive", "--all", "--alphas", "2", "-j", "-1"});
   EXPECT_EQ(bad.exit_code, 2);
 }

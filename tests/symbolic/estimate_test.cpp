@@ -22,13 +22,14 @@ void near(double estimated, double measured, const char* what) {
 }
 
 TEST(Estimate, WithinAFactorOfThreeOfTheMeasuredRuns) {
-  // Wall times on one core and peak resident memory of the real runs (docs/SYMBOLIC.md, Limits).
+  // Times on one core and peak resident memory of the real runs (docs/SYMBOLIC.md, Limits; near2 with
+  // couplings: CPU seconds of the tasks, `derive --task-cpu -j 2`, and the largest process).
   const Estimate w3_all_7 = estimate_derivation(Pattern::nearest_and_next_nearest(7), Obstacle::Infinite, 64, true);
-  near(w3_all_7.seconds, 21.4, "near2 with couplings, every case of 7 bodies: 21.4 s");
-  near(w3_all_7.process_bytes, 343e6, "… 343 MB");
+  near(w3_all_7.seconds, 8.63, "near2 with couplings, every case of 7 bodies: 8.63 s");
+  near(w3_all_7.process_bytes, 150e6, "… 150 MB");
   const Estimate w3_all_8 = estimate_derivation(Pattern::nearest_and_next_nearest(8), Obstacle::Infinite, 128, true);
-  near(w3_all_8.seconds, 256, "every case of 8 bodies: 256 s");
-  near(w3_all_8.process_bytes, 2.0e9, "… 2.0 GB the largest worker");
+  near(w3_all_8.seconds, 80.6, "every case of 8 bodies: 80.6 s");
+  near(w3_all_8.process_bytes, 1.13e9, "… 1.13 GB the largest worker");
   near(estimate_derivation(Pattern::near(10, 1), Obstacle::Infinite, 1, false).seconds, 3.2, "near, one case of 10 bodies: 3.2 s");
   near(estimate_derivation(Pattern::near(8, 2), Obstacle::Infinite, 128, true).seconds, 25.4, "near2, every case of 8 bodies: 25.4 s");
   near(estimate_derivation(Pattern::all_pairs(6), Obstacle::Infinite, 32, true).seconds, 2.4, "all pairs, every case of 6 bodies: 2.4 s");

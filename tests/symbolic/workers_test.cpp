@@ -240,5 +240,73 @@ TEST(DeriveCases, TheSameResultsInCaseOrderWhateverTheWorkers) {
   }
 }
 
+/// Whether two derivations of one case are the same, expression by expression.
+void expect_same(const Derivation& a, const Derivation& b) {
+  const std::string what = a.case_name;
+  EXPECT_TRUE(a.determinant.is_equal(b.determinant)) << what;
+  ASSERT_EQ(a.velocities.size(), b.velocities.size()) << what;
+  for (std::size_t i = 0; i < a.velocities.size(); ++i) {
+    EXPECT_TRUE(a.velocities[i].numerator.is_equal(b.velocities[i].numerator)) << what << " U" << i + 1;
+    EXPECT_TRUE(a.velocities[i].denominator.is_equal(b.velocities[i].denominator)) << what << " U" << i + 1;
+  }
+  for (std::size_t c = 0; c < a.reactions.size(); ++c) EXPECT_TRUE(a.reactions[c].numerator.is_equal(b.reactions[c].numerator)) << what;
+  ASSERT_EQ(a.conditions.size(), b.conditions.size()) << what;
+  for (std::size_t q = 0; q < a.conditions.size(); ++q) {
+    const Condition &x = a.conditions[q], &y = b.conditions[q];
+    EXPECT_EQ(x.about, y.about) << what;
+    EXPECT_TRUE(x.exact.numerator.is_equal(y.exact.numerator)) << what << " " << x.about;
+    EXPECT_TRUE(x.exact.denominator.is_equal(y.exact.denominator)) << what << " " << x.about;
+    EXPECT_TRUE(x.asymptotic.numerator.is_equal(y.asymptotic.numerator)) << what << " " << x.about;
+    EXPECT_EQ(x.exact.verdict, y.exact.verdict) << what << " " << x.about;
+    EXPECT_EQ(x.proof, y.proof) << what << " " << x.about;
+    EXPECT_EQ(x.exact.readable.has_value(), y.exact.readable.has_value()) << what << " " << x.about;
+    EXPECT_EQ(x.exact.eliminated.has_value(), y.exact.eliminated.has_value()) << what << " " << x.about;
+  }
+  EXPECT_EQ(a.named.size(), b.named.size()) << what;
+  EXPECT_EQ(a.elimination.has_value(), b.elimination.has_value()) << what;
+  EXPECT_EQ(a.check, b.check) << what;
+  EXPECT_EQ(a.actual, b.actual) << what;
+}
+
+TEST(DeriveCases, ACaseFinishedFromItsPreparedWorkIsTheSameDerivation) {
+  // Finite obstacle: {} and the four cases of one closed contact are split (five free clusters, four).
+  const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Finite);
+  int split = 0;
+  for (std::uint64_t mask = 0; mask < 16; ++mask) {
+    const ContactSet c = ContactSet::from_mask(mask, 5);
+    if (!split_case(deriver, c)) continue;
+    ++split;
+    expect_same(deriver.derive(c), deriver.derive(c, deriver.prepare(c)));
+  }
+  EXPECT_EQ(split, 5);
+  EXPECT_FALSE(split_case(deriver, ContactSet::from_mask(3, 5)));  // two contacts closed: one stage
+}
+
+TEST(DeriveCases, PreparedWorkOfAnotherCaseOrTruncatedIsRefused) {
+  const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Infinite);
+  const ContactSet none = ContactSet::from_mask(0, 5), one = ContactSet::from_mask(1, 5);
+  const std::string text = deriver.prepare(none);
+  EXPECT_THROW(deriver.derive(one, text), std::invalid_argument);
+  for (std::size_t keep : {std::size_t{5}, text.size() / 2, text.size() - 1 - 6})  // cut in the tag, in a polynomial, in the proofs
+    EXPECT_THROW(deriver.derive(none, text.substr(0, keep)), std::invalid_argument) << keep;
+}
+
+TEST(DeriveCases, TheLargestCasesArePreparedInAFirstStageOnlyWithSeveralWorkers) {
+  const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Infinite);
+  std::vector<ContactSet> cases;
+  for (std::uint64_t mask = 0; mask < 16; ++mask) cases.push_back(ContactSet::from_mask(mask, 5));
+  std::vector<double> cpu;
+  std::vector<std::size_t> which;
+  const std::vector<std::string> one = prepare_cases(deriver, cases, 1, {}, &cpu, &which);
+  EXPECT_TRUE(which.empty());
+  EXPECT_TRUE(std::all_of(one.begin(), one.end(), [](const std::string& t) { return t.empty(); }));
+  const std::vector<std::string> two = prepare_cases(deriver, cases, 2, {}, &cpu, &which);
+  EXPECT_EQ(which, std::vector<std::size_t>{0});  // {}: four free clusters, the others three at most
+  ASSERT_EQ(cpu.size(), 1u);
+  EXPECT_EQ(two[0], deriver.prepare(cases[0]));
+  for (std::size_t k = 1; k < two.size(); ++k) EXPECT_TRUE(two[k].empty()) << k;
+  EXPECT_TRUE(no_children());
+}
+
 }  // namespace
 }  // namespace superball::symbolic

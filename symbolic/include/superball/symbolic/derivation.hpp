@@ -252,6 +252,19 @@ class Deriver {
   /// zero), then the conditions.  Throws std::invalid_argument for a case of
   /// another number of bodies.
   Derivation derive(const ContactSet& closed) const;
+  /// The polynomial half of derive(\p closed), to run ahead in another
+  /// process (symbolic::derive_cases()): the solution by Cramer's rule, the
+  /// check that it satisfies the equations of motion, and the proofs of
+  /// which numerators are coprime with det(ZᵀAZ).  Returns them as compact
+  /// binary text for derive(\p closed, text), which then does only the rest
+  /// (the results in GiNaC, their check against the solution, the
+  /// conditions' forms).  Throws as derive() does.
+  std::string prepare(const ContactSet& closed) const;
+  /// derive(\p closed) finished from \p prepared, the text of
+  /// prepare(\p closed) (the same Derivation; empty: derive(\p closed)).
+  /// Throws std::invalid_argument("Deriver::derive(): ...") for the
+  /// prepared work of another case, or one truncated.
+  Derivation derive(const ContactSet& closed, const std::string& prepared) const;
   /// All 2^(n−1) cases, mask order (bit c closes contact (c+1, c+2)).
   std::vector<Derivation> derive_all() const;
 

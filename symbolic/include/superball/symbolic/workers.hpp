@@ -106,9 +106,28 @@ struct DeriveRun {
   Workers::Interrupt interrupted;  ///< see Workers::Interrupt
 };
 
+/// Whether derive_cases() splits case \p closed in two tasks (its
+/// Deriver::prepare() ahead, then the rest) when several workers run: the
+/// cases of the most free clusters (at most one contact closed), four or
+/// more, which take most of a run's time (at 7 bodies near2 with couplings,
+/// `{}` alone is a third of it).
+bool split_case(const Deriver& deriver, const ContactSet& closed);
+
+/// The first stage of a run over \p jobs worker processes (none below 2):
+/// Deriver::prepare() of each case of \p cases that split_case() takes, in
+/// its own worker process (forked here, ended before this returns, so that
+/// the workers of the second stage inherit the results).  Returns one text
+/// per case, empty for the cases not prepared; \p cpu (when given)
+/// receives the CPU seconds of each prepare task and \p prepared their
+/// case indices.  Errors and interrupts as Workers::run().
+std::vector<std::string> prepare_cases(const Deriver& deriver, const std::vector<ContactSet>& cases, int jobs,
+                                       const Workers::Interrupt& interrupted = {}, std::vector<double>* cpu = nullptr,
+                                       std::vector<std::size_t>* prepared = nullptr);
+
 /// Derives \p cases of \p deriver over run.jobs worker processes and calls
 /// deliver(k, write(k, derivation of case k)) here in case order (the same
-/// whatever the number of workers).  \p write runs in the worker: it turns a
+/// whatever the number of workers; the largest cases in two stages,
+/// prepare_cases()).  \p write runs in the worker: it turns a
 /// Derivation into the text that crosses back (a report, JSON).  Errors and
 /// interrupts as Workers::run().
 void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
