@@ -78,11 +78,12 @@ constexpr long kSafeExp = 1L << 29;
 /// Rounds 0.W × 2^E (W: N + 1 words, the top bit of W[N] set; \p sticky:
 /// nonzero bits below W) to p bits into \p out's significand, exponent and
 /// precision (the sign is the caller's), to nearest, ties to even.  False,
-/// out untouched, when E leaves the safe range.
-template <int N>
+/// out untouched, when E leaves the safe range.  U: 64N − p when known at
+/// compile time (digits:N's precisions leave 1 bit), else −1.
+template <int N, int U>
 bool round_into(const Limb* W, bool sticky, long E, long p, MpFloat::Raw& out) {
   if (E < -kSafeExp || E > kSafeExp) return false;  // before out is touched: out may be an operand
-  const int unused = static_cast<int>(64L * N - p);  // low bits of the lowest word, 0 … 63
+  const int unused = U >= 0 ? U : static_cast<int>(64L * N - p);  // low bits of the lowest word, 0 … 63
   bool half;                                         // the bit just below the last one kept
   if (unused > 0) {
     half = ((W[1] >> (unused - 1)) & 1) != 0;
@@ -113,7 +114,7 @@ bool round_into(const Limb* W, bool sticky, long E, long p, MpFloat::Raw& out) {
 }
 
 /// a × b, both regular, of p bits in N words, into out.
-template <int N>
+template <int N, int U>
 bool mul(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
   Limb P[2 * N];
   for (int j = 0; j < N; ++j) {  // the first row
@@ -137,13 +138,13 @@ bool mul(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out
   bool sticky = false;
   for (int k = 0; k < N - 1; ++k) sticky = sticky || P[k] != 0;
   const int sign = a.sign * b.sign;
-  if (!round_into<N>(P + N - 1, sticky, E, p, out)) return false;
+  if (!round_into<N, U>(P + N - 1, sticky, E, p, out)) return false;
   out.sign = sign;
   return true;
 }
 
 /// a / b, both regular, of p bits in N words, into out.
-template <int N>
+template <int N, int U>
 bool div(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
   // q = ⌊A·2^(64(N+1)) / B⌋ on N + 2 words: A/B in (1/2, 2), so q has
   // 64(N + 1) bits or one more; the remainder is the sticky bit.
@@ -159,16 +160,17 @@ bool div(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out
     ++E;
   }
   const int sign = a.sign * b.sign;
-  if (!round_into<N>(q, sticky, E, p, out)) return false;
+  if (!round_into<N, U>(q, sticky, E, p, out)) return false;
   out.sign = sign;
   return true;
 }
 
 /// round_into() for N = 2 on 128-bit numbers: S (top bit set) + F/2^128,
 /// \p sticky for nonzero bits below F.
+template <int U>
 bool round_into2(Wide S, Wide F, bool sticky, long E, long p, MpFloat::Raw& out) {
   if (E < -kSafeExp || E > kSafeExp) return false;
-  const int unused = static_cast<int>(128 - p);  // 0 … 63
+  const int unused = U >= 0 ? U : static_cast<int>(128 - p);  // 0 … 63
   bool half;
   Wide ulp = 1;
   if (unused > 0) {
@@ -191,8 +193,8 @@ bool round_into2(Wide S, Wide F, bool sticky, long E, long p, MpFloat::Raw& out)
   return true;
 }
 
-template <>
-bool mul<2>(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+template <int U>
+bool mul2(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
   const Wide ll = Wide(a.d[0]) * b.d[0], lh = Wide(a.d[0]) * b.d[1], hl = Wide(a.d[1]) * b.d[0], hh = Wide(a.d[1]) * b.d[1];
   const Wide mid = (ll >> 64) + static_cast<Limb>(lh) + static_cast<Limb>(hl);  // < 3 · 2^64
   Wide H = hh + (lh >> 64) + (hl >> 64) + (mid >> 64);
@@ -203,26 +205,191 @@ bool mul<2>(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& 
     --E;
   }
   const int sign = a.sign * b.sign;
-  if (!round_into2(H, L, false, E, p, out)) return false;
+  if (!round_into2<U>(H, L, false, E, p, out)) return false;
+  out.sign = sign;
+  return true;
+}
+
+/// Compares the significands of N words: −1, 0 or 1.
+template <int N>
+int compare_words(const Limb* x, const Limb* y) {
+  for (int k = N - 1; k >= 0; --k)
+    if (x[k] != y[k]) return x[k] < y[k] ? -1 : 1;
+  return 0;
+}
+
+/// a + (±b) (\p sign_b: b's sign, flipped for a difference), both regular,
+/// of p bits in N words, into out.  The larger magnitude X sits in the top N
+/// of N + 1 words, the smaller Y shifted right by the exponents' difference
+/// below it, the bits of Y that fall off kept as a sticky bit; the sum or
+/// difference of the two windows, normalised, is the exact result truncated
+/// (a difference with a sticky Y is one less, and inexact), which
+/// round_into() rounds once.  A difference that cancels exactly is +0, as
+/// MPFR gives it rounding to nearest.
+template <int N, int U>
+bool add(const MpFloat::Raw& a, const MpFloat::Raw& b, int sign_b, long p, MpFloat::Raw& out) {
+  const MpFloat::Raw* x = &a;
+  const MpFloat::Raw* y = &b;
+  int sign = a.sign;
+  if (a.exp < b.exp || (a.exp == b.exp && compare_words<N>(a.d, b.d) < 0)) x = &b, y = &a, sign = sign_b;
+  const bool subtract = a.sign != sign_b;
+  const unsigned long apart = static_cast<unsigned long>(x->exp) - static_cast<unsigned long>(y->exp);
+  Limb W[N + 1], Y[N + 1];
+  W[0] = 0;
+  for (int k = 0; k < N; ++k) W[k + 1] = x->d[k];
+  bool sticky = false;
+  if (apart == 0) {
+    Y[0] = 0;
+    for (int k = 0; k < N; ++k) Y[k + 1] = y->d[k];
+  } else if (apart >= 64UL * (N + 1)) {  // all of Y below the window: nonzero
+    for (int k = 0; k <= N; ++k) Y[k] = 0;
+    sticky = true;
+  } else {  // Y = (0.y × 2^64N) >> apart in the window, y read as words 1 … N of zeros around it
+    const int words = static_cast<int>(apart / 64), bits = static_cast<int>(apart % 64);
+    const auto z = [y](int k) -> Limb { return k >= 1 && k <= N ? y->d[k - 1] : 0; };
+    if (bits == 0) {
+      for (int k = 0; k <= N; ++k) Y[k] = z(k + words);
+    } else {
+      for (int k = 0; k <= N; ++k) Y[k] = (z(k + words) >> bits) | (z(k + words + 1) << (64 - bits));
+      sticky = (z(words) << (64 - bits)) != 0;  // the bits of the word shifted out
+    }
+    for (int k = 1; k < words; ++k) sticky = sticky || y->d[k - 1] != 0;  // the words wholly below the window
+  }
+  long E = x->exp;
+  if (!subtract) {
+    bool carry = false;
+    for (int k = 0; k <= N; ++k) {
+      const Limb s = W[k] + Y[k];
+      const bool c1 = s < W[k];
+      W[k] = s + (carry ? 1 : 0);
+      carry = c1 || (carry && W[k] == 0);
+    }
+    if (carry) {  // 1.… : one place right, the bit out joins the sticky one
+      sticky = sticky || (W[0] & 1) != 0;
+      for (int k = 0; k < N; ++k) W[k] = (W[k] >> 1) | (W[k + 1] << 63);
+      W[N] = (W[N] >> 1) | (Limb(1) << 63);
+      ++E;
+    }
+  } else {
+    bool borrow = sticky;  // a sticky Y: the truncated difference is one less
+    for (int k = 0; k <= N; ++k) {
+      const Limb t = W[k] - Y[k];
+      const bool b1 = W[k] < Y[k];
+      W[k] = t - (borrow ? 1 : 0);
+      borrow = b1 || (borrow && t == 0);
+    }
+    int top = N;
+    while (top >= 0 && W[top] == 0) --top;
+    if (top < 0) {  // exact cancellation: +0
+      out.sign = 1, out.exp = __MPFR_EXP_ZERO, out.prec = p;
+      return true;
+    }
+    const int words = N - top, bits = __builtin_clzl(W[top]);
+    if (words > 0) {
+      for (int k = N; k >= 0; --k) W[k] = k - words >= 0 ? W[k - words] : 0;
+    }
+    if (bits > 0) {
+      for (int k = N; k > 0; --k) W[k] = (W[k] << bits) | (W[k - 1] >> (64 - bits));
+      W[0] <<= bits;
+    }
+    E -= 64L * words + bits;
+  }
+  if (!round_into<N, U>(W, sticky, E, p, out)) return false;
+  out.sign = sign;
+  return true;
+}
+
+/// add() for N = 2 on 128-bit numbers: the window is X·2^64 (X: 128 bits,
+/// the low word 0), Y shifted right into H (128 bits) and L (64 bits).
+template <int U>
+bool add2(const MpFloat::Raw& a, const MpFloat::Raw& b, int sign_b, long p, MpFloat::Raw& out) {
+  const Wide A = (Wide(a.d[1]) << 64) | a.d[0], B = (Wide(b.d[1]) << 64) | b.d[0];
+  const bool b_larger = a.exp < b.exp || (a.exp == b.exp && A < B);
+  const Wide X = b_larger ? B : A, Y = b_larger ? A : B;
+  const long ex = b_larger ? b.exp : a.exp, ey = b_larger ? a.exp : b.exp;
+  const int sign = b_larger ? sign_b : a.sign;
+  const unsigned long apart = static_cast<unsigned long>(ex) - static_cast<unsigned long>(ey);
+  Wide H;
+  Limb L;
+  bool sticky;
+  if (apart < 64) {
+    H = apart == 0 ? Y : Y >> apart;
+    L = apart == 0 ? 0 : static_cast<Limb>(Y << (64 - apart));
+    sticky = false;
+  } else if (apart < 128) {
+    const int r = static_cast<int>(apart - 64);
+    H = Y >> apart;
+    L = static_cast<Limb>(Y >> r);
+    sticky = r != 0 && (static_cast<Limb>(Y) << (64 - r)) != 0;
+  } else if (apart < 192) {
+    const int r = static_cast<int>(apart - 64);  // 64 … 127
+    H = 0;
+    L = static_cast<Limb>(Y >> r);
+    sticky = (Y << (128 - r)) != 0;
+  } else {
+    H = 0, L = 0, sticky = true;
+  }
+  long E = ex;
+  Wide S;
+  if (a.sign == sign_b) {
+    S = X + H;
+    if (S < X) {  // a carry: one place right, the bit out joins the sticky one
+      sticky = sticky || (L & 1) != 0;
+      L = (L >> 1) | (static_cast<Limb>(S) << 63);
+      S = (S >> 1) | (Wide(1) << 127);
+      ++E;
+    }
+  } else {
+    const bool borrow = L != 0 || sticky;  // a sticky Y: the truncated difference is one less
+    L = Limb(0) - L - (sticky ? 1 : 0);
+    S = X - H - (borrow ? 1 : 0);
+    if (S == 0 && L == 0) {  // exact cancellation: +0
+      out.sign = 1, out.exp = __MPFR_EXP_ZERO, out.prec = p;
+      return true;
+    }
+    if ((S >> 127) == 0) {
+      const Limb top = static_cast<Limb>(S >> 64), low = static_cast<Limb>(S);
+      const int shift = top != 0 ? __builtin_clzl(top) : low != 0 ? 64 + __builtin_clzl(low) : 128 + __builtin_clzl(L);
+      if (shift < 64) {
+        S = (S << shift) | (L >> (64 - shift)), L <<= shift;
+      } else if (shift < 128) {
+        S = ((S << 64) | L) << (shift - 64), L = 0;
+      } else {
+        S = Wide(L) << (shift - 64), L = 0;
+      }
+      E -= shift;
+    }
+  }
+  if (!round_into2<U>(S, Wide(L) << 64, sticky, E, p, out)) return false;
   out.sign = sign;
   return true;
 }
 
 enum class Kind { add, sub, mul, div };
 
+template <int N, int U>
+bool apply(Kind kind, const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+  switch (kind) {
+    case Kind::add: return N == 2 ? add2<U>(a, b, b.sign, p, out) : add<N, U>(a, b, b.sign, p, out);
+    case Kind::sub: return N == 2 ? add2<U>(a, b, -b.sign, p, out) : add<N, U>(a, b, -b.sign, p, out);
+    case Kind::mul: return N == 2 ? mul2<U>(a, b, p, out) : mul<N, U>(a, b, p, out);
+    case Kind::div: break;
+  }
+  return div<N, U>(a, b, p, out);
+}
+/// apply() with the unused bits known at compile time for digits:N's precisions.
 template <int N>
 bool apply(Kind kind, const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
-  return kind == Kind::mul ? mul<N>(a, b, p, out) : div<N>(a, b, p, out);
+  return p == 64 * N - 1 ? apply<N, 1>(kind, a, b, p, out) : apply<N, -1>(kind, a, b, p, out);
 }
 
-/// out = a × b or a / b here when both are regular of one precision of 2 …
-/// 6 words (false, out untouched, when MPFR must do it).  Sums are left to
-/// MPFR (a 2-word sum written here made the solve no faster), and so are
-/// quotients of 2 words (mpfr_div's 2-word path beats mpn_tdiv_qr).
+/// out = a op b here when both are regular of one precision of 2 … 6 words
+/// (false, out untouched, when MPFR must do it).  Quotients of 2 words are
+/// left to MPFR (mpfr_div's 2-word path beats mpn_tdiv_qr).
 bool operate(Kind kind, const MpFloat::Raw& a, const MpFloat::Raw& b, MpFloat::Raw& out) {
-  if (kind == Kind::add || kind == Kind::sub || a.prec != b.prec || a.exp <= __MPFR_EXP_INF || b.exp <= __MPFR_EXP_INF) return false;
+  if (a.prec != b.prec || a.exp <= __MPFR_EXP_INF || b.exp <= __MPFR_EXP_INF) return false;
   switch ((a.prec + 63) / 64) {
-    case 2: return kind == Kind::mul && mul<2>(a, b, a.prec, out);
+    case 2: return kind != Kind::div && apply<2>(kind, a, b, a.prec, out);
     case 3: return apply<3>(kind, a, b, a.prec, out);
     case 4: return apply<4>(kind, a, b, a.prec, out);
     case 5: return apply<5>(kind, a, b, a.prec, out);
@@ -295,6 +462,24 @@ MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op, fast::Kind kind) {
     if (!fast::operate(kind, *x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
   }
   return x;
+}
+
+/// Whether a and b are both ±0 or regular (compare_finite() takes them).
+bool both_finite(const MpFloat& a, const MpFloat& b) { return MpFloat::zero_or_regular(a) && MpFloat::zero_or_regular(b); }
+
+/// −1, 0 or 1 as a < b, a = b (+0 = −0) or a > b, for ±0 or regular
+/// numbers of any precisions, on the words: MPFR's comparison.
+int compare_finite(const MpFloat::Raw& a, const MpFloat::Raw& b) {
+  const bool a_zero = a.exp == __MPFR_EXP_ZERO, b_zero = b.exp == __MPFR_EXP_ZERO;
+  if (a_zero || b_zero) return a_zero && b_zero ? 0 : a_zero ? -b.sign : a.sign;
+  if (a.sign != b.sign) return a.sign;
+  if (a.exp != b.exp) return a.exp > b.exp ? a.sign : -a.sign;
+  const long na = words(a.prec), nb = words(b.prec);
+  for (long k = 1; k <= std::max(na, nb); ++k) {  // from the top word down; missing words are 0
+    const std::uint64_t x = k <= na ? a.d[na - k] : 0, y = k <= nb ? b.d[nb - k] : 0;
+    if (x != y) return x > y ? a.sign : -a.sign;
+  }
+  return 0;
 }
 
 /// The exact integer \p z as a CLN integer, word by word.
@@ -376,12 +561,19 @@ MpFloat sqrt(const MpFloat& x) {
   return r;
 }
 
-bool operator==(const MpFloat& a, const MpFloat& b) { return mpfr_equal_p(mp(a), mp(b)) != 0; }
+bool operator==(const MpFloat& a, const MpFloat& b) {
+  return both_finite(a, b) ? compare_finite(*a.raw(), *b.raw()) == 0 : mpfr_equal_p(mp(a), mp(b)) != 0;
+}
 bool operator!=(const MpFloat& a, const MpFloat& b) { return !(a == b); }
-bool less(const MpFloat& a, const MpFloat& b) { return mpfr_less_p(mp(a), mp(b)) != 0; }
-bool operator<=(const MpFloat& a, const MpFloat& b) { return mpfr_lessequal_p(mp(a), mp(b)) != 0; }
-
-bool operator>=(const MpFloat& a, const MpFloat& b) { return mpfr_greaterequal_p(mp(a), mp(b)) != 0; }
+bool less(const MpFloat& a, const MpFloat& b) {
+  return both_finite(a, b) ? compare_finite(*a.raw(), *b.raw()) < 0 : mpfr_less_p(mp(a), mp(b)) != 0;
+}
+bool operator<=(const MpFloat& a, const MpFloat& b) {
+  return both_finite(a, b) ? compare_finite(*a.raw(), *b.raw()) <= 0 : mpfr_lessequal_p(mp(a), mp(b)) != 0;
+}
+bool operator>=(const MpFloat& a, const MpFloat& b) {
+  return both_finite(a, b) ? compare_finite(*a.raw(), *b.raw()) >= 0 : mpfr_greaterequal_p(mp(a), mp(b)) != 0;
+}
 
 long digits_precision(int digits) {
   if (digits <= 0) throw std::invalid_argument("digits_precision(): digits must be > 0, got " + std::to_string(digits));

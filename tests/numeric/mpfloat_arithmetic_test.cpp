@@ -203,6 +203,41 @@ TEST(MpFloatArithmetic, ExponentsFarApartHugeAndTinyAreMpfrs) {
   }
 }
 
+/// Sums and differences at every distance of the exponents from 0 to p + 140
+/// (past the word below the significand, where the smaller operand's low bits
+/// leave the window and only their sticky bit remains): the larger operand 1,
+/// 1 + ulp, all ones or random; the smaller one a power of two, its top and
+/// bottom bits set (so that a tie of the top bit is broken by bits far below),
+/// all ones, or random; every sign.
+TEST(MpFloatArithmetic, SumsAndDifferencesAtEveryDistanceOfTheExponents) {
+  Draw draw(19);
+  for (long p : kPrecisions) {
+    MpFloat one = MpFloat::zero(p), odd = MpFloat::zero(p), ones = MpFloat::zero(p);
+    mpfr_set_ui(mp(one), 1, MPFR_RNDN);
+    mpfr_set_ui(mp(odd), 1, MPFR_RNDN), mpfr_nextabove(mp(odd));
+    mpfr_set_ui(mp(ones), 2, MPFR_RNDN), mpfr_nextbelow(mp(ones));
+    for (long apart = 0; apart <= p + 140; ++apart) {
+      const MpFloat random = draw.number(p, 1);
+      MpFloat power = MpFloat::zero(p), ends = MpFloat::zero(p), low_ones = MpFloat::zero(p);
+      mpfr_set_ui_2exp(mp(power), 1, -apart, MPFR_RNDN);                                    // 0.1 × 2^(1 − apart)
+      mpfr_set_ui_2exp(mp(ends), 1, -apart, MPFR_RNDN), mpfr_nextabove(mp(ends));          // 0.10…01
+      mpfr_set_ui_2exp(mp(low_ones), 1, 1 - apart, MPFR_RNDN), mpfr_nextbelow(mp(low_ones));  // 0.11…1
+      const MpFloat low_random = draw.number(p, 1 - apart);
+      const MpFloat* const larger[] = {&one, &odd, &ones, &random};
+      const MpFloat* const smaller[] = {&power, &ends, &low_ones, &low_random};
+      for (const MpFloat* a : larger)
+        for (const MpFloat* b : smaller)
+          for (int sign : {1, -1}) {
+            const MpFloat c = sign > 0 ? *b : -*b;
+            expect_as_mpfr(operations()[0], *a, c, p);
+            expect_as_mpfr(operations()[1], *a, c, p);
+            expect_as_mpfr(operations()[1], c, *a, p);
+            if (::testing::Test::HasFatalFailure()) return;
+          }
+    }
+  }
+}
+
 TEST(MpFloatArithmetic, MixedPrecisionsWidenTheLessPreciseExactly) {
   Draw draw(5);
   for (long p : {127L, 191L, 383L}) {
