@@ -367,33 +367,38 @@ bool add2(const MpFloat::Raw& a, const MpFloat::Raw& b, int sign_b, long p, MpFl
 
 enum class Kind { add, sub, mul, div };
 
-template <int N, int U>
-bool apply(Kind kind, const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
-  switch (kind) {
-    case Kind::add: return N == 2 ? add2<U>(a, b, b.sign, p, out) : add<N, U>(a, b, b.sign, p, out);
-    case Kind::sub: return N == 2 ? add2<U>(a, b, -b.sign, p, out) : add<N, U>(a, b, -b.sign, p, out);
-    case Kind::mul: return N == 2 ? mul2<U>(a, b, p, out) : mul<N, U>(a, b, p, out);
-    case Kind::div: break;
-  }
+/// a op b (\p K) of p bits in N words, U as round_into(), into out: one
+/// function per operation and size, so that each keeps only its own frame.
+template <Kind K, int N, int U>
+__attribute__((noinline)) bool apply(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+  if constexpr (K == Kind::add) return N == 2 ? add2<U>(a, b, b.sign, p, out) : add<N, U>(a, b, b.sign, p, out);
+  if constexpr (K == Kind::sub) return N == 2 ? add2<U>(a, b, -b.sign, p, out) : add<N, U>(a, b, -b.sign, p, out);
+  if constexpr (K == Kind::mul) return N == 2 ? mul2<U>(a, b, p, out) : mul<N, U>(a, b, p, out);
   return div<N, U>(a, b, p, out);
-}
-/// apply() with the unused bits known at compile time for digits:N's precisions.
-template <int N>
-bool apply(Kind kind, const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
-  return p == 64 * N - 1 ? apply<N, 1>(kind, a, b, p, out) : apply<N, -1>(kind, a, b, p, out);
 }
 
 /// out = a op b here when both are regular of one precision of 2 … 6 words
-/// (false, out untouched, when MPFR must do it).  Quotients of 2 words are
-/// left to MPFR (mpfr_div's 2-word path beats mpn_tdiv_qr).
-bool operate(Kind kind, const MpFloat::Raw& a, const MpFloat::Raw& b, MpFloat::Raw& out) {
+/// (false, out untouched, when MPFR must do it); digits:N's precisions,
+/// 64N − 1 bits, with the unused bit known at compile time.  Quotients of 2
+/// words are left to MPFR (mpfr_div's 2-word path beats mpn_tdiv_qr).
+template <Kind K>
+bool operate(const MpFloat::Raw& a, const MpFloat::Raw& b, MpFloat::Raw& out) {
   if (a.prec != b.prec || a.exp <= __MPFR_EXP_INF || b.exp <= __MPFR_EXP_INF) return false;
+  constexpr bool two = K != Kind::div;  // 2 words here
+  switch (a.prec) {
+    case 127: return two && apply<K, two ? 2 : 3, 1>(a, b, 127, out);
+    case 191: return apply<K, 3, 1>(a, b, 191, out);
+    case 255: return apply<K, 4, 1>(a, b, 255, out);
+    case 319: return apply<K, 5, 1>(a, b, 319, out);
+    case 383: return apply<K, 6, 1>(a, b, 383, out);
+    default: break;
+  }
   switch ((a.prec + 63) / 64) {
-    case 2: return kind != Kind::div && apply<2>(kind, a, b, a.prec, out);
-    case 3: return apply<3>(kind, a, b, a.prec, out);
-    case 4: return apply<4>(kind, a, b, a.prec, out);
-    case 5: return apply<5>(kind, a, b, a.prec, out);
-    case 6: return apply<6>(kind, a, b, a.prec, out);
+    case 2: return two && apply<K, two ? 2 : 3, -1>(a, b, a.prec, out);
+    case 3: return apply<K, 3, -1>(a, b, a.prec, out);
+    case 4: return apply<K, 4, -1>(a, b, a.prec, out);
+    case 5: return apply<K, 5, -1>(a, b, a.prec, out);
+    case 6: return apply<K, 6, -1>(a, b, a.prec, out);
     default: return false;
   }
 }
@@ -421,46 +426,70 @@ bool power_of_two(fast::Kind kind, const MpFloat& x, const MpFloat& y, MpFloat& 
   return true;
 }
 
-/// a op b rounded to the larger precision; an operand of lower precision
+/// binary() of operands of different precisions: the one of lower precision
 /// (a constant) is first widened exactly to the larger one, so that MPFR
 /// takes its paths for operands of one precision (2–3× faster below 192 bits).
-MpFloat binary(const MpFloat& a, const MpFloat& b, Op op, fast::Kind kind) {
+template <fast::Kind K>
+__attribute__((noinline)) MpFloat binary_mixed(const MpFloat& a, const MpFloat& b, Op op) {
   const long p = std::max(a.precision(), b.precision());
   MpFloat r = MpFloat::zero(p);
-  if (a.precision() == b.precision()) {
-    if (!fast::operate(kind, *a.raw(), *b.raw(), *r.raw())) op(mp(r), mp(a), mp(b), MPFR_RNDN);
+  if (a.precision() == b.precision()) {  // of more words than the object holds
+    if (!fast::operate<K>(*a.raw(), *b.raw(), *r.raw())) op(mp(r), mp(a), mp(b), MPFR_RNDN);
+    return r;
+  }
+  const bool a_low = a.precision() < p;
+  const bool scales = K == fast::Kind::mul || (K == fast::Kind::div && !a_low);
+  if (scales && power_of_two(K, a_low ? b : a, a_low ? a : b, r)) return r;
+  MpFloat wide = a_low ? a : b;
+  widen(wide, p);
+  const MpFloat& x = a.precision() < p ? wide : a;
+  const MpFloat& y = a.precision() < p ? b : wide;
+  if (!fast::operate<K>(*x.raw(), *y.raw(), *r.raw())) op(mp(r), mp(x), mp(y), MPFR_RNDN);
+  return r;
+}
+
+/// a op b rounded to the larger precision: operands of one precision held in
+/// the object here, others by binary_mixed().
+template <fast::Kind K>
+MpFloat binary(const MpFloat& a, const MpFloat& b, Op op) {
+  MpFloat r;
+  const long p = a.precision();
+  if (p == b.precision() && words(p) <= MpFloat::inline_limbs) {
+    r.raw()->prec = p;  // room in the object
+    if (!fast::operate<K>(*a.raw(), *b.raw(), *r.raw())) op(mp(r), mp(a), mp(b), MPFR_RNDN);
   } else {
-    const bool a_low = a.precision() < p;
-    const bool scales = kind == fast::Kind::mul || (kind == fast::Kind::div && !a_low);
-    if (scales && power_of_two(kind, a_low ? b : a, a_low ? a : b, r)) return r;
-    MpFloat wide = a_low ? a : b;
-    widen(wide, p);
-    const MpFloat& x = a.precision() < p ? wide : a;
-    const MpFloat& y = a.precision() < p ? b : wide;
-    if (!fast::operate(kind, *x.raw(), *y.raw(), *r.raw())) op(mp(r), mp(x), mp(y), MPFR_RNDN);
+    r = binary_mixed<K>(a, b, op);
   }
   return r;
 }
 
-/// x op= y, in place: x is widened first when y is the more precise.
-MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op, fast::Kind kind) {
-  const bool additive = kind == fast::Kind::add || kind == fast::Kind::sub;
+/// in_place() of operands of different precisions: x is widened first when
+/// y is the more precise.
+template <fast::Kind K>
+__attribute__((noinline)) MpFloat& in_place_mixed(MpFloat& x, const MpFloat& y, Op op) {
+  constexpr bool additive = K == fast::Kind::add || K == fast::Kind::sub;
   if (x.precision() < y.precision() && x.raw()->exp == __MPFR_EXP_ZERO && y.raw()->exp > __MPFR_EXP_INF && additive) {
     x = y;  // 0 ± y: exact, the sum started at S(0)
-    if (kind == fast::Kind::sub) x.raw()->sign = -x.raw()->sign;
+    if (K == fast::Kind::sub) x.raw()->sign = -x.raw()->sign;
     return x;
   }
-  if (x.precision() == y.precision()) {
-    if (!fast::operate(kind, *x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
-  } else if (x.precision() > y.precision()) {
-    if ((kind == fast::Kind::mul || kind == fast::Kind::div) && power_of_two(kind, x, y, x)) return x;
+  if (x.precision() > y.precision()) {
+    if ((K == fast::Kind::mul || K == fast::Kind::div) && power_of_two(K, x, y, x)) return x;
     MpFloat wide = y;
     widen(wide, x.precision());
-    if (!fast::operate(kind, *x.raw(), *wide.raw(), *x.raw())) op(mp(x), mp(x), mp(wide), MPFR_RNDN);
+    if (!fast::operate<K>(*x.raw(), *wide.raw(), *x.raw())) op(mp(x), mp(x), mp(wide), MPFR_RNDN);
   } else {
     widen(x, y.precision());
-    if (!fast::operate(kind, *x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
+    if (!fast::operate<K>(*x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
   }
+  return x;
+}
+
+/// x op= y, in place.
+template <fast::Kind K>
+MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op) {
+  if (x.precision() != y.precision()) return in_place_mixed<K>(x, y, op);
+  if (!fast::operate<K>(*x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
   return x;
 }
 
@@ -546,15 +575,15 @@ MpFloat& MpFloat::operator=(MpFloat&& other) noexcept {
   return *this;
 }
 
-MpFloat& MpFloat::operator+=(const MpFloat& x) { return in_place(*this, x, mpfr_add, fast::Kind::add); }
-MpFloat& MpFloat::operator-=(const MpFloat& x) { return in_place(*this, x, mpfr_sub, fast::Kind::sub); }
-MpFloat& MpFloat::operator*=(const MpFloat& x) { return in_place(*this, x, mpfr_mul, fast::Kind::mul); }
-MpFloat& MpFloat::operator/=(const MpFloat& x) { return in_place(*this, x, mpfr_div, fast::Kind::div); }
+MpFloat& MpFloat::operator+=(const MpFloat& x) { return in_place<fast::Kind::add>(*this, x, mpfr_add); }
+MpFloat& MpFloat::operator-=(const MpFloat& x) { return in_place<fast::Kind::sub>(*this, x, mpfr_sub); }
+MpFloat& MpFloat::operator*=(const MpFloat& x) { return in_place<fast::Kind::mul>(*this, x, mpfr_mul); }
+MpFloat& MpFloat::operator/=(const MpFloat& x) { return in_place<fast::Kind::div>(*this, x, mpfr_div); }
 
-MpFloat operator+(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_add, fast::Kind::add); }
-MpFloat operator-(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_sub, fast::Kind::sub); }
-MpFloat operator*(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_mul, fast::Kind::mul); }
-MpFloat operator/(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_div, fast::Kind::div); }
+MpFloat operator+(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::add>(a, b, mpfr_add); }
+MpFloat operator-(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::sub>(a, b, mpfr_sub); }
+MpFloat operator*(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::mul>(a, b, mpfr_mul); }
+MpFloat operator/(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::div>(a, b, mpfr_div); }
 MpFloat sqrt(const MpFloat& x) {
   MpFloat r = MpFloat::zero(x.precision());
   mpfr_sqrt(mp(r), mp(x), MPFR_RNDN);
