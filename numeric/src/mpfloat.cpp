@@ -241,6 +241,11 @@ bool add(const MpFloat::Raw& a, const MpFloat::Raw& b, int sign_b, long p, MpFlo
   if (apart == 0) {
     Y[0] = 0;
     for (int k = 0; k < N; ++k) Y[k + 1] = y->d[k];
+  } else if (apart < 64) {  // the common case, word by word: Y[k] = y's words k − 1 and k
+    const int bits = static_cast<int>(apart);
+    Y[0] = y->d[0] << (64 - bits);
+    for (int k = 1; k < N; ++k) Y[k] = (y->d[k - 1] >> bits) | (y->d[k] << (64 - bits));
+    Y[N] = y->d[N - 1] >> bits;
   } else if (apart >= 64UL * (N + 1)) {  // all of Y below the window: nonzero
     for (int k = 0; k <= N; ++k) Y[k] = 0;
     sticky = true;
