@@ -569,9 +569,7 @@ MpFloat::MpFloat(MpFloat&& other) noexcept : raw_(other.raw_), capacity_(other.c
   }
 }
 
-MpFloat& MpFloat::operator=(MpFloat&& other) noexcept {
-  if (this == &other) return *this;
-  if (other.raw_.d == other.limbs_ || capacity_ >= other.capacity_) return *this = static_cast<const MpFloat&>(other);  // room enough: copy
+MpFloat& MpFloat::steal(MpFloat& other) noexcept {
   if (raw_.d != limbs_) delete[] raw_.d;
   raw_ = other.raw_;
   capacity_ = other.capacity_;

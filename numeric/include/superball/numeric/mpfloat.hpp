@@ -56,7 +56,13 @@ class SUPERBALL_NUMERIC_EXPORT MpFloat {
     copy_significand(other);
     return *this;
   }
-  MpFloat& operator=(MpFloat&& other) noexcept;
+  MpFloat& operator=(MpFloat&& other) noexcept {
+    if (other.raw_.d == other.limbs_ || capacity_ >= other.capacity_) {  // room enough: a copy
+      if (this != &other) *this = static_cast<const MpFloat&>(other);
+      return *this;
+    }
+    return steal(other);
+  }
   ///@}
   /// Frees a heap significand.
   ~MpFloat() {
@@ -99,6 +105,7 @@ class SUPERBALL_NUMERIC_EXPORT MpFloat {
   MpFloat(Uninitialised, long bits);
   void grow(long bits);  ///< a heap significand of room for \p bits (the value is lost)
   void release();        ///< frees the heap significand
+  MpFloat& steal(MpFloat& other) noexcept;  ///< takes \p other's heap significand, larger than ours
   /// The significand of \p other into ours (room made): only a regular number has one.
   void copy_significand(const MpFloat& other) {
     if (raw_.exp <= kInfExp) return;
