@@ -62,10 +62,12 @@ void widen(MpFloat& x, long bits) {
   r.prec = bits;  // the low bits below the old precision are zero already
 }
 
-// Products and quotients of two regular numbers of one precision p of 2 to
-// MpFloat::inline_limbs words, computed here on the words: mpfr_mul takes
-// about twice the instructions at these sizes (callgrind: 105 against 226 at
-// 127 bits; its dispatch on precision, flags in thread-local storage).  Each result is the exact one
+// Sums, differences, products and quotients of two regular numbers of one
+// precision p of 2 to MpFloat::inline_limbs words, computed here on the
+// words: mpfr_mul takes about twice the instructions at these sizes
+// (callgrind: 105 against 226 at 127 bits; its dispatch on precision, flags
+// in thread-local storage), and a digits:N solve takes 13–24 % fewer
+// instructions with the sums here than with mpfr_add.  Each result is the exact one
 // rounded once to nearest, ties to even: what MPFR gives, bit for bit
 // (tests/numeric/mpfloat_arithmetic_test.cpp compares them on random operands).
 namespace fast {

@@ -265,6 +265,33 @@ TEST(MpFloatArithmetic, MixedPrecisionsWidenTheLessPreciseExactly) {
   }
 }
 
+/// Comparisons on the words against MPFR's: ±0, ±inf, NaN, and numbers of
+/// different precisions that agree in their leading words.
+TEST(MpFloatArithmetic, ComparisonsOfZerosInfinitiesAndMixedPrecisionsAreMpfrs) {
+  Draw draw(23);
+  std::vector<MpFloat> values;
+  for (long p : {64L, 127L, 128L, 191L, 383L, 500L}) {
+    MpFloat zero = MpFloat::zero(p), inf = MpFloat::zero(p), nan = MpFloat::zero(p);
+    mpfr_set_inf(mp(inf), 1), mpfr_set_nan(mp(nan));
+    values.insert(values.end(), {zero, -zero, inf, -inf, nan, MpFloat(1), MpFloat(-1)});
+    MpFloat third = MpFloat::zero(p);
+    mpfr_set_ui(mp(third), 1, MPFR_RNDN), mpfr_div_ui(mp(third), mp(third), 3, MPFR_RNDN);
+    values.insert(values.end(), {third, -third, draw.number(p, 0), draw.number(p, 1), draw.number(p, -1)});
+    MpFloat one_up = MpFloat::zero(p);
+    mpfr_set_ui(mp(one_up), 1, MPFR_RNDN), mpfr_nextabove(mp(one_up));  // 1 and 1 + ulp agree but in their last word
+    values.push_back(one_up);
+  }
+  for (const MpFloat& a : values)
+    for (const MpFloat& b : values) {
+      EXPECT_EQ(a < b, mpfr_less_p(mp(a), mp(b)) != 0) << text(mp(a)) << " < " << text(mp(b));
+      EXPECT_EQ(a <= b, mpfr_lessequal_p(mp(a), mp(b)) != 0) << text(mp(a)) << " <= " << text(mp(b));
+      EXPECT_EQ(a > b, mpfr_greater_p(mp(a), mp(b)) != 0) << text(mp(a)) << " > " << text(mp(b));
+      EXPECT_EQ(a >= b, mpfr_greaterequal_p(mp(a), mp(b)) != 0) << text(mp(a)) << " >= " << text(mp(b));
+      EXPECT_EQ(a == b, mpfr_equal_p(mp(a), mp(b)) != 0) << text(mp(a)) << " == " << text(mp(b));
+      EXPECT_EQ(a != b, mpfr_equal_p(mp(a), mp(b)) == 0) << text(mp(a)) << " != " << text(mp(b));
+    }
+}
+
 TEST(MpFloatArithmetic, ComparisonsAndConversionsAgreeWithMpfr) {
   Draw draw(3);
   for (long p : kPrecisions) {
