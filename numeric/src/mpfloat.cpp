@@ -66,8 +66,10 @@ void widen(MpFloat& x, long bits) {
 // precision p of 2 to MpFloat::inline_limbs words, computed here on the
 // words: mpfr_mul takes about twice the instructions at these sizes
 // (callgrind: 105 against 226 at 127 bits; its dispatch on precision, flags
-// in thread-local storage), and a digits:N solve takes 13–24 % fewer
-// instructions with the sums here than with mpfr_add.  Each result is the exact one
+// in thread-local storage); a digits:20 / 50 / 100 solve of the paper scene
+// takes 73k / 94k / 137k instructions with the sums here and one function
+// per operation and size, against 97k / 116k / 178k with sums in MPFR.
+// Each result is the exact one
 // rounded once to nearest, ties to even: what MPFR gives, bit for bit
 // (tests/numeric/mpfloat_arithmetic_test.cpp compares them on random operands).
 namespace fast {
