@@ -25,9 +25,13 @@ ERROR_FLOOR = 1e-130
 
 
 def load(path):
+    """The runs of a benchmark JSON file, one per benchmark: with repetitions,
+    its median (named as the benchmark, without the "_median" suffix);
+    without, its one run."""
     with open(path, encoding="utf-8") as f:
         runs = json.load(f)["benchmarks"]
-    return [r for r in runs if r.get("run_type", "iteration") == "iteration" or r.get("aggregate_name") == "median"]
+    medians = [dict(r, name=r.get("run_name", r["name"])) for r in runs if r.get("aggregate_name") == "median"]
+    return medians if medians else [r for r in runs if r.get("run_type", "iteration") == "iteration"]
 
 
 def nanoseconds(run):

@@ -18,4 +18,6 @@ plot 'accuracy-vs-time.dat' index 0 using 2:3 with linespoints pt 7 ps 1.2 title
      '' index 2 using 2:3:1 with labels offset 0.6,0.6 left font ',8' notitle, \
      '' index 3 using 2:3 with linespoints pt 7 ps 1.2 title 'chain-32', \
      '' index 3 using 2:($4 == 0 ? $3 : 1/0) with points pt 6 ps 3 lw 2 lc rgb 'black' notitle, \
-     '' index 3 using 2:3:1 with labels offset 0.6,0.6 left font ',8' notitle
+     '' index 3 using 2:3:1 with labels offset 0.6,0.6 left font ',8' notitle, \
+     '' index 4 using 2:3 with points pt 4 ps 1.6 lw 2 lc rgb 'gray40' title 'general path (n <= 8)', \
+     '' index 4 using 2:($4 == 0 ? $3 : 1/0) with points pt 6 ps 3 lw 2 lc rgb 'black' notitle

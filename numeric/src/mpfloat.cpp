@@ -62,10 +62,14 @@ void widen(MpFloat& x, long bits) {
   r.prec = bits;  // the low bits below the old precision are zero already
 }
 
-// Products and quotients of two regular numbers of one precision p of 2 to
-// MpFloat::inline_limbs words, computed here on the words: mpfr_mul takes
-// about twice the instructions at these sizes (callgrind: 105 against 226 at
-// 127 bits; its dispatch on precision, flags in thread-local storage).  Each result is the exact one
+// Sums, differences, products and quotients of two regular numbers of one
+// precision p of 2 to MpFloat::inline_limbs words, computed here on the
+// words: mpfr_mul takes about twice the instructions at these sizes
+// (callgrind: 105 against 226 at 127 bits; its dispatch on precision, flags
+// in thread-local storage); a digits:20 / 50 / 100 solve of the paper scene
+// takes 73k / 94k / 137k instructions with the sums here and one function
+// per operation and size, against 97k / 116k / 178k with sums in MPFR.
+// Each result is the exact one
 // rounded once to nearest, ties to even: what MPFR gives, bit for bit
 // (tests/numeric/mpfloat_arithmetic_test.cpp compares them on random operands).
 namespace fast {
@@ -78,11 +82,12 @@ constexpr long kSafeExp = 1L << 29;
 /// Rounds 0.W × 2^E (W: N + 1 words, the top bit of W[N] set; \p sticky:
 /// nonzero bits below W) to p bits into \p out's significand, exponent and
 /// precision (the sign is the caller's), to nearest, ties to even.  False,
-/// out untouched, when E leaves the safe range.
-template <int N>
+/// out untouched, when E leaves the safe range.  U: 64N − p when known at
+/// compile time (digits:N's precisions leave 1 bit), else −1.
+template <int N, int U>
 bool round_into(const Limb* W, bool sticky, long E, long p, MpFloat::Raw& out) {
   if (E < -kSafeExp || E > kSafeExp) return false;  // before out is touched: out may be an operand
-  const int unused = static_cast<int>(64L * N - p);  // low bits of the lowest word, 0 … 63
+  const int unused = U >= 0 ? U : static_cast<int>(64L * N - p);  // low bits of the lowest word, 0 … 63
   bool half;                                         // the bit just below the last one kept
   if (unused > 0) {
     half = ((W[1] >> (unused - 1)) & 1) != 0;
@@ -113,7 +118,7 @@ bool round_into(const Limb* W, bool sticky, long E, long p, MpFloat::Raw& out) {
 }
 
 /// a × b, both regular, of p bits in N words, into out.
-template <int N>
+template <int N, int U>
 bool mul(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
   Limb P[2 * N];
   for (int j = 0; j < N; ++j) {  // the first row
@@ -137,13 +142,13 @@ bool mul(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out
   bool sticky = false;
   for (int k = 0; k < N - 1; ++k) sticky = sticky || P[k] != 0;
   const int sign = a.sign * b.sign;
-  if (!round_into<N>(P + N - 1, sticky, E, p, out)) return false;
+  if (!round_into<N, U>(P + N - 1, sticky, E, p, out)) return false;
   out.sign = sign;
   return true;
 }
 
 /// a / b, both regular, of p bits in N words, into out.
-template <int N>
+template <int N, int U>
 bool div(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
   // q = ⌊A·2^(64(N+1)) / B⌋ on N + 2 words: A/B in (1/2, 2), so q has
   // 64(N + 1) bits or one more; the remainder is the sticky bit.
@@ -159,16 +164,17 @@ bool div(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out
     ++E;
   }
   const int sign = a.sign * b.sign;
-  if (!round_into<N>(q, sticky, E, p, out)) return false;
+  if (!round_into<N, U>(q, sticky, E, p, out)) return false;
   out.sign = sign;
   return true;
 }
 
 /// round_into() for N = 2 on 128-bit numbers: S (top bit set) + F/2^128,
 /// \p sticky for nonzero bits below F.
+template <int U>
 bool round_into2(Wide S, Wide F, bool sticky, long E, long p, MpFloat::Raw& out) {
   if (E < -kSafeExp || E > kSafeExp) return false;
-  const int unused = static_cast<int>(128 - p);  // 0 … 63
+  const int unused = U >= 0 ? U : static_cast<int>(128 - p);  // 0 … 63
   bool half;
   Wide ulp = 1;
   if (unused > 0) {
@@ -191,8 +197,8 @@ bool round_into2(Wide S, Wide F, bool sticky, long E, long p, MpFloat::Raw& out)
   return true;
 }
 
-template <>
-bool mul<2>(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+template <int U>
+bool mul2(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
   const Wide ll = Wide(a.d[0]) * b.d[0], lh = Wide(a.d[0]) * b.d[1], hl = Wide(a.d[1]) * b.d[0], hh = Wide(a.d[1]) * b.d[1];
   const Wide mid = (ll >> 64) + static_cast<Limb>(lh) + static_cast<Limb>(hl);  // < 3 · 2^64
   Wide H = hh + (lh >> 64) + (hl >> 64) + (mid >> 64);
@@ -203,30 +209,205 @@ bool mul<2>(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& 
     --E;
   }
   const int sign = a.sign * b.sign;
-  if (!round_into2(H, L, false, E, p, out)) return false;
+  if (!round_into2<U>(H, L, false, E, p, out)) return false;
+  out.sign = sign;
+  return true;
+}
+
+/// Compares the significands of N words: −1, 0 or 1.
+template <int N>
+int compare_words(const Limb* x, const Limb* y) {
+  for (int k = N - 1; k >= 0; --k)
+    if (x[k] != y[k]) return x[k] < y[k] ? -1 : 1;
+  return 0;
+}
+
+/// a + (±b) (\p sign_b: b's sign, flipped for a difference), both regular,
+/// of p bits in N words, into out.  The larger magnitude X sits in the top N
+/// of N + 1 words, the smaller Y shifted right by the exponents' difference
+/// below it, the bits of Y that fall off kept as a sticky bit; the sum or
+/// difference of the two windows, normalised, is the exact result truncated
+/// (a difference with a sticky Y is one less, and inexact), which
+/// round_into() rounds once.  A difference that cancels exactly is +0, as
+/// MPFR gives it rounding to nearest.
+template <int N, int U>
+bool add(const MpFloat::Raw& a, const MpFloat::Raw& b, int sign_b, long p, MpFloat::Raw& out) {
+  const MpFloat::Raw* x = &a;
+  const MpFloat::Raw* y = &b;
+  int sign = a.sign;
+  if (a.exp < b.exp || (a.exp == b.exp && compare_words<N>(a.d, b.d) < 0)) x = &b, y = &a, sign = sign_b;
+  const bool subtract = a.sign != sign_b;
+  const unsigned long apart = static_cast<unsigned long>(x->exp) - static_cast<unsigned long>(y->exp);
+  Limb W[N + 1], Y[N + 1];
+  W[0] = 0;
+  for (int k = 0; k < N; ++k) W[k + 1] = x->d[k];
+  bool sticky = false;
+  if (apart == 0) {
+    Y[0] = 0;
+    for (int k = 0; k < N; ++k) Y[k + 1] = y->d[k];
+  } else if (apart < 64) {  // the common case, word by word: Y[k] = y's words k − 1 and k
+    const int bits = static_cast<int>(apart);
+    Y[0] = y->d[0] << (64 - bits);
+    for (int k = 1; k < N; ++k) Y[k] = (y->d[k - 1] >> bits) | (y->d[k] << (64 - bits));
+    Y[N] = y->d[N - 1] >> bits;
+  } else if (apart >= 64UL * (N + 1)) {  // all of Y below the window: nonzero
+    for (int k = 0; k <= N; ++k) Y[k] = 0;
+    sticky = true;
+  } else {  // Y = (0.y × 2^64N) >> apart in the window, y read as words 1 … N of zeros around it
+    const int words = static_cast<int>(apart / 64), bits = static_cast<int>(apart % 64);
+    const auto z = [y](int k) -> Limb { return k >= 1 && k <= N ? y->d[k - 1] : 0; };
+    if (bits == 0) {
+      for (int k = 0; k <= N; ++k) Y[k] = z(k + words);
+    } else {
+      for (int k = 0; k <= N; ++k) Y[k] = (z(k + words) >> bits) | (z(k + words + 1) << (64 - bits));
+      sticky = (z(words) << (64 - bits)) != 0;  // the bits of the word shifted out
+    }
+    for (int k = 1; k < words; ++k) sticky = sticky || y->d[k - 1] != 0;  // the words wholly below the window
+  }
+  long E = x->exp;
+  if (!subtract) {
+    bool carry = false;
+    for (int k = 0; k <= N; ++k) {
+      const Limb s = W[k] + Y[k];
+      const bool c1 = s < W[k];
+      W[k] = s + (carry ? 1 : 0);
+      carry = c1 || (carry && W[k] == 0);
+    }
+    if (carry) {  // 1.… : one place right, the bit out joins the sticky one
+      sticky = sticky || (W[0] & 1) != 0;
+      for (int k = 0; k < N; ++k) W[k] = (W[k] >> 1) | (W[k + 1] << 63);
+      W[N] = (W[N] >> 1) | (Limb(1) << 63);
+      ++E;
+    }
+  } else {
+    bool borrow = sticky;  // a sticky Y: the truncated difference is one less
+    for (int k = 0; k <= N; ++k) {
+      const Limb t = W[k] - Y[k];
+      const bool b1 = W[k] < Y[k];
+      W[k] = t - (borrow ? 1 : 0);
+      borrow = b1 || (borrow && t == 0);
+    }
+    int top = N;
+    while (top >= 0 && W[top] == 0) --top;
+    if (top < 0) {  // exact cancellation: +0
+      out.sign = 1, out.exp = __MPFR_EXP_ZERO, out.prec = p;
+      return true;
+    }
+    const int words = N - top, bits = __builtin_clzl(W[top]);
+    if (words > 0) {
+      for (int k = N; k >= 0; --k) W[k] = k - words >= 0 ? W[k - words] : 0;
+    }
+    if (bits > 0) {
+      for (int k = N; k > 0; --k) W[k] = (W[k] << bits) | (W[k - 1] >> (64 - bits));
+      W[0] <<= bits;
+    }
+    E -= 64L * words + bits;
+  }
+  if (!round_into<N, U>(W, sticky, E, p, out)) return false;
+  out.sign = sign;
+  return true;
+}
+
+/// add() for N = 2 on 128-bit numbers: the window is X·2^64 (X: 128 bits,
+/// the low word 0), Y shifted right into H (128 bits) and L (64 bits).
+template <int U>
+bool add2(const MpFloat::Raw& a, const MpFloat::Raw& b, int sign_b, long p, MpFloat::Raw& out) {
+  const Wide A = (Wide(a.d[1]) << 64) | a.d[0], B = (Wide(b.d[1]) << 64) | b.d[0];
+  const bool b_larger = a.exp < b.exp || (a.exp == b.exp && A < B);
+  const Wide X = b_larger ? B : A, Y = b_larger ? A : B;
+  const long ex = b_larger ? b.exp : a.exp, ey = b_larger ? a.exp : b.exp;
+  const int sign = b_larger ? sign_b : a.sign;
+  const unsigned long apart = static_cast<unsigned long>(ex) - static_cast<unsigned long>(ey);
+  Wide H;
+  Limb L;
+  bool sticky;
+  if (apart < 64) {
+    H = apart == 0 ? Y : Y >> apart;
+    L = apart == 0 ? 0 : static_cast<Limb>(Y << (64 - apart));
+    sticky = false;
+  } else if (apart < 128) {
+    const int r = static_cast<int>(apart - 64);
+    H = Y >> apart;
+    L = static_cast<Limb>(Y >> r);
+    sticky = r != 0 && (static_cast<Limb>(Y) << (64 - r)) != 0;
+  } else if (apart < 192) {
+    const int r = static_cast<int>(apart - 64);  // 64 … 127
+    H = 0;
+    L = static_cast<Limb>(Y >> r);
+    sticky = (Y << (128 - r)) != 0;
+  } else {
+    H = 0, L = 0, sticky = true;
+  }
+  long E = ex;
+  Wide S;
+  if (a.sign == sign_b) {
+    S = X + H;
+    if (S < X) {  // a carry: one place right, the bit out joins the sticky one
+      sticky = sticky || (L & 1) != 0;
+      L = (L >> 1) | (static_cast<Limb>(S) << 63);
+      S = (S >> 1) | (Wide(1) << 127);
+      ++E;
+    }
+  } else {
+    const bool borrow = L != 0 || sticky;  // a sticky Y: the truncated difference is one less
+    L = Limb(0) - L - (sticky ? 1 : 0);
+    S = X - H - (borrow ? 1 : 0);
+    if (S == 0 && L == 0) {  // exact cancellation: +0
+      out.sign = 1, out.exp = __MPFR_EXP_ZERO, out.prec = p;
+      return true;
+    }
+    if ((S >> 127) == 0) {
+      const Limb top = static_cast<Limb>(S >> 64), low = static_cast<Limb>(S);
+      const int shift = top != 0 ? __builtin_clzl(top) : low != 0 ? 64 + __builtin_clzl(low) : 128 + __builtin_clzl(L);
+      if (shift < 64) {
+        S = (S << shift) | (L >> (64 - shift)), L <<= shift;
+      } else if (shift < 128) {
+        S = ((S << 64) | L) << (shift - 64), L = 0;
+      } else {
+        S = Wide(L) << (shift - 64), L = 0;
+      }
+      E -= shift;
+    }
+  }
+  if (!round_into2<U>(S, Wide(L) << 64, sticky, E, p, out)) return false;
   out.sign = sign;
   return true;
 }
 
 enum class Kind { add, sub, mul, div };
 
-template <int N>
-bool apply(Kind kind, const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
-  return kind == Kind::mul ? mul<N>(a, b, p, out) : div<N>(a, b, p, out);
+/// a op b (\p K) of p bits in N words, U as round_into(), into out: one
+/// function per operation and size, so that each keeps only its own frame.
+template <Kind K, int N, int U>
+__attribute__((noinline)) bool apply(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+  if constexpr (K == Kind::add) return N == 2 ? add2<U>(a, b, b.sign, p, out) : add<N, U>(a, b, b.sign, p, out);
+  if constexpr (K == Kind::sub) return N == 2 ? add2<U>(a, b, -b.sign, p, out) : add<N, U>(a, b, -b.sign, p, out);
+  if constexpr (K == Kind::mul) return N == 2 ? mul2<U>(a, b, p, out) : mul<N, U>(a, b, p, out);
+  return div<N, U>(a, b, p, out);
 }
 
-/// out = a × b or a / b here when both are regular of one precision of 2 …
-/// 6 words (false, out untouched, when MPFR must do it).  Sums are left to
-/// MPFR (a 2-word sum written here made the solve no faster), and so are
-/// quotients of 2 words (mpfr_div's 2-word path beats mpn_tdiv_qr).
-bool operate(Kind kind, const MpFloat::Raw& a, const MpFloat::Raw& b, MpFloat::Raw& out) {
-  if (kind == Kind::add || kind == Kind::sub || a.prec != b.prec || a.exp <= __MPFR_EXP_INF || b.exp <= __MPFR_EXP_INF) return false;
+/// out = a op b here when both are regular of one precision of 2 … 6 words
+/// (false, out untouched, when MPFR must do it); digits:N's precisions,
+/// 64N − 1 bits, with the unused bit known at compile time.  Quotients of 2
+/// words are left to MPFR (mpfr_div's 2-word path beats mpn_tdiv_qr).
+template <Kind K>
+bool operate(const MpFloat::Raw& a, const MpFloat::Raw& b, MpFloat::Raw& out) {
+  if (a.prec != b.prec || a.exp <= __MPFR_EXP_INF || b.exp <= __MPFR_EXP_INF) return false;
+  constexpr bool two = K != Kind::div;  // 2 words here
+  switch (a.prec) {
+    case 127: return two && apply<K, two ? 2 : 3, 1>(a, b, 127, out);
+    case 191: return apply<K, 3, 1>(a, b, 191, out);
+    case 255: return apply<K, 4, 1>(a, b, 255, out);
+    case 319: return apply<K, 5, 1>(a, b, 319, out);
+    case 383: return apply<K, 6, 1>(a, b, 383, out);
+    default: break;
+  }
   switch ((a.prec + 63) / 64) {
-    case 2: return kind == Kind::mul && mul<2>(a, b, a.prec, out);
-    case 3: return apply<3>(kind, a, b, a.prec, out);
-    case 4: return apply<4>(kind, a, b, a.prec, out);
-    case 5: return apply<5>(kind, a, b, a.prec, out);
-    case 6: return apply<6>(kind, a, b, a.prec, out);
+    case 2: return two && apply<K, two ? 2 : 3, -1>(a, b, a.prec, out);
+    case 3: return apply<K, 3, -1>(a, b, a.prec, out);
+    case 4: return apply<K, 4, -1>(a, b, a.prec, out);
+    case 5: return apply<K, 5, -1>(a, b, a.prec, out);
+    case 6: return apply<K, 6, -1>(a, b, a.prec, out);
     default: return false;
   }
 }
@@ -254,47 +435,89 @@ bool power_of_two(fast::Kind kind, const MpFloat& x, const MpFloat& y, MpFloat& 
   return true;
 }
 
-/// a op b rounded to the larger precision; an operand of lower precision
+/// binary() of operands of different precisions: the one of lower precision
 /// (a constant) is first widened exactly to the larger one, so that MPFR
 /// takes its paths for operands of one precision (2–3× faster below 192 bits).
-MpFloat binary(const MpFloat& a, const MpFloat& b, Op op, fast::Kind kind) {
+template <fast::Kind K>
+__attribute__((noinline)) MpFloat binary_mixed(const MpFloat& a, const MpFloat& b, Op op) {
   const long p = std::max(a.precision(), b.precision());
   MpFloat r = MpFloat::zero(p);
-  if (a.precision() == b.precision()) {
-    if (!fast::operate(kind, *a.raw(), *b.raw(), *r.raw())) op(mp(r), mp(a), mp(b), MPFR_RNDN);
+  if (a.precision() == b.precision()) {  // of more words than the object holds
+    if (!fast::operate<K>(*a.raw(), *b.raw(), *r.raw())) op(mp(r), mp(a), mp(b), MPFR_RNDN);
+    return r;
+  }
+  const bool a_low = a.precision() < p;
+  const bool scales = K == fast::Kind::mul || (K == fast::Kind::div && !a_low);
+  if (scales && power_of_two(K, a_low ? b : a, a_low ? a : b, r)) return r;
+  MpFloat wide = a_low ? a : b;
+  widen(wide, p);
+  const MpFloat& x = a.precision() < p ? wide : a;
+  const MpFloat& y = a.precision() < p ? b : wide;
+  if (!fast::operate<K>(*x.raw(), *y.raw(), *r.raw())) op(mp(r), mp(x), mp(y), MPFR_RNDN);
+  return r;
+}
+
+/// a op b rounded to the larger precision: operands of one precision held in
+/// the object here, others by binary_mixed().
+template <fast::Kind K>
+MpFloat binary(const MpFloat& a, const MpFloat& b, Op op) {
+  MpFloat r;
+  const long p = a.precision();
+  if (p == b.precision() && words(p) <= MpFloat::inline_limbs) {
+    r.raw()->prec = p;  // room in the object
+    if (!fast::operate<K>(*a.raw(), *b.raw(), *r.raw())) op(mp(r), mp(a), mp(b), MPFR_RNDN);
   } else {
-    const bool a_low = a.precision() < p;
-    const bool scales = kind == fast::Kind::mul || (kind == fast::Kind::div && !a_low);
-    if (scales && power_of_two(kind, a_low ? b : a, a_low ? a : b, r)) return r;
-    MpFloat wide = a_low ? a : b;
-    widen(wide, p);
-    const MpFloat& x = a.precision() < p ? wide : a;
-    const MpFloat& y = a.precision() < p ? b : wide;
-    if (!fast::operate(kind, *x.raw(), *y.raw(), *r.raw())) op(mp(r), mp(x), mp(y), MPFR_RNDN);
+    r = binary_mixed<K>(a, b, op);
   }
   return r;
 }
 
-/// x op= y, in place: x is widened first when y is the more precise.
-MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op, fast::Kind kind) {
-  const bool additive = kind == fast::Kind::add || kind == fast::Kind::sub;
+/// in_place() of operands of different precisions: x is widened first when
+/// y is the more precise.
+template <fast::Kind K>
+__attribute__((noinline)) MpFloat& in_place_mixed(MpFloat& x, const MpFloat& y, Op op) {
+  constexpr bool additive = K == fast::Kind::add || K == fast::Kind::sub;
   if (x.precision() < y.precision() && x.raw()->exp == __MPFR_EXP_ZERO && y.raw()->exp > __MPFR_EXP_INF && additive) {
     x = y;  // 0 ± y: exact, the sum started at S(0)
-    if (kind == fast::Kind::sub) x.raw()->sign = -x.raw()->sign;
+    if (K == fast::Kind::sub) x.raw()->sign = -x.raw()->sign;
     return x;
   }
-  if (x.precision() == y.precision()) {
-    if (!fast::operate(kind, *x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
-  } else if (x.precision() > y.precision()) {
-    if ((kind == fast::Kind::mul || kind == fast::Kind::div) && power_of_two(kind, x, y, x)) return x;
+  if (x.precision() > y.precision()) {
+    if ((K == fast::Kind::mul || K == fast::Kind::div) && power_of_two(K, x, y, x)) return x;
     MpFloat wide = y;
     widen(wide, x.precision());
-    if (!fast::operate(kind, *x.raw(), *wide.raw(), *x.raw())) op(mp(x), mp(x), mp(wide), MPFR_RNDN);
+    if (!fast::operate<K>(*x.raw(), *wide.raw(), *x.raw())) op(mp(x), mp(x), mp(wide), MPFR_RNDN);
   } else {
     widen(x, y.precision());
-    if (!fast::operate(kind, *x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
+    if (!fast::operate<K>(*x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
   }
   return x;
+}
+
+/// x op= y, in place.
+template <fast::Kind K>
+MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op) {
+  if (x.precision() != y.precision()) return in_place_mixed<K>(x, y, op);
+  if (!fast::operate<K>(*x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
+  return x;
+}
+
+/// Whether a and b are both ±0 or regular (compare_finite() takes them).
+bool both_finite(const MpFloat& a, const MpFloat& b) { return MpFloat::zero_or_regular(a) && MpFloat::zero_or_regular(b); }
+
+/// −1, 0 or 1 as a < b, a = b (+0 = −0) or a > b, for ±0 or regular
+/// numbers of any precisions, on the words: MPFR's comparison.
+int compare_finite(const MpFloat::Raw& a, const MpFloat::Raw& b) {
+  const bool a_zero = a.exp == __MPFR_EXP_ZERO, b_zero = b.exp == __MPFR_EXP_ZERO;
+  if (a_zero || b_zero) return a_zero && b_zero ? 0 : a_zero ? -b.sign : a.sign;
+  if (a.sign != b.sign) return a.sign;
+  if (a.exp != b.exp) return a.exp > b.exp ? a.sign : -a.sign;
+  const long na = words(a.prec), nb = words(b.prec);
+  for (long k = 1; k <= std::max(na, nb); ++k) {  // from the top word down; missing words are 0
+    const std::uint64_t x = k <= na ? a.d[na - k] : 0, y = k <= nb ? b.d[nb - k] : 0;
+    if (x != y) return x > y ? a.sign : -a.sign;
+  }
+  return 0;
 }
 
 /// The exact integer \p z as a CLN integer, word by word.
@@ -350,9 +573,7 @@ MpFloat::MpFloat(MpFloat&& other) noexcept : raw_(other.raw_), capacity_(other.c
   }
 }
 
-MpFloat& MpFloat::operator=(MpFloat&& other) noexcept {
-  if (this == &other) return *this;
-  if (other.raw_.d == other.limbs_ || capacity_ >= other.capacity_) return *this = static_cast<const MpFloat&>(other);  // room enough: copy
+MpFloat& MpFloat::steal(MpFloat& other) noexcept {
   if (raw_.d != limbs_) delete[] raw_.d;
   raw_ = other.raw_;
   capacity_ = other.capacity_;
@@ -361,27 +582,34 @@ MpFloat& MpFloat::operator=(MpFloat&& other) noexcept {
   return *this;
 }
 
-MpFloat& MpFloat::operator+=(const MpFloat& x) { return in_place(*this, x, mpfr_add, fast::Kind::add); }
-MpFloat& MpFloat::operator-=(const MpFloat& x) { return in_place(*this, x, mpfr_sub, fast::Kind::sub); }
-MpFloat& MpFloat::operator*=(const MpFloat& x) { return in_place(*this, x, mpfr_mul, fast::Kind::mul); }
-MpFloat& MpFloat::operator/=(const MpFloat& x) { return in_place(*this, x, mpfr_div, fast::Kind::div); }
+MpFloat& MpFloat::operator+=(const MpFloat& x) { return in_place<fast::Kind::add>(*this, x, mpfr_add); }
+MpFloat& MpFloat::operator-=(const MpFloat& x) { return in_place<fast::Kind::sub>(*this, x, mpfr_sub); }
+MpFloat& MpFloat::operator*=(const MpFloat& x) { return in_place<fast::Kind::mul>(*this, x, mpfr_mul); }
+MpFloat& MpFloat::operator/=(const MpFloat& x) { return in_place<fast::Kind::div>(*this, x, mpfr_div); }
 
-MpFloat operator+(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_add, fast::Kind::add); }
-MpFloat operator-(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_sub, fast::Kind::sub); }
-MpFloat operator*(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_mul, fast::Kind::mul); }
-MpFloat operator/(const MpFloat& a, const MpFloat& b) { return binary(a, b, mpfr_div, fast::Kind::div); }
+MpFloat operator+(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::add>(a, b, mpfr_add); }
+MpFloat operator-(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::sub>(a, b, mpfr_sub); }
+MpFloat operator*(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::mul>(a, b, mpfr_mul); }
+MpFloat operator/(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::div>(a, b, mpfr_div); }
 MpFloat sqrt(const MpFloat& x) {
   MpFloat r = MpFloat::zero(x.precision());
   mpfr_sqrt(mp(r), mp(x), MPFR_RNDN);
   return r;
 }
 
-bool operator==(const MpFloat& a, const MpFloat& b) { return mpfr_equal_p(mp(a), mp(b)) != 0; }
+bool operator==(const MpFloat& a, const MpFloat& b) {
+  return both_finite(a, b) ? compare_finite(*a.raw(), *b.raw()) == 0 : mpfr_equal_p(mp(a), mp(b)) != 0;
+}
 bool operator!=(const MpFloat& a, const MpFloat& b) { return !(a == b); }
-bool less(const MpFloat& a, const MpFloat& b) { return mpfr_less_p(mp(a), mp(b)) != 0; }
-bool operator<=(const MpFloat& a, const MpFloat& b) { return mpfr_lessequal_p(mp(a), mp(b)) != 0; }
-
-bool operator>=(const MpFloat& a, const MpFloat& b) { return mpfr_greaterequal_p(mp(a), mp(b)) != 0; }
+bool less(const MpFloat& a, const MpFloat& b) {
+  return both_finite(a, b) ? compare_finite(*a.raw(), *b.raw()) < 0 : mpfr_less_p(mp(a), mp(b)) != 0;
+}
+bool operator<=(const MpFloat& a, const MpFloat& b) {
+  return both_finite(a, b) ? compare_finite(*a.raw(), *b.raw()) <= 0 : mpfr_lessequal_p(mp(a), mp(b)) != 0;
+}
+bool operator>=(const MpFloat& a, const MpFloat& b) {
+  return both_finite(a, b) ? compare_finite(*a.raw(), *b.raw()) >= 0 : mpfr_greaterequal_p(mp(a), mp(b)) != 0;
+}
 
 long digits_precision(int digits) {
   if (digits <= 0) throw std::invalid_argument("digits_precision(): digits must be > 0, got " + std::to_string(digits));

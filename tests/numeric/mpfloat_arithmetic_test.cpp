@@ -203,6 +203,41 @@ TEST(MpFloatArithmetic, ExponentsFarApartHugeAndTinyAreMpfrs) {
   }
 }
 
+/// Sums and differences at every distance of the exponents from 0 to p + 140
+/// (past the word below the significand, where the smaller operand's low bits
+/// leave the window and only their sticky bit remains): the larger operand 1,
+/// 1 + ulp, all ones or random; the smaller one a power of two, its top and
+/// bottom bits set (so that a tie of the top bit is broken by bits far below),
+/// all ones, or random; every sign.
+TEST(MpFloatArithmetic, SumsAndDifferencesAtEveryDistanceOfTheExponents) {
+  Draw draw(19);
+  for (long p : kPrecisions) {
+    MpFloat one = MpFloat::zero(p), odd = MpFloat::zero(p), ones = MpFloat::zero(p);
+    mpfr_set_ui(mp(one), 1, MPFR_RNDN);
+    mpfr_set_ui(mp(odd), 1, MPFR_RNDN), mpfr_nextabove(mp(odd));
+    mpfr_set_ui(mp(ones), 2, MPFR_RNDN), mpfr_nextbelow(mp(ones));
+    for (long apart = 0; apart <= p + 140; ++apart) {
+      const MpFloat random = draw.number(p, 1);
+      MpFloat power = MpFloat::zero(p), ends = MpFloat::zero(p), low_ones = MpFloat::zero(p);
+      mpfr_set_ui_2exp(mp(power), 1, -apart, MPFR_RNDN);                                    // 0.1 × 2^(1 − apart)
+      mpfr_set_ui_2exp(mp(ends), 1, -apart, MPFR_RNDN), mpfr_nextabove(mp(ends));          // 0.10…01
+      mpfr_set_ui_2exp(mp(low_ones), 1, 1 - apart, MPFR_RNDN), mpfr_nextbelow(mp(low_ones));  // 0.11…1
+      const MpFloat low_random = draw.number(p, 1 - apart);
+      const MpFloat* const larger[] = {&one, &odd, &ones, &random};
+      const MpFloat* const smaller[] = {&power, &ends, &low_ones, &low_random};
+      for (const MpFloat* a : larger)
+        for (const MpFloat* b : smaller)
+          for (int sign : {1, -1}) {
+            const MpFloat c = sign > 0 ? *b : -*b;
+            expect_as_mpfr(operations()[0], *a, c, p);
+            expect_as_mpfr(operations()[1], *a, c, p);
+            expect_as_mpfr(operations()[1], c, *a, p);
+            if (::testing::Test::HasFatalFailure()) return;
+          }
+    }
+  }
+}
+
 TEST(MpFloatArithmetic, MixedPrecisionsWidenTheLessPreciseExactly) {
   Draw draw(5);
   for (long p : {127L, 191L, 383L}) {
@@ -228,6 +263,33 @@ TEST(MpFloatArithmetic, MixedPrecisionsWidenTheLessPreciseExactly) {
       }
     }
   }
+}
+
+/// Comparisons on the words against MPFR's: ±0, ±inf, NaN, and numbers of
+/// different precisions that agree in their leading words.
+TEST(MpFloatArithmetic, ComparisonsOfZerosInfinitiesAndMixedPrecisionsAreMpfrs) {
+  Draw draw(23);
+  std::vector<MpFloat> values;
+  for (long p : {64L, 127L, 128L, 191L, 383L, 500L}) {
+    MpFloat zero = MpFloat::zero(p), inf = MpFloat::zero(p), nan = MpFloat::zero(p);
+    mpfr_set_inf(mp(inf), 1), mpfr_set_nan(mp(nan));
+    values.insert(values.end(), {zero, -zero, inf, -inf, nan, MpFloat(1), MpFloat(-1)});
+    MpFloat third = MpFloat::zero(p);
+    mpfr_set_ui(mp(third), 1, MPFR_RNDN), mpfr_div_ui(mp(third), mp(third), 3, MPFR_RNDN);
+    values.insert(values.end(), {third, -third, draw.number(p, 0), draw.number(p, 1), draw.number(p, -1)});
+    MpFloat one_up = MpFloat::zero(p);
+    mpfr_set_ui(mp(one_up), 1, MPFR_RNDN), mpfr_nextabove(mp(one_up));  // 1 and 1 + ulp agree but in their last word
+    values.push_back(one_up);
+  }
+  for (const MpFloat& a : values)
+    for (const MpFloat& b : values) {
+      EXPECT_EQ(a < b, mpfr_less_p(mp(a), mp(b)) != 0) << text(mp(a)) << " < " << text(mp(b));
+      EXPECT_EQ(a <= b, mpfr_lessequal_p(mp(a), mp(b)) != 0) << text(mp(a)) << " <= " << text(mp(b));
+      EXPECT_EQ(a > b, mpfr_greater_p(mp(a), mp(b)) != 0) << text(mp(a)) << " > " << text(mp(b));
+      EXPECT_EQ(a >= b, mpfr_greaterequal_p(mp(a), mp(b)) != 0) << text(mp(a)) << " >= " << text(mp(b));
+      EXPECT_EQ(a == b, mpfr_equal_p(mp(a), mp(b)) != 0) << text(mp(a)) << " == " << text(mp(b));
+      EXPECT_EQ(a != b, mpfr_equal_p(mp(a), mp(b)) == 0) << text(mp(a)) << " != " << text(mp(b));
+    }
 }
 
 TEST(MpFloatArithmetic, ComparisonsAndConversionsAgreeWithMpfr) {

@@ -7,6 +7,16 @@ namespace superball::numeric::detail {
 
 namespace {
 
+/// x == 0, without forming a 0 of S where S says it cheaper.
+template <class S>
+bool is_zero(const S& x) {
+  return x == S(0);
+}
+template <>
+bool is_zero<MpFloat>(const MpFloat& x) {
+  return x.is_zero();
+}
+
 /// The root of body \p i in the union-find forest \p parent (path halving).
 int root_of(std::vector<int>& parent, int i) {
   while (parent[static_cast<std::size_t>(i)] != i) {
@@ -22,14 +32,14 @@ int root_of(std::vector<int>& parent, int i) {
 /// a contact solved as closed form a group; summed over a group that does not
 /// hold a fixed bottom, the percussions of M and of the closed contacts cancel
 /// in pairs and the open contacts carry none, so Σ m (W − u) = 0 over the
-/// group, exactly.  Returns the largest |Σ m (W − u)| / Σ m (|W| + |u|).
+/// group, exactly.  Returns the largest |Σ m (W − u)| / Σ m (|W| + |u|),
+/// from work.change (m (W − u)) and work.y (|W| + |u|) of complete_solution().
 /// Each row of the equations is measured against its largest terms, which are
 /// those of M when the masses are light against M (masses 1e-200 with K of
 /// order 1): there the rows hold to rounding while the common velocity of a
 /// group, set by the masses alone, is lost; this balance sees it.
 template <class S>
-double group_momentum_residual(const Problem<S>& p, const std::vector<S>& W, const std::vector<char>& active,
-                               CheckWorkspace<S>& work) {
+double group_momentum_residual(const Problem<S>& p, const std::vector<char>& active, CheckWorkspace<S>& work) {
   const int n = p.n, nf = p.fixed_bottom ? n - 1 : n;
   auto& parent = work.group;
   // parent[root(a)] = root(b); a join of two bodies whose parents show them
@@ -48,7 +58,7 @@ double group_momentum_residual(const Problem<S>& p, const std::vector<S>& W, con
   for (std::size_t k = 0; same && k < p.entries.size(); ++k) {
     const Entry<S>& e = p.entries[k];
     const int* x = &key[5 * k];
-    same = x[0] == e.i && x[1] == e.j && x[2] == e.k && x[3] == e.l && x[4] == (e.value == S(0) ? 0 : 1);
+    same = x[0] == e.i && x[1] == e.j && x[2] == e.k && x[3] == e.l && x[4] == (is_zero(e.value) ? 0 : 1);
   }
   if (same) {
     parent = work.entry_group;
@@ -56,7 +66,7 @@ double group_momentum_residual(const Problem<S>& p, const std::vector<S>& W, con
     parent.resize(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) parent[static_cast<std::size_t>(i)] = i;
     for (const Entry<S>& e : p.entries) {
-      if (e.value == S(0)) continue;
+      if (is_zero(e.value)) continue;
       join(e.i, e.j);
       // A diagonal entry's other two joins are (i, j) again and (i, i): they
       // change no root, so skipping them leaves every group and its
@@ -64,7 +74,7 @@ double group_momentum_residual(const Problem<S>& p, const std::vector<S>& W, con
       if (!e.diagonal()) join(e.k, e.l), join(e.i, e.k);
     }
     key.clear();
-    for (const Entry<S>& e : p.entries) key.insert(key.end(), {e.i, e.j, e.k, e.l, e.value == S(0) ? 0 : 1});
+    for (const Entry<S>& e : p.entries) key.insert(key.end(), {e.i, e.j, e.k, e.l, is_zero(e.value) ? 0 : 1});
     work.entry_group = parent;
     work.entry_bodies = n;
   }
@@ -74,8 +84,7 @@ double group_momentum_residual(const Problem<S>& p, const std::vector<S>& W, con
   sum.assign(static_cast<std::size_t>(n), Sized<S>{});
   for (int i = 0; i < nf; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    sum[static_cast<std::size_t>(root_of(parent, i))].add(p.mass[k] * (W[k] - p.u[k]),
-                                                          p.mass[k] * (abs_value<S>(W[k]) + abs_value<S>(p.u[k])));
+    sum[static_cast<std::size_t>(root_of(parent, i))].add(work.change[k], p.mass[k] * work.y[k].size());  // y's size: |W| + |u|
   }
   const int anchored = p.fixed_bottom ? root_of(parent, n - 1) : -1;  // the obstacle takes momentum
   S worst = S(0);  // in S, as the rows: momenta of 1e-308 are beyond double's range
@@ -106,12 +115,22 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
     out.closed.set_closed(c, active[k] || (!imposed && ScalarTraits<S>::exact && out.gaps[k] == S(0) && p.constrained_contact(c)));
   }
   // Energies and momentum of the finite bodies; dissipation P·X = 2XᵀMX + R·X.
+  // m u and m W once per body (m u u / 2 is (m u) u / 2).
   out.kinetic_energy_before = out.kinetic_energy_after = out.momentum_before = out.momentum_after = S(0);
+  work.mu.resize(static_cast<std::size_t>(nf));
+  work.mw.resize(static_cast<std::size_t>(nf));
+  work.change.resize(static_cast<std::size_t>(nf));
   for (int i = 0; i < nf; ++i) {
-    out.kinetic_energy_before += p.mass[i] * p.u[i] * p.u[i] / S(2);
-    out.kinetic_energy_after += p.mass[i] * W[i] * W[i] / S(2);
-    out.momentum_before += p.mass[i] * p.u[i];
-    out.momentum_after += p.mass[i] * W[i];
+    const auto k = static_cast<std::size_t>(i);
+    S& mu = work.mu[k];
+    S& mw = work.mw[k];
+    mu = p.mass[k] * p.u[k];
+    mw = p.mass[k] * W[k];
+    out.kinetic_energy_before += mu * p.u[k] / S(2);
+    out.kinetic_energy_after += mw * W[k] / S(2);
+    out.momentum_before += mu;
+    out.momentum_after += mw;
+    work.change[k] = p.mass[k] * (W[k] - p.u[k]);
   }
   // One pass over the entries gives the dissipation P·X = 2XᵀMX + R·X and
   // the residual of the equations of motion, entry by entry: with
@@ -125,15 +144,16 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   rows.assign(static_cast<std::size_t>(n), Sized<S>{});
   S dissipation = S(0);
   for (const Entry<S>& e : p.entries) {
-    const S yij = y[e.i].value() - y[e.j].value(), ykl = y[e.k].value() - y[e.l].value();
-    const S f = e.value * ykl, s = abs_value<S>(e.value) * (y[e.k].size() + y[e.l].size());
-    rows[e.i].add(f, s), rows[e.j].add(-f, s);
-    if (e.diagonal()) {  // 2 v X_ij² = v y_ij² / 2
-      dissipation += f * yij / S(2);
+    const S ykl = y[e.k].value() - y[e.l].value(), v = abs_value<S>(e.value);
+    const S f = e.value * ykl, s = v * (y[e.k].size() + y[e.l].size());
+    rows[e.i].add(f, s), rows[e.j].subtract(f, s);
+    if (e.diagonal()) {  // 2 v X_ij² = v y_ij² / 2 (y_ij is y_kl)
+      dissipation += f * ykl / S(2);
       continue;
     }
-    const S g = e.value * yij, t = abs_value<S>(e.value) * (y[e.i].size() + y[e.j].size());
-    rows[e.k].add(g, t), rows[e.l].add(-g, t);
+    const S yij = y[e.i].value() - y[e.j].value();
+    const S g = e.value * yij, t = v * (y[e.i].size() + y[e.j].size());
+    rows[e.k].add(g, t), rows[e.l].subtract(g, t);
     dissipation += g * ykl;  // 4 v X_ij X_kl
   }
   for (int c = 0; c < nc; ++c) dissipation += out.reactions[static_cast<std::size_t>(c)] * S(y[c].value() - y[c + 1].value()) / S(2);
@@ -143,8 +163,8 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   for (int i = 0; i < nf; ++i) {
     const auto k = static_cast<std::size_t>(i);
     S r = rows[k].value(), size = rows[k].size();
-    r += p.mass[k] * (W[k] - p.u[k]);
-    size += abs_value<S>(p.mass[k] * W[k]) + abs_value<S>(p.mass[k] * p.u[k]);
+    r += work.change[k];
+    size += abs_value<S>(work.mw[k]) + abs_value<S>(work.mu[k]);
     if (i < nc) r -= lambda[k], size += abs_value<S>(lambda[k]);
     if (i > 0) r += lambda[k - 1], size += abs_value<S>(lambda[k - 1]);
     rows[k].set(r, size);
@@ -152,7 +172,7 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
     const S ar = abs_value<S>(r);
     if (size > S(0) && ar > motion_s * size) motion_s = ar / size;
   }
-  const double motion = std::max(to_double(motion_s), group_momentum_residual(p, W, active, work));
+  const double motion = std::max(to_double(motion_s), group_momentum_residual(p, active, work));
   // Gaps relative to the largest velocity; reactions relative to the largest
   // row of the equations of motion (momenta, percussions and reactions), so
   // that a reaction at rounding level whose sign came out wrong, where all

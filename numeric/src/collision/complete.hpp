@@ -17,6 +17,8 @@ template <class S>
 class Sized {
  public:
   void add(const S& term, const S& magnitude) { value_ += term, size_ += magnitude; }
+  /// add(−term, magnitude), without forming −term (x − t and x + (−t) round alike).
+  void subtract(const S& term, const S& magnitude) { value_ -= term, size_ += magnitude; }
   const S& value() const { return value_; }
   const S& size() const { return size_; }
   void set(const S& value, const S& size) { value_ = value, size_ = size; }
@@ -31,6 +33,7 @@ class Sized<double> {
 
  public:
   void add(double term, double magnitude) { v_ += Pair{term, magnitude}; }
+  void subtract(double term, double magnitude) { v_ += Pair{-term, magnitude}; }
   double value() const { return v_[0]; }
   double size() const { return v_[1]; }
   void set(double value, double size) { v_ = Pair{value, size}; }
@@ -46,6 +49,9 @@ struct CheckWorkspace {
   std::vector<Sized<S>> rows;  ///< per body: the residual of its equation of motion and the sum of |terms|
   std::vector<int> group;      ///< per body: union-find parent over the bodies M and the closed contacts join
   std::vector<Sized<S>> momentum;  ///< per group: Σ m (W − u) and Σ m (|W| + |u|)
+  /// per free body: m u, m W and m (W − u), computed once for the energies,
+  /// the momenta, the rows of the equations of motion and the groups' balance
+  std::vector<S> mu, mw, change;
   /// The union-find after M's joins, which depend only on n and on the
   /// bodies and zero-ness of M's entries: kept with those (entry_key: i, j,
   /// k, l and value ≠ 0 per entry) and reused while the next problem has the
@@ -57,6 +63,14 @@ struct CheckWorkspace {
 template <class S>
 S abs_value(const S& x) {
   return x < S(0) ? S(-x) : x;
+}
+/// The same for MpFloat with one copy: a negative number's sign flipped
+/// (±0 and NaN kept as they are, as x < 0 ? −x : x keeps them).
+template <>
+inline MpFloat abs_value<MpFloat>(const MpFloat& x) {
+  MpFloat r = x;
+  if (MpFloat::zero_or_regular(x) && !x.is_zero() && x.raw()->sign < 0) r.raw()->sign = 1;
+  return r;
 }
 
 template <class S>

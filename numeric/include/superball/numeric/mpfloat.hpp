@@ -2,9 +2,10 @@
 /// \file mpfloat.hpp
 /// MpFloat: the scalar of `digits:N`, a binary floating-point number of a
 /// precision chosen at run time, correctly rounded to nearest as MPFR rounds:
-/// computed by MPFR, except products of 2 to 6 words, quotients of 3 to 6
-/// words and scalings by a constant ±2^k, which numeric/src/mpfloat.cpp
-/// computes on the words with the same results bit for bit.  This header does not include mpfr.h: the number holds MPFR's
+/// computed by MPFR, except sums, differences and products of 2 to 6 words,
+/// quotients of 3 to 6 words, scalings by a constant ±2^k and comparisons,
+/// which numeric/src/mpfloat.cpp computes on the words with the same results
+/// bit for bit.  This header does not include mpfr.h: the number holds MPFR's
 /// variable by value, with its significand in the object itself up to
 /// MpFloat::inline_limbs 64-bit words (N <= 113 digits), so that a solve in
 /// that precision allocates nothing; larger precisions keep it on the heap.
@@ -56,7 +57,13 @@ class SUPERBALL_NUMERIC_EXPORT MpFloat {
     copy_significand(other);
     return *this;
   }
-  MpFloat& operator=(MpFloat&& other) noexcept;
+  MpFloat& operator=(MpFloat&& other) noexcept {
+    if (other.raw_.d == other.limbs_ || capacity_ >= other.capacity_) {  // room enough: a copy
+      if (this != &other) *this = static_cast<const MpFloat&>(other);
+      return *this;
+    }
+    return steal(other);
+  }
   ///@}
   /// Frees a heap significand.
   ~MpFloat() {
@@ -99,6 +106,7 @@ class SUPERBALL_NUMERIC_EXPORT MpFloat {
   MpFloat(Uninitialised, long bits);
   void grow(long bits);  ///< a heap significand of room for \p bits (the value is lost)
   void release();        ///< frees the heap significand
+  MpFloat& steal(MpFloat& other) noexcept;  ///< takes \p other's heap significand, larger than ours
   /// The significand of \p other into ours (room made): only a regular number has one.
   void copy_significand(const MpFloat& other) {
     if (raw_.exp <= kInfExp) return;
