@@ -642,9 +642,13 @@ void map_points(const Scene& scene, const Axis& x, const Axis& y, const MapSetti
 }
 
 Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings) {
+  const auto stage_end = [&](const char* stage) {
+    if (settings.stage_end) settings.stage_end(stage);
+  };
   settings.check();
   check_map(scene, x, y);
   if (std::string why; !settings.fits(x, y, &why)) throw std::invalid_argument(why);
+  stage_end("checks");
   Map m{x, y, {}, {}, {}};
   const GridSolver points(scene, x, y, settings);
   const std::vector<std::string>& tx = points.tx;
@@ -656,6 +660,7 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   if (m.points.size() != count)
     throw std::logic_error("map(): the runner's results hold " + std::to_string(m.points.size()) + " of " + std::to_string(count) + " points");
   if (std::none_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return p.admissible; })) points.nowhere_psd();
+  stage_end("grid");
   if (!settings.boundaries) return m;
   // The neighbours to bisect: along x row by row, then along y column by column.
   struct Pending {
@@ -680,6 +685,7 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   };
   for (const bool along_x : {true, false})
     for (const auto& found : scan(along_x)) pending.insert(pending.end(), found.begin(), found.end());
+  stage_end("neighbours");
   const Label by_region = [](const ExactPoint& e) { return Region::of(e).label(); };
   const ProvenLabel proven_region = [](const ProvenPoint& p) -> std::optional<std::string> {
     if (!p.superball) return std::nullopt;
@@ -749,6 +755,7 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   };
   m.boundaries = in_tasks<MapBoundary>(settings.runner, pending.size(), per_task(pending.size()), "map()", boundaries, detail::boundaries_to_text,
                                        detail::boundaries_from_text);
+  stage_end("bisections");
   // Each boundary read back (a runner's text, a checkpoint) lies between the two grid points it was bisected between.
   std::set<std::tuple<bool, int, int>> bisected;
   for (const Pending& p : pending) bisected.insert({p.along_x, p.i, p.j});
@@ -762,7 +769,9 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
       throw std::invalid_argument("map(): a damaged result: a bracket [" + to_string(b.low) + ", " + to_string(b.high) +
                                   "] outside the grid step it was bisected in [" + to_string(cln::min(a, c)) + ", " + to_string(cln::max(a, c)) + "]");
   }
+  stage_end("read back");
   m.curves = chain(m);
+  stage_end("curves");
   return m;
 }
 
