@@ -1,6 +1,9 @@
 #include "map_internal.hpp"
 #include "psd_filter.hpp"
 
+#include <cln/integer.h>
+#include <cln/rational.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -167,10 +170,6 @@ std::vector<MapCurve> chain(const Map& m) {
   return curves;
 }
 
-/// The edge of the PSD cone between \p a (where M is positive
-/// semi-definite when \p a_psd) and \p b (where it is when !a_psd) on a line
-/// whose exact scene (M unchecked) at a value v is \p at(v), to \p bits
-/// halvings: along a line the PSD set is an interval, so there is one change.
 /// Where each entry of M sits in M written on its pairs (sorted): (row,
 /// column) per entry of \p entries, and the number of pairs.
 std::pair<std::vector<std::pair<int, int>>, Eigen::Index> entry_positions(const std::vector<Entry<cln::cl_RA>>& entries) {
@@ -183,20 +182,108 @@ std::pair<std::vector<std::pair<int, int>>, Eigen::Index> entry_positions(const 
   return {at, static_cast<Eigen::Index>(pairs.size())};
 }
 
-template <class At>
-MapBoundary psd_edge(const At& at, cln::cl_RA a, cln::cl_RA b, bool a_psd, int bits) {
-  Eigen::MatrixXd M, work;
-  // M on its pairs in double, decided by detail::psd_by_floating_point() where it can, else exactly.
-  auto psd = [&](const ExactScene& s) {
-    const auto [at, size] = entry_positions(s.entries);
-    M = Eigen::MatrixXd::Zero(size, size);
-    for (std::size_t k = 0; k < at.size(); ++k) M(at[k].first, at[k].second) = M(at[k].second, at[k].first) = cln::double_approx(s.entries[k].value);
-    const std::optional<bool> clear = detail::psd_by_floating_point(M, work);
-    return clear ? *clear : positive_semidefinite(s);
+/// The most pairs of an M whose PSD edge bisect_by_determinant() locates:
+/// its exact determinant is a dense elimination, O(pairs³); beyond, the
+/// edge is bisected on exact PSD checks.
+constexpr Eigen::Index psd_edge_max_pairs = 16;
+
+/// The determinant of the square \p a (overwritten), exactly: elimination
+/// with the first nonzero pivot of each column.
+cln::cl_RA determinant(std::vector<std::vector<cln::cl_RA>>& a) {
+  const std::size_t n = a.size();
+  cln::cl_RA det = 1;
+  for (std::size_t k = 0; k < n; ++k) {
+    std::size_t p = k;
+    while (p < n && cln::zerop(a[p][k])) ++p;
+    if (p == n) return 0;
+    if (p != k) std::swap(a[p], a[k]), det = -det;
+    det = det * a[k][k];
+    for (std::size_t i = k + 1; i < n; ++i) {
+      if (cln::zerop(a[i][k])) continue;
+      const cln::cl_RA f = a[i][k] / a[k][k];
+      for (std::size_t j = k + 1; j < n; ++j) a[i][j] = a[i][j] - f * a[k][j];
+    }
+  }
+  return det;
+}
+
+/// The halvings of psd_edge() on a line along the entry \p entry of M of
+/// \p line (set by this function), when M's determinant decides them.
+/// q(v) = det M(v) is a polynomial of degree at most 2 (the entry sits at
+/// two symmetric places of M, or on its diagonal): made exactly through
+/// three values of the bracket and checked at a fourth.  λ_min(M(v)) is
+/// concave, so inside the PSD interval it is positive unless M is singular
+/// all along it (then q ≡ 0), and at the interval's end it is 0: when q > 0
+/// at the bracket's PSD end and q < 0 at the other, q's one root between them
+/// is the edge, and M is PSD at a value of the bracket exactly when q ≥ 0
+/// there.  Each halving then takes the verdict positive_semidefinite() gives,
+/// from the sign of an integer form of q at the midpoint: \p a and \p b
+/// become the same bracket, and true is returned.  False, with \p a and \p b
+/// unchanged, where q does not decide so (too many pairs, q ≡ 0, a root at
+/// an end, an even number of roots between them, a failed check).
+bool bisect_by_determinant(ExactScene& line, std::size_t entry, cln::cl_RA& a, cln::cl_RA& b, bool a_psd, int bits) {
+  const auto [at, size] = entry_positions(line.entries);
+  if (size > psd_edge_max_pairs) return false;
+  const auto n = static_cast<std::size_t>(size);
+  auto det = [&](const cln::cl_RA& v) {
+    line.entries[entry].value = v;
+    std::vector<std::vector<cln::cl_RA>> m(n, std::vector<cln::cl_RA>(n, 0));
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      const auto r = static_cast<std::size_t>(at[k].first), c = static_cast<std::size_t>(at[k].second);
+      m[r][c] = m[c][r] = line.entries[k].value;
+    }
+    return determinant(m);
   };
+  const cln::cl_RA& in = a_psd ? a : b;  // the bracket's PSD end
+  const cln::cl_RA& out = a_psd ? b : a;
+  const cln::cl_RA t0 = in, t1 = out, t2 = (in + out) / 2, t3 = (3 * in + out) / 4;
+  const cln::cl_RA d0 = det(t0), d1 = det(t1);
+  if (!(d0 > 0 && d1 < 0)) return false;
+  // Newton's form through (t0, d0), (t1, d1), (t2, d2), then q = c0 + c1·v + c2·v².
+  const cln::cl_RA f01 = (d1 - d0) / (t1 - t0), f012 = ((det(t2) - d1) / (t2 - t1) - f01) / (t2 - t0);
+  const cln::cl_RA c2 = f012, c1 = f01 - f012 * (t0 + t1), c0 = d0 - f01 * t0 + f012 * t0 * t1;
+  if (c0 + t3 * (c1 + t3 * c2) != det(t3)) return false;
+  // In integers: q(v) times the positive lcm of the denominators of its coefficients, at v = V/D.
+  const cln::cl_I common = cln::lcm(cln::lcm(cln::denominator(c0), cln::denominator(c1)), cln::denominator(c2));
+  const cln::cl_I q0 = cln::exquo(cln::numerator(c0) * common, cln::denominator(c0)),
+                  q1 = cln::exquo(cln::numerator(c1) * common, cln::denominator(c1)),
+                  q2 = cln::exquo(cln::numerator(c2) * common, cln::denominator(c2));
+  cln::cl_I D = cln::lcm(cln::denominator(a), cln::denominator(b));
+  cln::cl_I A = cln::exquo(cln::numerator(a) * D, cln::denominator(a)), B = cln::exquo(cln::numerator(b) * D, cln::denominator(b));
   for (; bits > 0; --bits) {
-    const cln::cl_RA mid = (a + b) / 2;
-    (psd(at(mid)) == a_psd ? a : b) = mid;
+    // The midpoint (A + B)/(2D): the bracket's ends and D doubled.
+    const cln::cl_I mid = A + B;
+    A = cln::ash(A, 1), B = cln::ash(B, 1), D = cln::ash(D, 1);
+    const bool psd = !cln::minusp(q0 * D * D + q1 * mid * D + q2 * mid * mid);
+    (psd == a_psd ? A : B) = mid;
+  }
+  a = cln::cl_RA(A) / D;
+  b = cln::cl_RA(B) / D;
+  return true;
+}
+
+/// The edge of the PSD cone between \p a (where M is positive
+/// semi-definite when \p a_psd) and \p b (where it is when !a_psd) on a line
+/// whose exact scene (M unchecked) at a value v is \p at(v), to \p bits
+/// halvings: along a line the PSD set is an interval, so there is one change.
+/// When the line varies the entry \p entry of M of \p line (which at()
+/// sets), the halvings are those of bisect_by_determinant() where it decides.
+template <class At>
+MapBoundary psd_edge(const At& at, cln::cl_RA a, cln::cl_RA b, bool a_psd, int bits, ExactScene* line = nullptr, std::size_t entry = 0) {
+  if (!line || !bisect_by_determinant(*line, entry, a, b, a_psd, bits)) {
+    Eigen::MatrixXd M, work;
+    // M on its pairs in double, decided by detail::psd_by_floating_point() where it can, else exactly.
+    auto psd = [&](const ExactScene& s) {
+      const auto [at, size] = entry_positions(s.entries);
+      M = Eigen::MatrixXd::Zero(size, size);
+      for (std::size_t k = 0; k < at.size(); ++k) M(at[k].first, at[k].second) = M(at[k].second, at[k].first) = cln::double_approx(s.entries[k].value);
+      const std::optional<bool> clear = detail::psd_by_floating_point(M, work);
+      return clear ? *clear : positive_semidefinite(s);
+    };
+    for (; bits > 0; --bits) {
+      const cln::cl_RA mid = (a + b) / 2;
+      (psd(at(mid)) == a_psd ? a : b) = mid;
+    }
   }
   MapBoundary e;
   e.low = a < b ? a : b;
@@ -729,7 +816,7 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
     if (first.admissible != second.admissible) {
       if (exact)
         out.push_back(psd_edge([&](const cln::cl_RA& v) -> const ExactScene& { return exact->entries[entry].value = v, *exact; }, a, b,
-                               first.admissible, settings.bits));
+                               first.admissible, settings.bits, &*exact, entry));
       else
         out.push_back(psd_edge([&](const cln::cl_RA& v) {
           along.parameter.assign(*line, Number::parse(to_string(v)));
