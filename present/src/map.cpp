@@ -26,8 +26,10 @@ using numeric::Region;
 /// point), rounded up (docs/MAPS.md).
 constexpr double csv_bytes_per_point = 60, json_bytes_per_point = 1300, figure_bytes_per_point = 240;
 
+/// The grid value k of \p steps values from \p from to \p to, exactly (numeric::Axis::values()).
+cln::cl_RA value(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int k) { return from + (to - from) * k / (steps - 1); }
 /// The grid value k of axis \p a, exactly.
-cln::cl_RA value(const numeric::Axis& a, int k) { return a.from + (a.to - a.from) * k / (a.steps - 1); }
+cln::cl_RA value(const numeric::Axis& a, int k) { return value(a.from, a.to, a.steps, k); }
 
 std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_decimal(x, digits); }
 
@@ -41,19 +43,41 @@ std::string csv_field(const std::string& text) {
 
 std::string number(double x, int digits = 17) { return std::isnan(x) ? std::string("nan") : numeric::to_string(x, digits); }
 
-/// The cases present among the solved points, in the paper's order of names.
-std::vector<ContactSet> cases_present(const Map& m) {
-  std::vector<ContactSet> cases;
-  for (const MapPoint& p : m.points)
-    if (p.admissible && std::find(cases.begin(), cases.end(), p.region.closed) == cases.end()) cases.push_back(p.region.closed);
+/// A case present among the solved points: how many are in it, and how many of them are superball.
+struct CaseCount {
+  ContactSet closed;
+  std::size_t in = 0, superball = 0;
+};
+
+/// The cases present among the solved points with their counts, in the
+/// paper's order of names: one pass over the points.
+std::vector<CaseCount> case_counts(const Map& m) {
+  std::vector<CaseCount> cases;
+  std::size_t last = 0;  // neighbours are mostly of one case
+  for (const MapPoint& p : m.points) {
+    if (!p.admissible) continue;
+    if (last >= cases.size() || cases[last].closed != p.region.closed) {
+      last = 0;
+      while (last < cases.size() && cases[last].closed != p.region.closed) ++last;
+      if (last == cases.size()) cases.push_back({p.region.closed});
+    }
+    ++cases[last].in;
+    cases[last].superball += p.region.superball;
+  }
   const Vocabulary& v = Vocabulary::paper();
-  std::sort(cases.begin(), cases.end(), [&](const ContactSet& a, const ContactSet& b) {
-    const std::string na = v.case_name(a), nb = v.case_name(b);
-    return na != nb ? na < nb : a.to_string() < b.to_string();
+  std::sort(cases.begin(), cases.end(), [&](const CaseCount& a, const CaseCount& b) {
+    const std::string na = v.case_name(a.closed), nb = v.case_name(b.closed);
+    return na != nb ? na < nb : a.closed.to_string() < b.closed.to_string();
   });
   return cases;
 }
 
+/// The cases present among the solved points, in the paper's order of names.
+std::vector<ContactSet> cases_present(const Map& m) {
+  std::vector<ContactSet> cases;
+  for (const CaseCount& c : case_counts(m)) cases.push_back(c.closed);
+  return cases;
+}
 
 /// Distinct colours for the cases (Tableau 10), then grey for M not PSD.
 constexpr const char* kColours[] = {"#4E79A7", "#F28E2B", "#59A14F", "#E15759", "#B07AA1",
@@ -103,6 +127,29 @@ const std::string& cached(std::vector<std::pair<Key, std::string>>& cache, const
     if (k == key) return text;
   cache.emplace_back(key, make());
   return cache.back().second;
+}
+
+/// decimal(value(a, k), 10) for k = first … first + count − 1, on \p threads
+/// threads, 64 values a task: each thread computes from its own copies of
+/// the axis's ends, read from their texts (made here).
+std::vector<std::string> decimals(const numeric::Axis& a, int first, int count, int threads) {
+  constexpr int per_task = 64;
+  const std::string from = numeric::to_string(a.from), to = numeric::to_string(a.to);
+  struct Ends {
+    cln::cl_RA from, to;
+  };
+  const auto parts = numeric::parallel_map(
+      static_cast<std::size_t>((count + per_task - 1) / per_task), threads,
+      [&] { return Ends{numeric::parse_rational(from), numeric::parse_rational(to)}; },
+      [&](const Ends& ends, std::size_t t) {
+        std::vector<std::string> texts;
+        for (int k = first + static_cast<int>(t) * per_task; k < std::min(first + count, first + static_cast<int>(t + 1) * per_task); ++k)
+          texts.push_back(decimal(value(ends.from, ends.to, a.steps, k), 10));
+        return texts;
+      });
+  std::vector<std::string> all;
+  for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
+  return all;
 }
 
 /// The grid points a task of in_blocks() formats: enough that a task's
@@ -159,11 +206,9 @@ void write_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t 
                     const TextSink& sink) {
   if (points.empty()) return;
   const auto nx = static_cast<std::size_t>(x.steps);
-  // The axes' texts made once, here (CLN), for the rows' tasks: every x, the y of the rows of these points.
-  std::vector<std::string> xs(nx), ys;
-  for (std::size_t i = 0; i < nx; ++i) xs[i] = decimal(value(x, static_cast<int>(i)), 10);
+  // The axes' texts made once for the rows' tasks: every x, the y of the rows of these points.
   const std::size_t j0 = first / nx, j1 = (first + points.size() - 1) / nx;
-  for (std::size_t j = j0; j <= j1; ++j) ys.push_back(decimal(value(y, static_cast<int>(j)), 10));
+  const std::vector<std::string> xs = decimals(x, 0, x.steps, threads), ys = decimals(y, static_cast<int>(j0), static_cast<int>(j1 - j0 + 1), threads);
   // A case's fields, made on first use by each thread.
   using Cases = std::vector<std::pair<ContactSet, std::string>>;
   in_blocks<Cases>(points.size(), threads, [&](Cases& cases, std::size_t from, std::size_t to) {
@@ -383,13 +428,9 @@ std::string map_summary(const Map& m, const Scene& scene, const std::string& pre
   os << "points: " << m.points.size() << ", solved " << solved;
   if (solved < m.points.size()) os << " (M is not positive semi-definite at the other " << m.points.size() - solved << ": not solved)";
   os << '\n';
-  for (const ContactSet& c : cases_present(m)) {
-    std::size_t in = 0, sb = 0;
-    for (const MapPoint& p : m.points)
-      if (p.admissible && p.region.closed == c) ++in, sb += p.region.superball;
-    os << "  case " << Vocabulary::paper().case_name(c) << ' ' << c.to_string() << ": " << in << " points (" << share(in, solved)
-       << "), superball at " << sb << '\n';
-  }
+  for (const CaseCount& c : case_counts(m))
+    os << "  case " << Vocabulary::paper().case_name(c.closed) << ' ' << c.closed.to_string() << ": " << c.in << " points ("
+       << share(c.in, solved) << "), superball at " << c.superball << '\n';
   os << "superball (U1+ > a): " << superball << " points (" << share(superball, solved) << " of the solved)";
   if (low <= high) os << "; U1+/a from " << numeric::to_string(low, 6) << " to " << numeric::to_string(high, 6);
   os << '\n';

@@ -170,7 +170,8 @@ struct MapSettings {
   /// Called by map() on the calling thread as each of its stages ends, with
   /// the stage's name: "checks" (the settings, the corners, the memory),
   /// "grid" (the points), "neighbours" (the pairs to bisect), "bisections",
-  /// "read back" (each boundary checked against its grid step) and "curves";
+  /// "read back" (with a runner, each boundary checked against its grid
+  /// step) and "curves";
   /// a front times them (`superball map --stage-times`).  Empty: not called.
   std::function<void(const char* stage)> stage_end;
   /// The bytes map() holds per grid point at its peak, with
