@@ -1,6 +1,10 @@
 #include "map.hpp"
 
+#include <time.h>
+
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -34,6 +38,33 @@ namespace {
 
 /// The grid points computed and written at a time when a map's CSV is streamed.
 constexpr std::size_t stream_block = std::size_t{1} << 14;
+
+/// The hidden --stage-times: each stage's wall time and the process's CPU
+/// time in it (all threads), one line each on standard error, to see which
+/// stages of a map run on one thread.
+class StageTimes {
+ public:
+  explicit StageTimes(bool on) : on_(on) {
+    if (on_) wall_ = wall(), cpu_ = cpu();
+  }
+  /// The stage that ends now, since the last one ended (or the start).
+  void end(const char* stage) {
+    if (!on_) return;
+    const double w = wall(), c = cpu();
+    std::fprintf(stderr, "map: stage %-11s wall %8.4f s  cpu %8.4f s\n", stage, w - wall_, c - cpu_);
+    wall_ = w, cpu_ = c;
+  }
+
+ private:
+  static double wall() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+  static double cpu() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  }
+  bool on_;
+  double wall_ = 0, cpu_ = 0;
+};
 
 /// The zeros of the derived conditions next to a point of their case (those
 /// that can bound its region), as points of the plane.
@@ -82,7 +113,7 @@ Exit drop_map(const Scene& scene, const numeric::Axis& x, const numeric::Axis& y
 void add_map(CLI::App& app, Action& action) {
   struct Options {
     std::string scene, x, y, precision = "double", plot, out;
-    bool csv = false, json = false, boundary_points = false, overlay = false;
+    bool csv = false, json = false, boundary_points = false, overlay = false, stage_times = false;
     int threads = numeric::thread_count(0);
     DistributeOptions distribute;
   };
@@ -148,8 +179,10 @@ void add_map(CLI::App& app, Action& action) {
   cmd->add_option("--threads,-j", o->threads, "Worker threads (default and 0: all cores; at most " + std::to_string(numeric::max_threads) + ")")
       ->capture_default_str();
   add_distribute_options(cmd, o->distribute, "group of grid points (then of bisections)", false);
+  cmd->add_flag("--stage-times", o->stage_times, "After the run, say on standard error the wall and CPU time of each stage")->group("");
   cmd->callback([o, cmd, &action] {
     action = [o, cmd] {
+      StageTimes times(o->stage_times);
       if (o->csv && o->json) throw std::invalid_argument("map: --csv and --json: choose one");
       if (!o->distribute.shard.empty() || !o->distribute.part.empty())
         throw std::invalid_argument(std::string("map: ") + (o->distribute.shard.empty() ? "--part" : "--shard") +
@@ -196,23 +229,25 @@ void add_map(CLI::App& app, Action& action) {
         Output out("");
         out.write(present::map_csv_header(ax, ay));
         numeric::map_points(scene, ax, ay, settings, stream_block,
-                            [&](std::size_t first, const std::vector<numeric::MapPoint>& points) { out.write(present::map_csv_rows(ax, ay, first, points)); });
+                            [&](std::size_t first, const std::vector<numeric::MapPoint>& points) {
+                              present::write_csv_rows(ax, ay, first, points, settings.threads, [&](std::string_view rows) { out.write(rows); });
+                            });
         out.commit();
         return ok;
       }
+      times.end("setup");
+      settings.stage_end = [&](const char* stage) { times.end(stage); };
       const numeric::Map m = numeric::map(scene, ax, ay, settings);
       if (mpi_rank() != 0) return ok;
       std::optional<verify::Overlay> overlay;
       if (o->overlay) overlay = verify::overlay(scene, m, settings.bits);
       const std::string precision = settings.precision.name();
+      // The grid as CSV or JSON is formatted on the threads and written as it comes, after the figure and the scene files.
+      const bool grid_text = o->json || (o->csv && !o->boundary_points);
       std::string text;
-      if (o->json) {
-        auto j = present::map_json(m, scene, precision);
-        if (overlay) j["overlay"] = present::to_json(*overlay, m);
-        text = j.dump(1) + "\n";
-      } else if (o->csv) {
-        text = o->boundary_points ? present::boundaries_csv(m) : present::map_csv(m);
-      } else {
+      if (o->csv && o->boundary_points) {
+        text = present::boundaries_csv(m);
+      } else if (!grid_text) {
         text = present::map_summary(m, scene, precision);
         if (overlay) text += present::to_text(*overlay, m);
         if (o->boundary_points) {
@@ -246,7 +281,21 @@ void add_map(CLI::App& app, Action& action) {
       if (!o->plot.empty())
         draw_map(o->plot, m, scene.title.empty() ? scene.origin : scene.title, {}, overlay ? derived_points(*overlay, m) : std::vector<std::pair<double, double>>{});
       if (written && !o->json && !o->csv) text += std::to_string(written) + " scene files written to " + o->out + "\n";
-      write_output("", text);
+      if (grid_text) {
+        Output out("");
+        const present::TextSink sink = [&](std::string_view piece) { out.write(piece); };
+        if (o->json) {
+          nlohmann::ordered_json extra = nlohmann::ordered_json::object();
+          if (overlay) extra["overlay"] = present::to_json(*overlay, m);
+          present::write_map_json(m, scene, precision, extra, settings.threads, sink);
+        } else {
+          present::write_map_csv(m, settings.threads, sink);
+        }
+        out.commit();
+      } else {
+        write_output("", text);
+      }
+      times.end("output");
       if (!overlay || overlay->agrees()) return ok;
       std::cerr << "superball: the derived conditions disagree with the exact boundaries at some points (see the overlay"
                 << (o->out.empty() ? "; --out DIR writes them as scene files)\n" : ")\n");

@@ -1,8 +1,14 @@
 #include "map_internal.hpp"
 #include "psd_filter.hpp"
 
+#include <sys/mman.h>
+
+#include <cln/integer.h>
+#include <cln/rational.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
@@ -167,10 +173,6 @@ std::vector<MapCurve> chain(const Map& m) {
   return curves;
 }
 
-/// The edge of the PSD cone between \p a (where M is positive
-/// semi-definite when \p a_psd) and \p b (where it is when !a_psd) on a line
-/// whose exact scene (M unchecked) at a value v is \p at(v), to \p bits
-/// halvings: along a line the PSD set is an interval, so there is one change.
 /// Where each entry of M sits in M written on its pairs (sorted): (row,
 /// column) per entry of \p entries, and the number of pairs.
 std::pair<std::vector<std::pair<int, int>>, Eigen::Index> entry_positions(const std::vector<Entry<cln::cl_RA>>& entries) {
@@ -183,20 +185,108 @@ std::pair<std::vector<std::pair<int, int>>, Eigen::Index> entry_positions(const 
   return {at, static_cast<Eigen::Index>(pairs.size())};
 }
 
-template <class At>
-MapBoundary psd_edge(const At& at, cln::cl_RA a, cln::cl_RA b, bool a_psd, int bits) {
-  Eigen::MatrixXd M, work;
-  // M on its pairs in double, decided by detail::psd_by_floating_point() where it can, else exactly.
-  auto psd = [&](const ExactScene& s) {
-    const auto [at, size] = entry_positions(s.entries);
-    M = Eigen::MatrixXd::Zero(size, size);
-    for (std::size_t k = 0; k < at.size(); ++k) M(at[k].first, at[k].second) = M(at[k].second, at[k].first) = cln::double_approx(s.entries[k].value);
-    const std::optional<bool> clear = detail::psd_by_floating_point(M, work);
-    return clear ? *clear : positive_semidefinite(s);
+/// The most pairs of an M whose PSD edge bisect_by_determinant() locates:
+/// its exact determinant is a dense elimination, O(pairs³); beyond, the
+/// edge is bisected on exact PSD checks.
+constexpr Eigen::Index psd_edge_max_pairs = 16;
+
+/// The determinant of the square \p a (overwritten), exactly: elimination
+/// with the first nonzero pivot of each column.
+cln::cl_RA determinant(std::vector<std::vector<cln::cl_RA>>& a) {
+  const std::size_t n = a.size();
+  cln::cl_RA det = 1;
+  for (std::size_t k = 0; k < n; ++k) {
+    std::size_t p = k;
+    while (p < n && cln::zerop(a[p][k])) ++p;
+    if (p == n) return 0;
+    if (p != k) std::swap(a[p], a[k]), det = -det;
+    det = det * a[k][k];
+    for (std::size_t i = k + 1; i < n; ++i) {
+      if (cln::zerop(a[i][k])) continue;
+      const cln::cl_RA f = a[i][k] / a[k][k];
+      for (std::size_t j = k + 1; j < n; ++j) a[i][j] = a[i][j] - f * a[k][j];
+    }
+  }
+  return det;
+}
+
+/// The halvings of psd_edge() on a line along the entry \p entry of M of
+/// \p line (set by this function), when M's determinant decides them.
+/// q(v) = det M(v) is a polynomial of degree at most 2 (the entry sits at
+/// two symmetric places of M, or on its diagonal): made exactly through
+/// three values of the bracket and checked at a fourth.  λ_min(M(v)) is
+/// concave, so inside the PSD interval it is positive unless M is singular
+/// all along it (then q ≡ 0), and at the interval's end it is 0: when q > 0
+/// at the bracket's PSD end and q < 0 at the other, q's one root between them
+/// is the edge, and M is PSD at a value of the bracket exactly when q ≥ 0
+/// there.  Each halving then takes the verdict positive_semidefinite() gives,
+/// from the sign of an integer form of q at the midpoint: \p a and \p b
+/// become the same bracket, and true is returned.  False, with \p a and \p b
+/// unchanged, where q does not decide so (too many pairs, q ≡ 0, a root at
+/// an end, an even number of roots between them, a failed check).
+bool bisect_by_determinant(ExactScene& line, std::size_t entry, cln::cl_RA& a, cln::cl_RA& b, bool a_psd, int bits) {
+  const auto [at, size] = entry_positions(line.entries);
+  if (size > psd_edge_max_pairs) return false;
+  const auto n = static_cast<std::size_t>(size);
+  auto det = [&](const cln::cl_RA& v) {
+    line.entries[entry].value = v;
+    std::vector<std::vector<cln::cl_RA>> m(n, std::vector<cln::cl_RA>(n, 0));
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      const auto r = static_cast<std::size_t>(at[k].first), c = static_cast<std::size_t>(at[k].second);
+      m[r][c] = m[c][r] = line.entries[k].value;
+    }
+    return determinant(m);
   };
+  const cln::cl_RA& in = a_psd ? a : b;  // the bracket's PSD end
+  const cln::cl_RA& out = a_psd ? b : a;
+  const cln::cl_RA t0 = in, t1 = out, t2 = (in + out) / 2, t3 = (3 * in + out) / 4;
+  const cln::cl_RA d0 = det(t0), d1 = det(t1);
+  if (!(d0 > 0 && d1 < 0)) return false;
+  // Newton's form through (t0, d0), (t1, d1), (t2, d2), then q = c0 + c1·v + c2·v².
+  const cln::cl_RA f01 = (d1 - d0) / (t1 - t0), f012 = ((det(t2) - d1) / (t2 - t1) - f01) / (t2 - t0);
+  const cln::cl_RA c2 = f012, c1 = f01 - f012 * (t0 + t1), c0 = d0 - f01 * t0 + f012 * t0 * t1;
+  if (c0 + t3 * (c1 + t3 * c2) != det(t3)) return false;
+  // In integers: q(v) times the positive lcm of the denominators of its coefficients, at v = V/D.
+  const cln::cl_I common = cln::lcm(cln::lcm(cln::denominator(c0), cln::denominator(c1)), cln::denominator(c2));
+  const cln::cl_I q0 = cln::exquo(cln::numerator(c0) * common, cln::denominator(c0)),
+                  q1 = cln::exquo(cln::numerator(c1) * common, cln::denominator(c1)),
+                  q2 = cln::exquo(cln::numerator(c2) * common, cln::denominator(c2));
+  cln::cl_I D = cln::lcm(cln::denominator(a), cln::denominator(b));
+  cln::cl_I A = cln::exquo(cln::numerator(a) * D, cln::denominator(a)), B = cln::exquo(cln::numerator(b) * D, cln::denominator(b));
   for (; bits > 0; --bits) {
-    const cln::cl_RA mid = (a + b) / 2;
-    (psd(at(mid)) == a_psd ? a : b) = mid;
+    // The midpoint (A + B)/(2D): the bracket's ends and D doubled.
+    const cln::cl_I mid = A + B;
+    A = cln::ash(A, 1), B = cln::ash(B, 1), D = cln::ash(D, 1);
+    const bool psd = !cln::minusp(q0 * D * D + q1 * mid * D + q2 * mid * mid);
+    (psd == a_psd ? A : B) = mid;
+  }
+  a = cln::cl_RA(A) / D;
+  b = cln::cl_RA(B) / D;
+  return true;
+}
+
+/// The edge of the PSD cone between \p a (where M is positive
+/// semi-definite when \p a_psd) and \p b (where it is when !a_psd) on a line
+/// whose exact scene (M unchecked) at a value v is \p at(v), to \p bits
+/// halvings: along a line the PSD set is an interval, so there is one change.
+/// When the line varies the entry \p entry of M of \p line (which at()
+/// sets), the halvings are those of bisect_by_determinant() where it decides.
+template <class At>
+MapBoundary psd_edge(const At& at, cln::cl_RA a, cln::cl_RA b, bool a_psd, int bits, ExactScene* line = nullptr, std::size_t entry = 0) {
+  if (!line || !bisect_by_determinant(*line, entry, a, b, a_psd, bits)) {
+    Eigen::MatrixXd M, work;
+    // M on its pairs in double, decided by detail::psd_by_floating_point() where it can, else exactly.
+    auto psd = [&](const ExactScene& s) {
+      const auto [at, size] = entry_positions(s.entries);
+      M = Eigen::MatrixXd::Zero(size, size);
+      for (std::size_t k = 0; k < at.size(); ++k) M(at[k].first, at[k].second) = M(at[k].second, at[k].first) = cln::double_approx(s.entries[k].value);
+      const std::optional<bool> clear = detail::psd_by_floating_point(M, work);
+      return clear ? *clear : positive_semidefinite(s);
+    };
+    for (; bits > 0; --bits) {
+      const cln::cl_RA mid = (a + b) / 2;
+      (psd(at(mid)) == a_psd ? a : b) = mid;
+    }
   }
   MapBoundary e;
   e.low = a < b ? a : b;
@@ -264,6 +354,25 @@ std::optional<bool> psd_by_floating_point(const Eigen::MatrixXd& M, Eigen::Matri
   work.diagonal().array() += tau;
   if (!ldlt_succeeds(work)) return false;
   return std::nullopt;
+}
+
+/// \p n default points, in storage that the kernel may back with huge pages
+/// (Linux's transparent huge pages, where they are enabled on request): a
+/// large grid's points then take a few page faults instead of one per 4 KiB,
+/// taken on one thread before the points are solved.  On a virtual machine a
+/// fault costs tens of microseconds: 16.8 MB of points (512 x 512) took
+/// 0.08–0.15 s of faults, a fifth of the whole map, and 0.014–0.04 s so.
+std::vector<MapPoint> blank_points(std::size_t n) {
+  std::vector<MapPoint> points;
+  points.reserve(n);
+#ifdef MADV_HUGEPAGE
+  constexpr std::uintptr_t huge = std::uintptr_t{2} << 20;
+  const auto start = reinterpret_cast<std::uintptr_t>(points.data()), end = start + n * sizeof(MapPoint);
+  const std::uintptr_t from = (start + huge - 1) & ~(huge - 1), to = end & ~(huge - 1);
+  if (from < to) (void)::madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE);  // advice only: no error to act on
+#endif
+  points.resize(n);
+  return points;
 }
 
 template <class S>
@@ -334,7 +443,7 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
   // the entry kx of M itself: M is affine in it, and x between the row's
   // two ends, so M positive semi-definite at both ends is so at every point
   // between (the cone is convex), whose filter is then skipped.
-  std::vector<MapPoint> points(size);
+  std::vector<MapPoint> points = blank_points(size);
   (void)parallel_map((size + map_run - 1) / map_run, settings.threads, make_state, [&](State& st, std::size_t r) {
     const std::size_t end = std::min(size, (r + 1) * map_run);
     for (std::size_t at = r * map_run; at < end;) {
@@ -642,9 +751,13 @@ void map_points(const Scene& scene, const Axis& x, const Axis& y, const MapSetti
 }
 
 Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& settings) {
+  const auto stage_end = [&](const char* stage) {
+    if (settings.stage_end) settings.stage_end(stage);
+  };
   settings.check();
   check_map(scene, x, y);
   if (std::string why; !settings.fits(x, y, &why)) throw std::invalid_argument(why);
+  stage_end("checks");
   Map m{x, y, {}, {}, {}};
   const GridSolver points(scene, x, y, settings);
   const std::vector<std::string>& tx = points.tx;
@@ -656,6 +769,7 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   if (m.points.size() != count)
     throw std::logic_error("map(): the runner's results hold " + std::to_string(m.points.size()) + " of " + std::to_string(count) + " points");
   if (std::none_of(m.points.begin(), m.points.end(), [](const MapPoint& p) { return p.admissible; })) points.nowhere_psd();
+  stage_end("grid");
   if (!settings.boundaries) return m;
   // The neighbours to bisect: along x row by row, then along y column by column.
   struct Pending {
@@ -680,6 +794,7 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   };
   for (const bool along_x : {true, false})
     for (const auto& found : scan(along_x)) pending.insert(pending.end(), found.begin(), found.end());
+  stage_end("neighbours");
   const Label by_region = [](const ExactPoint& e) { return Region::of(e).label(); };
   const ProvenLabel proven_region = [](const ProvenPoint& p) -> std::optional<std::string> {
     if (!p.superball) return std::nullopt;
@@ -723,7 +838,7 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
     if (first.admissible != second.admissible) {
       if (exact)
         out.push_back(psd_edge([&](const cln::cl_RA& v) -> const ExactScene& { return exact->entries[entry].value = v, *exact; }, a, b,
-                               first.admissible, settings.bits));
+                               first.admissible, settings.bits, &*exact, entry));
       else
         out.push_back(psd_edge([&](const cln::cl_RA& v) {
           along.parameter.assign(*line, Number::parse(to_string(v)));
@@ -749,20 +864,26 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
   };
   m.boundaries = in_tasks<MapBoundary>(settings.runner, pending.size(), per_task(pending.size()), "map()", boundaries, detail::boundaries_to_text,
                                        detail::boundaries_from_text);
-  // Each boundary read back (a runner's text, a checkpoint) lies between the two grid points it was bisected between.
-  std::set<std::tuple<bool, int, int>> bisected;
-  for (const Pending& p : pending) bisected.insert({p.along_x, p.i, p.j});
-  for (const MapBoundary& b : m.boundaries) {
-    if (!bisected.count({b.along_x, b.i, b.j}))
-      throw std::invalid_argument("map(): a damaged result: a boundary between grid points (" + std::to_string(b.i) + ", " + std::to_string(b.j) +
-                                  ") that were not bisected");
-    const cln::cl_RA a = parse_rational(b.along_x ? tx[static_cast<std::size_t>(b.i)] : ty[static_cast<std::size_t>(b.j)]);
-    const cln::cl_RA c = parse_rational(b.along_x ? tx[static_cast<std::size_t>(b.i) + 1] : ty[static_cast<std::size_t>(b.j) + 1]);
-    if (b.low < cln::min(a, c) || b.high > cln::max(a, c))
-      throw std::invalid_argument("map(): a damaged result: a bracket [" + to_string(b.low) + ", " + to_string(b.high) +
-                                  "] outside the grid step it was bisected in [" + to_string(cln::min(a, c)) + ", " + to_string(cln::max(a, c)) + "]");
+  stage_end("bisections");
+  // Each boundary read back (a runner's text, a checkpoint) lies between the
+  // two grid points it was bisected between (those bisected here do).
+  if (settings.runner) {
+    std::set<std::tuple<bool, int, int>> bisected;
+    for (const Pending& p : pending) bisected.insert({p.along_x, p.i, p.j});
+    for (const MapBoundary& b : m.boundaries) {
+      if (!bisected.count({b.along_x, b.i, b.j}))
+        throw std::invalid_argument("map(): a damaged result: a boundary between grid points (" + std::to_string(b.i) + ", " + std::to_string(b.j) +
+                                    ") that were not bisected");
+      const cln::cl_RA a = parse_rational(b.along_x ? tx[static_cast<std::size_t>(b.i)] : ty[static_cast<std::size_t>(b.j)]);
+      const cln::cl_RA c = parse_rational(b.along_x ? tx[static_cast<std::size_t>(b.i) + 1] : ty[static_cast<std::size_t>(b.j) + 1]);
+      if (b.low < cln::min(a, c) || b.high > cln::max(a, c))
+        throw std::invalid_argument("map(): a damaged result: a bracket [" + to_string(b.low) + ", " + to_string(b.high) +
+                                    "] outside the grid step it was bisected in [" + to_string(cln::min(a, c)) + ", " + to_string(cln::max(a, c)) + "]");
+    }
   }
+  stage_end("read back");
   m.curves = chain(m);
+  stage_end("curves");
   return m;
 }
 

@@ -512,6 +512,11 @@ struct Labeller {
   std::array<std::atomic<std::size_t>, 3>& found_by;  ///< in double, by a case, solved
   std::vector<std::string> names;     ///< the labels met, by id
   std::vector<std::pair<ProvenPoint, std::optional<std::size_t>>> known;  ///< what proven() said of each point proven so far
+  /// Try a certified double solve first.  A bisection starts with it and
+  /// stops trying when it fails: the midpoints after that one lie nearer the
+  /// change, where double cannot prove a case either (on the paper's map,
+  /// four tries in five failed).  The labels do not depend on it.
+  bool try_double = true;
 
   /// Along \p p of the scene \p s, from \p low to \p high; \p entry: the entry of M \p p is, if it is one.
   Labeller(const Scene& s, const Parameter& p, const Label& l, const ProvenLabel& pl, std::optional<std::size_t> entry,
@@ -560,15 +565,17 @@ struct Labeller {
   }
 
   /// The id of the label of the exact solution at \p value: proven in
-  /// double, else by the cases met last, else from the exact solve.
+  /// double (while try_double), else by the cases met last, else from the
+  /// exact solve.
   std::size_t operator()(const cln::cl_RA& value) {
     if (exactly) {
       std::optional<std::size_t> l;
       std::optional<ProvenPoint> p;
-      std::size_t by = 0;
+      std::size_t by = try_double ? 0 : 1;
       for (; by < 2 && !l; ++by) {
         p = by == 0 ? in_double->prove(value) : exactly->prove(value);
         if (p) l = proven_id(*p);
+        if (by == 0 && !l) try_double = false;
       }
       if (l) {
         ++found_by[by - 1];
@@ -647,6 +654,7 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
   auto make_labeller = [&] { return one_thread ? only : make(); };
   using Own = std::shared_ptr<Labeller>;
   const std::vector<std::string> labels = parallel_map(texts.size(), threads, make_labeller, [&](Own& label_at, std::size_t k) {
+    label_at->try_double = true;
     return label_at->names[(*label_at)(parse_rational(texts[k]))];
   });
   std::vector<std::size_t> changes;  // k: the label changes between values k − 1 and k
@@ -655,6 +663,7 @@ std::vector<LabelChange> label_changes(const Scene& scene, const Parameter& para
   const auto found = parallel_map(changes.size(), threads, make_labeller, [&](Own& label_at, std::size_t m) {
     const std::size_t k = changes[m];
     std::vector<LabelChange> out;
+    label_at->try_double = true;
     bisect(*label_at, {parse_rational(texts[k - 1]), parse_rational(texts[k]), label_at->id(labels[k - 1]), label_at->id(labels[k])}, bits, out);
     return out;
   });
@@ -678,7 +687,10 @@ std::vector<LabelChange> entry_label_changes(const ExactScene& line, std::size_t
   const cln::cl_RA& high = a < b ? b : a;
   std::array<std::atomic<std::size_t>, 3> found_by{};
   Labeller label_at(line, entry, label, proven, low, high, found_by, plane);
-  const std::size_t below = label_at(low), above = label_at(high);
+  const std::size_t below = label_at(low);
+  label_at.try_double = true;
+  const std::size_t above = label_at(high);
+  label_at.try_double = true;
   std::vector<LabelChange> out;
   if (below != above) bisect(label_at, {low, high, below, above}, bits, out);
   return out;

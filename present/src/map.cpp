@@ -5,8 +5,11 @@
 #include <cstdio>
 #include <map>
 #include <sstream>
+#include <stdexcept>
+#include <string_view>
 
 #include "superball/cases/vocabulary.hpp"
+#include "superball/numeric/parallel.hpp"
 #include "superball/numeric/scalar.hpp"
 
 namespace superball::present {
@@ -23,8 +26,10 @@ using numeric::Region;
 /// point), rounded up (docs/MAPS.md).
 constexpr double csv_bytes_per_point = 60, json_bytes_per_point = 1300, figure_bytes_per_point = 240;
 
+/// The grid value k of \p steps values from \p from to \p to, exactly (numeric::Axis::values()).
+cln::cl_RA value(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int k) { return from + (to - from) * k / (steps - 1); }
 /// The grid value k of axis \p a, exactly.
-cln::cl_RA value(const numeric::Axis& a, int k) { return a.from + (a.to - a.from) * k / (a.steps - 1); }
+cln::cl_RA value(const numeric::Axis& a, int k) { return value(a.from, a.to, a.steps, k); }
 
 std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_decimal(x, digits); }
 
@@ -38,19 +43,41 @@ std::string csv_field(const std::string& text) {
 
 std::string number(double x, int digits = 17) { return std::isnan(x) ? std::string("nan") : numeric::to_string(x, digits); }
 
-/// The cases present among the solved points, in the paper's order of names.
-std::vector<ContactSet> cases_present(const Map& m) {
-  std::vector<ContactSet> cases;
-  for (const MapPoint& p : m.points)
-    if (p.admissible && std::find(cases.begin(), cases.end(), p.region.closed) == cases.end()) cases.push_back(p.region.closed);
+/// A case present among the solved points: how many are in it, and how many of them are superball.
+struct CaseCount {
+  ContactSet closed;
+  std::size_t in = 0, superball = 0;
+};
+
+/// The cases present among the solved points with their counts, in the
+/// paper's order of names: one pass over the points.
+std::vector<CaseCount> case_counts(const Map& m) {
+  std::vector<CaseCount> cases;
+  std::size_t last = 0;  // neighbours are mostly of one case
+  for (const MapPoint& p : m.points) {
+    if (!p.admissible) continue;
+    if (last >= cases.size() || cases[last].closed != p.region.closed) {
+      last = 0;
+      while (last < cases.size() && cases[last].closed != p.region.closed) ++last;
+      if (last == cases.size()) cases.push_back({p.region.closed});
+    }
+    ++cases[last].in;
+    cases[last].superball += p.region.superball;
+  }
   const Vocabulary& v = Vocabulary::paper();
-  std::sort(cases.begin(), cases.end(), [&](const ContactSet& a, const ContactSet& b) {
-    const std::string na = v.case_name(a), nb = v.case_name(b);
-    return na != nb ? na < nb : a.to_string() < b.to_string();
+  std::sort(cases.begin(), cases.end(), [&](const CaseCount& a, const CaseCount& b) {
+    const std::string na = v.case_name(a.closed), nb = v.case_name(b.closed);
+    return na != nb ? na < nb : a.closed.to_string() < b.closed.to_string();
   });
   return cases;
 }
 
+/// The cases present among the solved points, in the paper's order of names.
+std::vector<ContactSet> cases_present(const Map& m) {
+  std::vector<ContactSet> cases;
+  for (const CaseCount& c : case_counts(m)) cases.push_back(c.closed);
+  return cases;
+}
 
 /// Distinct colours for the cases (Tableau 10), then grey for M not PSD.
 constexpr const char* kColours[] = {"#4E79A7", "#F28E2B", "#59A14F", "#E15759", "#B07AA1",
@@ -93,6 +120,62 @@ std::string curve_text(const numeric::MapCurve& c) {
   return "case " + v.case_name(c.first) + " | case " + v.case_name(c.second);
 }
 
+/// The text of \p key in \p cache (a few entries, searched in order), made by make() on first use.
+template <class Key, class Make>
+const std::string& cached(std::vector<std::pair<Key, std::string>>& cache, const Key& key, const Make& make) {
+  for (const auto& [k, text] : cache)
+    if (k == key) return text;
+  cache.emplace_back(key, make());
+  return cache.back().second;
+}
+
+/// decimal(value(a, k), 10) for k = first … first + count − 1, on \p threads
+/// threads, 64 values a task: each thread computes from its own copies of
+/// the axis's ends, read from their texts (made here).
+std::vector<std::string> decimals(const numeric::Axis& a, int first, int count, int threads) {
+  constexpr int per_task = 64;
+  const std::string from = numeric::to_string(a.from), to = numeric::to_string(a.to);
+  struct Ends {
+    cln::cl_RA from, to;
+  };
+  const auto parts = numeric::parallel_map(
+      static_cast<std::size_t>((count + per_task - 1) / per_task), threads,
+      [&] { return Ends{numeric::parse_rational(from), numeric::parse_rational(to)}; },
+      [&](const Ends& ends, std::size_t t) {
+        std::vector<std::string> texts;
+        for (int k = first + static_cast<int>(t) * per_task; k < std::min(first + count, first + static_cast<int>(t + 1) * per_task); ++k)
+          texts.push_back(decimal(value(ends.from, ends.to, a.steps, k), 10));
+        return texts;
+      });
+  std::vector<std::string> all;
+  for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
+  return all;
+}
+
+/// The grid points a task of in_blocks() formats: enough that a task's
+/// overhead is small beside them, few enough that the threads share the
+/// last ones evenly.
+constexpr std::size_t output_block = 4096;
+
+/// The text of \p count points made by block(state, from, to) (the points
+/// from … to − 1, a std::string) on \p threads threads, output_block points
+/// a task, and given to \p sink in order, a window of tasks at a time (the
+/// memory held is that of a window, not of the whole text).  Each thread has
+/// its own State, made empty: block() must touch no CLN object.
+template <class State, class Block>
+void in_blocks(std::size_t count, int threads, const Block& block, const TextSink& sink) {
+  const std::size_t tasks = (count + output_block - 1) / output_block;
+  const std::size_t window = 8 * static_cast<std::size_t>(numeric::thread_count(threads));
+  for (std::size_t first = 0; first < tasks; first += window) {
+    const std::vector<std::string> texts =
+        numeric::parallel_map(std::min(window, tasks - first), threads, [] { return State{}; }, [&](State& state, std::size_t t) {
+          const std::size_t from = (first + t) * output_block;
+          return block(state, from, std::min(count, from + output_block));
+        });
+    for (const std::string& text : texts) sink(text);
+  }
+}
+
 }  // namespace
 
 std::string case_name(const Region& r) { return Vocabulary::paper().case_name(r.closed); }
@@ -113,26 +196,51 @@ std::string map_csv_header(const numeric::Axis& x, const numeric::Axis& y) {
   return x.parameter.key() + ',' + y.parameter.key() + ",psd,case,closed,U1_over_a,superball,status\n";
 }
 
-std::string map_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t first, const std::vector<MapPoint>& points) {
-  std::ostringstream os;
-  const auto nx = static_cast<std::size_t>(x.steps);
-  std::string y_text;
-  for (std::size_t at = 0; at < points.size(); ++at) {
-    const std::size_t k = first + at;
-    const int i = static_cast<int>(k % nx), j = static_cast<int>(k / nx);
-    if (at == 0 || i == 0) y_text = decimal(value(y, j), 10);
-    const MapPoint& p = points[at];
-    os << decimal(value(x, i), 10) << ',' << y_text << ',';
-    if (p.admissible)
-      os << "1," << csv_field(case_name(p.region)) << ',' << csv_field(p.region.closed.to_string()) << ',' << number(p.ratio) << ','
-         << p.region.superball << ',' << numeric::to_string(p.status) << '\n';
-    else
-      os << "0,,,,,\n";
-  }
-  return os.str();
+std::string map_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t first, const std::vector<MapPoint>& points, int threads) {
+  std::string text;
+  write_csv_rows(x, y, first, points, threads, [&](std::string_view rows) { text += rows; });
+  return text;
 }
 
-std::string map_csv(const Map& m) { return map_csv_header(m.x, m.y) + map_csv_rows(m.x, m.y, 0, m.points); }
+void write_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t first, const std::vector<MapPoint>& points, int threads,
+                    const TextSink& sink) {
+  if (points.empty()) return;
+  const auto nx = static_cast<std::size_t>(x.steps);
+  // The axes' texts made once for the rows' tasks: every x, the y of the rows of these points.
+  const std::size_t j0 = first / nx, j1 = (first + points.size() - 1) / nx;
+  const std::vector<std::string> xs = decimals(x, 0, x.steps, threads), ys = decimals(y, static_cast<int>(j0), static_cast<int>(j1 - j0 + 1), threads);
+  // A case's fields, made on first use by each thread.
+  using Cases = std::vector<std::pair<ContactSet, std::string>>;
+  in_blocks<Cases>(points.size(), threads, [&](Cases& cases, std::size_t from, std::size_t to) {
+    std::string out;
+    for (std::size_t at = from; at < to; ++at) {
+      const std::size_t k = first + at;
+      const MapPoint& p = points[at];
+      out += xs[k % nx];
+      out += ',';
+      out += ys[k / nx - j0];
+      if (!p.admissible) {
+        out += ",0,,,,,\n";
+        continue;
+      }
+      out += ",1,";
+      out += cached(cases, p.region.closed, [&] { return csv_field(case_name(p.region)) + ',' + csv_field(p.region.closed.to_string()); });
+      out += ',';
+      out += number(p.ratio);
+      out += p.region.superball ? ",1," : ",0,";
+      out += numeric::to_string(p.status);
+      out += '\n';
+    }
+    return out;
+  }, sink);
+}
+
+std::string map_csv(const Map& m, int threads) { return map_csv_header(m.x, m.y) + map_csv_rows(m.x, m.y, 0, m.points, threads); }
+
+void write_map_csv(const Map& m, int threads, const TextSink& sink) {
+  sink(map_csv_header(m.x, m.y));
+  write_csv_rows(m.x, m.y, 0, m.points, threads, sink);
+}
 
 double map_output_bytes_per_point(MapOutput output) {
   switch (output) {
@@ -159,7 +267,35 @@ std::string boundaries_csv(const Map& m) {
   return os.str();
 }
 
-nlohmann::ordered_json map_json(const Map& m, const Scene& scene, const std::string& precision) {
+namespace {
+
+nlohmann::ordered_json region_json(const Region& r) {
+  return nlohmann::ordered_json{{"case", case_name(r)}, {"closed", r.closed.closed_names()}, {"superball", r.superball}};
+}
+
+/// The grid point (i, jy) of map_json(); \p x and \p y its values in double.
+nlohmann::ordered_json point_json(const MapPoint& p, int i, int jy, double x, double y) {
+  nlohmann::ordered_json q{{"i", i}, {"j", jy}, {"x", x}, {"y", y}, {"psd", p.admissible}};
+  if (p.admissible) {
+    q.update(region_json(p.region));
+    q["U1_over_a"] = std::isnan(p.ratio) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(p.ratio);
+    q["status"] = numeric::to_string(p.status);
+  }
+  return q;
+}
+
+/// The members of \p object as dump(1) writes them inside an object at depth
+/// \p depth (0: the document): its text without the braces, each line
+/// indented by depth more spaces.
+std::string members_text(const nlohmann::ordered_json& object, int depth) {
+  const std::string text = object.dump(1), indent(static_cast<std::size_t>(depth), ' ');
+  std::string out = indent;
+  for (std::size_t k = 2; k + 2 < text.size(); ++k) out += text[k] == '\n' ? '\n' + indent : std::string(1, text[k]);
+  return out;
+}
+
+/// map_json() without its points (an empty array in their place).
+nlohmann::ordered_json map_json_frame(const Map& m, const Scene& scene, const std::string& precision) {
   nlohmann::ordered_json j;
   j["scene"] = scene.origin;
   j["title"] = scene.title;
@@ -169,22 +305,7 @@ nlohmann::ordered_json map_json(const Map& m, const Scene& scene, const std::str
                                 {"from", numeric::to_string(a->from)},
                                 {"to", numeric::to_string(a->to)},
                                 {"steps", a->steps}};
-  auto region = [](const Region& r) {
-    return nlohmann::ordered_json{{"case", case_name(r)}, {"closed", r.closed.closed_names()}, {"superball", r.superball}};
-  };
-  auto& points = j["points"] = nlohmann::ordered_json::array();
-  for (int jy = 0; jy < m.y.steps; ++jy)
-    for (int i = 0; i < m.x.steps; ++i) {
-      const MapPoint& p = m.at(i, jy);
-      nlohmann::ordered_json q{{"i", i}, {"j", jy}, {"x", cln::double_approx(value(m.x, i))}, {"y", cln::double_approx(value(m.y, jy))},
-                               {"psd", p.admissible}};
-      if (p.admissible) {
-        q.update(region(p.region));
-        q["U1_over_a"] = std::isnan(p.ratio) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(p.ratio);
-        q["status"] = numeric::to_string(p.status);
-      }
-      points.push_back(std::move(q));
-    }
+  j["points"] = nlohmann::ordered_json::array();
   auto& bounds = j["boundaries"] = nlohmann::ordered_json::array();
   for (const MapBoundary& b : m.boundaries) {
     const auto [x, y] = numeric::position(m, b);
@@ -196,8 +317,8 @@ nlohmann::ordered_json map_json(const Map& m, const Scene& scene, const std::str
                       {"low", numeric::to_string(b.low)},
                       {"high", numeric::to_string(b.high)},
                       {"bracket_width", cln::double_approx(b.high - b.low)},
-                      {"below", b.below_psd ? region(b.below) : nlohmann::ordered_json{{"psd", false}}},
-                      {"above", b.above_psd ? region(b.above) : nlohmann::ordered_json{{"psd", false}}}});
+                      {"below", b.below_psd ? region_json(b.below) : nlohmann::ordered_json{{"psd", false}}},
+                      {"above", b.above_psd ? region_json(b.above) : nlohmann::ordered_json{{"psd", false}}}});
   }
   auto& curves = j["curves"] = nlohmann::ordered_json::array();
   for (const numeric::MapCurve& c : m.curves) {
@@ -215,6 +336,72 @@ nlohmann::ordered_json map_json(const Map& m, const Scene& scene, const std::str
     curves.push_back(std::move(curve));
   }
   return j;
+}
+
+/// The grid values of \p a in double (CLN, on the calling thread).
+std::vector<double> doubles(const numeric::Axis& a) {
+  std::vector<double> v;
+  for (int k = 0; k < a.steps; ++k) v.push_back(cln::double_approx(value(a, k)));
+  return v;
+}
+
+}  // namespace
+
+nlohmann::ordered_json map_json(const Map& m, const Scene& scene, const std::string& precision) {
+  nlohmann::ordered_json j = map_json_frame(m, scene, precision);
+  const std::vector<double> xs = doubles(m.x), ys = doubles(m.y);
+  auto& points = j["points"];
+  for (int jy = 0; jy < m.y.steps; ++jy)
+    for (int i = 0; i < m.x.steps; ++i) points.push_back(point_json(m.at(i, jy), i, jy, xs[static_cast<std::size_t>(i)], ys[static_cast<std::size_t>(jy)]));
+  return j;
+}
+
+void write_map_json(const Map& m, const Scene& scene, const std::string& precision, const nlohmann::ordered_json& extra, int threads,
+                    const TextSink& sink) {
+  nlohmann::ordered_json j = map_json_frame(m, scene, precision);
+  for (const auto& [key, value] : extra.items()) j[key] = value;
+  const std::string frame = j.dump(1) + "\n";
+  // The points go where the frame's empty array is (a line of the document's own members: no string holds a line break).
+  const std::string empty = "\n \"points\": []";
+  const std::size_t at = frame.find(empty);
+  if (at == std::string::npos) throw std::logic_error("write_map_json(): no points in the frame");
+  sink(std::string_view(frame).substr(0, at + empty.size() - 1));
+  // Each point's member texts from dump(1) of its parts, so that the bytes are those of map_json().dump(1):
+  // the numbers of the axes made once, a region's members on first use by each thread.
+  const std::vector<double> xd = doubles(m.x), yd = doubles(m.y);
+  std::vector<std::string> xs, ys;
+  for (double v : xd) xs.push_back(nlohmann::ordered_json(v).dump());
+  for (double v : yd) ys.push_back(nlohmann::ordered_json(v).dump());
+  const auto nx = static_cast<std::size_t>(m.x.steps);
+  using Regions = std::vector<std::pair<Region, std::string>>;
+  in_blocks<Regions>(m.points.size(), threads, [&](Regions& regions, std::size_t from, std::size_t to) {
+    std::string out;
+    for (std::size_t k = from; k < to; ++k) {
+      const MapPoint& p = m.points[k];
+      out += k == 0 ? "\n  {\n   \"i\": " : ",\n  {\n   \"i\": ";
+      out += std::to_string(k % nx);
+      out += ",\n   \"j\": ";
+      out += std::to_string(k / nx);
+      out += ",\n   \"x\": ";
+      out += xs[k % nx];
+      out += ",\n   \"y\": ";
+      out += ys[k / nx];
+      if (!p.admissible) {
+        out += ",\n   \"psd\": false\n  }";
+        continue;
+      }
+      out += ",\n   \"psd\": true,\n";
+      out += cached(regions, p.region, [&] { return members_text(region_json(p.region), 2); });
+      out += ",\n   \"U1_over_a\": ";
+      out += std::isnan(p.ratio) ? std::string("null") : nlohmann::ordered_json(p.ratio).dump();
+      out += ",\n   \"status\": ";
+      out += nlohmann::ordered_json(numeric::to_string(p.status)).dump();
+      out += "\n  }";
+    }
+    return out;
+  }, sink);
+  sink("\n ]");
+  sink(std::string_view(frame).substr(at + empty.size()));
 }
 
 std::string map_summary(const Map& m, const Scene& scene, const std::string& precision) {
@@ -241,13 +428,9 @@ std::string map_summary(const Map& m, const Scene& scene, const std::string& pre
   os << "points: " << m.points.size() << ", solved " << solved;
   if (solved < m.points.size()) os << " (M is not positive semi-definite at the other " << m.points.size() - solved << ": not solved)";
   os << '\n';
-  for (const ContactSet& c : cases_present(m)) {
-    std::size_t in = 0, sb = 0;
-    for (const MapPoint& p : m.points)
-      if (p.admissible && p.region.closed == c) ++in, sb += p.region.superball;
-    os << "  case " << Vocabulary::paper().case_name(c) << ' ' << c.to_string() << ": " << in << " points (" << share(in, solved)
-       << "), superball at " << sb << '\n';
-  }
+  for (const CaseCount& c : case_counts(m))
+    os << "  case " << Vocabulary::paper().case_name(c.closed) << ' ' << c.closed.to_string() << ": " << c.in << " points ("
+       << share(c.in, solved) << "), superball at " << c.superball << '\n';
   os << "superball (U1+ > a): " << superball << " points (" << share(superball, solved) << " of the solved)";
   if (low <= high) os << "; U1+/a from " << numeric::to_string(low, 6) << " to " << numeric::to_string(high, 6);
   os << '\n';

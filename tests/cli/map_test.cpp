@@ -156,6 +156,39 @@ TEST(MapCli, OutputDoesNotDependOnThreads) {
   }
 }
 
+TEST(MapCli, AGridOfSeveralBlocksIsTheSameOnAnyThreads) {
+  // 101 x 90 points: the CSV and JSON rows are formatted in three blocks, on the threads.
+  for (const std::vector<std::string>& extra : {std::vector<std::string>{}, {"--csv"}, {"--json"}}) {
+    std::vector<std::string> args = {"map", kPaper, "--x", "K.3-4=0:20:101", "--y", "alpha.2=-110:0:90"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    auto with = [&](const std::string& threads) {
+      auto a = args;
+      a.insert(a.end(), {"--threads", threads});
+      return run(a);
+    };
+    const RunResult one = with("1");
+    ASSERT_EQ(one.exit_code, 0) << describe(one);
+    EXPECT_EQ(one.err, "");
+    for (const std::string threads : {"2", "3"}) {
+      const RunResult more = with(threads);
+      EXPECT_TRUE(one.out == more.out) << (extra.empty() ? "summary" : extra[0]) << " on " << threads << " threads";
+    }
+  }
+}
+
+TEST(MapCli, StageTimesAreOneLineEachOnStandardError) {
+  const RunResult r = run({"map", kPaper, "--x", "K.3-4=0:20:9", "--y", "alpha.2=-150:0:9", "--stage-times"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const auto lines = lines_of(r.err);
+  std::vector<std::string> stages;
+  for (const std::string& line : lines) {
+    ASSERT_EQ(line.rfind("map: stage ", 0), 0u) << line;
+    stages.push_back(line.substr(11, line.find(' ', 11) - 11));
+  }
+  EXPECT_EQ(stages, (std::vector<std::string>{"setup", "checks", "grid", "neighbours", "bisections", "read", "curves", "output"}));
+  EXPECT_EQ(r.out, run({"map", kPaper, "--x", "K.3-4=0:20:9", "--y", "alpha.2=-150:0:9"}).out);
+}
+
 TEST(MapCli, BoundaryPointsAsCsv) {
   const RunResult r = run({"map", kPaper, "--x", "K.3-4=0:20:5", "--y", "alpha.2=-100:0:5", "--boundary-points", "--csv"});
   ASSERT_EQ(r.exit_code, 0) << describe(r);

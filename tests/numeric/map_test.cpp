@@ -325,6 +325,46 @@ TEST(Map, TheBoundaryStageDoesNotDependOnTheThreadsAlongEntriesOfMOrNot) {
   expect_same_maps(numeric::map(scene, m, y, one), numeric::map(scene, m, y, three));
 }
 
+TEST(Map, ThePsdEdgeIsTheHalvingOfExactPsdChecks) {
+  // Along entries of M the edge of the cone is bisected on the sign of det M
+  // (a polynomial in the entry): each bracket must be the one that 64
+  // halvings on positive_semidefinite() at every midpoint give, on an
+  // off-diagonal entry (α₂ on a straight edge, and α₂ with α₅ on a curved
+  // one) and on a diagonal entry (K₁₂).
+  const Scene paper = load_scene(kPaper), fig5 = load_scene(kFig5);
+  struct Case {
+    const Scene& scene;
+    numeric::Axis x, y;
+  };
+  const std::vector<Case> cases = {{paper, axis(paper, "K.3-4", 0, 20, 5), axis(paper, "alpha.2", -130, 0, 6)},
+                                   {paper, axis(paper, "alpha.2", 0, -130, 7), axis(paper, "K.1-2", 0, 10, 4)},
+                                   {fig5, axis(fig5, "alpha.2", -200, 100, 9), axis(fig5, "alpha.5", -10, 10, 3)}};
+  for (const Case& c : cases) {
+    const numeric::Map m = numeric::map(c.scene, c.x, c.y);
+    int edges = 0;
+    for (const numeric::MapBoundary& b : m.boundaries) {
+      if (b.below_psd == b.above_psd) continue;
+      ++edges;
+      SCOPED_TRACE(c.x.text() + " " + c.y.text() + ": boundary (" + std::to_string(b.i) + ", " + std::to_string(b.j) + ")");
+      const numeric::Axis& along = b.along_x ? m.x : m.y;
+      const std::size_t at = static_cast<std::size_t>(b.along_x ? b.i : b.j);
+      cl_RA first = along.values()[at], second = along.values()[at + 1];
+      const auto psd = [&](const cl_RA& v) {
+        return numeric::positive_semidefinite(ExactScene::from(scene_on_line(c.scene, m, b, v), ExactScene::MCheck::Caller));
+      };
+      const bool first_psd = psd(first);
+      ASSERT_NE(first_psd, psd(second));
+      for (int k = 0; k < 64; ++k) {
+        const cl_RA mid = (first + second) / 2;
+        (psd(mid) == first_psd ? first : second) = mid;
+      }
+      EXPECT_TRUE(b.low == (first < second ? first : second)) << approx(b.low);
+      EXPECT_TRUE(b.high == (first < second ? second : first)) << approx(b.high);
+    }
+    EXPECT_GT(edges, 0) << c.x.text() << " " << c.y.text();
+  }
+}
+
 TEST(Map, PointsAndBoundariesAsTextReadBackExactly) {
   // Hand-made fields at the edges of what the text must carry: ratios that
   // 17 digits of %g would not all keep, NaN, −0, subnormal, the largest

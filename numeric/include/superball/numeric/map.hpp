@@ -167,6 +167,13 @@ struct MapSettings {
   /// it at its peak (its CSV text, JSON or figure data:
   /// present::map_output_bytes_per_point()), counted in the estimate.
   double output_bytes_per_point = 0;
+  /// Called by map() on the calling thread as each of its stages ends, with
+  /// the stage's name: "checks" (the settings, the corners, the memory),
+  /// "grid" (the points), "neighbours" (the pairs to bisect), "bisections",
+  /// "read back" (with a runner, each boundary checked against its grid
+  /// step) and "curves";
+  /// a front times them (`superball map --stage-times`).  Empty: not called.
+  std::function<void(const char* stage)> stage_end;
   /// The bytes map() holds per grid point at its peak, with
   /// output_bytes_per_point: each point in the map and the heap block of its
   /// contact set, and while the points are solved their slots in

@@ -7,7 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -20,16 +22,29 @@ namespace superball::present {
 /// The paper's name of a region's case (Vocabulary::paper().case_name()).
 std::string case_name(const numeric::Region& r);
 
+/// A piece of an output's text: a front writes the pieces as they come, in
+/// order (the write_… functions below hand them over so).
+using TextSink = std::function<void(std::string_view text)>;
+
 /// The grid as CSV, one row per point (x varies fastest): KEYX, KEYY,
 /// psd (M positive semi-definite: 1, else 0 and the point is not solved),
-/// case, closed, U1_over_a (U₁⁺/|U₁⁻|), superball (1/0), status.
-std::string map_csv(const numeric::Map& m);
+/// case, closed, U1_over_a (U₁⁺/|U₁⁻|), superball (1/0), status.  The rows
+/// are formatted on \p threads threads (0: all cores); the text does not
+/// depend on them.
+std::string map_csv(const numeric::Map& m, int threads = 1);
+/// map_csv() given to \p sink a block of rows at a time, in order (the
+/// memory held is that of a few blocks per thread).
+void write_map_csv(const numeric::Map& m, int threads, const TextSink& sink);
 /// The first line of map_csv().
 std::string map_csv_header(const numeric::Axis& x, const numeric::Axis& y);
 /// The rows of map_csv() of \p points, the grid points first,
 /// first + 1, … (k = j·x.steps + i): map_csv() a block at a time, for a grid
-/// written as it is computed (numeric::map_points()).
-std::string map_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t first, const std::vector<numeric::MapPoint>& points);
+/// written as it is computed (numeric::map_points()), on \p threads threads.
+std::string map_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t first, const std::vector<numeric::MapPoint>& points,
+                         int threads = 1);
+/// map_csv_rows() given to \p sink a block of rows at a time, in order.
+void write_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t first, const std::vector<numeric::MapPoint>& points, int threads,
+                    const TextSink& sink);
 
 /// The forms of a map's output, for map_output_bytes_per_point().
 enum class MapOutput {
@@ -52,6 +67,13 @@ std::string boundaries_csv(const numeric::Map& m);
 /// Everything, for programs: the scene, the axes (exact ends), every point,
 /// every boundary point (exact bracket ends) and every curve.
 nlohmann::ordered_json map_json(const numeric::Map& m, const Scene& scene, const std::string& precision);
+/// The text of map_json() with the members of \p extra (an object) after its
+/// own (`superball map --json --overlay` adds "overlay"): its dump(1) and a
+/// line break, byte for byte, given to \p sink in pieces, in order, the
+/// points formatted on \p threads threads (0: all cores) without holding the
+/// whole document.
+void write_map_json(const numeric::Map& m, const Scene& scene, const std::string& precision, const nlohmann::ordered_json& extra, int threads,
+                    const TextSink& sink);
 
 /// For people: the grid, each case present with its share of the solved
 /// points and how many of them are superball, the superball's share, the
