@@ -22,9 +22,11 @@ using numeric::Region;
 
 /// Bytes per grid point of each output beside the map at its peak
 /// (map_output_bytes_per_point()): the peak resident size of 1000 x 1000
-/// maps of the paper's plane less that of its summary (161 bytes per
-/// point), rounded up (docs/MAPS.md).
-constexpr double csv_bytes_per_point = 60, json_bytes_per_point = 1300, figure_bytes_per_point = 240;
+/// maps of the paper's plane less that of its summary, rounded up
+/// (docs/MAPS.md).  CSV and JSON are written in blocks as they are made,
+/// so theirs is mostly a fixed 5 MB (CSV) or 20 MB (JSON) that 1000 x 1000
+/// points spread to 5 and 25 bytes a point.
+constexpr double csv_bytes_per_point = 10, json_bytes_per_point = 40, figure_bytes_per_point = 240;
 
 /// The grid value k of \p steps values from \p from to \p to, exactly (numeric::Axis::values()).
 cln::cl_RA value(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int k) { return from + (to - from) * k / (steps - 1); }
