@@ -159,20 +159,30 @@ std::vector<std::string> decimals(const numeric::Axis& a, int first, int count, 
 /// last ones evenly.
 constexpr std::size_t output_block = 4096;
 
-/// The text of \p count points made by block(state, from, to) (the points
-/// from … to − 1, a std::string) on \p threads threads, output_block points
-/// a task, and given to \p sink in order, a window of tasks at a time (the
-/// memory held is that of a window, not of the whole text).  Each thread has
-/// its own State, made empty: block() must touch no CLN object.
+/// The text of \p count points made by block(state, out, from, to) (the
+/// points from … to − 1, appended to the std::string out) on \p threads
+/// threads, output_block points a task, and given to \p sink in order, a
+/// window of tasks at a time (the memory held is that of a window, not of
+/// the whole text).  Each thread has its own State, made empty: block() must
+/// touch no CLN object.  Each block's text starts with the room of the
+/// largest its thread made before, so that it is not copied as it grows.
 template <class State, class Block>
 void in_blocks(std::size_t count, int threads, const Block& block, const TextSink& sink) {
   const std::size_t tasks = (count + output_block - 1) / output_block;
   const std::size_t window = 8 * static_cast<std::size_t>(numeric::thread_count(threads));
+  struct Thread {
+    State state{};
+    std::size_t room = 0;  ///< the length of the longest block's text so far
+  };
   for (std::size_t first = 0; first < tasks; first += window) {
     const std::vector<std::string> texts =
-        numeric::parallel_map(std::min(window, tasks - first), threads, [] { return State{}; }, [&](State& state, std::size_t t) {
+        numeric::parallel_map(std::min(window, tasks - first), threads, [] { return Thread{}; }, [&](Thread& thread, std::size_t t) {
           const std::size_t from = (first + t) * output_block;
-          return block(state, from, std::min(count, from + output_block));
+          std::string out;
+          out.reserve(thread.room);
+          block(thread.state, out, from, std::min(count, from + output_block));
+          thread.room = std::max(thread.room, out.size());
+          return out;
         });
     for (const std::string& text : texts) sink(text);
   }
@@ -213,8 +223,7 @@ void write_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t 
   const std::vector<std::string> xs = decimals(x, 0, x.steps, threads), ys = decimals(y, static_cast<int>(j0), static_cast<int>(j1 - j0 + 1), threads);
   // A case's fields, made on first use by each thread.
   using Cases = std::vector<std::pair<ContactSet, std::string>>;
-  in_blocks<Cases>(points.size(), threads, [&](Cases& cases, std::size_t from, std::size_t to) {
-    std::string out;
+  in_blocks<Cases>(points.size(), threads, [&](Cases& cases, std::string& out, std::size_t from, std::size_t to) {
     for (std::size_t at = from; at < to; ++at) {
       const std::size_t k = first + at;
       const MapPoint& p = points[at];
@@ -233,7 +242,6 @@ void write_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t 
       out += numeric::to_string(p.status);
       out += '\n';
     }
-    return out;
   }, sink);
 }
 
@@ -376,8 +384,7 @@ void write_map_json(const Map& m, const Scene& scene, const std::string& precisi
   for (double v : yd) ys.push_back(nlohmann::ordered_json(v).dump());
   const auto nx = static_cast<std::size_t>(m.x.steps);
   using Regions = std::vector<std::pair<Region, std::string>>;
-  in_blocks<Regions>(m.points.size(), threads, [&](Regions& regions, std::size_t from, std::size_t to) {
-    std::string out;
+  in_blocks<Regions>(m.points.size(), threads, [&](Regions& regions, std::string& out, std::size_t from, std::size_t to) {
     for (std::size_t k = from; k < to; ++k) {
       const MapPoint& p = m.points[k];
       out += k == 0 ? "\n  {\n   \"i\": " : ",\n  {\n   \"i\": ";
@@ -400,7 +407,6 @@ void write_map_json(const Map& m, const Scene& scene, const std::string& precisi
       out += nlohmann::ordered_json(numeric::to_string(p.status)).dump();
       out += "\n  }";
     }
-    return out;
   }, sink);
   sink("\n ]");
   sink(std::string_view(frame).substr(at + empty.size()));
