@@ -25,8 +25,9 @@ using numeric::Region;
 /// maps of the paper's plane less that of its summary, rounded up
 /// (docs/MAPS.md).  CSV and JSON are written in blocks as they are made,
 /// so theirs is mostly a fixed 5 MB (CSV) or 20 MB (JSON) that 1000 x 1000
-/// points spread to 5 and 25 bytes a point.
-constexpr double csv_bytes_per_point = 10, json_bytes_per_point = 40, figure_bytes_per_point = 240;
+/// points spread to 5 and 25 bytes a point.  The Python module's arrays
+/// and lists (superball.map()): about 40 bytes a point.
+constexpr double csv_bytes_per_point = 10, json_bytes_per_point = 40, figure_bytes_per_point = 240, arrays_bytes_per_point = 50;
 
 /// The grid value k of \p steps values from \p from to \p to, exactly (numeric::Axis::values()).
 cln::cl_RA value(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int k) { return from + (to - from) * k / (steps - 1); }
@@ -258,6 +259,7 @@ double map_output_bytes_per_point(MapOutput output) {
     case MapOutput::Csv: return csv_bytes_per_point;
     case MapOutput::Json: return json_bytes_per_point;
     case MapOutput::Figure: return figure_bytes_per_point;
+    case MapOutput::Arrays: return arrays_bytes_per_point;
   }
   return 0;
 }

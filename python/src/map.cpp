@@ -173,8 +173,7 @@ py::dict map(const Scene& scene, const std::string& x, const std::string& y, con
   numeric::MapSettings settings;
   settings.precision = numeric::Precision::parse(precision);
   settings.threads = static_cast<int>(threads);
-  // The result's arrays and dicts, beside the map at its peak: about what the command's JSON holds.
-  settings.output_bytes_per_point = present::map_output_bytes_per_point(present::MapOutput::Json);
+  settings.output_bytes_per_point = present::map_output_bytes_per_point(present::MapOutput::Arrays);
   settings.runner = checkpoint.empty() ? interruptible_runner(std::move(progress), {"points", "boundaries"})
                                        : kept_runner(std::move(progress), {"points", "boundaries"}, checkpoint,
                                                      distribute::map_identity(scene, ax, ay, settings.precision));
@@ -206,7 +205,7 @@ py::dict drop_map(const Scene& scene, const std::string& x, const std::string& y
   settings.threads = static_cast<int>(threads);
   if (overlay) numeric::refuse_drop(scene, "overlay");
   if (!checkpoint.empty()) numeric::refuse_distributed_drop(scene, "map");
-  settings.output_bytes_per_point = present::map_output_bytes_per_point(present::MapOutput::Json);
+  settings.output_bytes_per_point = present::map_output_bytes_per_point(present::MapOutput::Arrays);
   std::optional<numeric::DropMap> m;
   {
     py::gil_scoped_release release;

@@ -51,7 +51,8 @@ enum class MapOutput {
   Summary,  ///< map_summary() (and the boundary points): nothing per grid point
   Csv,      ///< map_csv() whole
   Json,     ///< map_json() and its text
-  Figure    ///< map_figure_data() and the scripts
+  Figure,   ///< map_figure_data() and the scripts
+  Arrays    ///< the Python module's result: an array of each field, (ny, nx), and its lists
 };
 /// The bytes per grid point that \p output holds beside the map at its
 /// peak (for numeric::MapSettings::output_bytes_per_point), measured as
