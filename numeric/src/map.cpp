@@ -225,7 +225,9 @@ cln::cl_RA determinant(std::vector<std::vector<cln::cl_RA>>& a) {
 /// unchanged, where q does not decide so (too many pairs, q ≡ 0, a root at
 /// an end, an even number of roots between them, a failed check).
 bool bisect_by_determinant(ExactScene& line, std::size_t entry, cln::cl_RA& a, cln::cl_RA& b, bool a_psd, int bits) {
-  const auto [at, size] = entry_positions(line.entries);
+  std::vector<std::pair<int, int>> at;  // not a structured binding: the lambda below captures it (C++17)
+  Eigen::Index size = 0;
+  std::tie(at, size) = entry_positions(line.entries);
   if (size > psd_edge_max_pairs) return false;
   const auto n = static_cast<std::size_t>(size);
   auto det = [&](const cln::cl_RA& v) {
