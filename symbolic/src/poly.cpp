@@ -556,7 +556,7 @@ void Poly::write(std::string& out) const {
   // Terms, then per term its packed exponents and its coefficient: a machine
   // integer when it fits in 62 bits (tag 0), else its decimal digits (tag 1).
   put<std::uint64_t>(out, size());
-  out.append(reinterpret_cast<const char*>(mono_.data()), mono_.size() * sizeof(std::uint64_t));
+  if (!mono_.empty()) out.append(reinterpret_cast<const char*>(mono_.data()), mono_.size() * sizeof(std::uint64_t));
   for (const cln::cl_I& c : coef_) {
     if (cln::integer_length(c) <= 62) {
       put<std::uint8_t>(out, 0);
@@ -577,7 +577,7 @@ Poly Poly::read(const std::string& in, std::size_t& at, int vars) {
   const std::size_t words = static_cast<std::size_t>(p.words_);
   if (terms > (in.size() - at) / (words * sizeof(std::uint64_t) + 1)) throw std::invalid_argument("Poly::read(): the record is truncated");
   p.mono_.resize(terms * words);
-  std::memcpy(p.mono_.data(), in.data() + at, p.mono_.size() * sizeof(std::uint64_t));
+  if (!p.mono_.empty()) std::memcpy(p.mono_.data(), in.data() + at, p.mono_.size() * sizeof(std::uint64_t));  // the zero polynomial has no words
   at += p.mono_.size() * sizeof(std::uint64_t);
   p.coef_.reserve(terms);
   for (std::uint64_t t = 0; t < terms; ++t) {
