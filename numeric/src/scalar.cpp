@@ -88,6 +88,12 @@ bool ScalarTraits<cln::cl_RA>::sqrt(const cln::cl_RA& square, int, cln::cl_RA& o
 }
 
 std::string to_string(double x, int significant) {
+  std::string out;
+  append_to(out, x, significant);
+  return out;
+}
+
+void append_to(std::string& out, double x, int significant) {
   // std::to_chars with a precision writes what printf's "%.*g" writes (C++17
   // [charconv.to.chars]), several times faster than glibc's printf; the
   // text is the same (tests/numeric/certify_test.cpp compares the two).
@@ -95,9 +101,10 @@ std::string to_string(double x, int significant) {
   const auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::general, significant);
   if (r.ec != std::errc()) {
     std::snprintf(buf, sizeof buf, "%.*g", significant, x);
-    return buf;
+    out += buf;
+    return;
   }
-  return std::string(buf, r.ptr);
+  out.append(buf, r.ptr);
 }
 
 std::string to_string(long double x, int significant) {

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 #include <string_view>
 
 #include "superball/cases/vocabulary.hpp"
@@ -165,28 +167,42 @@ constexpr std::size_t output_block = 4096;
 /// threads, output_block points a task, and given to \p sink in order, a
 /// window of tasks at a time (the memory held is that of a window, not of
 /// the whole text).  Each thread has its own State, made empty: block() must
-/// touch no CLN object.  Each block's text starts with the room of the
-/// largest its thread made before, so that it is not copied as it grows.
+/// touch no CLN object.  With several threads, a window is given to \p sink
+/// by a thread of its own while the next is formatted; a window's texts
+/// are kept for the window after next, so that their storage, once grown,
+/// is neither copied nor given back and faulted in again.
 template <class State, class Block>
 void in_blocks(std::size_t count, int threads, const Block& block, const TextSink& sink) {
   const std::size_t tasks = (count + output_block - 1) / output_block;
-  const std::size_t window = 8 * static_cast<std::size_t>(numeric::thread_count(threads));
-  struct Thread {
-    State state{};
-    std::size_t room = 0;  ///< the length of the longest block's text so far
-  };
-  for (std::size_t first = 0; first < tasks; first += window) {
-    const std::vector<std::string> texts =
-        numeric::parallel_map(std::min(window, tasks - first), threads, [] { return Thread{}; }, [&](Thread& thread, std::size_t t) {
-          const std::size_t from = (first + t) * output_block;
-          std::string out;
-          out.reserve(thread.room);
-          block(thread.state, out, from, std::min(count, from + output_block));
-          thread.room = std::max(thread.room, out.size());
-          return out;
-        });
-    for (const std::string& text : texts) sink(text);
+  const int n = numeric::thread_count(threads);
+  const std::size_t window = 8 * static_cast<std::size_t>(n);
+  std::vector<std::string> texts[2];
+  std::future<void> writing;  // the sink's work on the window before
+  for (std::size_t first = 0, w = 0; first < tasks; first += window, ++w) {
+    const std::size_t size = std::min(window, tasks - first);
+    std::vector<std::string>& mine = texts[w % 2];
+    mine.resize(std::max(mine.size(), size));
+    numeric::parallel_map(size, threads, [] { return State{}; }, [&](State& state, std::size_t t) {
+      const std::size_t from = (first + t) * output_block;
+      mine[t].clear();
+      block(state, mine[t], from, std::min(count, from + output_block));
+      return true;
+    });
+    auto write = [&sink, &mine, size] {
+      for (std::size_t t = 0; t < size; ++t) sink(mine[t]);
+    };
+    if (writing.valid()) writing.get();  // the window before written: its texts are free for the next window
+    if (n <= 1) {
+      write();
+      continue;
+    }
+    try {
+      writing = std::async(std::launch::async, write);
+    } catch (const std::system_error&) {  // no thread to be had: written here
+      write();
+    }
   }
+  if (writing.valid()) writing.get();
 }
 
 }  // namespace
@@ -238,7 +254,10 @@ void write_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t 
       out += ",1,";
       out += cached(cases, p.region.closed, [&] { return csv_field(case_name(p.region)) + ',' + csv_field(p.region.closed.to_string()); });
       out += ',';
-      out += number(p.ratio);
+      if (std::isnan(p.ratio))
+        out += "nan";
+      else
+        numeric::append_to(out, p.ratio);
       out += p.region.superball ? ",1," : ",0,";
       out += numeric::to_string(p.status);
       out += '\n';

@@ -5,6 +5,8 @@
 // sides of the superball edge, and members added after the map's own.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -74,6 +76,36 @@ TEST(MapOutput, JsonWrittenOnThreadsIsTheDumpOfMapJson) {
       }
       EXPECT_EQ(nlohmann::ordered_json::parse(whole)["points"].size(), static_cast<std::size_t>(nx * ny));
     }
+  }
+}
+
+TEST(MapOutput, ManyWindowsAreWrittenInOrderOneCallAtATimeAndASinksErrorComesOut) {
+  // 400 x 400 points: 40 blocks, more than two windows of blocks on 1 and 2
+  // threads (the sink writes a window while the next is formatted).
+  const numeric::Map m = paper_map(400, 400);
+  const std::string whole = present::map_csv(m);
+  for (int threads : {1, 2, 3}) {
+    std::string text;
+    std::atomic<int> inside{0};
+    int overlaps = 0, calls = 0;
+    present::write_map_csv(m, threads, [&](std::string_view piece) {
+      if (inside.fetch_add(1) != 0) ++overlaps;
+      text += piece;
+      ++calls;
+      inside.fetch_sub(1);
+    });
+    EXPECT_TRUE(text == whole) << threads << " threads";
+    EXPECT_EQ(calls, 41) << "the header and 40 blocks";
+    EXPECT_EQ(overlaps, 0) << threads << " threads";
+    // A sink that fails at its 20th piece (a full disk): its exception, and no piece after it.
+    int given = 0;
+    EXPECT_THROW(present::write_map_csv(m, threads,
+                                        [&](std::string_view) {
+                                          if (++given == 20) throw std::runtime_error("disk full");
+                                        }),
+                 std::runtime_error)
+        << threads << " threads";
+    EXPECT_EQ(given, 20) << threads << " threads";
   }
 }
 

@@ -187,6 +187,9 @@ bool finite(const S& x) {
 /// CLN floats with all their digits when \p significant is 0, else rounded
 /// exactly as to_decimal() does).
 std::string to_string(double x, int significant = 17);
+/// to_string(x, significant) appended to \p out, with no text of its own
+/// made on the way (the many numbers of a map's output).
+void append_to(std::string& out, double x, int significant = 17);
 ///@{
 /// The same for long double, CLN floats and exact rationals.
 std::string to_string(long double x, int significant = 21);

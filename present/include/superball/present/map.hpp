@@ -23,7 +23,10 @@ namespace superball::present {
 std::string case_name(const numeric::Region& r);
 
 /// A piece of an output's text: a front writes the pieces as they come, in
-/// order (the write_… functions below hand them over so).
+/// order (the write_… functions below hand them over so, one call at a
+/// time; with several threads, from a thread of their own, so that the
+/// writing of a block overlaps the formatting of the next ones).  An
+/// exception a sink throws comes out of the write_… function.
 using TextSink = std::function<void(std::string_view text)>;
 
 /// The grid as CSV, one row per point (x varies fastest): KEYX, KEYY,
