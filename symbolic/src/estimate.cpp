@@ -33,16 +33,19 @@ struct WidthClass {
   Growth one_case, every_case, megabytes;
 };
 constexpr WidthClass kMeasured[] = {
-    // near: one case 9: 1.0 s, 10: 3.2, 11: 6.1, 12: 11.5, 13: 43.8; every case 7: 0.5 s, 8: 1.9, 9: 8.5, 10: 41.4; 9: 14 MB, 10: 42, 11: 117
-    {{13, 36.8, 2.42}, {10, 39.1, 4.37}, {11, 119.0, 2.93}},
-    // near2: one case 6: 0.3 s, 7: 0.5, 8: 2.8, 9: 17.8; every case 6: 1.2 s, 7: 4.7, 8: 25.4; 7: 19 MB, 8: 101
-    {{9, 13.4, 4.04}, {8, 24.1, 4.6}, {8, 101.0, 5.3}},
+    // Re-measured after the derivation's polynomial arithmetic was rewritten (user + system CPU seconds, `-j 1`):
+    // near: one case 10: 0.77 s, 11: 2.23, 12: 5.92, 13: 17.6; every case 8: 1.03 s, 9: 4.35, 10: 16.1;
+    // one case 11: 63 MB, 12: 201, 13: 625
+    {{13, 17.3, 2.82}, {10, 15.7, 3.68}, {13, 635.0, 3.21}},
+    // near2: one case 8: 1.12 s, 9: 5.79; every case 6: 1.12 s, 7: 3.28, 8: 10.6; one case 8: 51 MB, 9: 276
+    {{9, 5.79, 5.17}, {8, 10.4, 3.07}, {9, 302.0, 7.19}},
     // near2 with couplings, re-measured after the derivation's polynomial arithmetic was rewritten (CPU seconds of
     // the tasks, `derive --task-cpu`, 2 workers, quiet machine): one case (`{}`) 7: 2.6 s, 8: 28 s; every case
     // 7: 8.6 s, 8: 80.6 s; the largest process (/usr/bin/time %M) 7: 150 MB, 8: 1.13 GB
     {{8, 28.0, 10.4}, {8, 80.6, 9.34}, {8, 1120.0, 7.3}},
-    // all pairs: one case 5: 0.1 s, 6: 0.6, 7: 15.5; every case 5: 0.2 s, 6: 2.4, 7: 48.3; 5: 1.5 MB, 6: 23
-    {{7, 12.2, 12.5}, {7, 44.3, 15.5}, {6, 23.2, 15.5}},
+    // all pairs (re-measured as the narrower ones): one case 6: 0.30 s, 7: 5.28; every case 6: 0.98 s, 7: 18.8;
+    // one case 6: 8.6 MB, 7: 229
+    {{7, 5.28, 17.6}, {7, 18.8, 19.2}, {7, 229.0, 26.6}},
 };
 constexpr double kProcessBytes = 13e6;      ///< a derive process before its first case (measured 12.8–13.4 MB)
 constexpr double kFiniteObstacleTime = 3;   ///< a finite obstacle against the fixed one (bench_symbolic: 2.3 to 3.8)

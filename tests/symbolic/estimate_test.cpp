@@ -30,9 +30,14 @@ TEST(Estimate, WithinAFactorOfThreeOfTheMeasuredRuns) {
   const Estimate w3_all_8 = estimate_derivation(Pattern::nearest_and_next_nearest(8), Obstacle::Infinite, 128, true);
   near(w3_all_8.seconds, 80.6, "every case of 8 bodies: 80.6 s");
   near(w3_all_8.process_bytes, 1.13e9, "… 1.13 GB the largest worker");
-  near(estimate_derivation(Pattern::near(10, 1), Obstacle::Infinite, 1, false).seconds, 3.2, "near, one case of 10 bodies: 3.2 s");
-  near(estimate_derivation(Pattern::near(8, 2), Obstacle::Infinite, 128, true).seconds, 25.4, "near2, every case of 8 bodies: 25.4 s");
-  near(estimate_derivation(Pattern::all_pairs(6), Obstacle::Infinite, 32, true).seconds, 2.4, "all pairs, every case of 6 bodies: 2.4 s");
+  near(estimate_derivation(Pattern::near(11, 1), Obstacle::Infinite, 1, false).seconds, 2.23, "near, one case of 11 bodies: 2.23 s");
+  near(estimate_derivation(Pattern::near(11, 1), Obstacle::Infinite, 1, false).process_bytes, 75.6e6, "… 75.6 MB");
+  near(estimate_derivation(Pattern::near(9, 1), Obstacle::Infinite, 256, true).seconds, 4.35, "near, every case of 9 bodies: 4.35 s");
+  near(estimate_derivation(Pattern::near(8, 2), Obstacle::Infinite, 1, false).seconds, 1.12, "near2, one case of 8 bodies: 1.12 s");
+  near(estimate_derivation(Pattern::near(8, 2), Obstacle::Infinite, 1, false).process_bytes, 63.5e6, "… 63.5 MB");
+  near(estimate_derivation(Pattern::near(8, 2), Obstacle::Infinite, 128, true).seconds, 10.6, "near2, every case of 8 bodies: 10.6 s");
+  near(estimate_derivation(Pattern::all_pairs(6), Obstacle::Infinite, 32, true).seconds, 0.98, "all pairs, every case of 6 bodies: 0.98 s");
+  near(estimate_derivation(Pattern::all_pairs(7), Obstacle::Infinite, 1, false).process_bytes, 242e6, "all pairs, one case of 7 bodies: 242 MB");
   // The steps: a body more costs more, a finite obstacle more, a wider pattern more.
   const Estimate w3_one_8 = estimate_derivation(Pattern::nearest_and_next_nearest(8), Obstacle::Infinite, 1, false);
   EXPECT_GT(w3_one_8.seconds, estimate_derivation(Pattern::nearest_and_next_nearest(7), Obstacle::Infinite, 1, false).seconds * 5);
