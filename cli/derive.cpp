@@ -158,7 +158,7 @@ void add_derive(CLI::App& app, Action& action) {
           // One case's text: its report, or its JSON as the array's dump(2) would
           // write it (each line indented by two more).  Runs in a worker process.
           std::vector<nlohmann::ordered_json> psd;  // JSON: the conditions on M, made once per process
-          std::vector<std::string> prepared(count);  // the largest cases' first stage (prepare_cases()), inherited by the workers
+          std::vector<std::string> prepared(count);  // the largest cases' first stage (prepare_todo()), inherited by the workers
           auto task = [&](std::size_t k) {
             const Derivation d = deriver.derive(selection.cases[k], prepared[k]);
             if (!json) return report(d, deriver, Style::Text, !shared) + "\n";
@@ -185,12 +185,9 @@ void add_derive(CLI::App& app, Action& action) {
           };
           const InterruptHandler interrupt;  // Ctrl-C stops the first stage too
           std::vector<double> first_cpu;
-          std::vector<std::size_t> first;  // the tasks of todo() prepared in the first stage
+          std::vector<std::size_t> first;  // the cases prepared in the first stage
           if (run.local()) {
-            std::vector<ContactSet> todo;
-            for (std::size_t k : run.todo()) todo.push_back(selection.cases[k]);
-            std::vector<std::string> ahead = prepare_cases(deriver, todo, plan.workers, &InterruptHandler::requested, &first_cpu, &first);
-            for (std::size_t j : first) prepared[run.todo()[j]] = std::move(ahead[j]);
+            first = prepare_todo(deriver, selection.cases, run.todo(), plan.workers, prepared, &InterruptHandler::requested, {}, &first_cpu);
             workers.emplace(run.todo().size(), plan.workers, in_worker);
           }
           const bool writes = run.writes_output();
@@ -218,7 +215,7 @@ void add_derive(CLI::App& app, Action& action) {
             cpu.insert(cpu.end(), workers->task_cpu_seconds().begin(), workers->task_cpu_seconds().end());
             std::cerr << "derive: "
                       << task_cpu_summary(cpu, [&](std::size_t j) {
-                           return j < first.size() ? "prepare " + name(run.todo()[first[j]]) : name(run.todo()[j - first.size()]);
+                           return j < first.size() ? "prepare " + name(first[j]) : name(run.todo()[j - first.size()]);
                          })
                       << "\n";
           }

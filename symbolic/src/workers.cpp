@@ -331,25 +331,34 @@ bool split_case(const Deriver& deriver, const ContactSet& closed) {
   return open >= n - 2 && free >= 4;
 }
 
-std::vector<std::string> prepare_cases(const Deriver& deriver, const std::vector<ContactSet>& cases, int jobs, const Workers::Interrupt& interrupted,
-                                       std::vector<double>* cpu, std::vector<std::size_t>* prepared) {
-  std::vector<std::string> out(cases.size());
+std::vector<std::size_t> prepare_todo(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::vector<std::size_t>& todo, int jobs,
+                                      std::vector<std::string>& prepared, const Workers::Interrupt& interrupted,
+                                      const std::function<void(std::size_t, std::size_t)>& progress, std::vector<double>* cpu) {
+  prepared.resize(cases.size());
   std::vector<std::size_t> which;
   if (jobs >= 2)
-    for (std::size_t k = 0; k < cases.size(); ++k)
-      if (split_case(deriver, cases[k])) which.push_back(k);
-  if (prepared) *prepared = which;
+    for (std::size_t k : todo)
+      if (split_case(deriver, cases.at(k))) which.push_back(k);
   if (cpu) cpu->clear();
-  if (which.empty()) return out;
+  if (which.empty()) return which;
   Workers workers(which.size(), jobs, [&](std::size_t j) { return deriver.prepare(cases[which[j]]); });
-  workers.run([&](std::size_t j, std::string&& text) { out[which[j]] = std::move(text); }, interrupted);
+  if (progress) progress(0, which.size());
+  workers.run(
+      [&](std::size_t j, std::string&& text) {
+        prepared[which[j]] = std::move(text);
+        if (progress) progress(j + 1, which.size());
+      },
+      interrupted);
   if (cpu) *cpu = workers.task_cpu_seconds();
-  return out;
+  return which;
 }
 
 void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
                   const std::function<std::string(std::size_t, const Derivation&)>& write, const Workers::Deliver& deliver, const DeriveRun& run) {
-  const std::vector<std::string> prepared = prepare_cases(deriver, cases, run.jobs, run.interrupted);
+  std::vector<std::size_t> all(cases.size());
+  for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+  std::vector<std::string> prepared;
+  prepare_todo(deriver, cases, all, run.jobs, prepared, run.interrupted);
   Workers workers(cases.size(), run.jobs, [&](std::size_t k) { return write(k, deriver.derive(cases[k], prepared[k])); });
   if (run.progress) run.progress(0, cases.size());
   workers.run(
