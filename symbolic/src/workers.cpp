@@ -1,6 +1,7 @@
 // The worker processes of symbolic work (workers.hpp).
 #include "superball/symbolic/workers.hpp"
 
+#include <malloc.h>
 #include <poll.h>
 #include <signal.h>
 #ifdef __linux__
@@ -23,6 +24,19 @@ namespace superball::symbolic {
 namespace {
 
 constexpr std::uint64_t kStop = ~std::uint64_t{0};  ///< the task index that tells a worker to exit
+
+/// A worker's heap (glibc): symbolic work makes and drops polynomials of
+/// up to megabytes one after the other.  By default the larger of them are
+/// mapped and unmapped each time, and the heap's top given back as soon as
+/// it is free, so that their pages are faulted in again and again.  In a
+/// worker, blocks under kWorkerMmapThreshold come from the heap, which grows
+/// by kWorkerHeapPad beyond each request and keeps that much when it
+/// shrinks (at most this much more memory a worker).  Measured on `{}`
+/// near2 with couplings: 16 % less CPU at 7 bodies, 10–16 % at 8 (about
+/// half the system time), the same peak memory, the same output.
+#ifdef M_TOP_PAD
+constexpr int kWorkerHeapPad = 64 << 20, kWorkerMmapThreshold = 32 << 20;
+#endif
 
 /// What a worker sends back for one task.
 enum class Kind : std::uint8_t { Result = 0, InvalidArgument = 1, LogicError = 2, RuntimeError = 3, Coded = 4 };
@@ -146,6 +160,10 @@ Workers::Workers(std::size_t count, int jobs, Task task) : count_(count), task_(
           for (int fd : {workers_[j].tasks, workers_[j].results}) ::close(fd);
         ::signal(SIGPIPE, SIG_DFL);
         ::signal(SIGINT, SIG_IGN);  // Ctrl-C is this process's parent's to handle: it stops the workers
+#ifdef M_TOP_PAD
+        ::mallopt(M_MMAP_THRESHOLD, kWorkerMmapThreshold);
+        ::mallopt(M_TOP_PAD, kWorkerHeapPad);
+#endif
 #ifdef __linux__
         // A parent killed outright (SIGKILL) takes its workers with it: no case goes on being derived.
         ::prctl(PR_SET_PDEATHSIG, SIGKILL);
