@@ -65,7 +65,8 @@ void add_derive(CLI::App& app, Action& action) {
       "  superball derive --bodies 6 --pairs near2 --all --progress 2> progress.log\n\n"
       "Progress.  A derivation that runs longer than " + std::to_string(std::chrono::duration_cast<std::chrono::seconds>(kProgressDelay).count()) +
       " s shows on standard error, when it is a terminal, the case it is\n"
-      "at (\"derive: case 3 of 16 ({2-3,4-5})\"; LaTeX then \"derive: writing 16 cases as latex\"), on one line\n"
+      "at (\"derive: case 3 of 16 ({2-3,4-5})\"; LaTeX then \"derive: writing 16 cases as latex\"; with several workers\n"
+      "first \"derive: preparing the 7 largest cases: 3 of 7 done\", the first of their two stages), on one line\n"
       "redrawn in place and erased before the output is written; nothing is shown when standard error is not a terminal or\n"
       "with --quiet.  --progress shows it from the first case, one line each when standard error is not a\n"
       "terminal (a log).\n\n"
@@ -158,7 +159,7 @@ void add_derive(CLI::App& app, Action& action) {
           // One case's text: its report, or its JSON as the array's dump(2) would
           // write it (each line indented by two more).  Runs in a worker process.
           std::vector<nlohmann::ordered_json> psd;  // JSON: the conditions on M, made once per process
-          std::vector<std::string> prepared(count);  // the largest cases' first stage (prepare_cases()), inherited by the workers
+          std::vector<std::string> prepared(count);  // the largest cases' first stage (prepare_todo()), inherited by the workers
           auto task = [&](std::size_t k) {
             const Derivation d = deriver.derive(selection.cases[k], prepared[k]);
             if (!json) return report(d, deriver, Style::Text, !shared) + "\n";
@@ -184,18 +185,26 @@ void add_derive(CLI::App& app, Action& action) {
             }
           };
           const InterruptHandler interrupt;  // Ctrl-C stops the first stage too
+          const auto started = std::chrono::steady_clock::now();  // a terminal's line appears kProgressDelay after this, whatever the stage
           std::vector<double> first_cpu;
-          std::vector<std::size_t> first;  // the tasks of todo() prepared in the first stage
+          std::vector<std::size_t> first;  // the cases prepared in the first stage
           if (run.local()) {
-            std::vector<ContactSet> todo;
-            for (std::size_t k : run.todo()) todo.push_back(selection.cases[k]);
-            std::vector<std::string> ahead = prepare_cases(deriver, todo, plan.workers, &InterruptHandler::requested, &first_cpu, &first);
-            for (std::size_t j : first) prepared[run.todo()[j]] = std::move(ahead[j]);
+            {
+              // The first stage's line: its thread starts once that stage's workers are forked and ends before the second stage's are.
+              std::optional<StepProgress> preparing;
+              auto shown = [&](std::size_t done, std::size_t total) {
+                if (!run.writes_output()) return;
+                if (!preparing) preparing.emplace("derive", "case", static_cast<int>(count), o->progress.mode(), started);
+                preparing->note("preparing the " + (total == 1 ? std::string("largest case") : std::to_string(total) + " largest cases") + ": " +
+                                std::to_string(done) + " of " + std::to_string(total) + " done");
+              };
+              first = prepare_todo(deriver, selection.cases, run.todo(), plan.workers, prepared, &InterruptHandler::requested, shown, &first_cpu);
+            }
             workers.emplace(run.todo().size(), plan.workers, in_worker);
           }
           const bool writes = run.writes_output();
           std::optional<StepProgress> progress;
-          if (writes) progress.emplace("derive", "case", static_cast<int>(count), o->progress.mode());
+          if (writes) progress.emplace("derive", "case", static_cast<int>(count), o->progress.mode(), started);
           if (writes && json && shared) emit("[\n");
           if (writes && !json && shared) emit(report_psd(deriver, Style::Text) + "\n");
           if (count && progress) progress->step(1, name(0));
@@ -218,7 +227,7 @@ void add_derive(CLI::App& app, Action& action) {
             cpu.insert(cpu.end(), workers->task_cpu_seconds().begin(), workers->task_cpu_seconds().end());
             std::cerr << "derive: "
                       << task_cpu_summary(cpu, [&](std::size_t j) {
-                           return j < first.size() ? "prepare " + name(run.todo()[first[j]]) : name(run.todo()[j - first.size()]);
+                           return j < first.size() ? "prepare " + name(first[j]) : name(run.todo()[j - first.size()]);
                          })
                       << "\n";
           }

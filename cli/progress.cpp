@@ -70,7 +70,7 @@ void add_progress_options(CLI::App* cmd, ProgressOptions& o, const std::string& 
       ->excludes(quiet);
 }
 
-StepProgress::StepProgress(std::string command, std::string noun, int steps, ProgressMode mode)
+StepProgress::StepProgress(std::string command, std::string noun, int steps, ProgressMode mode, std::chrono::steady_clock::time_point started)
     : command_(std::move(command)),
       noun_(std::move(noun)),
       steps_(steps),
@@ -78,9 +78,9 @@ StepProgress::StepProgress(std::string command, std::string noun, int steps, Pro
       shown_(mode == ProgressMode::Always),
       active_(mode == ProgressMode::Always || (mode == ProgressMode::Auto && terminal_)) {
   if (!active_ || shown_) return;
-  timer_ = std::thread([this] {
+  timer_ = std::thread([this, started] {
     std::unique_lock<std::mutex> hold(lock_);
-    if (wake_.wait_for(hold, kProgressDelay, [this] { return done_; })) return;
+    if (wake_.wait_until(hold, started + kProgressDelay, [this] { return done_; })) return;
     shown_ = true;
     if (!current_.empty()) draw();
   });

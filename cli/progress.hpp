@@ -43,8 +43,11 @@ void add_progress_options(CLI::App* cmd, ProgressOptions& o, const std::string& 
 /// that a single long step is seen too.  Writes are serialised.
 class StepProgress {
  public:
-  /// Progress of \p steps steps, each line "COMMAND: NOUN k of STEPS (what)".
-  StepProgress(std::string command, std::string noun, int steps, ProgressMode mode);
+  /// Progress of \p steps steps, each line "COMMAND: NOUN k of STEPS (what)";
+  /// on a terminal (by default) shown from kProgressDelay after \p started
+  /// (a command's stages, each with its own progress, as one run).
+  StepProgress(std::string command, std::string noun, int steps, ProgressMode mode,
+               std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now());
   StepProgress(const StepProgress&) = delete;
   StepProgress& operator=(const StepProgress&) = delete;
   /// Stops the timer and erases the terminal line, if drawn.

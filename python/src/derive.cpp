@@ -75,7 +75,7 @@ std::string case_record(const symbolic::Derivation& d, const symbolic::Deriver& 
 /// by the worker processes, each writing its case to the folder as soon as
 /// it has it (Distribution::keeping(), as the command's derive); only the
 /// cases not there are derived, the largest of them in two stages: their
-/// symbolic::prepare_cases() first, into \p prepared (by case), which
+/// symbolic::prepare_todo() first, into \p prepared (by case), which
 /// \p task reads.  deliver(k, text) for every case in order;
 /// progress(done, total) once with the cases found in the folder, then after
 /// each case derived.
@@ -92,11 +92,7 @@ void derive_kept(const std::string& folder, const py::dict& options, const prese
   std::size_t done = count - run.todo().size();
   progress(done, count);
   const py::gil_scoped_release release;
-  std::vector<ContactSet> todo;
-  for (std::size_t k : run.todo()) todo.push_back(sel.cases[k]);
-  std::vector<std::size_t> first;
-  std::vector<std::string> ahead = symbolic::prepare_cases(*sel.deriver, todo, workers, interrupted, nullptr, &first);
-  for (std::size_t j : first) prepared[run.todo()[j]] = std::move(ahead[j]);
+  symbolic::prepare_todo(*sel.deriver, sel.cases, run.todo(), workers, prepared, interrupted);
   // Forked before anything here starts a thread; a task file the worker cannot write crosses back as a TaskError.
   constexpr int kCannotWrite = 3;
   symbolic::Workers pool(run.todo().size(), workers, [&, kept = run.keeping(task)](std::size_t j) {

@@ -1,6 +1,7 @@
 // The worker processes of symbolic work (workers.hpp).
 #include "superball/symbolic/workers.hpp"
 
+#include <malloc.h>
 #include <poll.h>
 #include <signal.h>
 #ifdef __linux__
@@ -23,6 +24,19 @@ namespace superball::symbolic {
 namespace {
 
 constexpr std::uint64_t kStop = ~std::uint64_t{0};  ///< the task index that tells a worker to exit
+
+/// A worker's heap (glibc): symbolic work makes and drops polynomials of
+/// up to megabytes one after the other.  By default the larger of them are
+/// mapped and unmapped each time, and the heap's top given back as soon as
+/// it is free, so that their pages are faulted in again and again.  In a
+/// worker, blocks under kWorkerMmapThreshold come from the heap, which grows
+/// by kWorkerHeapPad beyond each request and keeps that much when it
+/// shrinks (at most this much more memory a worker).  Measured on `{}`
+/// near2 with couplings: 16 % less CPU at 7 bodies, 10–16 % at 8 (about
+/// half the system time), the same peak memory, the same output.
+#ifdef M_TOP_PAD
+constexpr int kWorkerHeapPad = 64 << 20, kWorkerMmapThreshold = 32 << 20;
+#endif
 
 /// What a worker sends back for one task.
 enum class Kind : std::uint8_t { Result = 0, InvalidArgument = 1, LogicError = 2, RuntimeError = 3, Coded = 4 };
@@ -146,6 +160,10 @@ Workers::Workers(std::size_t count, int jobs, Task task) : count_(count), task_(
           for (int fd : {workers_[j].tasks, workers_[j].results}) ::close(fd);
         ::signal(SIGPIPE, SIG_DFL);
         ::signal(SIGINT, SIG_IGN);  // Ctrl-C is this process's parent's to handle: it stops the workers
+#ifdef M_TOP_PAD
+        ::mallopt(M_MMAP_THRESHOLD, kWorkerMmapThreshold);
+        ::mallopt(M_TOP_PAD, kWorkerHeapPad);
+#endif
 #ifdef __linux__
         // A parent killed outright (SIGKILL) takes its workers with it: no case goes on being derived.
         ::prctl(PR_SET_PDEATHSIG, SIGKILL);
@@ -331,25 +349,34 @@ bool split_case(const Deriver& deriver, const ContactSet& closed) {
   return open >= n - 2 && free >= 4;
 }
 
-std::vector<std::string> prepare_cases(const Deriver& deriver, const std::vector<ContactSet>& cases, int jobs, const Workers::Interrupt& interrupted,
-                                       std::vector<double>* cpu, std::vector<std::size_t>* prepared) {
-  std::vector<std::string> out(cases.size());
+std::vector<std::size_t> prepare_todo(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::vector<std::size_t>& todo, int jobs,
+                                      std::vector<std::string>& prepared, const Workers::Interrupt& interrupted,
+                                      const std::function<void(std::size_t, std::size_t)>& progress, std::vector<double>* cpu) {
+  prepared.resize(cases.size());
   std::vector<std::size_t> which;
   if (jobs >= 2)
-    for (std::size_t k = 0; k < cases.size(); ++k)
-      if (split_case(deriver, cases[k])) which.push_back(k);
-  if (prepared) *prepared = which;
+    for (std::size_t k : todo)
+      if (split_case(deriver, cases.at(k))) which.push_back(k);
   if (cpu) cpu->clear();
-  if (which.empty()) return out;
+  if (which.empty()) return which;
   Workers workers(which.size(), jobs, [&](std::size_t j) { return deriver.prepare(cases[which[j]]); });
-  workers.run([&](std::size_t j, std::string&& text) { out[which[j]] = std::move(text); }, interrupted);
+  if (progress) progress(0, which.size());
+  workers.run(
+      [&](std::size_t j, std::string&& text) {
+        prepared[which[j]] = std::move(text);
+        if (progress) progress(j + 1, which.size());
+      },
+      interrupted);
   if (cpu) *cpu = workers.task_cpu_seconds();
-  return out;
+  return which;
 }
 
 void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
                   const std::function<std::string(std::size_t, const Derivation&)>& write, const Workers::Deliver& deliver, const DeriveRun& run) {
-  const std::vector<std::string> prepared = prepare_cases(deriver, cases, run.jobs, run.interrupted);
+  std::vector<std::size_t> all(cases.size());
+  for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+  std::vector<std::string> prepared;
+  prepare_todo(deriver, cases, all, run.jobs, prepared, run.interrupted);
   Workers workers(cases.size(), run.jobs, [&](std::size_t k) { return write(k, deriver.derive(cases[k], prepared[k])); });
   if (run.progress) run.progress(0, cases.size());
   workers.run(

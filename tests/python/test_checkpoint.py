@@ -366,7 +366,7 @@ def test_a_map_folder_is_one_run_for_the_command_and_the_module(paper, tmp_path)
 
 def test_derive_all_in_two_stages_with_a_checkpoint_is_the_one_process_derivation(tmp_path):
     # A finite obstacle at 5 bodies: with several workers {} and the four cases of one closed contact are derived
-    # in two stages (symbolic::prepare_cases()), also when each case is kept in a checkpoint folder.
+    # in two stages (symbolic::prepare_todo()), also when each case is kept in a checkpoint folder.
     kw = dict(bodies=5, pairs="near2", coupling="near2", obstacle="finite", progress=False)
     one = superball.derive_all(**kw, jobs=1)
     folder = tmp_path / "d"

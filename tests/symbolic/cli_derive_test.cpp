@@ -258,6 +258,42 @@ TEST(CliDerive, ProgressIsOneLinePerCaseWhenAskedForALog) {
   EXPECT_EQ(tex.err, "derive: case 1 of 1 (1 {2-3,3-4})\nderive: writing 1 case as latex\n");
 }
 
+TEST(CliDerive, ProgressSaysTheFirstStageInItsOwnWords) {
+  // A finite obstacle at 5 bodies: with several workers {} and the four cases of one closed contact are prepared first
+  // (their own workers, then the cases' workers); the line says so, then counts the cases as with one worker.
+  const std::vector<std::string> args = {"derive", "--bodies", "5", "--pairs", "near2", "--coupling", "near2", "--obstacle", "finite", "--all", "--progress"};
+  auto with = [&](const char* jobs) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), {"-j", jobs});
+    return a;
+  };
+  const RunResult one = run(with("1")), two = run(with("2"));
+  ASSERT_EQ(one.exit_code, 0) << superball::test::describe(one);
+  ASSERT_EQ(two.exit_code, 0) << superball::test::describe(two);
+  EXPECT_EQ(two.out, one.out);
+  const std::vector<std::string> lines = two.err_lines(), cases = one.err_lines();
+  ASSERT_EQ(cases.size(), 16u) << one.err;  // one worker: one stage, no first-stage line
+  EXPECT_EQ(cases[0], "derive: case 1 of 16 ({})");
+  ASSERT_EQ(lines.size(), 6u + 16u) << two.err;
+  for (std::size_t k = 0; k <= 5; ++k) EXPECT_EQ(lines[k], "derive: preparing the 5 largest cases: " + std::to_string(k) + " of 5 done");
+  EXPECT_EQ(std::vector<std::string>(lines.begin() + 6, lines.end()), cases);
+  // One case prepared (an infinite obstacle: {} only), in the singular.
+  const RunResult single = run({"derive", "--bodies", "5", "--pairs", "near2", "--all", "--progress", "-j", "2"});
+  ASSERT_EQ(single.exit_code, 0) << superball::test::describe(single);
+  EXPECT_EQ(single.err.rfind("derive: preparing the largest case: 0 of 1 done\nderive: preparing the largest case: 1 of 1 done\nderive: case 1 of 16 ({})\n", 0), 0u)
+      << single.err;
+  // On a terminal: the same line redrawn in place, then the cases', erased before the output.
+  if (!superball::test::pseudo_terminals_available()) GTEST_SKIP() << "no pseudo-terminal on this machine";
+  const RunResult t = run_on_terminal(with("2"));
+  ASSERT_EQ(t.exit_code, 0) << superball::test::describe(t);
+  const auto stage = t.err.find("\rderive: preparing the 5 largest cases: 5 of 5 done\033[K");
+  EXPECT_NE(stage, std::string::npos) << t.err;
+  EXPECT_LT(stage, t.err.find("\rderive: case 1 of 16 ({})\033[K")) << t.err;
+  EXPECT_EQ(t.err.find('\n'), std::string::npos) << t.err;
+  ASSERT_GE(t.err.size(), 4u);
+  EXPECT_EQ(t.err.substr(t.err.size() - 4), "\r\033[K");
+}
+
 TEST(CliDerive, QuietPrintsNothingOnStandardError) {
   const RunResult r = run({"derive", "--all", "--alphas", "2", "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << superball::test::describe(r);

@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace superball::symbolic {
@@ -294,17 +295,59 @@ TEST(DeriveCases, PreparedWorkOfAnotherCaseOrTruncatedIsRefused) {
 TEST(DeriveCases, TheLargestCasesArePreparedInAFirstStageOnlyWithSeveralWorkers) {
   const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Infinite);
   std::vector<ContactSet> cases;
-  for (std::uint64_t mask = 0; mask < 16; ++mask) cases.push_back(ContactSet::from_mask(mask, 5));
+  std::vector<std::size_t> all;
+  for (std::uint64_t mask = 0; mask < 16; ++mask) {
+    cases.push_back(ContactSet::from_mask(mask, 5));
+    all.push_back(mask);
+  }
   std::vector<double> cpu;
-  std::vector<std::size_t> which;
-  const std::vector<std::string> one = prepare_cases(deriver, cases, 1, {}, &cpu, &which);
-  EXPECT_TRUE(which.empty());
+  std::vector<std::string> one;
+  int calls = 0;
+  auto count = [&](std::size_t, std::size_t) { ++calls; };
+  EXPECT_TRUE(prepare_todo(deriver, cases, all, 1, one, {}, count, &cpu).empty());
+  EXPECT_EQ(one.size(), cases.size());
   EXPECT_TRUE(std::all_of(one.begin(), one.end(), [](const std::string& t) { return t.empty(); }));
-  const std::vector<std::string> two = prepare_cases(deriver, cases, 2, {}, &cpu, &which);
-  EXPECT_EQ(which, std::vector<std::size_t>{0});  // {}: four free clusters, the others three at most
+  EXPECT_EQ(calls, 0);  // nothing prepared: no progress
+  std::vector<std::string> two;
+  EXPECT_EQ(prepare_todo(deriver, cases, all, 2, two, {}, count, &cpu), std::vector<std::size_t>{0});  // {}: four free clusters, the others three at most
   ASSERT_EQ(cpu.size(), 1u);
+  EXPECT_EQ(calls, 2);
   EXPECT_EQ(two[0], deriver.prepare(cases[0]));
   for (std::size_t k = 1; k < two.size(); ++k) EXPECT_TRUE(two[k].empty()) << k;
+  EXPECT_TRUE(no_children());
+}
+
+TEST(DeriveCases, OnlyTheCasesStillToDoArePreparedAndPutAtTheirIndex) {
+  // Finite obstacle: {} and the four cases of one closed contact are split; a run (a checkpoint) has {} and {2-3} already.
+  const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Finite);
+  std::vector<ContactSet> cases;
+  std::vector<std::size_t> todo;
+  for (std::uint64_t mask = 0; mask < 16; ++mask) {
+    cases.push_back(ContactSet::from_mask(mask, 5));
+    if (mask != 0 && mask != 2) todo.push_back(mask);
+  }
+  std::vector<std::string> prepared(cases.size());
+  prepared[3] = "kept";  // an entry not prepared is left as it is
+  std::vector<std::pair<std::size_t, std::size_t>> seen;
+  std::vector<double> cpu;
+  const std::vector<std::size_t> first =
+      prepare_todo(deriver, cases, todo, 3, prepared, {}, [&](std::size_t done, std::size_t total) { seen.emplace_back(done, total); }, &cpu);
+  EXPECT_EQ(first, (std::vector<std::size_t>{1, 4, 8}));
+  EXPECT_EQ(seen, (std::vector<std::pair<std::size_t, std::size_t>>{{0, 3}, {1, 3}, {2, 3}, {3, 3}}));
+  EXPECT_EQ(cpu.size(), 3u);
+  ASSERT_EQ(prepared.size(), cases.size());
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    if (k == 1 || k == 4 || k == 8)
+      EXPECT_EQ(prepared[k], deriver.prepare(cases[k])) << k;
+    else
+      EXPECT_EQ(prepared[k], k == 3 ? "kept" : "") << k;
+  }
+  // What the second stage's workers make of it is the one-stage derivation.
+  expect_same(deriver.derive(cases[4]), deriver.derive(cases[4], prepared[4]));
+  EXPECT_TRUE(no_children());
+  // An interrupt stops the stage: nothing more is delivered.
+  std::vector<std::string> none;
+  EXPECT_THROW(prepare_todo(deriver, cases, todo, 2, none, [] { return true; }), Interrupted);
   EXPECT_TRUE(no_children());
 }
 

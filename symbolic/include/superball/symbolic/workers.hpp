@@ -113,21 +113,32 @@ struct DeriveRun {
 /// `{}` alone is a third of it).
 bool split_case(const Deriver& deriver, const ContactSet& closed);
 
-/// The first stage of a run over \p jobs worker processes (none below 2):
-/// Deriver::prepare() of each case of \p cases that split_case() takes, in
-/// its own worker process (forked here, ended before this returns, so that
-/// the workers of the second stage inherit the results).  Returns one text
-/// per case, empty for the cases not prepared; \p cpu (when given)
-/// receives the CPU seconds of each prepare task and \p prepared their
-/// case indices.  Errors and interrupts as Workers::run().
-std::vector<std::string> prepare_cases(const Deriver& deriver, const std::vector<ContactSet>& cases, int jobs,
-                                       const Workers::Interrupt& interrupted = {}, std::vector<double>* cpu = nullptr,
-                                       std::vector<std::size_t>* prepared = nullptr);
+/// The first stage of a run over \p jobs worker processes (none below 2),
+/// shared by the command and the Python module: of the cases \p todo
+/// (indices into \p cases, those a run still has to derive), those that
+/// split_case() takes get their Deriver::prepare() done, each in its own
+/// worker process (forked here and ended before this returns), and its text
+/// put at prepared[k], k the case's index in \p cases (\p prepared is
+/// resized to cases.size(); the other entries are left as they are, empty
+/// for a new vector).  The worker processes of the second stage, forked
+/// after this returns, inherit \p prepared: their task for case k is
+/// Deriver::derive(cases[k], prepared[k]).  Returns the indices prepared, in
+/// increasing order (empty with fewer than 2 jobs).  \p progress (when
+/// given) is called here with (0, number prepared) once this stage's
+/// workers are forked, and again after each case prepared (never when none
+/// is): a progress line may start its thread at the first call, and must
+/// stop it when this returns, before the next fork.  \p cpu (when given)
+/// receives the CPU seconds of each prepare task, in the order returned.
+/// Errors and interrupts as Workers::run().
+std::vector<std::size_t> prepare_todo(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::vector<std::size_t>& todo, int jobs,
+                                      std::vector<std::string>& prepared, const Workers::Interrupt& interrupted = {},
+                                      const std::function<void(std::size_t done, std::size_t total)>& progress = {},
+                                      std::vector<double>* cpu = nullptr);
 
 /// Derives \p cases of \p deriver over run.jobs worker processes and calls
 /// deliver(k, write(k, derivation of case k)) here in case order (the same
 /// whatever the number of workers; the largest cases in two stages,
-/// prepare_cases()).  \p write runs in the worker: it turns a
+/// prepare_todo()).  \p write runs in the worker: it turns a
 /// Derivation into the text that crosses back (a report, JSON).  Errors and
 /// interrupts as Workers::run().
 void derive_cases(const Deriver& deriver, const std::vector<ContactSet>& cases,
