@@ -1,4 +1,5 @@
 #include "collision/complete.hpp"
+#include "collision/dense_steps.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -154,7 +155,7 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
     const S yij = y[e.i].value() - y[e.j].value();
     const S g = e.value * yij, t = v * (y[e.i].size() + y[e.j].size());
     rows[e.k].add(g, t), rows[e.l].subtract(g, t);
-    dissipation += g * ykl;  // 4 v X_ij X_kl
+    add_product(dissipation, g, ykl);  // 4 v X_ij X_kl
   }
   for (int c = 0; c < nc; ++c) dissipation += out.reactions[static_cast<std::size_t>(c)] * S(y[c].value() - y[c + 1].value()) / S(2);
   out.dissipation = dissipation;
