@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "superball/cases/scene_file.hpp"
 #include "superball/numeric/certify.hpp"
 #include "superball/numeric/precision.hpp"
 #include "support.hpp"
@@ -108,6 +109,33 @@ TEST(MpFloat, RandomScenesAgreeWithExactAndWithClnFloats) {
   }
   EXPECT_GE(certified, static_cast<int>(kScenes * kDigits.size() / 2)) << "too few certified answers to test the bound";
   EXPECT_EQ(compared, static_cast<int>(kScenes * kDigits.size()));
+}
+
+/// One solver reused on problems whose data change one at a time (a velocity,
+/// a mass, an entry of M), and back, answers each as a fresh solver does:
+/// what a digits:N solver keeps between solves of the same data (the
+/// assembly of A and b̃) is not used for other data.
+TEST(MpFloat, ASolverReusedOnChangedDataAnswersAsAFreshOne) {
+  const auto scene = ExactScene::from(load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml"));
+  for (int d : {20, 50, 100}) {
+    SCOPED_TRACE("digits:" + std::to_string(d));
+    const auto base = Problem<MpFloat>::from(scene, d);
+    std::vector<Problem<MpFloat>> problems(4, base);
+    problems[1].u[0] = problems[1].u[0] * MpFloat(2);
+    problems[2].mass[2] = problems[2].mass[2] / MpFloat(3);
+    problems[3].entries[0].value = problems[3].entries[0].value + MpFloat(1);
+    numeric::CollisionSolver<MpFloat> reused(numeric::Settings<MpFloat>::defaults(d));
+    for (int k : {0, 1, 0, 2, 2, 3, 0}) {
+      SCOPED_TRACE("problem " + std::to_string(k));
+      numeric::Solution<MpFloat> got, want;
+      reused.compute(problems[static_cast<std::size_t>(k)], got);
+      numeric::CollisionSolver<MpFloat>(numeric::Settings<MpFloat>::defaults(d)).compute(problems[static_cast<std::size_t>(k)], want);
+      ASSERT_EQ(got.status, want.status);
+      EXPECT_EQ(exact_vector(got.velocities_after), exact_vector(want.velocities_after));
+      EXPECT_EQ(exact_vector(got.reactions), exact_vector(want.reactions));
+      EXPECT_EQ(got.residual_motion, want.residual_motion);
+    }
+  }
 }
 
 }  // namespace
