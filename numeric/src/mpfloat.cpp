@@ -539,19 +539,21 @@ MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op) {
   return x;
 }
 
-/// x ± a·b (\p K: add or sub), rounded as x op= a * b: the product of
+/// x ± a·b (\p K: add or sub), rounded as x op= a * b, or with \p Half
+/// x += a·b/2 as x += a * b / 2 (the halving exact): the product of
 /// operands of one precision p held in the object computed into words on
 /// the stack, then added to x in place when x has precision p, or copied
 /// when x is 0 of a lower precision (0 ± t is exact); otherwise, and when
-/// the product leaves the fast path, by the operators.
-template <fast::Kind K>
+/// the product or its half leaves the fast path, by the operators.
+template <fast::Kind K, bool Half = false>
 void accumulate_product(MpFloat& x, const MpFloat& a, const MpFloat& b, Op op) {
   const long p = a.precision();
   MpFloat::Raw& r = *x.raw();
   if (p == b.precision() && p >= r.prec && words(p) <= MpFloat::inline_limbs) {
     std::uint64_t limbs[MpFloat::inline_limbs];
     MpFloat::Raw t{p, 1, __MPFR_EXP_ZERO, limbs};
-    if (fast::operate<fast::Kind::mul>(*a.raw(), *b.raw(), t)) {
+    if (fast::operate<fast::Kind::mul>(*a.raw(), *b.raw(), t) && (!Half || t.exp - 1 >= -fast::kSafeExp)) {
+      if (Half) --t.exp;  // t / 2, exact, as power_of_two() gives it
       if (r.prec == p) {
         if (!fast::operate<K>(r, t, r)) op(mp(x), mp(x), reinterpret_cast<mpfr_srcptr>(&t), MPFR_RNDN);
         return;
@@ -563,7 +565,9 @@ void accumulate_product(MpFloat& x, const MpFloat& a, const MpFloat& b, Op op) {
       }
     }
   }
-  if (K == fast::Kind::sub)
+  if (Half)
+    x += a * b / MpFloat(2);
+  else if (K == fast::Kind::sub)
     x -= a * b;
   else
     x += a * b;
@@ -660,6 +664,7 @@ MpFloat operator*(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind
 MpFloat operator/(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::div>(a, b, mpfr_div); }
 void add_product(MpFloat& x, const MpFloat& a, const MpFloat& b) { accumulate_product<fast::Kind::add>(x, a, b, mpfr_add); }
 void subtract_product(MpFloat& x, const MpFloat& a, const MpFloat& b) { accumulate_product<fast::Kind::sub>(x, a, b, mpfr_sub); }
+void add_half_product(MpFloat& x, const MpFloat& a, const MpFloat& b) { accumulate_product<fast::Kind::add, true>(x, a, b, mpfr_add); }
 MpFloat sqrt(const MpFloat& x) {
   MpFloat r = MpFloat::zero(x.precision());
   mpfr_sqrt(mp(r), mp(x), MPFR_RNDN);

@@ -11,7 +11,7 @@
 namespace superball::numeric::detail {
 
 ///@{
-/// x += a·b and x −= a·b, the product rounded then the sum: the expression
+/// x += a·b, x −= a·b and x += a·b/2, the product rounded then the sum: the expression
 /// itself for double and the other types (the same operations in the same
 /// order); for MpFloat, argument-dependent lookup takes the overloads of
 /// mpfloat_steps.hpp, the same roundings without a temporary number.
@@ -22,6 +22,11 @@ inline void add_product(X& x, const A& a, const B& b) {
 template <class X, class A, class B>
 inline void subtract_product(X& x, const A& a, const B& b) {
   x -= a * b;
+}
+/// x += a·b/2: x += a * b / X(2).
+template <class X, class A, class B>
+inline void add_half_product(X& x, const A& a, const B& b) {
+  x += a * b / X(2);
 }
 ///@}
 

@@ -14,5 +14,8 @@ namespace superball::numeric {
 void add_product(MpFloat& x, const MpFloat& a, const MpFloat& b);
 /// x −= a·b in place, rounded as x -= a * b (two roundings).
 void subtract_product(MpFloat& x, const MpFloat& a, const MpFloat& b);
+/// x += a·b/2 in place, rounded as x += a * b / 2 (the halving exact in
+/// MPFR's range: two roundings).
+void add_half_product(MpFloat& x, const MpFloat& a, const MpFloat& b);
 
 }  // namespace superball::numeric
