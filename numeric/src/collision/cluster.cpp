@@ -70,6 +70,7 @@ void ClusterSystem<S>::keep_data(const Problem<S>& p, int bandwidth) {
 template <class S>
 void ClusterSystem<S>::assemble(const Problem<S>& p, int bandwidth) {
   if (assembled_from(p, bandwidth)) return;
+  open_kept_ = false;
   n_ = p.n;
   nf_ = p.fixed_bottom ? n_ - 1 : n_;
   nc_ = n_ - 1;
@@ -223,7 +224,10 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   const int fixed = p.fixed_bottom ? cluster_[n_ - 1] : -1;
   const int k = p.fixed_bottom ? fixed : cluster_[n_ - 1] + 1;
   const S u_fixed = p.fixed_bottom ? p.u[n_ - 1] : S(0);
-  std::fill(R_.begin(), R_.begin() + static_cast<std::ptrdiff_t>(k) * (b_ + 1), S(0));
+  // Every contact open (k = nf_): the reduced system is A on the free
+  // bodies, whose factors a kept assembly may hold already (MpFloat).
+  const bool reuse = keeps_assembly<S> && open_kept_ && k == nf_;
+  if (!reuse) std::fill(R_.begin(), R_.begin() + static_cast<std::ptrdiff_t>(k) * (b_ + 1), S(0));
   std::fill(y_.begin(), y_.begin() + k, S(0));
   // A cluster's right side and diagonal are summed in registers over its
   // rows and stored once (the clusters are runs of rows), so that no row
@@ -233,7 +237,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   const auto flush = [&] {
     if (current < 0) return;
     y_[current] += y_sum;
-    R(current, 0) += diagonal_sum;
+    if (!reuse) R(current, 0) += diagonal_sum;
   };
   for (int i = 0; i < nf_; ++i) {
     const int ci = cluster_[i];
@@ -249,6 +253,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
       current = ci, y_sum = S(0), diagonal_sum = S(0);
     }
     y_sum += rhs_[i];
+    if (reuse) continue;
     // Row i of A adds A_ii and twice its couplings inside the cluster to the
     // cluster's diagonal, and its other couplings off it.
     S inner = A(i, 0);
@@ -266,7 +271,14 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   // every contact open the reduced system is A itself: its factorization
   // decides definite() too.
   k_ = k;
-  const bool factored = factor(k);
+  const auto factors = static_cast<std::ptrdiff_t>(k) * (b_ + 1);
+  bool factored = true;
+  if (reuse) {
+    std::copy(open_factors_.begin(), open_factors_.end(), R_.begin());
+  } else {
+    factored = factor(k);
+    if (keeps_assembly<S> && factored && k == nf_) open_factors_.assign(R_.begin(), R_.begin() + factors), open_kept_ = true;
+  }
   if (k == nf_) definite_ = factored ? 1 : 0;
   if (!factored) return false;
   for (int i = 0; i < k; ++i)

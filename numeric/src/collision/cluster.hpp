@@ -24,7 +24,8 @@ class ClusterSystem {
   /// \p bandwidth (what p.check() returned): O(entries + n b).  For MpFloat,
   /// whose assembly costs a fifth of a solve, A, b̃ and what definite() found
   /// are kept when \p p holds the data of the last assembly bit for bit
-  /// (precisions included): the same data give the same A and b̃.
+  /// (precisions included): the same data give the same A and b̃, and
+  /// solve() then reuses the factors of the case with every contact open.
   void assemble(const Problem<S>& p, int bandwidth);
   /// Solve the case \p closed (one flag per contact): velocities \p W (size
   /// n) and λ = −R on the contacts (\p lambda, 0 where open).  False when a
@@ -81,6 +82,11 @@ class ClusterSystem {
   std::vector<S> R_, y_;  ///< the reduced banded system and its right side / solution
   std::vector<S> l_;      ///< factor(): a column of L
   std::vector<S> win_;    ///< definite_by_factor(): a window of the Schur complement
+  /// MpFloat only: the LDLᵀ factors of the case with every contact open
+  /// (the reduced system is then A itself on the free bodies), kept with the
+  /// assembly: a solve of that case with the same data reuses them.
+  std::vector<S> open_factors_;
+  bool open_kept_ = false;  ///< open_factors_ holds the factors of A as assembled now
   /// The data of the last assembly (MpFloat only, see assemble()).
   struct Data {
     bool kept = false;
