@@ -70,7 +70,7 @@ void ClusterSystem<S>::keep_data(const Problem<S>& p, int bandwidth) {
 template <class S>
 void ClusterSystem<S>::assemble(const Problem<S>& p, int bandwidth) {
   if (assembled_from(p, bandwidth)) return;
-  open_kept_ = false;
+  if constexpr (keeps_assembly<S>) open_kept_ = false;
   n_ = p.n;
   nf_ = p.fixed_bottom ? n_ - 1 : n_;
   nc_ = n_ - 1;
