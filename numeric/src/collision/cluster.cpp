@@ -2,75 +2,11 @@
 #include "collision/dense_steps.hpp"
 
 #include <algorithm>
-#include <type_traits>
 
 namespace superball::numeric::detail {
 
-namespace {
-
-/// Whether assemble() keeps its result between problems of the same data:
-/// for MpFloat, where comparing the data word by word costs a small part of
-/// assembling them; the other types assemble every time.
-template <class S>
-constexpr bool keeps_assembly = std::is_same<S, MpFloat>::value;
-
-/// Whether \p a and \p b are the same MpFloat bit for bit: precision, sign,
-/// exponent and significand.
-bool identical(const MpFloat& a, const MpFloat& b) {
-  const MpFloat::Raw& x = *a.raw();
-  const MpFloat::Raw& y = *b.raw();
-  if (x.prec != y.prec || x.sign != y.sign || x.exp != y.exp) return false;
-  if (a.is_zero() || !MpFloat::zero_or_regular(a)) return true;  // no significand
-  for (long k = 0, words = (x.prec + 63) / 64; k < words; ++k)
-    if (x.d[k] != y.d[k]) return false;
-  return true;
-}
-
-bool identical(const std::vector<MpFloat>& a, const std::vector<MpFloat>& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t k = 0; k < a.size(); ++k)
-    if (!identical(a[k], b[k])) return false;
-  return true;
-}
-
-}  // namespace
-
-template <class S>
-bool ClusterSystem<S>::assembled_from(const Problem<S>& p, int bandwidth) const {
-  if constexpr (keeps_assembly<S>) {
-    const Data& d = data_;
-    if (!d.kept || d.n != p.n || d.bandwidth != bandwidth || d.digits != p.digits || d.fixed_bottom != p.fixed_bottom ||
-        d.entries.size() != p.entries.size() || !identical(d.mass, p.mass) || !identical(d.u, p.u))
-      return false;
-    for (std::size_t k = 0; k < p.entries.size(); ++k) {
-      const Entry<S>& a = d.entries[k];
-      const Entry<S>& b = p.entries[k];
-      if (a.i != b.i || a.j != b.j || a.k != b.k || a.l != b.l || !identical(a.value, b.value)) return false;
-    }
-    return true;
-  } else {
-    (void)p, (void)bandwidth;
-    return false;
-  }
-}
-
-template <class S>
-void ClusterSystem<S>::keep_data(const Problem<S>& p, int bandwidth) {
-  if constexpr (keeps_assembly<S>) {
-    data_.kept = true;
-    data_.n = p.n, data_.bandwidth = bandwidth, data_.digits = p.digits, data_.fixed_bottom = p.fixed_bottom;
-    data_.entries = p.entries;
-    data_.mass = p.mass;
-    data_.u = p.u;
-  } else {
-    (void)p, (void)bandwidth;
-  }
-}
-
 template <class S>
 void ClusterSystem<S>::assemble(const Problem<S>& p, int bandwidth) {
-  if (assembled_from(p, bandwidth)) return;
-  if constexpr (keeps_assembly<S>) open_kept_ = false;
   n_ = p.n;
   nf_ = p.fixed_bottom ? n_ - 1 : n_;
   nc_ = n_ - 1;
@@ -128,7 +64,6 @@ void ClusterSystem<S>::assemble(const Problem<S>& p, int bandwidth) {
     scale_[i] += p.mass[i];
     if (i == 0 || p.mass[i] < min_mass_) min_mass_ = p.mass[i];
   }
-  keep_data(p, bandwidth);
 }
 
 template <class S>
@@ -224,10 +159,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   const int fixed = p.fixed_bottom ? cluster_[n_ - 1] : -1;
   const int k = p.fixed_bottom ? fixed : cluster_[n_ - 1] + 1;
   const S u_fixed = p.fixed_bottom ? p.u[n_ - 1] : S(0);
-  // Every contact open (k = nf_): the reduced system is A on the free
-  // bodies, whose factors a kept assembly may hold already (MpFloat).
-  const bool reuse = keeps_assembly<S> && open_kept_ && k == nf_;
-  if (!reuse) std::fill(R_.begin(), R_.begin() + static_cast<std::ptrdiff_t>(k) * (b_ + 1), S(0));
+  std::fill(R_.begin(), R_.begin() + static_cast<std::ptrdiff_t>(k) * (b_ + 1), S(0));
   std::fill(y_.begin(), y_.begin() + k, S(0));
   // A cluster's right side and diagonal are summed in registers over its
   // rows and stored once (the clusters are runs of rows), so that no row
@@ -237,7 +169,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   const auto flush = [&] {
     if (current < 0) return;
     y_[current] += y_sum;
-    if (!reuse) R(current, 0) += diagonal_sum;
+    R(current, 0) += diagonal_sum;
   };
   for (int i = 0; i < nf_; ++i) {
     const int ci = cluster_[i];
@@ -253,7 +185,6 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
       current = ci, y_sum = S(0), diagonal_sum = S(0);
     }
     y_sum += rhs_[i];
-    if (reuse) continue;
     // Row i of A adds A_ii and twice its couplings inside the cluster to the
     // cluster's diagonal, and its other couplings off it.
     S inner = A(i, 0);
@@ -271,14 +202,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   // every contact open the reduced system is A itself: its factorization
   // decides definite() too.
   k_ = k;
-  const auto factors = static_cast<std::ptrdiff_t>(k) * (b_ + 1);
-  bool factored = true;
-  if (reuse) {
-    std::copy(open_factors_.begin(), open_factors_.end(), R_.begin());
-  } else {
-    factored = factor(k);
-    if (keeps_assembly<S> && factored && k == nf_) open_factors_.assign(R_.begin(), R_.begin() + factors), open_kept_ = true;
-  }
+  const bool factored = factor(k);
   if (k == nf_) definite_ = factored ? 1 : 0;
   if (!factored) return false;
   for (int i = 0; i < k; ++i)

@@ -21,11 +21,7 @@ template <class S>
 class ClusterSystem {
  public:
   /// Assemble A (lower band) and b̃ for \p p, whose DᵀMD has bandwidth
-  /// \p bandwidth (what p.check() returned): O(entries + n b).  For MpFloat,
-  /// whose assembly costs a fifth of a solve, A, b̃ and what definite() found
-  /// are kept when \p p holds the data of the last assembly bit for bit
-  /// (precisions included): the same data give the same A and b̃, and
-  /// solve() then reuses the factors of the case with every contact open.
+  /// \p bandwidth (what p.check() returned): O(entries + n b).
   void assemble(const Problem<S>& p, int bandwidth);
   /// Solve the case \p closed (one flag per contact): velocities \p W (size
   /// n) and λ = −R on the contacts (\p lambda, 0 where open).  False when a
@@ -65,10 +61,6 @@ class ClusterSystem {
   S& A(int i, int d) { return A_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(d)]; }
   /// Banded LDLᵀ of the first \p k rows of R_ in place; false at a pivot that is not positive.
   bool factor(int k);
-  /// Whether \p p's data are those of the last assembly, bit for bit (MpFloat only).
-  bool assembled_from(const Problem<S>& p, int bandwidth) const;
-  /// Keeps \p p's data for assembled_from() (MpFloat only).
-  void keep_data(const Problem<S>& p, int bandwidth);
   S& R(int i, int d) { return R_[static_cast<std::size_t>(i) * static_cast<std::size_t>(b_ + 1) + static_cast<std::size_t>(d)]; }
 
   int n_ = 0, nf_ = 0, nc_ = 0, b_ = 0, digits_ = 0, entries_ = 0;
@@ -82,19 +74,6 @@ class ClusterSystem {
   std::vector<S> R_, y_;  ///< the reduced banded system and its right side / solution
   std::vector<S> l_;      ///< factor(): a column of L
   std::vector<S> win_;    ///< definite_by_factor(): a window of the Schur complement
-  /// MpFloat only: the LDLᵀ factors of the case with every contact open
-  /// (the reduced system is then A itself on the free bodies), kept with the
-  /// assembly: a solve of that case with the same data reuses them.
-  std::vector<S> open_factors_;
-  bool open_kept_ = false;  ///< open_factors_ holds the factors of A as assembled now
-  /// The data of the last assembly (MpFloat only, see assemble()).
-  struct Data {
-    bool kept = false;
-    int n = 0, bandwidth = 0, digits = 0;
-    bool fixed_bottom = false;
-    std::vector<Entry<S>> entries;
-    std::vector<S> mass, u;
-  } data_;
 };
 
 extern template class ClusterSystem<double>;

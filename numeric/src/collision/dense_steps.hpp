@@ -6,8 +6,6 @@
 // perform the same operations in the same order and agree bit for bit
 // (tests/numeric/small_solver_test.cpp).
 
-#include <type_traits>
-
 #include "collision/mpfloat_steps.hpp"
 
 namespace superball::numeric::detail {
@@ -32,12 +30,6 @@ inline void add_half_product(X& x, const A& a, const B& b) {
 }
 ///@}
 
-/// Whether the steps below call subtract_product() (MpFloat) rather than
-/// write x -= a * b, so that the other types compile to the code they
-/// always had.
-template <class S>
-constexpr bool steps_in_place = std::is_same<std::decay_t<S>, MpFloat>::value;
-
 /// The LDLᵀ factors of the symmetric \p nf × \p nf matrix whose lower
 /// triangle \p A holds, in place and without pivoting (A = diag(m) + DᵀMD on
 /// the free bodies is positive definite when M is positive semi-definite): L
@@ -51,12 +43,7 @@ bool ldlt_in_place(Matrix& A, int nf) {
     if (!(d > S(0))) return false;
     for (int j = k + 1; j < nf; ++j) {
       const S ljk = A(j, k) / d;
-      for (int i = j; i < nf; ++i) {
-        if constexpr (steps_in_place<S>)
-          subtract_product(A(i, j), A(i, k), ljk);
-        else
-          A(i, j) -= A(i, k) * ljk;
-      }
+      for (int i = j; i < nf; ++i) subtract_product(A(i, j), A(i, k), ljk);
     }
     for (int i = k + 1; i < nf; ++i) A(i, k) /= d;
   }
@@ -67,20 +54,10 @@ bool ldlt_in_place(Matrix& A, int nf) {
 template <class Matrix, class Vector>
 void ldlt_solve_in_place(const Matrix& A, int nf, Vector&& x) {
   for (int i = 1; i < nf; ++i)
-    for (int k = 0; k < i; ++k) {
-      if constexpr (steps_in_place<decltype(x(0))>)
-        subtract_product(x(i), A(i, k), x(k));
-      else
-        x(i) -= A(i, k) * x(k);
-    }
+    for (int k = 0; k < i; ++k) subtract_product(x(i), A(i, k), x(k));
   for (int i = 0; i < nf; ++i) x(i) /= A(i, i);
   for (int i = nf - 2; i >= 0; --i)
-    for (int k = i + 1; k < nf; ++k) {
-      if constexpr (steps_in_place<decltype(x(0))>)
-        subtract_product(x(i), A(k, i), x(k));
-      else
-        x(i) -= A(k, i) * x(k);
-    }
+    for (int k = i + 1; k < nf; ++k) subtract_product(x(i), A(k, i), x(k));
 }
 
 /// The principal pivot transform on (p, p) of the tableau w = t + Tλ of
@@ -95,15 +72,9 @@ bool principal_pivot(Tableau& T, Column& t, int nc, int p) {
     if (i == p) continue;
     const S f = T(i, p) / piv;
     if (f == S(0)) continue;
-    if constexpr (steps_in_place<S>) {
-      for (int j = 0; j < nc; ++j)
-        if (j != p) subtract_product(T(i, j), f, T(p, j));
-      subtract_product(t(i), f, t(p));
-    } else {
-      for (int j = 0; j < nc; ++j)
-        if (j != p) T(i, j) -= f * T(p, j);
-      t(i) -= f * t(p);
-    }
+    for (int j = 0; j < nc; ++j)
+      if (j != p) subtract_product(T(i, j), f, T(p, j));
+    subtract_product(t(i), f, t(p));
     T(i, p) = f;
   }
   for (int j = 0; j < nc; ++j)
