@@ -19,6 +19,7 @@
 #include <string>
 
 #include "superball/numeric/scalar.hpp"
+#include "collision/mpfloat_steps.hpp"
 
 namespace superball::numeric {
 
@@ -67,8 +68,10 @@ void widen(MpFloat& x, long bits) {
 // words: mpfr_mul takes about twice the instructions at these sizes
 // (callgrind: 105 against 226 at 127 bits; its dispatch on precision, flags
 // in thread-local storage); a digits:20 / 50 / 100 solve of the paper scene
-// takes 73k / 94k / 137k instructions with the sums here and one function
-// per operation and size, against 97k / 116k / 178k with sums in MPFR.
+// took 73k / 94k / 137k instructions with the sums here and one function
+// per operation and size, against 97k / 116k / 178k with sums in MPFR; x ±
+// a·b in place and GMP's products of 4–6 words took 7 %, 2 % and 8 % more
+// off (an iteration of bench_solve: 81k → 75k, 106k → 104k, 159k → 146k).
 // Each result is the exact one
 // rounded once to nearest, ties to even: what MPFR gives, bit for bit
 // (tests/numeric/mpfloat_arithmetic_test.cpp compares them on random operands).
@@ -117,21 +120,37 @@ bool round_into(const Limb* W, bool sticky, long E, long p, MpFloat::Raw& out) {
   return true;
 }
 
-/// a × b, both regular, of p bits in N words, into out.
-template <int N, int U>
-bool mul(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
-  Limb P[2 * N];
+/// Products of this many words or more are GMP's mpn_mul_n (assembly);
+/// smaller ones schoolbook() below (callgrind, per digits:N solve of the
+/// paper scene: 12.2k against 13.4k instructions in products of 3 words,
+/// 38.5k against 26.5k in products of 6).
+constexpr int kGmpProductWords = 4;
+
+/// The exact product of the N-word significands \p x and \p y into \p P (2N words).
+template <int N>
+void schoolbook(const Limb* x, const Limb* y, Limb* P) {
   for (int j = 0; j < N; ++j) {  // the first row
-    const Wide t = Wide(a.d[0]) * b.d[j] + (j > 0 ? P[j] : 0);
+    const Wide t = Wide(x[0]) * y[j] + (j > 0 ? P[j] : 0);
     P[j] = static_cast<Limb>(t), P[j + 1] = static_cast<Limb>(t >> 64);
   }
   for (int i = 1; i < N; ++i) {
     Limb carry = 0;
     for (int j = 0; j < N; ++j) {
-      const Wide t = Wide(a.d[i]) * b.d[j] + P[i + j] + carry;
+      const Wide t = Wide(x[i]) * y[j] + P[i + j] + carry;
       P[i + j] = static_cast<Limb>(t), carry = static_cast<Limb>(t >> 64);
     }
     P[i + N] = carry;
+  }
+}
+
+/// a × b, both regular, of p bits in N words, into out.
+template <int N, int U>
+bool mul(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+  Limb P[2 * N];
+  if (N >= kGmpProductWords) {
+    mpn_mul_n(P, a.d, b.d, N);  // GMP's product, in assembly
+  } else {
+    schoolbook<N>(a.d, b.d, P);
   }
   long E = a.exp + b.exp;
   if ((P[2 * N - 1] >> 63) == 0) {  // 0.01…: one place left
@@ -435,6 +454,30 @@ bool power_of_two(fast::Kind kind, const MpFloat& x, const MpFloat& y, MpFloat& 
   return true;
 }
 
+/// out = a ± b (\p K: add or sub) when one of them is ±0 and the other ±0 or
+/// regular: exact, at the larger precision, the other operand's value, or
+/// for two zeros the sign rounding to nearest gives (−0 only for −0 − +0 and
+/// −0 + −0), as MPFR gives it.  \p out may be \p a.  False otherwise.
+template <fast::Kind K>
+bool zero_sum(const MpFloat& a, const MpFloat& b, MpFloat& out) {
+  const MpFloat::Raw& ra = *a.raw();
+  const MpFloat::Raw& rb = *b.raw();
+  const bool a_zero = ra.exp == __MPFR_EXP_ZERO, b_zero = rb.exp == __MPFR_EXP_ZERO;
+  if (!(a_zero || b_zero) || !MpFloat::zero_or_regular(a) || !MpFloat::zero_or_regular(b)) return false;
+  const long p = std::max(ra.prec, rb.prec);
+  const int sign_b = K == fast::Kind::sub ? -rb.sign : rb.sign;
+  const int sign = !b_zero ? sign_b : !a_zero ? ra.sign : (ra.sign < 0 && sign_b < 0 ? -1 : 1);
+  if (!b_zero)
+    out = b;
+  else if (&out != &a)
+    out = a;
+  if (out.precision() < p) widen(out, p);
+  out.raw()->sign = sign;
+  return true;
+}
+
+constexpr bool additive(fast::Kind k) { return k == fast::Kind::add || k == fast::Kind::sub; }
+
 /// binary() of operands of different precisions: the one of lower precision
 /// (a constant) is first widened exactly to the larger one, so that MPFR
 /// takes its paths for operands of one precision (2–3× faster below 192 bits).
@@ -442,6 +485,7 @@ template <fast::Kind K>
 __attribute__((noinline)) MpFloat binary_mixed(const MpFloat& a, const MpFloat& b, Op op) {
   const long p = std::max(a.precision(), b.precision());
   MpFloat r = MpFloat::zero(p);
+  if (additive(K) && zero_sum<K>(a, b, r)) return r;
   if (a.precision() == b.precision()) {  // of more words than the object holds
     if (!fast::operate<K>(*a.raw(), *b.raw(), *r.raw())) op(mp(r), mp(a), mp(b), MPFR_RNDN);
     return r;
@@ -465,7 +509,7 @@ MpFloat binary(const MpFloat& a, const MpFloat& b, Op op) {
   const long p = a.precision();
   if (p == b.precision() && words(p) <= MpFloat::inline_limbs) {
     r.raw()->prec = p;  // room in the object
-    if (!fast::operate<K>(*a.raw(), *b.raw(), *r.raw())) op(mp(r), mp(a), mp(b), MPFR_RNDN);
+    if (!fast::operate<K>(*a.raw(), *b.raw(), *r.raw()) && !(additive(K) && zero_sum<K>(a, b, r))) op(mp(r), mp(a), mp(b), MPFR_RNDN);
   } else {
     r = binary_mixed<K>(a, b, op);
   }
@@ -476,12 +520,7 @@ MpFloat binary(const MpFloat& a, const MpFloat& b, Op op) {
 /// y is the more precise.
 template <fast::Kind K>
 __attribute__((noinline)) MpFloat& in_place_mixed(MpFloat& x, const MpFloat& y, Op op) {
-  constexpr bool additive = K == fast::Kind::add || K == fast::Kind::sub;
-  if (x.precision() < y.precision() && x.raw()->exp == __MPFR_EXP_ZERO && y.raw()->exp > __MPFR_EXP_INF && additive) {
-    x = y;  // 0 ± y: exact, the sum started at S(0)
-    if (K == fast::Kind::sub) x.raw()->sign = -x.raw()->sign;
-    return x;
-  }
+  if (additive(K) && zero_sum<K>(x, y, x)) return x;  // 0 ± y, as a sum started at S(0), or x ± 0
   if (x.precision() > y.precision()) {
     if ((K == fast::Kind::mul || K == fast::Kind::div) && power_of_two(K, x, y, x)) return x;
     MpFloat wide = y;
@@ -498,8 +537,42 @@ __attribute__((noinline)) MpFloat& in_place_mixed(MpFloat& x, const MpFloat& y, 
 template <fast::Kind K>
 MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op) {
   if (x.precision() != y.precision()) return in_place_mixed<K>(x, y, op);
-  if (!fast::operate<K>(*x.raw(), *y.raw(), *x.raw())) op(mp(x), mp(x), mp(y), MPFR_RNDN);
+  if (!fast::operate<K>(*x.raw(), *y.raw(), *x.raw()) && !(additive(K) && zero_sum<K>(x, y, x))) op(mp(x), mp(x), mp(y), MPFR_RNDN);
   return x;
+}
+
+/// x ± a·b (\p K: add or sub), rounded as x op= a * b, or with \p Half
+/// x += a·b/2 as x += a * b / 2 (the halving exact): the product of
+/// operands of one precision p held in the object computed into words on
+/// the stack, then added to x in place when x has precision p, or copied
+/// when x is 0 of a lower precision (0 ± t is exact); otherwise, and when
+/// the product or its half leaves the fast path, by the operators.
+template <fast::Kind K, bool Half = false>
+void accumulate_product(MpFloat& x, const MpFloat& a, const MpFloat& b, Op op) {
+  const long p = a.precision();
+  MpFloat::Raw& r = *x.raw();
+  if (p == b.precision() && p >= r.prec && words(p) <= MpFloat::inline_limbs) {
+    std::uint64_t limbs[MpFloat::inline_limbs];
+    MpFloat::Raw t{p, 1, __MPFR_EXP_ZERO, limbs};
+    if (fast::operate<fast::Kind::mul>(*a.raw(), *b.raw(), t) && (!Half || t.exp - 1 >= -fast::kSafeExp)) {
+      if (Half) --t.exp;  // t / 2, exact, as power_of_two() gives it
+      if (r.prec == p) {
+        if (!fast::operate<K>(r, t, r)) op(mp(x), mp(x), reinterpret_cast<mpfr_srcptr>(&t), MPFR_RNDN);
+        return;
+      }
+      if (r.exp == __MPFR_EXP_ZERO) {  // x's room holds inline_limbs words
+        r.prec = p, r.exp = t.exp, r.sign = K == fast::Kind::sub ? -t.sign : t.sign;
+        for (long k = 0, n = words(p); k < n; ++k) r.d[k] = limbs[k];
+        return;
+      }
+    }
+  }
+  if (Half)
+    x += a * b / MpFloat(2);
+  else if (K == fast::Kind::sub)
+    x -= a * b;
+  else
+    x += a * b;
 }
 
 /// Whether a and b are both ±0 or regular (compare_finite() takes them).
@@ -591,6 +664,9 @@ MpFloat operator+(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind
 MpFloat operator-(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::sub>(a, b, mpfr_sub); }
 MpFloat operator*(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::mul>(a, b, mpfr_mul); }
 MpFloat operator/(const MpFloat& a, const MpFloat& b) { return binary<fast::Kind::div>(a, b, mpfr_div); }
+void add_product(MpFloat& x, const MpFloat& a, const MpFloat& b) { accumulate_product<fast::Kind::add>(x, a, b, mpfr_add); }
+void subtract_product(MpFloat& x, const MpFloat& a, const MpFloat& b) { accumulate_product<fast::Kind::sub>(x, a, b, mpfr_sub); }
+void add_half_product(MpFloat& x, const MpFloat& a, const MpFloat& b) { accumulate_product<fast::Kind::add, true>(x, a, b, mpfr_add); }
 MpFloat sqrt(const MpFloat& x) {
   MpFloat r = MpFloat::zero(x.precision());
   mpfr_sqrt(mp(r), mp(x), MPFR_RNDN);

@@ -7,6 +7,7 @@
 #include <gmp.h>
 #include <mpfr.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -159,6 +160,29 @@ TEST(MpFloatArithmetic, ZerosSignsAndCancellationAreMpfrs) {
     mpfr_nextabove(mp(up)), mpfr_nextbelow(mp(down));
     expect_as_mpfr(operations()[1], x, up, p);
     expect_as_mpfr(operations()[1], x, down, p);
+  }
+}
+
+/// Sums and differences with a zero of either precision, as the solver's
+/// accumulators start at S(0) (64 bits) and add terms of p bits, some of them
+/// 0: the other operand exactly, at the larger precision, or the sign of a
+/// sum of zeros rounding to nearest; every operation checked, in both orders.
+TEST(MpFloatArithmetic, ZerosOfEitherPrecisionAreMpfrs) {
+  Draw draw(11);
+  for (long p : {127L, 191L, 383L, 500L}) {
+    const MpFloat zero64 = MpFloat(0), minus_zero64 = -MpFloat(0), zero = MpFloat::zero(p), minus_zero = -MpFloat::zero(p);
+    const MpFloat x = draw.number(p, 5), minus_x = -x, c(-7);  // c: 64 bits, regular
+    const std::vector<const MpFloat*> operands = {&zero64, &minus_zero64, &zero, &minus_zero, &x, &minus_x, &c};
+    for (const Operation& op : operations())
+      for (const MpFloat* a : operands)
+        for (const MpFloat* b : operands) {
+          Ref want(std::max(a->precision(), b->precision()));
+          op.mpfr(want.v, mp(*a), mp(*b), MPFR_RNDN);
+          EXPECT_TRUE(same(op.binary(*a, *b), want.v)) << text(mp(*a)) << " " << op.name << " " << text(mp(*b));
+          MpFloat acc = *a;
+          op.in_place(acc, *b);
+          EXPECT_TRUE(same(acc, want.v)) << text(mp(*a)) << " " << op.name << "= " << text(mp(*b)) << ": got " << text(mp(acc));
+        }
   }
 }
 

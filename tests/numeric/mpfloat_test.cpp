@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "superball/cases/scene_file.hpp"
 #include "superball/numeric/certify.hpp"
 #include "superball/numeric/precision.hpp"
 #include "support.hpp"
@@ -108,6 +109,37 @@ TEST(MpFloat, RandomScenesAgreeWithExactAndWithClnFloats) {
   }
   EXPECT_GE(certified, static_cast<int>(kScenes * kDigits.size() / 2)) << "too few certified answers to test the bound";
   EXPECT_EQ(compared, static_cast<int>(kScenes * kDigits.size()));
+}
+
+/// One solver reused on problems whose data change one at a time (a velocity,
+/// a mass, an entry of M), and back, answers each as a fresh solver does:
+/// what a digits:N solver keeps between solves of the same data (the
+/// assembly of A and b̃, the factors of A for the case with every contact
+/// open) is not used for other data, and survives the pivots of a case
+/// with closed contacts (paper-4.1-family and hard-mass-ratio-1e12 pivot).
+TEST(MpFloat, ASolverReusedOnChangedDataAnswersAsAFreshOne) {
+  for (const char* file : {"paper-4.4-alpha2.toml", "paper-4.1-family.toml", "hard-mass-ratio-1e12.toml"}) {
+    for (int d : {20, 50, 100}) {
+      SCOPED_TRACE(std::string(file) + " digits:" + std::to_string(d));
+      const auto scene = ExactScene::from(load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/" + file));
+      const auto base = Problem<MpFloat>::from(scene, d);
+      std::vector<Problem<MpFloat>> problems(4, base);
+      problems[1].u[0] = problems[1].u[0] * MpFloat(2);
+      problems[2].mass[2] = problems[2].mass[2] / MpFloat(3);
+      problems[3].entries[0].value = problems[3].entries[0].value + MpFloat(1);
+      numeric::CollisionSolver<MpFloat> reused(numeric::Settings<MpFloat>::defaults(d));
+      for (int k : {0, 1, 0, 2, 2, 3, 0}) {
+        SCOPED_TRACE("problem " + std::to_string(k));
+        numeric::Solution<MpFloat> got, want;
+        reused.compute(problems[static_cast<std::size_t>(k)], got);
+        numeric::CollisionSolver<MpFloat>(numeric::Settings<MpFloat>::defaults(d)).compute(problems[static_cast<std::size_t>(k)], want);
+        ASSERT_EQ(got.status, want.status);
+        EXPECT_EQ(exact_vector(got.velocities_after), exact_vector(want.velocities_after));
+        EXPECT_EQ(exact_vector(got.reactions), exact_vector(want.reactions));
+        EXPECT_EQ(got.residual_motion, want.residual_motion);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include "collision/cluster.hpp"
+#include "collision/dense_steps.hpp"
 
 #include <algorithm>
 
@@ -52,9 +53,9 @@ void ClusterSystem<S>::assemble(const Problem<S>& p, int bandwidth) {
   rhs_.resize(static_cast<std::size_t>(nf_));
   for (int j = 0; j < nf_; ++j) {
     S acc = S(0);
-    for (int d = 0; d <= b_ && d <= j; ++d) acc -= A(j, d) * p.u[j - d];
-    for (int d = 1; d <= b_ && j + d < n_; ++d) acc -= A(j + d, d) * p.u[j + d];
-    if (p.fixed_bottom && n_ - 1 - j <= b_) acc -= A(n_ - 1, n_ - 1 - j) * p.u[n_ - 1];
+    for (int d = 0; d <= b_ && d <= j; ++d) subtract_product(acc, A(j, d), p.u[j - d]);
+    for (int d = 1; d <= b_ && j + d < n_; ++d) subtract_product(acc, A(j + d, d), p.u[j + d]);
+    if (p.fixed_bottom && n_ - 1 - j <= b_) subtract_product(acc, A(n_ - 1, n_ - 1 - j), p.u[n_ - 1]);
     rhs_[j] = acc;
   }
   for (int i = 0; i < nf_; ++i) {
@@ -97,7 +98,7 @@ bool ClusterSystem<S>::factor(int k) {
     // the quotients wait in l_ until it is done (one division each).
     for (int r = j + 1; r <= last; ++r) l_[r - j] = R(r, r - j) / dj;
     for (int r = j + 1; r <= last; ++r)
-      for (int i = r; i <= last; ++i) R(i, i - r) -= R(i, i - j) * l_[r - j];
+      for (int i = r; i <= last; ++i) subtract_product(R(i, i - r), R(i, i - j), l_[r - j]);
     for (int r = j + 1; r <= last; ++r) R(r, r - j) = l_[r - j];
   }
   return true;
@@ -176,7 +177,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
       flush();
       current = -1;
       for (int d = 1; d <= b_ && d <= i; ++d)
-        if (cluster_[i - d] != fixed) y_[cluster_[i - d]] -= A(i, d) * u_fixed;
+        if (cluster_[i - d] != fixed) subtract_product(y_[cluster_[i - d]], A(i, d), u_fixed);
       continue;
     }
     if (ci != current) {
@@ -205,10 +206,10 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   if (k == nf_) definite_ = factored ? 1 : 0;
   if (!factored) return false;
   for (int i = 0; i < k; ++i)
-    for (int j = std::max(0, i - b_); j < i; ++j) y_[i] -= R(i, i - j) * y_[j];
+    for (int j = std::max(0, i - b_); j < i; ++j) subtract_product(y_[i], R(i, i - j), y_[j]);
   for (int i = 0; i < k; ++i) y_[i] /= R(i, 0);
   for (int i = k - 1; i >= 0; --i)
-    for (int j = i + 1; j <= std::min(k - 1, i + b_); ++j) y_[i] -= R(j, j - i) * y_[j];
+    for (int j = i + 1; j <= std::min(k - 1, i + b_); ++j) subtract_product(y_[i], R(j, j - i), y_[j]);
   for (int i = 0; i < n_; ++i) W[i] = cluster_[i] == fixed ? u_fixed : y_[cluster_[i]];
   // Reactions.  Inside a cluster λ_c − λ_{c−1} = (A W − b̃)_c, so λ_c is the
   // running sum of the row residuals from the top of the cluster, or minus
@@ -219,8 +220,8 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
   // fixed obstacle has no equation of its own: its sums run from the top.
   auto row_residual = [&](int c) {
     S r = -rhs_[c];
-    for (int d = 0; d <= b_ && d <= c; ++d) r += A(c, d) * W[c - d];
-    for (int d = 1; d <= b_ && c + d < nf_; ++d) r += A(c + d, d) * W[c + d];
+    for (int d = 0; d <= b_ && d <= c; ++d) add_product(r, A(c, d), W[c - d]);
+    for (int d = 1; d <= b_ && c + d < nf_; ++d) add_product(r, A(c + d, d), W[c + d]);
     return r;
   };
   for (int top = 0; top < n_;) {

@@ -1,4 +1,5 @@
 #include "collision/complete.hpp"
+#include "collision/dense_steps.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -126,8 +127,8 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
     S& mw = work.mw[k];
     mu = p.mass[k] * p.u[k];
     mw = p.mass[k] * W[k];
-    out.kinetic_energy_before += mu * p.u[k] / S(2);
-    out.kinetic_energy_after += mw * W[k] / S(2);
+    add_half_product(out.kinetic_energy_before, mu, p.u[k]);
+    add_half_product(out.kinetic_energy_after, mw, W[k]);
     out.momentum_before += mu;
     out.momentum_after += mw;
     work.change[k] = p.mass[k] * (W[k] - p.u[k]);
@@ -148,15 +149,15 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
     const S f = e.value * ykl, s = v * (y[e.k].size() + y[e.l].size());
     rows[e.i].add(f, s), rows[e.j].subtract(f, s);
     if (e.diagonal()) {  // 2 v X_ij² = v y_ij² / 2 (y_ij is y_kl)
-      dissipation += f * ykl / S(2);
+      add_half_product(dissipation, f, ykl);
       continue;
     }
     const S yij = y[e.i].value() - y[e.j].value();
     const S g = e.value * yij, t = v * (y[e.i].size() + y[e.j].size());
     rows[e.k].add(g, t), rows[e.l].subtract(g, t);
-    dissipation += g * ykl;  // 4 v X_ij X_kl
+    add_product(dissipation, g, ykl);  // 4 v X_ij X_kl
   }
-  for (int c = 0; c < nc; ++c) dissipation += out.reactions[static_cast<std::size_t>(c)] * S(y[c].value() - y[c + 1].value()) / S(2);
+  for (int c = 0; c < nc; ++c) add_half_product(dissipation, out.reactions[static_cast<std::size_t>(c)], S(y[c].value() - y[c + 1].value()));
   out.dissipation = dissipation;
 
   S motion_s = S(0);  // in S: rows of 1e-308 in CLN floats are beyond double's range

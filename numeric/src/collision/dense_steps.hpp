@@ -6,7 +6,29 @@
 // perform the same operations in the same order and agree bit for bit
 // (tests/numeric/small_solver_test.cpp).
 
+#include "collision/mpfloat_steps.hpp"
+
 namespace superball::numeric::detail {
+
+///@{
+/// x += a·b, x −= a·b and x += a·b/2, the product rounded then the sum: the expression
+/// itself for double and the other types (the same operations in the same
+/// order); for MpFloat, argument-dependent lookup takes the overloads of
+/// mpfloat_steps.hpp, the same roundings without a temporary number.
+template <class X, class A, class B>
+inline void add_product(X& x, const A& a, const B& b) {
+  x += a * b;
+}
+template <class X, class A, class B>
+inline void subtract_product(X& x, const A& a, const B& b) {
+  x -= a * b;
+}
+/// x += a·b/2: x += a * b / X(2).
+template <class X, class A, class B>
+inline void add_half_product(X& x, const A& a, const B& b) {
+  x += a * b / X(2);
+}
+///@}
 
 /// The LDLᵀ factors of the symmetric \p nf × \p nf matrix whose lower
 /// triangle \p A holds, in place and without pivoting (A = diag(m) + DᵀMD on
@@ -21,7 +43,7 @@ bool ldlt_in_place(Matrix& A, int nf) {
     if (!(d > S(0))) return false;
     for (int j = k + 1; j < nf; ++j) {
       const S ljk = A(j, k) / d;
-      for (int i = j; i < nf; ++i) A(i, j) -= A(i, k) * ljk;
+      for (int i = j; i < nf; ++i) subtract_product(A(i, j), A(i, k), ljk);
     }
     for (int i = k + 1; i < nf; ++i) A(i, k) /= d;
   }
@@ -32,10 +54,10 @@ bool ldlt_in_place(Matrix& A, int nf) {
 template <class Matrix, class Vector>
 void ldlt_solve_in_place(const Matrix& A, int nf, Vector&& x) {
   for (int i = 1; i < nf; ++i)
-    for (int k = 0; k < i; ++k) x(i) -= A(i, k) * x(k);
+    for (int k = 0; k < i; ++k) subtract_product(x(i), A(i, k), x(k));
   for (int i = 0; i < nf; ++i) x(i) /= A(i, i);
   for (int i = nf - 2; i >= 0; --i)
-    for (int k = i + 1; k < nf; ++k) x(i) -= A(k, i) * x(k);
+    for (int k = i + 1; k < nf; ++k) subtract_product(x(i), A(k, i), x(k));
 }
 
 /// The principal pivot transform on (p, p) of the tableau w = t + Tλ of
@@ -51,8 +73,8 @@ bool principal_pivot(Tableau& T, Column& t, int nc, int p) {
     const S f = T(i, p) / piv;
     if (f == S(0)) continue;
     for (int j = 0; j < nc; ++j)
-      if (j != p) T(i, j) -= f * T(p, j);
-    t(i) -= f * t(p);
+      if (j != p) subtract_product(T(i, j), f, T(p, j));
+    subtract_product(t(i), f, t(p));
     T(i, p) = f;
   }
   for (int j = 0; j < nc; ++j)

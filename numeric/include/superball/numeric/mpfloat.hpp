@@ -3,9 +3,9 @@
 /// MpFloat: the scalar of `digits:N`, a binary floating-point number of a
 /// precision chosen at run time, correctly rounded to nearest as MPFR rounds:
 /// computed by MPFR, except sums, differences and products of 2 to 6 words,
-/// quotients of 3 to 6 words, scalings by a constant ±2^k and comparisons,
-/// which numeric/src/mpfloat.cpp computes on the words with the same results
-/// bit for bit.  This header does not include mpfr.h: the number holds MPFR's
+/// quotients of 3 to 6 words, scalings by a constant ±2^k, sums and
+/// differences with a zero, and comparisons, which numeric/src/mpfloat.cpp
+/// computes on the words with the same results bit for bit.  This header does not include mpfr.h: the number holds MPFR's
 /// variable by value, with its significand in the object itself up to
 /// MpFloat::inline_limbs 64-bit words (N <= 113 digits), so that a solve in
 /// that precision allocates nothing; larger precisions keep it on the heap.
