@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "collision/lanes.hpp"
 #include "collision/small_solver.hpp"
 #include "map_internal.hpp"
 
@@ -52,6 +53,54 @@ Batch<S>::Batch(const ExactScene& base, std::vector<std::size_t> varying, int di
                      std::all_of(problem_.u.begin(), problem_.u.end(), inside_window<S>);
     for (std::size_t e = 0; e < problem_.entries.size(); ++e)
       if (std::find(varying_.begin(), varying_.end(), e) == varying_.end()) others_inside_ = others_inside_ && inside_window(problem_.entries[e].value);
+  }
+  if constexpr (std::is_same<S, double>::value) {
+    if (small_ && !chain_) lanes_ = detail::lanes_solver_for(problem_.n);
+    static_assert(lanes == static_cast<std::size_t>(detail::lane_width), "Batch::lanes is the lanes' width");
+    for (const Entry<S>& e : problem_.entries) lane_values_.insert(lane_values_.end(), lanes, e.value);
+    lane_held_.assign(lanes * varying_.size(), 1);
+    lane_out_.resize(lanes);
+  }
+}
+
+template <class S>
+void Batch<S>::stage(std::size_t lane) {
+  if constexpr (std::is_same<S, double>::value) {
+    // solve()'s choice of path, made for the scene set: the lanes take it
+    // where solve() would run the fixed-size path unscaled, in range.
+    bool inside = others_inside_;
+    for (std::size_t k = 0; k < varying_.size(); ++k) {
+      const S& value = problem_.entries[varying_[k]].value;
+      lane_values_[varying_[k] * lanes + lane] = value;
+      lane_held_[lane * varying_.size() + k] = held_[k];
+      inside = inside && inside_window(value);
+    }
+    const unsigned bit = 1u << lane;
+    lane_todo_ = lanes_ && inside && problem_.in_range ? lane_todo_ | bit : lane_todo_ & ~bit;
+  } else {
+    (void)lane;
+  }
+}
+
+template <class S>
+unsigned Batch<S>::solve_staged(std::size_t count) {
+  const unsigned todo = lane_todo_ & ((1u << count) - 1u);
+  if constexpr (std::is_same<S, double>::value) {
+    if (todo) return lanes_(problem_, bandwidth_, lane_values_.data(), todo, dense_.settings(), lane_out_.data());
+  }
+  return 0;
+}
+
+template <class S>
+void Batch<S>::restore(std::size_t lane) {
+  if constexpr (std::is_same<S, double>::value) {
+    for (std::size_t k = 0; k < varying_.size(); ++k) {
+      problem_.entries[varying_[k]].value = lane_values_[varying_[k] * lanes + lane];
+      held_[k] = lane_held_[lane * varying_.size() + k];
+    }
+    problem_.in_range = others_in_range_ && std::all_of(held_.begin(), held_.end(), [](char h) { return h != 0; });
+  } else {
+    (void)lane;
   }
 }
 

@@ -8,7 +8,9 @@
 /// numeric::solve() of the problem Problem<S>::from() makes of it, bit for
 /// bit (tests/numeric/batch_test.cpp).
 
+#include <algorithm>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 #include "superball/numeric/chain.hpp"
@@ -33,7 +35,8 @@ namespace superball::numeric {
 /// the banded one) on a workspace kept from scene to scene, and the scaled
 /// solve of solve() where the data leave the safe window of S.  In double
 /// and long double, solve() allocates nothing once the first scene is
-/// solved (unless a scene needs scaling).  One Batch per thread: it holds
+/// solved (unless a scene needs scaling).  solve_each() solves many scenes,
+/// in double several at once (lanes of SIMD registers), each bit for bit.  One Batch per thread: it holds
 /// the problem and the workspace (for CLN types, CLN objects).
 template <class S>
 class Batch {
@@ -59,7 +62,29 @@ class Batch {
   /// scene (valid until the next solve()).
   const Solution<S>& solve();
 
+  /// How many scenes solve_each() solves at once: 4 in double, else 1.
+  static constexpr std::size_t lanes = std::is_same<S, double>::value ? 4 : 1;
+  /// Scenes 0 .. \p count − 1, each numeric::solve() of its problem bit for
+  /// bit, as solve() after its set() calls:
+  ///
+  ///     batch.solve_each(count, [&](std::size_t k) { batch.set(0, x[k], x_is_zero[k]); },
+  ///                      [&](std::size_t k, const Solution<double>& s) { ... });
+  ///
+  /// \p set_scene(k) sets scene k's varying entries with set(); \p take(k,
+  /// solution) receives its solution (valid during the call; problem() is
+  /// then some scene of the same group of lanes, not necessarily k's).  In
+  /// double, up to `lanes` scenes are set one after another and solved
+  /// together where every contact stays open (the fixed-size path in lanes,
+  /// AVX2 where the processor has it); the others, and every scene in other
+  /// types, are solved by solve().  Scenes are taken in increasing k.
+  template <class SetScene, class Take>
+  void solve_each(std::size_t count, SetScene&& set_scene, Take&& take);
+
  private:
+  void stage(std::size_t lane);              ///< the scene set() made, kept as lane \p lane of the next solve_staged()
+  unsigned solve_staged(std::size_t count);  ///< lanes 0 .. count − 1 solved into lane_out_: the bits of those solved
+  void restore(std::size_t lane);            ///< the scene of lane \p lane set again (for solve())
+
   std::vector<std::size_t> varying_;
   std::vector<char> held_;    ///< per varying entry: its value is held as Problem::from() requires
   bool others_in_range_ = true;  ///< Problem::from()'s verdict on every datum but the varying entries
@@ -73,7 +98,36 @@ class Batch {
   CollisionSolver<S> dense_;
   ChainSolver<S> banded_;
   Solution<S> out_;
+  /// The fixed-size path in lanes for problem_ (double, the dense solver's fixed-size path only; nullptr otherwise).
+  unsigned (*lanes_)(const Problem<double>&, int, const double*, unsigned, const Settings<double>&, Solution<double>*) = nullptr;
+  std::vector<double> lane_values_;  ///< entry e of M in lane q at [e·lanes + q]
+  std::vector<char> lane_held_;      ///< held_ of lane q at [q·size() + k]
+  unsigned lane_todo_ = 0;           ///< the staged lanes the lanes may solve: in range and inside the safe window
+  std::vector<Solution<S>> lane_out_;
 };
+
+template <class S>
+template <class SetScene, class Take>
+void Batch<S>::solve_each(std::size_t count, SetScene&& set_scene, Take&& take) {
+  for (std::size_t first = 0; first < count; first += lanes) {
+    const std::size_t group = std::min(lanes, count - first);
+    if (group == 1) {
+      set_scene(first);
+      take(first, solve());
+      continue;
+    }
+    for (std::size_t q = 0; q < group; ++q) set_scene(first + q), stage(q);
+    const unsigned solved = solve_staged(group);
+    for (std::size_t q = 0; q < group; ++q) {
+      if ((solved >> q) & 1u) {
+        take(first + q, lane_out_[q]);
+        continue;
+      }
+      restore(q);
+      take(first + q, solve());
+    }
+  }
+}
 
 extern template class SUPERBALL_NUMERIC_EXPORT Batch<double>;
 extern template class SUPERBALL_NUMERIC_EXPORT Batch<long double>;
