@@ -58,9 +58,12 @@ SUPERBALL_LANE unsigned lanes_of(Mask m) {
 
 /// small_solver.cpp's Small<double, N, Full>::compute() on lane_width
 /// problems, for the lanes that take its path without a pivot (lanes.hpp).
-template <int N>
-SUPERBALL_LANE unsigned solve_lanes(const Problem<double>& p, int band, const double* values, unsigned todo,
+/// Full: DᵀMD's bandwidth is N − 1 (every loop's length a constant, as
+/// Small<double, N, true>), else \p bandwidth bounds them.
+template <int N, bool Full>
+SUPERBALL_LANE unsigned solve_lanes(const Problem<double>& p, int bandwidth, const double* values, unsigned todo,
                                     const Settings<double>& settings, Solution<double>* out) {
+  const int band = Full ? N - 1 : bandwidth;
   if (band < 0 || band >= N) __builtin_unreachable();  // tells the compiler the indices stay inside the arrays
   constexpr int n = N, nc = N - 1;
   const int nf = p.fixed_bottom ? N - 1 : N;
@@ -251,7 +254,8 @@ SUPERBALL_LANE unsigned solve_lanes(const Problem<double>& p, int band, const do
 template <int N>
 unsigned baseline(const Problem<double>& p, int band, const double* values, unsigned todo, const Settings<double>& settings,
                   Solution<double>* out) {
-  return solve_lanes<N>(p, band, values, todo, settings, out);
+  if (band == N - 1) return solve_lanes<N, true>(p, band, values, todo, settings, out);
+  return solve_lanes<N, false>(p, band, values, todo, settings, out);
 }
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -259,7 +263,8 @@ unsigned baseline(const Problem<double>& p, int band, const double* values, unsi
 template <int N>
 __attribute__((target("avx2"))) unsigned avx2(const Problem<double>& p, int band, const double* values, unsigned todo,
                                               const Settings<double>& settings, Solution<double>* out) {
-  return solve_lanes<N>(p, band, values, todo, settings, out);
+  if (band == N - 1) return solve_lanes<N, true>(p, band, values, todo, settings, out);
+  return solve_lanes<N, false>(p, band, values, todo, settings, out);
 }
 #endif
 
