@@ -83,28 +83,6 @@ void Batch<S>::stage(std::size_t lane) {
 }
 
 template <class S>
-unsigned Batch<S>::solve_staged(std::size_t count) {
-  const unsigned todo = lane_todo_ & ((1u << count) - 1u);
-  if constexpr (std::is_same<S, double>::value) {
-    if (todo) return lanes_(problem_, bandwidth_, lane_values_.data(), todo, dense_.settings(), lane_out_.data());
-  }
-  return 0;
-}
-
-template <class S>
-void Batch<S>::restore(std::size_t lane) {
-  if constexpr (std::is_same<S, double>::value) {
-    for (std::size_t k = 0; k < varying_.size(); ++k) {
-      problem_.entries[varying_[k]].value = lane_values_[varying_[k] * lanes + lane];
-      held_[k] = lane_held_[lane * varying_.size() + k];
-    }
-    problem_.in_range = others_in_range_ && std::all_of(held_.begin(), held_.end(), [](char h) { return h != 0; });
-  } else {
-    (void)lane;
-  }
-}
-
-template <class S>
 void Batch<S>::set(std::size_t k, const S& value, bool is_zero) {
   if (k >= varying_.size())
     throw std::out_of_range("Batch::set(): entry " + std::to_string(k) + " of " + std::to_string(varying_.size()) + " that vary");

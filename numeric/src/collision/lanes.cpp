@@ -28,6 +28,9 @@ namespace {
 // no call passes one, so GCC's note on the ABI of a 32-byte vector without
 // AVX does not apply.
 #pragma GCC diagnostic ignored "-Wpsabi"
+// R's entries outside the band are never written nor read, which GCC cannot
+// tell when the bandwidth is not a constant.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 
 using V = double __attribute__((vector_size(8 * lane_width)));

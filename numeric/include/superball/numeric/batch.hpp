@@ -81,9 +81,27 @@ class Batch {
   void solve_each(std::size_t count, SetScene&& set_scene, Take&& take);
 
  private:
-  void stage(std::size_t lane);              ///< the scene set() made, kept as lane \p lane of the next solve_staged()
-  unsigned solve_staged(std::size_t count);  ///< lanes 0 .. count − 1 solved into lane_out_: the bits of those solved
-  void restore(std::size_t lane);            ///< the scene of lane \p lane set again (for solve())
+  /// The scene set() made, kept as lane \p lane of the next solve_staged().
+  void stage(std::size_t lane);
+  /// Lanes 0 .. count − 1 solved into lane_out_: the bits of those solved.
+  unsigned solve_staged(std::size_t count) {
+    const unsigned todo = lane_todo_ & ((1u << count) - 1u);
+    if constexpr (std::is_same<S, double>::value)
+      if (todo) return lanes_(problem_, bandwidth_, lane_values_.data(), todo, dense_.settings(), lane_out_.data());
+    return 0;
+  }
+  /// The scene of lane \p lane set again (for solve()).
+  void restore(std::size_t lane) {
+    if constexpr (std::is_same<S, double>::value) {
+      for (std::size_t k = 0; k < varying_.size(); ++k) {
+        problem_.entries[varying_[k]].value = lane_values_[varying_[k] * lanes + lane];
+        held_[k] = lane_held_[lane * varying_.size() + k];
+      }
+      problem_.in_range = others_in_range_ && std::all_of(held_.begin(), held_.end(), [](char h) { return h != 0; });
+    } else {
+      (void)lane;
+    }
+  }
 
   std::vector<std::size_t> varying_;
   std::vector<char> held_;    ///< per varying entry: its value is held as Problem::from() requires
@@ -108,7 +126,7 @@ class Batch {
 
 template <class S>
 template <class SetScene, class Take>
-void Batch<S>::solve_each(std::size_t count, SetScene&& set_scene, Take&& take) {
+inline void Batch<S>::solve_each(std::size_t count, SetScene&& set_scene, Take&& take) {
   for (std::size_t first = 0; first < count; first += lanes) {
     const std::size_t group = std::min(lanes, count - first);
     if (group == 1) {
