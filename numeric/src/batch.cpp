@@ -56,7 +56,7 @@ Batch<S>::Batch(const ExactScene& base, std::vector<std::size_t> varying, int di
   }
   if constexpr (std::is_same<S, double>::value) {
     if (small_ && !chain_) lanes_ = detail::lanes_solver_for(problem_.n);
-    static_assert(lanes == static_cast<std::size_t>(detail::lane_width), "Batch::lanes is the lanes' width");
+    constexpr std::size_t lanes = detail::lane_width;
     for (const Entry<S>& e : problem_.entries) lane_values_.insert(lane_values_.end(), lanes, e.value);
     lane_held_.assign(lanes * varying_.size(), 1);
     lane_out_.resize(lanes);
@@ -64,21 +64,46 @@ Batch<S>::Batch(const ExactScene& base, std::vector<std::size_t> varying, int di
 }
 
 template <class S>
-void Batch<S>::stage(std::size_t lane) {
-  if constexpr (std::is_same<S, double>::value) {
-    // solve()'s choice of path, made for the scene set: the lanes take it
-    // where solve() would run the fixed-size path unscaled, in range.
-    bool inside = others_inside_;
-    for (std::size_t k = 0; k < varying_.size(); ++k) {
-      const S& value = problem_.entries[varying_[k]].value;
-      lane_values_[varying_[k] * lanes + lane] = value;
-      lane_held_[lane * varying_.size() + k] = held_[k];
-      inside = inside && inside_window(value);
+void Batch<S>::solve_each_calling(std::size_t count, void (*set_scene)(void*, std::size_t), void* set_object,
+                                  void (*take)(void*, std::size_t, const Solution<S>&), void* take_object) {
+  constexpr std::size_t lanes = std::is_same<S, double>::value ? detail::lane_width : 1;
+  for (std::size_t first = 0; first < count; first += lanes) {
+    const std::size_t group = std::min(lanes, count - first);
+    if (group == 1) {
+      set_scene(set_object, first);
+      take(take_object, first, solve());
+      continue;
     }
-    const unsigned bit = 1u << lane;
-    lane_todo_ = lanes_ && inside && problem_.in_range ? lane_todo_ | bit : lane_todo_ & ~bit;
-  } else {
-    (void)lane;
+    if constexpr (std::is_same<S, double>::value) {
+      // Each scene set kept as a lane; the lanes take those that solve()
+      // would solve by the fixed-size path unscaled, in range.
+      unsigned todo = 0;
+      for (std::size_t q = 0; q < group; ++q) {
+        set_scene(set_object, first + q);
+        bool inside = others_inside_;
+        for (std::size_t k = 0; k < varying_.size(); ++k) {
+          const S& value = problem_.entries[varying_[k]].value;
+          lane_values_[varying_[k] * lanes + q] = value;
+          lane_held_[q * varying_.size() + k] = held_[k];
+          inside = inside && inside_window(value);
+        }
+        if (lanes_ && inside && problem_.in_range) todo |= 1u << q;
+      }
+      const unsigned solved = todo ? lanes_(problem_, bandwidth_, lane_values_.data(), todo, dense_.settings(), lane_out_.data()) : 0u;
+      for (std::size_t q = 0; q < group; ++q) {
+        if ((solved >> q) & 1u) {
+          take(take_object, first + q, lane_out_[q]);
+          continue;
+        }
+        // The lane's scene set again, and solved alone.
+        for (std::size_t k = 0; k < varying_.size(); ++k) {
+          problem_.entries[varying_[k]].value = lane_values_[varying_[k] * lanes + q];
+          held_[k] = lane_held_[q * varying_.size() + k];
+        }
+        problem_.in_range = others_in_range_ && std::all_of(held_.begin(), held_.end(), [](char h) { return h != 0; });
+        take(take_object, first + q, solve());
+      }
+    }
   }
 }
 

@@ -8,7 +8,6 @@
 /// numeric::solve() of the problem Problem<S>::from() makes of it, bit for
 /// bit (tests/numeric/batch_test.cpp).
 
-#include <algorithm>
 #include <cstddef>
 #include <type_traits>
 #include <vector>
@@ -62,8 +61,6 @@ class Batch {
   /// scene (valid until the next solve()).
   const Solution<S>& solve();
 
-  /// How many scenes solve_each() solves at once: 4 in double, else 1.
-  static constexpr std::size_t lanes = std::is_same<S, double>::value ? 4 : 1;
   /// Scenes 0 .. \p count − 1, each numeric::solve() of its problem bit for
   /// bit, as solve() after its set() calls:
   ///
@@ -73,35 +70,23 @@ class Batch {
   /// \p set_scene(k) sets scene k's varying entries with set(); \p take(k,
   /// solution) receives its solution (valid during the call; problem() is
   /// then some scene of the same group of lanes, not necessarily k's).  In
-  /// double, up to `lanes` scenes are set one after another and solved
-  /// together where every contact stays open (the fixed-size path in lanes,
-  /// AVX2 where the processor has it); the others, and every scene in other
+  /// double, 4 scenes are set one after another and solved together where
+  /// every contact stays open (the fixed-size path in SIMD lanes, AVX2
+  /// where the processor has it); the others, and every scene in other
   /// types, are solved by solve().  Scenes are taken in increasing k.
   template <class SetScene, class Take>
-  void solve_each(std::size_t count, SetScene&& set_scene, Take&& take);
+  void solve_each(std::size_t count, SetScene&& set_scene, Take&& take) {
+    using Set = std::remove_reference_t<SetScene>;
+    using Get = std::remove_reference_t<Take>;
+    solve_each_calling(
+        count, [](void* f, std::size_t k) { (*static_cast<Set*>(f))(k); }, const_cast<void*>(static_cast<const void*>(&set_scene)),
+        [](void* f, std::size_t k, const Solution<S>& s) { (*static_cast<Get*>(f))(k, s); }, const_cast<void*>(static_cast<const void*>(&take)));
+  }
 
  private:
-  /// The scene set() made, kept as lane \p lane of the next solve_staged().
-  void stage(std::size_t lane);
-  /// Lanes 0 .. count − 1 solved into lane_out_: the bits of those solved.
-  unsigned solve_staged(std::size_t count) {
-    const unsigned todo = lane_todo_ & ((1u << count) - 1u);
-    if constexpr (std::is_same<S, double>::value)
-      if (todo) return lanes_(problem_, bandwidth_, lane_values_.data(), todo, dense_.settings(), lane_out_.data());
-    return 0;
-  }
-  /// The scene of lane \p lane set again (for solve()).
-  void restore(std::size_t lane) {
-    if constexpr (std::is_same<S, double>::value) {
-      for (std::size_t k = 0; k < varying_.size(); ++k) {
-        problem_.entries[varying_[k]].value = lane_values_[varying_[k] * lanes + lane];
-        held_[k] = lane_held_[lane * varying_.size() + k];
-      }
-      problem_.in_range = others_in_range_ && std::all_of(held_.begin(), held_.end(), [](char h) { return h != 0; });
-    } else {
-      (void)lane;
-    }
-  }
+  /// solve_each() on its callbacks as functions and their objects.
+  void solve_each_calling(std::size_t count, void (*set_scene)(void*, std::size_t), void* set_object,
+                  void (*take)(void*, std::size_t, const Solution<S>&), void* take_object);
 
   std::vector<std::size_t> varying_;
   std::vector<char> held_;    ///< per varying entry: its value is held as Problem::from() requires
@@ -118,34 +103,10 @@ class Batch {
   Solution<S> out_;
   /// The fixed-size path in lanes for problem_ (double, the dense solver's fixed-size path only; nullptr otherwise).
   unsigned (*lanes_)(const Problem<double>&, int, const double*, unsigned, const Settings<double>&, Solution<double>*) = nullptr;
-  std::vector<double> lane_values_;  ///< entry e of M in lane q at [e·lanes + q]
+  std::vector<double> lane_values_;  ///< entry e of M in lane q at [e·4 + q]
   std::vector<char> lane_held_;      ///< held_ of lane q at [q·size() + k]
-  unsigned lane_todo_ = 0;           ///< the staged lanes the lanes may solve: in range and inside the safe window
   std::vector<Solution<S>> lane_out_;
 };
-
-template <class S>
-template <class SetScene, class Take>
-inline void Batch<S>::solve_each(std::size_t count, SetScene&& set_scene, Take&& take) {
-  for (std::size_t first = 0; first < count; first += lanes) {
-    const std::size_t group = std::min(lanes, count - first);
-    if (group == 1) {
-      set_scene(first);
-      take(first, solve());
-      continue;
-    }
-    for (std::size_t q = 0; q < group; ++q) set_scene(first + q), stage(q);
-    const unsigned solved = solve_staged(group);
-    for (std::size_t q = 0; q < group; ++q) {
-      if ((solved >> q) & 1u) {
-        take(first + q, lane_out_[q]);
-        continue;
-      }
-      restore(q);
-      take(first + q, solve());
-    }
-  }
-}
 
 extern template class SUPERBALL_NUMERIC_EXPORT Batch<double>;
 extern template class SUPERBALL_NUMERIC_EXPORT Batch<long double>;
