@@ -5,7 +5,8 @@
 // (or solves) per second.  solve/paper/double/0 is bench_solve's single
 // solve (issue 28 measures a grid point and a sweep value against it, in the
 // same run); batch/paper/double/128x128 the grid's points through a
-// numeric::Batch alone (batch.hpp), without the PSD filter and the MapPoint.
+// numeric::Batch alone (batch.hpp), without the PSD filter and the MapPoint,
+// one point at a time, and /lanes through Batch::solve_each() (several at once).
 #include <benchmark/benchmark.h>
 
 #include <optional>
@@ -79,6 +80,32 @@ void BM_BatchPoints(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_BatchPoints)->Name("batch/paper/double/128x128");
+
+/// BM_BatchPoints through Batch::solve_each(): the grid's points 4 at a
+/// time in SIMD lanes where no contact closes (the map's and the sweep's
+/// way), the others one at a time.  Each item one point.
+void BM_BatchLanes(benchmark::State& state) {
+  const Scene& s = paper_scene();
+  const auto exact = numeric::ExactScene::from(s);
+  auto entry = [&](int i, int j, int k, int l) {
+    for (std::size_t e = 0; e < exact.entries.size(); ++e)
+      if (exact.entries[e].i == i && exact.entries[e].j == j && exact.entries[e].k == k && exact.entries[e].l == l) return e;
+    throw std::logic_error("no such entry");
+  };
+  numeric::Batch<double> batch(exact, {entry(2, 3, 2, 3), entry(0, 1, 0, 3)});
+  std::vector<double> xs, ys;
+  for (const auto& v : numeric::linspace(0, 20, 128)) xs.push_back(cln::double_approx(v));
+  for (const auto& v : numeric::linspace(-100, 0, 128)) ys.push_back(cln::double_approx(v));
+  double sum = 0;
+  for (auto _ : state) {
+    batch.solve_each(
+        128 * 128, [&](std::size_t k) { batch.set(0, xs[k % 128], k % 128 == 0), batch.set(1, ys[k / 128], k / 128 == 127); },
+        [&](std::size_t, const numeric::Solution<double>& sol) { sum += sol.velocities_after[0]; });
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations() * 128 * 128);
+}
+BENCHMARK(BM_BatchLanes)->Name("batch/paper/double/128x128/lanes");
 
 /// A sweep of state.range(0) values of K34 on one thread (`superball
 /// sweep`'s points).  16384 values: the cost of a value, the sweep's fixed

@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "collision/lanes.hpp"
 #include "collision/small_solver.hpp"
 #include "map_internal.hpp"
 
@@ -52,6 +53,66 @@ Batch<S>::Batch(const ExactScene& base, std::vector<std::size_t> varying, int di
                      std::all_of(problem_.u.begin(), problem_.u.end(), inside_window<S>);
     for (std::size_t e = 0; e < problem_.entries.size(); ++e)
       if (std::find(varying_.begin(), varying_.end(), e) == varying_.end()) others_inside_ = others_inside_ && inside_window(problem_.entries[e].value);
+  }
+  if constexpr (std::is_same<S, double>::value) {
+    if (small_ && !chain_) lanes_ = detail::lanes_solver_for(problem_.n);
+    constexpr std::size_t lanes = detail::lane_width;
+    for (const Entry<S>& e : problem_.entries) lane_values_.insert(lane_values_.end(), lanes, e.value);
+    lane_held_.assign(lanes * varying_.size(), 1);
+    lane_out_.resize(lanes);
+  }
+}
+
+template <class S>
+void Batch<S>::solve_each_calling(std::size_t count, void (*set_scene)(void*, std::size_t), void* set_object,
+                                  void (*take)(void*, std::size_t, const Solution<S>&), void* take_object) {
+  constexpr std::size_t lanes = std::is_same<S, double>::value ? detail::lane_width : 1;
+  // Neighbouring scenes (a map's row, a sweep) mostly take the same case:
+  // a group goes to the lanes when the scene before needed no pivot, else
+  // its scenes are solved one at a time (the same answers either way).
+  bool open = true;
+  const auto solve_alone = [&](std::size_t k) {
+    const Solution<S>& out = solve();
+    open = out.status == Status::Success && out.pivots == 0;
+    take(take_object, k, out);
+  };
+  for (std::size_t first = 0; first < count; first += lanes) {
+    const std::size_t group = std::min(lanes, count - first);
+    if (group == 1 || !open || !lanes_) {
+      for (std::size_t q = 0; q < group; ++q) set_scene(set_object, first + q), solve_alone(first + q);
+      continue;
+    }
+    if constexpr (std::is_same<S, double>::value) {
+      // Each scene set kept as a lane; the lanes take those that solve()
+      // would solve by the fixed-size path unscaled, in range.
+      unsigned todo = 0;
+      for (std::size_t q = 0; q < group; ++q) {
+        set_scene(set_object, first + q);
+        bool inside = others_inside_;
+        for (std::size_t k = 0; k < varying_.size(); ++k) {
+          const S& value = problem_.entries[varying_[k]].value;
+          lane_values_[varying_[k] * lanes + q] = value;
+          lane_held_[q * varying_.size() + k] = held_[k];
+          inside = inside && inside_window(value);
+        }
+        if (lanes_ && inside && problem_.in_range) todo |= 1u << q;
+      }
+      const unsigned solved = todo ? lanes_(problem_, bandwidth_, lane_values_.data(), todo, dense_.settings(), lane_out_.data()) : 0u;
+      for (std::size_t q = 0; q < group; ++q) {
+        if ((solved >> q) & 1u) {
+          open = true;
+          take(take_object, first + q, lane_out_[q]);
+          continue;
+        }
+        // The lane's scene set again, and solved alone.
+        for (std::size_t k = 0; k < varying_.size(); ++k) {
+          problem_.entries[varying_[k]].value = lane_values_[varying_[k] * lanes + q];
+          held_[k] = lane_held_[q * varying_.size() + k];
+        }
+        problem_.in_range = others_in_range_ && std::all_of(held_.begin(), held_.end(), [](char h) { return h != 0; });
+        solve_alone(first + q);
+      }
+    }
   }
 }
 

@@ -394,10 +394,12 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
     std::vector<std::pair<int, int>> at;  ///< entry k of M at (row, column) of the matrix on its pairs
     Eigen::MatrixXd M, work;
     std::optional<PsdFilter> filter;  ///< M in fixed arrays when it has at most PsdFilter::max_rows rows (psd_filter.hpp)
+    std::vector<std::size_t> solve;   ///< the points of a row to solve (M positive semi-definite there)
   };
   auto make_state = [&] {
     const ExactScene exact = ExactScene::from(corner, ExactScene::MCheck::Caller);
-    State st{exact, Batch<S>(exact, {kx, ky}, digits), {}, {}, {}, {}};
+    State st{exact, Batch<S>(exact, {kx, ky}, digits), {}, {}, {}, {}, {}};
+    st.solve.reserve(map_run);
     Eigen::Index size = 0;
     std::tie(st.at, size) = entry_positions(st.exact.entries);
     st.M = Eigen::MatrixXd::Zero(size, size);
@@ -405,11 +407,15 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
     if (size <= PsdFilter::max_rows) st.filter.emplace(static_cast<int>(size));
     return st;
   };
+  // The grid point k's two entries set in the batch.
+  auto set_at = [&](State& st, std::size_t k) {
+    st.batch.set(0, sx[k % tx.size()], zx[k % tx.size()]);
+    st.batch.set(1, sy[k / tx.size()], zy[k / tx.size()]);
+  };
   // M's positive semi-definiteness at the grid point k, the point's two entries set in the batch.
   auto psd_at = [&](State& st, std::size_t k) {
     const std::size_t i = k % tx.size(), j = k / tx.size();
-    st.batch.set(0, sx[i], zx[i]);
-    st.batch.set(1, sy[j], zy[j]);
+    set_at(st, k);
     const Problem<S>& p = st.batch.problem();
     for (std::size_t e = 0; e < p.entries.size(); ++e) {
       const auto [r, c] = st.at[e];
@@ -426,16 +432,6 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
     }
     return *psd;
   };
-  // The grid point k; \p inside: M is known to be positive semi-definite there.
-  auto point = [&](State& st, std::size_t k, bool inside) {
-    if (inside) {
-      st.batch.set(0, sx[k % tx.size()], zx[k % tx.size()]);
-      st.batch.set(1, sy[k / tx.size()], zy[k / tx.size()]);
-    }
-    MapPoint out;
-    if (inside || psd_at(st, k)) solved(out, st.batch.problem(), st.batch.solve());
-    return out;
-  };
   const std::size_t count = tx.size() * ty.size();
   first = std::min(first, count);
   size = std::min(size, count - first);
@@ -451,7 +447,14 @@ std::vector<MapPoint> entry_points(const Scene& corner, std::size_t kx, std::siz
     for (std::size_t at = r * map_run; at < end;) {
       const std::size_t row_end = std::min(end, at + (tx.size() - (first + at) % tx.size()));
       const bool inside = row_end - at > 2 && psd_at(st, first + at) && psd_at(st, first + row_end - 1);
-      for (; at < row_end; ++at) points[at] = point(st, first + at, inside);
+      // The row's points where M is positive semi-definite (the others stay
+      // inadmissible, as blank_points() made them), solved several at once.
+      st.solve.clear();
+      for (; at < row_end; ++at)
+        if (inside || psd_at(st, first + at)) st.solve.push_back(at);
+      st.batch.solve_each(
+          st.solve.size(), [&](std::size_t q) { set_at(st, first + st.solve[q]); },
+          [&](std::size_t q, const Solution<S>& sol) { solved(points[st.solve[q]], st.batch.problem(), sol); });
     }
     return 0;
   });

@@ -751,14 +751,15 @@ std::vector<SweepPoint> entry_sweep(const Scene& first, std::size_t entry, const
   // place, as a map's grid points.
   std::vector<SweepPoint> points(values.size());
   (void)parallel_map((values.size() + detail::map_run - 1) / detail::map_run, threads, make_state, [&](State& st, std::size_t r) {
-    for (std::size_t k = r * detail::map_run; k < std::min(values.size(), (r + 1) * detail::map_run); ++k) {
-      st.line.set(0, converted[k], zero[k]);
-      const Solution<S>& sol = st.line.solve();
-      SweepPoint& p = points[k];
-      p.closed = sol.closed;
-      p.status = sol.status;
-      for (const auto& w : sol.velocities_after) p.velocities_after.push_back(T::to_double(w) * st.unit);
-    }
+    const std::size_t from = r * detail::map_run, to = std::min(values.size(), from + detail::map_run);
+    st.line.solve_each(
+        to - from, [&](std::size_t q) { st.line.set(0, converted[from + q], zero[from + q]); },
+        [&](std::size_t q, const Solution<S>& sol) {
+          SweepPoint& p = points[from + q];
+          p.closed = sol.closed;
+          p.status = sol.status;
+          for (const auto& w : sol.velocities_after) p.velocities_after.push_back(T::to_double(w) * st.unit);
+        });
     return 0;
   });
   // The values, copied on the calling thread (the workers never touch the caller's CLN objects).

@@ -1,7 +1,10 @@
 // numeric::Batch (batch.hpp): each scene of a batch is numeric::solve() of
 // the problem Problem<S>::from() makes of it, bit for bit, in double, long
 // double and exact, whatever the scenes before it in the batch did (another
-// case, pivots, a failed solve, a scaled solve, a datum out of range).
+// case, pivots, a failed solve, a scaled solve, a datum out of range), one
+// at a time or through solve_each(); and the fixed-size path in lanes
+// (collision/lanes.hpp), each lane the fixed-size solve of its problem, in
+// its AVX2 and its baseline copy.
 #include <gtest/gtest.h>
 
 #include <cln/rational.h>
@@ -9,6 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <iostream>
 #include <limits>
 #include <optional>
 #include <random>
@@ -18,6 +22,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "collision/lanes.hpp"
+#include "collision/small_solver.hpp"
 #include "map_internal.hpp"
 #include "psd_filter.hpp"
 #include "superball/numeric/batch.hpp"
@@ -73,14 +79,16 @@ void expect_identical(const Solution<S>& a, const Solution<S>& b) {
 }
 
 /// Solves \p values (one row per scene, one value per entry of \p varying)
-/// with one Batch<S> on \p base, and each scene from scratch; returns the
+/// with one Batch<S> on \p base (solve() then solve_each()), and each scene
+/// from scratch; returns the
 /// statuses, the cases and the pivot counts met, to show the branches taken.
 template <class S>
 std::vector<std::string> expect_batch_is_solve(const ExactScene& base, const std::vector<std::size_t>& varying,
                                                const std::vector<std::vector<cl_RA>>& values) {
   using T = ScalarTraits<S>;
-  numeric::Batch<S> batch(base, varying);
+  numeric::Batch<S> batch(base, varying), fresh(base, varying);
   std::vector<std::string> met;
+  std::vector<Solution<S>> solutions;
   for (std::size_t row = 0; row < values.size(); ++row) {
     ExactScene scene = base;
     for (std::size_t k = 0; k < varying.size(); ++k) {
@@ -93,6 +101,24 @@ std::vector<std::string> expect_batch_is_solve(const ExactScene& base, const std
     SCOPED_TRACE("scene " + std::to_string(row));
     expect_identical(batch.solve(), alone);
     met.push_back(std::string(numeric::to_string(alone.status)) + " " + alone.closed.to_string() + " " + std::to_string(alone.pivots));
+    solutions.push_back(alone);
+  }
+  // The same scenes through solve_each() (in double several at once, in
+  // lanes whose outcomes differ: a pivot, a failure, a scaled solve), on a
+  // fresh batch and on the one used above; every scene taken once, in order.
+  for (numeric::Batch<S>* each : {&fresh, &batch}) {
+    std::size_t next = 0;
+    each->solve_each(
+        values.size(),
+        [&](std::size_t row) {
+          for (std::size_t k = 0; k < varying.size(); ++k) each->set(k, T::from(values[row][k], 0), cln::zerop(values[row][k]));
+        },
+        [&](std::size_t row, const Solution<S>& s) {
+          EXPECT_EQ(row, next++);
+          SCOPED_TRACE("solve_each(), scene " + std::to_string(row));
+          expect_identical(s, solutions[row]);
+        });
+    EXPECT_EQ(next, values.size());
   }
   return met;
 }
@@ -280,6 +306,99 @@ TEST(PsdFilter, AMapSkipsItOnlyBetweenPointsWhereMIsPsd) {
       EXPECT_GT(solved, 50);
     }
   }
+}
+
+/// \p p with each entry of M varied as a lane of a map or sweep may vary it:
+/// kept, scaled by 1/2 to 10, and (when \p zeros) some set to zero.
+Problem<double> varied(const Problem<double>& p, Rng& rng, bool zeros) {
+  Problem<double> q = p;
+  for (auto& e : q.entries) {
+    switch (rng.below(4)) {
+      case 0: break;
+      case 1: e.value *= 0.5 + rng.below(1000) / 1000.0; break;
+      case 2: e.value *= rng.between(1, 10); break;
+      default: e.value = zeros && rng.chance(50) ? 0.0 : e.value; break;
+    }
+  }
+  return q;
+}
+
+TEST(Lanes, EachLaneSolvedIsTheFixedSizeSolveOfItsProblemBitForBit) {
+  // Random scenes of 2 to 8 bodies, 4 variations of M's values a group of
+  // lanes: a lane is solved exactly when the fixed-size path one problem at
+  // a time (small_solver_for()) solves its problem with no pivot and status
+  // Success, its zeros of M being those of the first lane asked, and then
+  // its Solution is that solve's in every field, in both compiled copies.
+  using numeric::detail::lane_width;
+  std::cout << "[          ] lanes on this processor: " << (numeric::detail::lanes_use_avx2() ? "AVX2" : "baseline") << "\n";
+  const numeric::Settings<double> settings = numeric::Settings<double>::defaults();
+  for (const auto code : {numeric::detail::LaneCode::Best, numeric::detail::LaneCode::Baseline}) {
+    int solved_lanes = 0, pivoting = 0, other_zeros = 0, failing = 0, idle = 0;
+    for (std::uint64_t seed = 1; seed <= 1500; ++seed) {
+      const RandomScene r = random_scene(seed, {2, numeric::detail::small_max_bodies});
+      SCOPED_TRACE(r.describe());
+      Rng rng(seed);
+      auto p = Problem<double>::from(ExactScene::from(r.scene()));
+      ASSERT_TRUE(numeric::scaling_of(p).identity()) << "the generator's data lie in the safe window";
+      // The generator's bodies all close their contacts, so nearly every
+      // scene pivots: half the scenes get velocities that part the bodies
+      // (u decreasing from top to bottom) and M smaller by up to 2^12
+      // (which then reverses fewer of them), many of whose lanes need no pivot.
+      const int free_bodies = p.fixed_bottom ? p.n - 1 : p.n;
+      if (seed % 2 == 1) {
+        const int exponent = rng.between(-4, 4);
+        for (int i = 0; i < free_bodies; ++i) p.u[static_cast<std::size_t>(i)] = std::ldexp(static_cast<double>(free_bodies - i), exponent);
+        const int smaller = rng.between(0, 12);
+        for (auto& e : p.entries) e.value = std::ldexp(e.value, -smaller);
+      }
+      const int band = p.check("test");
+      const auto lanes = numeric::detail::lanes_solver_for(p.n, code);
+      const auto small = numeric::detail::small_solver_for<double>(p.n);
+      ASSERT_NE(lanes, nullptr);
+      std::vector<Problem<double>> problems;
+      std::vector<double> values(p.entries.size() * lane_width);
+      for (int q = 0; q < lane_width; ++q) {
+        problems.push_back(q == 0 ? p : varied(p, rng, seed % 5 == 0));
+        for (std::size_t e = 0; e < p.entries.size(); ++e) values[e * lane_width + static_cast<std::size_t>(q)] = problems.back().entries[e].value;
+      }
+      const unsigned todo = seed % 3 == 0 ? static_cast<unsigned>(rng.between(1, 15)) : 15u;  // some lanes idle
+      Solution<double> out[lane_width], alone;
+      const unsigned solved = lanes(p, band, values.data(), todo, settings, out);
+      const int first = __builtin_ctz(todo);
+      for (int q = 0; q < lane_width; ++q) {
+        SCOPED_TRACE("lane " + std::to_string(q));
+        const Problem<double>& pq = problems[static_cast<std::size_t>(q)];
+        if (!((todo >> q) & 1u)) {
+          EXPECT_FALSE((solved >> q) & 1u);
+          ++idle;
+          continue;
+        }
+        bool same_zeros = true;
+        for (std::size_t e = 0; e < p.entries.size(); ++e)
+          same_zeros = same_zeros && (pq.entries[e].value == 0.0) == (problems[static_cast<std::size_t>(first)].entries[e].value == 0.0);
+        const bool open = small(pq, band, settings, alone) && alone.status == numeric::Status::Success && alone.pivots == 0;
+        EXPECT_EQ(((solved >> q) & 1u) != 0, open && same_zeros);
+        if ((solved >> q) & 1u) {
+          expect_identical(out[q], alone);
+          ++solved_lanes;
+        } else {
+          pivoting += alone.pivots > 0;
+          other_zeros += !same_zeros;
+          failing += alone.status != numeric::Status::Success;
+        }
+      }
+    }
+    // Every outcome met: lanes solved, left for a pivot, for zeros other than
+    // the first lane's, for a failure of the residual check, idle.
+    std::cout << "[          ] lanes solved " << solved_lanes << ", left for a pivot " << pivoting << ", for other zeros " << other_zeros
+              << ", failing " << failing << ", idle " << idle << "\n";
+    EXPECT_GT(solved_lanes, 1000);
+    EXPECT_GT(pivoting, 1500);
+    EXPECT_GT(other_zeros, 20);
+    EXPECT_GT(idle, 100);
+  }
+  EXPECT_EQ(numeric::detail::lanes_solver_for(1), nullptr);
+  EXPECT_EQ(numeric::detail::lanes_solver_for(numeric::detail::small_max_bodies + 1, numeric::detail::LaneCode::Baseline), nullptr);
 }
 
 }  // namespace batch_test

@@ -4,7 +4,9 @@
 // solves and the pivoting step are the general path's own templates
 // (dense_steps.hpp).  Any change to the
 // arithmetic of those files must be made here too; the tests compare the two
-// paths bit for bit (tests/numeric/small_solver_test.cpp).
+// paths bit for bit (tests/numeric/small_solver_test.cpp).  lanes.cpp does
+// this path's case with every contact open on several problems at once: a
+// change here must be made there too (tests/numeric/batch_test.cpp).
 #include "collision/small_solver.hpp"
 
 #include "collision/complete.hpp"

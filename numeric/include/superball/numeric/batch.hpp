@@ -9,6 +9,7 @@
 /// bit (tests/numeric/batch_test.cpp).
 
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 #include "superball/numeric/chain.hpp"
@@ -33,7 +34,8 @@ namespace superball::numeric {
 /// the banded one) on a workspace kept from scene to scene, and the scaled
 /// solve of solve() where the data leave the safe window of S.  In double
 /// and long double, solve() allocates nothing once the first scene is
-/// solved (unless a scene needs scaling).  One Batch per thread: it holds
+/// solved (unless a scene needs scaling).  solve_each() solves many scenes,
+/// in double several at once (lanes of SIMD registers), each bit for bit.  One Batch per thread: it holds
 /// the problem and the workspace (for CLN types, CLN objects).
 template <class S>
 class Batch {
@@ -59,7 +61,33 @@ class Batch {
   /// scene (valid until the next solve()).
   const Solution<S>& solve();
 
+  /// Scenes 0 .. \p count − 1, each numeric::solve() of its problem bit for
+  /// bit, as solve() after its set() calls:
+  ///
+  ///     batch.solve_each(count, [&](std::size_t k) { batch.set(0, x[k], x_is_zero[k]); },
+  ///                      [&](std::size_t k, const Solution<double>& s) { ... });
+  ///
+  /// \p set_scene(k) sets scene k's varying entries with set(); \p take(k,
+  /// solution) receives its solution (valid during the call; problem() is
+  /// then some scene of the same group of lanes, not necessarily k's).  In
+  /// double, 4 scenes are set one after another and solved together where
+  /// every contact stays open (the fixed-size path in SIMD lanes, AVX2
+  /// where the processor has it); the others, and every scene in other
+  /// types, are solved by solve().  Scenes are taken in increasing k.
+  template <class SetScene, class Take>
+  void solve_each(std::size_t count, SetScene&& set_scene, Take&& take) {
+    using Set = std::remove_reference_t<SetScene>;
+    using Get = std::remove_reference_t<Take>;
+    solve_each_calling(
+        count, [](void* f, std::size_t k) { (*static_cast<Set*>(f))(k); }, const_cast<void*>(static_cast<const void*>(&set_scene)),
+        [](void* f, std::size_t k, const Solution<S>& s) { (*static_cast<Get*>(f))(k, s); }, const_cast<void*>(static_cast<const void*>(&take)));
+  }
+
  private:
+  /// solve_each() on its callbacks as functions and their objects.
+  void solve_each_calling(std::size_t count, void (*set_scene)(void*, std::size_t), void* set_object,
+                  void (*take)(void*, std::size_t, const Solution<S>&), void* take_object);
+
   std::vector<std::size_t> varying_;
   std::vector<char> held_;    ///< per varying entry: its value is held as Problem::from() requires
   bool others_in_range_ = true;  ///< Problem::from()'s verdict on every datum but the varying entries
@@ -73,6 +101,11 @@ class Batch {
   CollisionSolver<S> dense_;
   ChainSolver<S> banded_;
   Solution<S> out_;
+  /// The fixed-size path in lanes for problem_ (double, the dense solver's fixed-size path only; nullptr otherwise).
+  unsigned (*lanes_)(const Problem<double>&, int, const double*, unsigned, const Settings<double>&, Solution<double>*) = nullptr;
+  std::vector<double> lane_values_;  ///< entry e of M in lane q at [e·4 + q]
+  std::vector<char> lane_held_;      ///< held_ of lane q at [q·size() + k]
+  std::vector<Solution<S>> lane_out_;
 };
 
 extern template class SUPERBALL_NUMERIC_EXPORT Batch<double>;
