@@ -184,8 +184,14 @@ void in_blocks(std::size_t count, int threads, const Block& block, const TextSin
     mine.resize(std::max(mine.size(), size));
     numeric::parallel_map(size, threads, [] { return State{}; }, [&](State& state, std::size_t t) {
       const std::size_t from = (first + t) * output_block;
-      mine[t].clear();
-      block(state, mine[t], from, std::min(count, from + output_block));
+      // Made in a string of this thread's stack, its storage the slot's: the
+      // slots' own strings lie side by side, and appending to them from two
+      // threads would share their cache lines.
+      std::string out;
+      out.swap(mine[t]);
+      out.clear();
+      block(state, out, from, std::min(count, from + output_block));
+      out.swap(mine[t]);
       return true;
     });
     auto write = [&sink, &mine, size] {
