@@ -53,28 +53,36 @@ void BM_SolveReused(benchmark::State& state) {
 }
 BENCHMARK(BM_SolveReused)->Name("solve/paper/double/0");
 
-/// A Batch (batch.hpp) over K34 and alpha_2: each item one point of the
-/// 128 × 128 grid of BM_MapPoints set and solved, without the map around it
-/// (no PSD check, no MapPoint).
-void BM_BatchPoints(benchmark::State& state) {
-  const Scene& s = paper_scene();
-  const auto exact = numeric::ExactScene::from(s);
-  auto entry = [&](int i, int j, int k, int l) {
+/// The paper scene's Batch (batch.hpp) over K34 and alpha_2, and the 128
+/// values of each axis of BM_MapPoints' grid.
+struct PaperGrid {
+  numeric::ExactScene exact = numeric::ExactScene::from(paper_scene());
+  numeric::Batch<double> batch{exact, {entry(2, 3, 2, 3), entry(0, 1, 0, 3)}};  // K34, alpha_2 (pairs 1-2 and 1-4)
+  std::vector<double> xs = axis(0, 20), ys = axis(-100, 0);
+
+  std::size_t entry(int i, int j, int k, int l) const {
     for (std::size_t e = 0; e < exact.entries.size(); ++e)
       if (exact.entries[e].i == i && exact.entries[e].j == j && exact.entries[e].k == k && exact.entries[e].l == l) return e;
     throw std::logic_error("no such entry");
-  };
-  const std::size_t kx = entry(2, 3, 2, 3), ky = entry(0, 1, 0, 3);  // K34, alpha_2 (pairs 1-2 and 1-4)
-  numeric::Batch<double> batch(exact, {kx, ky});
-  std::vector<double> xs, ys;
-  for (const auto& v : numeric::linspace(0, 20, 128)) xs.push_back(cln::double_approx(v));
-  for (const auto& v : numeric::linspace(-100, 0, 128)) ys.push_back(cln::double_approx(v));
+  }
+  static std::vector<double> axis(int from, int to) {
+    std::vector<double> values;
+    for (const auto& v : numeric::linspace(from, to, 128)) values.push_back(cln::double_approx(v));
+    return values;
+  }
+};
+
+/// Each item one point of the 128 × 128 grid of BM_MapPoints set and
+/// solved by the Batch, without the map around it (no PSD check, no
+/// MapPoint).
+void BM_BatchPoints(benchmark::State& state) {
+  PaperGrid g;
   std::size_t k = 0;
   for (auto _ : state) {
     const std::size_t i = k % 128, j = (k / 128) % 128;
-    batch.set(0, xs[i], i == 0);
-    batch.set(1, ys[j], j == 127);
-    benchmark::DoNotOptimize(batch.solve().velocities_after.data());
+    g.batch.set(0, g.xs[i], i == 0);
+    g.batch.set(1, g.ys[j], j == 127);
+    benchmark::DoNotOptimize(g.batch.solve().velocities_after.data());
     ++k;
   }
   state.SetItemsProcessed(state.iterations());
@@ -85,21 +93,11 @@ BENCHMARK(BM_BatchPoints)->Name("batch/paper/double/128x128");
 /// time in SIMD lanes where no contact closes (the map's and the sweep's
 /// way), the others one at a time.  Each item one point.
 void BM_BatchLanes(benchmark::State& state) {
-  const Scene& s = paper_scene();
-  const auto exact = numeric::ExactScene::from(s);
-  auto entry = [&](int i, int j, int k, int l) {
-    for (std::size_t e = 0; e < exact.entries.size(); ++e)
-      if (exact.entries[e].i == i && exact.entries[e].j == j && exact.entries[e].k == k && exact.entries[e].l == l) return e;
-    throw std::logic_error("no such entry");
-  };
-  numeric::Batch<double> batch(exact, {entry(2, 3, 2, 3), entry(0, 1, 0, 3)});
-  std::vector<double> xs, ys;
-  for (const auto& v : numeric::linspace(0, 20, 128)) xs.push_back(cln::double_approx(v));
-  for (const auto& v : numeric::linspace(-100, 0, 128)) ys.push_back(cln::double_approx(v));
+  PaperGrid g;
   double sum = 0;
   for (auto _ : state) {
-    batch.solve_each(
-        128 * 128, [&](std::size_t k) { batch.set(0, xs[k % 128], k % 128 == 0), batch.set(1, ys[k / 128], k / 128 == 127); },
+    g.batch.solve_each(
+        128 * 128, [&](std::size_t k) { g.batch.set(0, g.xs[k % 128], k % 128 == 0), g.batch.set(1, g.ys[k / 128], k / 128 == 127); },
         [&](std::size_t, const numeric::Solution<double>& sol) { sum += sol.velocities_after[0]; });
   }
   benchmark::DoNotOptimize(sum);
