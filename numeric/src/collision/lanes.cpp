@@ -6,7 +6,7 @@
 // (no fused multiply-add: the AVX2 copy enables no FMA, and this file is
 // compiled with -ffp-contract=off), and every branch of the scalar code on
 // a value is a per-lane select or ends the lane, so each lane solved is
-// small_solver.cpp's solve bit for bit (tests/numeric/lanes_test.cpp).
+// small_solver.cpp's solve bit for bit (tests/numeric/batch_test.cpp, Lanes.*).
 // Any change to the arithmetic of small_solver.cpp must be made here too.
 //
 // The kernel is written once and compiled twice: for the build's baseline
