@@ -58,7 +58,6 @@ Batch<S>::Batch(const ExactScene& base, std::vector<std::size_t> varying, int di
     if (small_ && !chain_) lanes_ = detail::lanes_solver_for(problem_.n);
     constexpr std::size_t lanes = detail::lane_width;
     for (const Entry<S>& e : problem_.entries) lane_values_.insert(lane_values_.end(), lanes, e.value);
-    lane_held_.assign(lanes * varying_.size(), 1);
     lane_out_.resize(lanes);
   }
 }
@@ -88,14 +87,8 @@ void Batch<S>::solve_each_calling(std::size_t count, void (*set_scene)(void*, st
       unsigned todo = 0;
       for (std::size_t q = 0; q < group; ++q) {
         set_scene(set_object, first + q);
-        bool inside = others_inside_;
-        for (std::size_t k = 0; k < varying_.size(); ++k) {
-          const S& value = problem_.entries[varying_[k]].value;
-          lane_values_[varying_[k] * lanes + q] = value;
-          lane_held_[q * varying_.size() + k] = held_[k];
-          inside = inside && inside_window(value);
-        }
-        if (lanes_ && inside && problem_.in_range) todo |= 1u << q;
+        for (const std::size_t e : varying_) lane_values_[e * lanes + q] = problem_.entries[e].value;
+        if (inside() && problem_.in_range) todo |= 1u << q;
       }
       const unsigned solved = todo ? lanes_(problem_, bandwidth_, lane_values_.data(), todo, dense_.settings(), lane_out_.data()) : 0u;
       for (std::size_t q = 0; q < group; ++q) {
@@ -104,12 +97,7 @@ void Batch<S>::solve_each_calling(std::size_t count, void (*set_scene)(void*, st
           take(take_object, first + q, lane_out_[q]);
           continue;
         }
-        // The lane's scene set again, and solved alone.
-        for (std::size_t k = 0; k < varying_.size(); ++k) {
-          problem_.entries[varying_[k]].value = lane_values_[varying_[k] * lanes + q];
-          held_[k] = lane_held_[q * varying_.size() + k];
-        }
-        problem_.in_range = others_in_range_ && std::all_of(held_.begin(), held_.end(), [](char h) { return h != 0; });
+        set_scene(set_object, first + q);  // the lane's scene set again, and solved alone
         solve_alone(first + q);
       }
     }
@@ -130,17 +118,23 @@ void Batch<S>::set(std::size_t k, const S& value, bool is_zero) {
 }
 
 template <class S>
+bool Batch<S>::inside() const {
+  if constexpr (std::is_floating_point<S>::value) {
+    bool in = others_inside_;
+    for (const std::size_t e : varying_) in = in && inside_window(problem_.entries[e].value);
+    return in;
+  } else {
+    return false;
+  }
+}
+
+template <class S>
 const Solution<S>& Batch<S>::solve() {
   // solve()'s choice (chain.cpp): as given inside the safe window, else its
   // scaled solve, which this batch leaves to it.
   // Every datum inside the window: scaling_of() is the identity, and fits;
   // the check on the varying entries alone, the others' made once.
-  bool inside = false;
-  if constexpr (std::is_floating_point<S>::value) {
-    inside = others_inside_;
-    for (const std::size_t e : varying_) inside = inside && inside_window(problem_.entries[e].value);
-  }
-  if (!inside) {
+  if (!inside()) {
     const Scaling scaling = scaling_of(problem_);
     if (!(scaling.identity() && scaling.fits)) return out_ = numeric::solve(problem_);
   }

@@ -67,7 +67,8 @@ class Batch {
   ///     batch.solve_each(count, [&](std::size_t k) { batch.set(0, x[k], x_is_zero[k]); },
   ///                      [&](std::size_t k, const Solution<double>& s) { ... });
   ///
-  /// \p set_scene(k) sets scene k's varying entries with set(); \p take(k,
+  /// \p set_scene(k) sets scene k's varying entries with set() (it may be
+  /// called again for a scene the lanes hand back); \p take(k,
   /// solution) receives its solution (valid during the call; problem() is
   /// then some scene of the same group of lanes, not necessarily k's).  In
   /// double, 4 scenes are set one after another and solved together where
@@ -84,6 +85,10 @@ class Batch {
   }
 
  private:
+  /// Every datum of the scene set is 0 or inside the safe window of S
+  /// (scaling_of() leaves it as it is): the others' verdict made once, the
+  /// varying entries checked (floating types; false for the others).
+  bool inside() const;
   /// solve_each() on its callbacks as functions and their objects.
   void solve_each_calling(std::size_t count, void (*set_scene)(void*, std::size_t), void* set_object,
                   void (*take)(void*, std::size_t, const Solution<S>&), void* take_object);
@@ -104,7 +109,6 @@ class Batch {
   /// The fixed-size path in lanes for problem_ (double, the dense solver's fixed-size path only; nullptr otherwise).
   unsigned (*lanes_)(const Problem<double>&, int, const double*, unsigned, const Settings<double>&, Solution<double>*) = nullptr;
   std::vector<double> lane_values_;  ///< entry e of M in lane q at [e·4 + q]
-  std::vector<char> lane_held_;      ///< held_ of lane q at [q·size() + k]
   std::vector<Solution<S>> lane_out_;
 };
 
