@@ -46,7 +46,18 @@ std::string csv_field(const std::string& text) {
   return q + "\"";
 }
 
-std::string number(double x, int digits = 17) { return std::isnan(x) ? std::string("nan") : numeric::to_string(x, digits); }
+/// \p x to \p digits significant digits, "nan" for a NaN, appended to \p out.
+void append_number(std::string& out, double x, int digits = 17) {
+  if (std::isnan(x))
+    out += "nan";
+  else
+    numeric::append_to(out, x, digits);
+}
+std::string number(double x, int digits = 17) {
+  std::string out;
+  append_number(out, x, digits);
+  return out;
+}
 
 /// A case present among the solved points: how many are in it, and how many of them are superball.
 struct CaseCount {
@@ -260,10 +271,7 @@ void write_csv_rows(const numeric::Axis& x, const numeric::Axis& y, std::size_t 
       out += ",1,";
       out += cached(cases, p.region.closed, [&] { return csv_field(case_name(p.region)) + ',' + csv_field(p.region.closed.to_string()); });
       out += ',';
-      if (std::isnan(p.ratio))
-        out += "nan";
-      else
-        numeric::append_to(out, p.ratio);
+      append_number(out, p.ratio);
       out += p.region.superball ? ",1," : ",0,";
       out += numeric::to_string(p.status);
       out += '\n';
