@@ -4,7 +4,6 @@
 #include <set>
 #include <string_view>
 #include <tuple>
-#include <sstream>
 
 #include "commands.hpp"
 #include "distribute.hpp"
@@ -13,6 +12,7 @@
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/range.hpp"
 #include "superball/numeric/sweep.hpp"
+#include "superball/present/sweep.hpp"
 
 namespace superball::cli {
 namespace {
@@ -24,25 +24,6 @@ std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_d
 /// Values solved between two writes: a sweep's memory does not grow with STEPS.
 constexpr int kChunk = 4096;
 
-/// A CSV field, quoted (RFC 4180) when it holds a comma or a quote: the case
-/// of a scene of other than 4 bodies is its closed contacts, "{1-2,2-3}".
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"") == std::string::npos) return text;
-  std::string q = "\"";
-  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-/// The header of the table (or CSV) of the velocities after the collision.
-std::string rows_header(const Scene& scene, const Range& r, bool csv) {
-  const std::string sep = csv ? "," : "  ";
-  std::ostringstream os;
-  os << r.parameter.key();
-  for (int i = 1; i <= scene.size(); ++i) os << sep << "U" << i;
-  os << sep << "case" << (csv ? ",status\n" : "\n");
-  return os.str();
-}
-
 /// The number of tasks of a sweep: blocks of \p kChunk values (rows), or of
 /// kChunk + 1 values overlapping by one (switch points).
 std::size_t sweep_tasks(const Range& r, bool switches) {
@@ -51,24 +32,16 @@ std::size_t sweep_tasks(const Range& r, bool switches) {
 }
 
 /// Task \p k of the rows: the number of rows whose status is not success,
-/// a newline, then the rows of values k * kChunk onwards, in the sweep's order.
+/// a newline, then the rows of values k * kChunk onwards
+/// (present::write_sweep_rows()), solved and formatted on \p threads threads.
 std::string rows_block(std::size_t k, const Scene& scene, const Range& r, const numeric::Precision& precision, bool csv, int threads) {
-  const Vocabulary& v = Vocabulary::paper();
-  const std::string sep = csv ? "," : "  ";
   const int first = static_cast<int>(k) * kChunk;
-  std::ostringstream os;
-  int failures = 0;
   const auto values = numeric::linspace(r.from, r.to, r.steps, first, std::min(kChunk, r.steps - first));
-  for (const auto& p : numeric::sweep(scene, r.parameter, values, precision, threads)) {
-    os << decimal(p.value, 10);
-    for (double w : p.velocities_after) os << sep << numeric::to_string(w, csv ? 17 : 8);
-    os << sep << (csv ? csv_field(v.case_name(p.closed)) : v.case_name(p.closed));
-    failures += p.status != numeric::Status::Success;
-    // CSV: every row has the header's fields; the table names only a status that is not success.
-    if (csv || p.status != numeric::Status::Success) os << sep << numeric::to_string(p.status);
-    os << '\n';
-  }
-  return std::to_string(failures) + "\n" + os.str();
+  const auto points = numeric::sweep(scene, r.parameter, values, precision, threads);
+  const auto failures = std::count_if(points.begin(), points.end(), [](const numeric::SweepPoint& p) { return p.status != numeric::Status::Success; });
+  std::string text = std::to_string(failures) + "\n";
+  present::write_sweep_rows(r, static_cast<std::size_t>(first), points, csv, threads, [&](std::string_view rows) { text += rows; });
+  return text;
 }
 
 /// Task \p k of the switch points, in increasing value of the parameter
@@ -76,21 +49,11 @@ std::string rows_block(std::size_t k, const Scene& scene, const Range& r, const 
 /// k * kChunk … (k + 1) * kChunk, each block starting at the last value of
 /// the one before, so that a change between two blocks is found.
 std::string switch_block(std::size_t k, const Scene& scene, const Range& r, bool csv, int threads) {
-  const Vocabulary& v = Vocabulary::paper();
   const cln::cl_RA& low = r.from < r.to ? r.from : r.to;
   const cln::cl_RA& high = r.from < r.to ? r.to : r.from;
   const int first = static_cast<int>(k) * kChunk;
-  std::ostringstream os;
   const auto values = numeric::linspace(low, high, r.steps, first, std::min(kChunk + 1, r.steps - first));
-  for (const auto& s : numeric::switch_points(scene, r.parameter, values, 64, threads)) {
-    const std::string at = decimal((s.low + s.high) / 2), width = decimal(s.high - s.low, 3);
-    if (csv)
-      os << at << ',' << width << ',' << csv_field(v.case_name(s.below)) << ',' << csv_field(v.case_name(s.above)) << '\n';
-    else
-      os << r.parameter.key() << " = " << at << "  (bracket width " << width << "): case " << v.case_name(s.below) << " "
-         << s.below.to_string() << " -> case " << v.case_name(s.above) << " " << s.above.to_string() << '\n';
-  }
-  return os.str();
+  return present::switch_rows(r.parameter.key(), numeric::switch_points(scene, r.parameter, values, 64, threads), csv);
 }
 
 /// Whether \p name is the name of a case of a scene of \p n bodies
@@ -231,22 +194,15 @@ int check_block(std::size_t k, std::string& text, const Scene& scene, const Rang
 /// (numeric::drop_label()), printed a block of kChunk values at a time.
 /// Exit 1 when a run ended on max_events or on an unsolved collision.
 Exit drop_rows(const Scene& scene, const Range& r, const numeric::Precision& precision, bool csv, int threads) {
-  const std::string sep = csv ? "," : "  ";
   (void)numeric::drop_sweep(scene, r.parameter, {r.from, r.to}, precision, 1);  // every check of the range, before any output
   Output out("");
-  out.write(r.parameter.key() + sep + "top_apex_ratio" + sep + "events" + sep + "end" + sep + "label\n");
+  out.write(present::drop_sweep_header(r.parameter.key(), csv));
   bool failed = false;
   for (int first = 0; first < r.steps; first += kChunk) {
     const auto values = numeric::linspace(r.from, r.to, r.steps, first, std::min(kChunk, r.steps - first));
-    std::ostringstream os;
     const auto points = numeric::drop_sweep(scene, r.parameter, values, precision, threads);
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const numeric::DropPoint& p = points[k];
-      os << decimal(values[k], 10) << sep << numeric::to_string(p.ratio, csv ? 17 : 9) << sep << p.events << sep << p.end << sep
-         << (csv ? csv_field(p.label) : p.label) << '\n';
-      failed = failed || !numeric::drop_finished(p.end);
-    }
-    out.write(os.str());
+    for (const numeric::DropPoint& p : points) failed = failed || !numeric::drop_finished(p.end);
+    out.write(present::drop_rows(values, points, csv));
   }
   out.commit();
   return failed ? numerical_failure : ok;
@@ -317,18 +273,34 @@ void add_sweep(CLI::App& app, Action& action) {
       if (run.writes_output()) out.emplace("");
       int failures = 0;
       bool any = false;
-      if (out && !o->switches) out->write(rows_header(scene, r, o->csv));
-      if (out && o->switches && o->csv) out->write(r.parameter.key() + ",bracket_width,case_below,case_above\n");
+      if (out && !o->switches) out->write(present::sweep_header(r.parameter.key(), scene.size(), o->csv));
+      if (out && o->switches && o->csv) out->write(present::switch_header(r.parameter.key()));
+      // The blocks are solved and formatted on the threads, one a thread, and written in order as they
+      // come; a run of fewer blocks than threads spreads each block's values over them instead.  Each
+      // task reads the range's ends from their texts: CLN's numbers are not shared between threads.
+      const int threads = numeric::thread_count(o->threads);
+      const bool blocks_on_threads = run.local() && run.todo().size() >= static_cast<std::size_t>(threads);
+      const int inner = blocks_on_threads ? 1 : threads;
+      const std::string from = numeric::to_string(r.from), to = numeric::to_string(r.to);
+      const Distribution::Local on_threads = [&](const std::vector<std::size_t>& todo, const Distribution::Task& task, const Distribution::Deliver& deliver) {
+        numeric::in_order(todo.size(), threads, [&](std::size_t j) { return task(todo[j]); }, deliver);
+      };
       run.run(
           [&](std::size_t k) {
-            return o->switches ? switch_block(k, scene, r, o->csv, o->threads) : rows_block(k, scene, r, precision, o->csv, o->threads);
+            const Range mine{r.parameter, numeric::parse_rational(from), numeric::parse_rational(to), r.steps};
+            return o->switches ? switch_block(k, scene, mine, o->csv, inner) : rows_block(k, scene, mine, precision, o->csv, inner);
           },
           [&](std::size_t k, std::string&& text) {
-            failures += check_block(k, text, scene, r, o->csv, o->switches, run);
+            // A result read from a file (a checkpoint, a part) is checked before it is believed; one computed here is not read again.
+            if (run.read_back(k))
+              failures += check_block(k, text, scene, r, o->csv, o->switches, run);
+            else if (!o->switches)
+              failures += std::stoi(text.substr(0, text.find('\n')));
             if (!o->switches) text.erase(0, text.find('\n') + 1);
             any = any || !text.empty();
             out->write(text);
-          });
+          },
+          blocks_on_threads ? on_threads : Distribution::Local());
       if (!out) return ok;  // a part file, or a rank other than 0
       if (o->switches && !any && !o->csv) out->write("no change of evolution case for " + r.parameter.key() + " in the range\n");
       out->commit();

@@ -479,6 +479,8 @@ std::string Distribution::origin(std::size_t k) const {
   return "task " + std::to_string(k);
 }
 
+bool Distribution::read_back(std::size_t k) const { return (merged_run && merged_run->files.count(k)) || impl_->kept.count(k); }
+
 Distribution::Task Distribution::keeping(const Task& task) const {
   if (impl_->checkpoint.empty()) return task;
   // The task saves its result as soon as it has it (in a worker process, too).

@@ -93,6 +93,26 @@ TEST(ContactSet, SetsOfDifferentSizesDiffer) {
   EXPECT_EQ(ContactSet(2).contacts(), 1);
 }
 
+TEST(ContactSet, ManyBodiesEachContactIsItsOwnBit) {
+  // Past 65 bodies the set holds its contacts in more words than one: every
+  // contact, on both sides of each word's edge, is set and cleared alone.
+  for (int n : {64, 65, 66, 129, 130, 200}) {
+    ContactSet all(n);
+    for (int c = 0; c < n - 1; ++c) {
+      ContactSet one(n);
+      one.set_closed(c, true);
+      EXPECT_EQ(one.closed_names(), (std::vector<std::string>{Pair{c + 1, c + 2}.name()})) << "n=" << n << " c=" << c;
+      EXPECT_EQ(ContactSet::parse(one.to_string().substr(1, one.to_string().size() - 2), n), one);
+      EXPECT_NE(one, ContactSet(n));
+      one.set_closed(c, false);
+      EXPECT_EQ(one, ContactSet(n)) << "n=" << n << " c=" << c;
+      all.set_closed(c, true);
+    }
+    EXPECT_EQ(static_cast<int>(all.closed_names().size()), n - 1);
+    EXPECT_NE(all, ContactSet(n + 1));
+  }
+}
+
 TEST(ContactSet, MaskRoundTrip) {
   for (int n = 2; n <= 7; ++n)
     for (std::uint64_t mask = 0; mask < (std::uint64_t{1} << (n - 1)); ++mask) {

@@ -338,6 +338,31 @@ TEST(DistributeData, AForgedCheckpointIsRefusedAndAnotherRunsFolderNamedForWhatI
   expect_refused(run(with(kSwitches, {"--checkpoint", ck})), {"its run file names this run (" + run_id + ") but does not hold its arguments and task count"});
 }
 
+TEST(DistributeData, ASweepsRowsForgedInItsCheckpointAreRefusedWhereTheyAreReadBack) {
+  // The rows a run computes are written as they are; those read from a task file are checked first.
+  const std::string dir = folder("forged-rows"), ck = dir + "/ck";
+  const std::vector<std::string> rows = {"sweep", kPaper, "--vary", "K.3-4=0:20:8193", "--csv"};
+  const RunResult whole = run(with(rows, {"--checkpoint", ck}));
+  ASSERT_EQ(whole.exit_code, 0) << describe(whole);
+  const std::string run_id = run_of(slurp(ck + "/run"));
+  const std::string file = ck + "/task-00000001";
+  const std::string kept = slurp(file);
+  ASSERT_NE(kept.find(",3.3,success\n"), std::string::npos);
+  const std::string at = "superball: --checkpoint " + ck + ": task-00000001: a damaged result (";
+  // A case this scene does not have, then a failure counted that no row has: each with its checksum made again.
+  write(file, edited(kept, run_id, 1, [](std::string t) { return replaced(t, ",3.3,success\n", ",9.9,success\n"); }, true));
+  RunResult forged = run(with(rows, {"--checkpoint", ck}));
+  EXPECT_EQ(forged.exit_code, 2) << describe(forged);
+  EXPECT_NE(forged.err.find(at + "'9.9' is not a case of this scene)"), std::string::npos) << forged.err;
+  write(file, edited(kept, run_id, 1, [](std::string t) { return "1" + t.substr(1); }, true));
+  forged = run(with(rows, {"--checkpoint", ck}));
+  EXPECT_EQ(forged.exit_code, 2) << describe(forged);
+  EXPECT_NE(forged.err.find(at + "not the rows of its block)"), std::string::npos) << forged.err;
+  // As it was written: the same bytes as the run that computed it.
+  write(file, kept);
+  EXPECT_EQ(run(with(rows, {"--checkpoint", ck})).out, whole.out);
+}
+
 TEST(DistributeData, AMapCheckpointEditedIsComputedAgainAndForgedIsRefused) {
   const std::string dir = folder("map"), ck = dir + "/ck";
   const std::vector<std::string> map = {"map", kPaper, "--x", "K.3-4=0:20:9", "--y", "alpha.2=-150:0:9"};

@@ -10,6 +10,8 @@
 #include <cln/rational.h>
 #include <cln/rational_io.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -80,6 +82,72 @@ TEST(ParallelMap, RethrowsTheExceptionOfTheFirstFailingTask) {
     } catch (const std::runtime_error& e) {
       EXPECT_STREQ(e.what(), "task 37") << threads << " threads";
     }
+  }
+}
+
+TEST(InOrder, DeliversEveryResultInOrderOnTheCallingThreadWithFewWaiting) {
+  for (int threads : kThreads) {
+    std::atomic<int> running{0}, most{0};
+    std::size_t next = 0, waiting_most = 0;
+    std::atomic<std::size_t> computed{0};
+    const std::thread::id caller = std::this_thread::get_id();
+    numeric::in_order(
+        300, threads,
+        [&](std::size_t i) {
+          const int now = ++running;
+          for (int m = most.load(); now > m && !most.compare_exchange_weak(m, now);) {
+          }
+          ++computed;
+          if (i % 7 == 0) std::this_thread::sleep_for(std::chrono::microseconds(200));  // results finish out of order
+          --running;
+          return std::to_string(i);
+        },
+        [&](std::size_t i, std::string&& r) {
+          EXPECT_EQ(std::this_thread::get_id(), caller);
+          EXPECT_EQ(i, next) << threads << " threads";
+          EXPECT_EQ(r, std::to_string(i));
+          waiting_most = std::max(waiting_most, computed.load() - next);
+          ++next;
+        });
+    EXPECT_EQ(next, 300u) << threads << " threads";
+    EXPECT_LE(most.load(), threads) << "no more tasks at once than threads";
+    // Done but not delivered: at most the window (2 x threads) and the tasks under way.
+    EXPECT_LE(waiting_most, 3u * static_cast<std::size_t>(threads)) << threads << " threads";
+  }
+}
+
+TEST(InOrder, AFailingTaskOrDeliveryEndsTheRunAfterTheResultsBeforeIt) {
+  for (int threads : kThreads) {
+    std::vector<std::size_t> got;
+    try {
+      numeric::in_order(
+          500, threads,
+          [](std::size_t i) {
+            if (i == 37 || i == 38 || i == 400) throw std::runtime_error("task " + std::to_string(i));
+            return i;
+          },
+          [&](std::size_t i, std::size_t r) {
+            got.push_back(i);
+            EXPECT_EQ(r, i);
+          });
+      ADD_FAILURE() << "no exception with " << threads << " threads";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "task 37") << threads << " threads";
+    }
+    EXPECT_EQ(got.size(), 37u) << threads << " threads";
+    for (std::size_t i = 0; i < got.size(); ++i) EXPECT_EQ(got[i], i);
+    // The delivery throws at result 20: nothing after it, the threads joined.
+    std::size_t delivered = 0;
+    try {
+      numeric::in_order(500, threads, [](std::size_t i) { return i; }, [&](std::size_t i, std::size_t) {
+        if (i == 20) throw std::logic_error("sink full");
+        ++delivered;
+      });
+      ADD_FAILURE() << "no exception with " << threads << " threads";
+    } catch (const std::logic_error& e) {
+      EXPECT_STREQ(e.what(), "sink full");
+    }
+    EXPECT_EQ(delivered, 20u) << threads << " threads";
   }
 }
 

@@ -59,7 +59,8 @@ class ContactSet {
   /// A set of no contacts (for no bodies); assign one of the others.
   ContactSet() = default;
   /// The set of no closed contact for \p bodies bodies (bodies − 1 contacts).
-  explicit ContactSet(int bodies) : closed_(static_cast<std::size_t>(bodies > 1 ? bodies - 1 : 0), false) {}
+  explicit ContactSet(int bodies)
+      : contacts_(bodies > 1 ? bodies - 1 : 0), more_(contacts_ > kWord ? static_cast<std::size_t>((contacts_ - 1) / kWord) : 0, 0) {}
   /// Parse "2-3,3-4" (or "" / "none" for no closed contact) for n bodies;
   /// throws std::invalid_argument("ContactSet::parse(): ...").
   static ContactSet parse(std::string_view text, int bodies);
@@ -67,23 +68,39 @@ class ContactSet {
   static ContactSet from_mask(std::uint64_t mask, int bodies);
 
   /// The number of bodies n.
-  int bodies() const { return static_cast<int>(closed_.size()) + 1; }
+  int bodies() const { return contacts_ + 1; }
   /// The number of adjacent contacts, n − 1.
-  int contacts() const { return static_cast<int>(closed_.size()); }
+  int contacts() const { return contacts_; }
   /// Whether contact \p c (0-based; the pair (c+1, c+2)) stays closed.
-  bool closed(int c) const { return closed_[static_cast<std::size_t>(c)]; }
+  bool closed(int c) const { return (word(c) >> (c % kWord)) & 1u; }
   /// Close (\p value true) or open contact \p c (0-based).
-  void set_closed(int c, bool value) { closed_[static_cast<std::size_t>(c)] = value; }
+  void set_closed(int c, bool value) {
+    const std::uint64_t bit = std::uint64_t{1} << (c % kWord);
+    std::uint64_t& w = c < kWord ? first_ : more_[static_cast<std::size_t>(c / kWord - 1)];
+    w = value ? w | bit : w & ~bit;
+  }
   std::vector<std::string> closed_names() const;  ///< {"2-3", "3-4"}
   std::string to_string() const;                  ///< "{2-3,3-4}"
   ///@{
   /// Equality of the closed contacts (and its negation); sets for different n differ.
-  friend bool operator==(const ContactSet& a, const ContactSet& b) { return a.closed_ == b.closed_; }
+  friend bool operator==(const ContactSet& a, const ContactSet& b) {
+    return a.contacts_ == b.contacts_ && a.first_ == b.first_ && a.more_ == b.more_;
+  }
   friend bool operator!=(const ContactSet& a, const ContactSet& b) { return !(a == b); }
   ///@}
 
  private:
-  std::vector<bool> closed_;
+  /// Contacts per word of the set.
+  static constexpr int kWord = 64;
+  /// The word that holds contact \p c.
+  std::uint64_t word(int c) const { return c < kWord ? first_ : more_[static_cast<std::size_t>(c / kWord - 1)]; }
+
+  int contacts_ = 0;
+  /// Contacts 0 … 63, bit c for contact c: a set of up to 65 bodies is held
+  /// without allocation (a map or a sweep makes one per point).
+  std::uint64_t first_ = 0;
+  /// Contacts 64 onwards, 64 a word, for more than 65 bodies (else empty).
+  std::vector<std::uint64_t> more_;
 };
 
 /// A body of a scene, top to bottom.

@@ -144,6 +144,11 @@ class Distribution {
   /// PART: task K", "--checkpoint DIR: task-0000000K" or "task K".  A
   /// caller that reads a result back and finds it damaged names it so.
   std::string origin(std::size_t k) const;
+  /// Whether task \p k's result was read from a file (a task file of the
+  /// checkpoint folder, a part in a merge) rather than computed in this run:
+  /// such a result is checked by its reader before it is believed (its
+  /// record's checksum says only that the file is whole, not what wrote it).
+  bool read_back(std::size_t k) const;
 
   /// \p task, which also writes its result to the checkpoint folder (if
   /// any) as soon as it has it: for a local runner made before run() (derive's

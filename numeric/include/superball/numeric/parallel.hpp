@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <cstddef>
 #include <exception>
 #include <functional>
@@ -136,6 +137,96 @@ auto parallel_map(std::size_t count, int threads, MakeState make_state, Task tas
   results.reserve(count);
   for (auto& r : slots) results.push_back(std::move(*r));
   return results;
+}
+
+/// task(i) for i = 0 … count − 1 on \p threads threads (0: all cores), and
+/// deliver(i, result) for each in increasing i, on the calling thread, as
+/// soon as the results before it are delivered: for tasks whose results are
+/// written out in order (a sweep's blocks of rows).  At most 2 × threads
+/// results wait to be delivered, so the memory held does not grow with
+/// \p count.  A task runs on a thread of its own: it must follow this file's
+/// rule on CLN objects.  A task or a delivery that throws ends the run: the
+/// results before the first task that threw are delivered, none after it,
+/// every thread is joined, and the exception is thrown again here.
+template <class Task, class Deliver>
+void in_order(std::size_t count, int threads, const Task& task, const Deliver& deliver) {
+  using Result = std::decay_t<decltype(task(std::size_t{}))>;
+  const auto n = std::min(count, static_cast<std::size_t>(thread_count(threads)));
+  if (n <= 1) {
+    for (std::size_t i = 0; i < count; ++i) deliver(i, task(i));
+    return;
+  }
+  const std::size_t window = 2 * n;
+  std::mutex m;
+  std::condition_variable changed;
+  std::vector<std::optional<Result>> slots(window);  // result i in slot i mod window
+  std::size_t next = 0, delivered = 0, failed_at = count;
+  std::exception_ptr error;
+  auto work = [&] {
+    std::unique_lock<std::mutex> lock(m);
+    for (;;) {
+      changed.wait(lock, [&] { return next >= failed_at || next < delivered + window; });
+      if (next >= failed_at) return;
+      const std::size_t i = next++;
+      lock.unlock();
+      std::optional<Result> r;
+      std::exception_ptr e;
+      try {
+        r.emplace(task(i));
+      } catch (...) {
+        e = std::current_exception();
+      }
+      lock.lock();
+      if (e) {
+        if (i < failed_at) failed_at = i, error = e;
+      } else {
+        slots[i % window] = std::move(r);
+      }
+      changed.notify_all();
+    }
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(n);
+  try {
+    for (std::size_t t = 0; t < n; ++t) pool.emplace_back(work);
+  } catch (const std::system_error&) {  // no more threads: run with those started
+  }
+  auto stop = [&](std::exception_ptr e) {
+    {
+      const std::lock_guard<std::mutex> hold(m);
+      failed_at = std::min(failed_at, delivered);
+      if (e) error = e;
+    }
+    changed.notify_all();
+    for (auto& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
+  };
+  if (pool.empty()) {
+    for (std::size_t i = 0; i < count; ++i) deliver(i, task(i));
+    return;
+  }
+  try {
+    for (std::size_t i = 0; i < count; ++i) {
+      std::optional<Result> r;
+      {
+        std::unique_lock<std::mutex> lock(m);
+        changed.wait(lock, [&] { return slots[i % window].has_value() || i >= failed_at; });
+        if (i >= failed_at) break;
+        r = std::move(slots[i % window]);
+        slots[i % window].reset();
+      }
+      deliver(i, std::move(*r));
+      {
+        const std::lock_guard<std::mutex> hold(m);
+        delivered = i + 1;
+      }
+      changed.notify_all();
+    }
+  } catch (...) {
+    stop(std::current_exception());
+    return;
+  }
+  stop(nullptr);
 }
 
 }  // namespace superball::numeric

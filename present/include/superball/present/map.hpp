@@ -15,19 +15,13 @@
 
 #include "superball/numeric/map.hpp"
 #include "superball/present/export.hpp"
+#include "superball/present/text_sink.hpp"
 SUPERBALL_PRESENT_API_BEGIN
 
 namespace superball::present {
 
 /// The paper's name of a region's case (Vocabulary::paper().case_name()).
 std::string case_name(const numeric::Region& r);
-
-/// A piece of an output's text: a front writes the pieces as they come, in
-/// order (the write_… functions below hand them over so, one call at a
-/// time; with several threads, from a thread of their own, so that the
-/// writing of a block overlaps the formatting of the next ones).  An
-/// exception a sink throws comes out of the write_… function.
-using TextSink = std::function<void(std::string_view text)>;
 
 /// The grid as CSV, one row per point (x varies fastest): KEYX, KEYY,
 /// psd (M positive semi-definite: 1, else 0 and the point is not solved),
