@@ -1,14 +1,11 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
-#include <set>
 #include <string_view>
-#include <tuple>
 
 #include "commands.hpp"
 #include "distribute.hpp"
 #include "superball/cases/scene_file.hpp"
-#include "superball/cases/vocabulary.hpp"
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/range.hpp"
 #include "superball/numeric/sweep.hpp"
@@ -18,8 +15,6 @@ namespace superball::cli {
 namespace {
 
 using numeric::Range;
-
-std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_decimal(x, digits); }
 
 /// Values solved between two writes: a sweep's memory does not grow with STEPS.
 constexpr int kChunk = 4096;
@@ -56,137 +51,34 @@ std::string switch_block(std::size_t k, const Scene& scene, const Range& r, bool
   return present::switch_rows(r.parameter.key(), numeric::switch_points(scene, r.parameter, values, 64, threads), csv);
 }
 
-/// Whether \p name is the name of a case of a scene of \p n bodies
-/// (Vocabulary::case_name() of one of its contact sets); the set in \p set.
-bool case_of_scene(const std::string& name, int n, ContactSet& set) {
-  const Vocabulary& v = Vocabulary::paper();
-  if (name.size() >= 2 && name.front() == '{' && name.back() == '}') {
-    try {
-      set = ContactSet::parse(name.substr(1, name.size() - 2), n);
-    } catch (const std::exception&) {
-      return false;
-    }
-    return v.case_name(set) == name;
-  }
-  for (const NamedCase& c : v.cases())
-    if (c.name == name && c.closed.bodies() == n) return set = c.closed, true;
-  return false;
-}
-
-/// The fields of \p line split at each \p sep ("," or two spaces), into
-/// \p out (reused: no allocation per row); a CSV field in quotes
-/// ("{1-2,2-3}", no quote inside) kept whole, without its quotes.
-void fields(std::string_view line, std::string_view sep, std::vector<std::string_view>& out) {
-  out.clear();
-  std::size_t start = 0;
-  bool quoted = false;
-  for (std::size_t k = 0; k <= line.size(); ++k) {
-    if (k < line.size() && sep == "," && line[k] == '"') {
-      quoted = !quoted;
-    } else if (k == line.size() || (!quoted && line.compare(k, sep.size(), sep) == 0)) {
-      std::string_view f = line.substr(start, k - start);
-      if (f.size() >= 2 && f.front() == '"' && f.back() == '"') f = f.substr(1, f.size() - 2);
-      out.push_back(f);
-      start = k + sep.size();
-      k += sep.size() - 1;
-    }
-  }
-}
-
-/// A number printed by the sweep: the whole of \p text; nullopt otherwise.
-std::optional<double> number(const std::string& text) {
-  char* end = nullptr;
-  const double v = text.empty() ? 0 : std::strtod(text.c_str(), &end);
-  if (text.empty() || *end) return std::nullopt;
-  return v;
-}
-
 /// Reads back task \p k's text of the rows (rows_block()) or the switch
-/// points (switch_block()) as data and checks it against the run: the rows
-/// of the block (their count, fields, cases of this scene, statuses, the
-/// count of failures), the switch points inside the block's range with cases
-/// of this scene that differ.  Returns the number of failures (rows) and
-/// leaves the text to write; std::invalid_argument naming the task (\p run
-/// says where it came from) otherwise.
-int check_block(std::size_t k, std::string& text, const Scene& scene, const Range& r, bool csv, bool switches, const Distribution& run) {
-  auto damaged = [&](const std::string& what) { return std::invalid_argument(run.origin(k) + ": a damaged result (" + what + ")"); };
-  const int n = scene.size();
-  const std::string sep = csv ? "," : "  ";
+/// points (switch_block()), read from a file (a checkpoint, a part), and
+/// checks it against the run: its count of failures and the rows of the
+/// block (present::check_sweep_rows()), or the switch points inside the
+/// block's range (present::check_switch_rows()).  Returns the number of
+/// failures (rows); std::invalid_argument naming the task (\p run says where
+/// it came from) otherwise.
+int check_block(std::size_t k, const std::string& text, const Scene& scene, const Range& r, bool csv, bool switches, const Distribution& run) {
   const int first = static_cast<int>(k) * kChunk;
-  std::set<std::string, std::less<>> cases;  // the names already found to be cases of this scene
-  ContactSet set;
-  auto check_case = [&](std::string_view name) {
-    if (cases.count(name)) return;
-    if (!case_of_scene(std::string(name), n, set)) throw damaged("'" + std::string(name.substr(0, 40)) + "' is not a case of this scene");
-    cases.emplace(name);
-  };
-  std::vector<std::string_view> f;
-  std::size_t at = 0;
-  int failures = 0, expected = 0;
-  if (!switches) {
+  try {
+    if (switches) {
+      const cln::cl_RA& low = r.from < r.to ? r.from : r.to;
+      const cln::cl_RA& high = r.from < r.to ? r.to : r.from;
+      const int size = std::min(kChunk + 1, r.steps - first);
+      present::check_switch_rows(text, r.parameter.key(), scene.size(), numeric::linspace(low, high, r.steps, first, 1).at(0),
+                                 numeric::linspace(low, high, r.steps, first + size - 1, 1).at(0), csv);
+      return 0;
+    }
     const std::size_t eol = text.find('\n');
-    const std::optional<double> count = eol == std::string::npos ? std::nullopt : number(text.substr(0, eol));
-    if (!count || !(*count >= 0 && *count <= kChunk) || *count != static_cast<int>(*count)) throw damaged("no count of failures");
-    expected = static_cast<int>(*count);
-    at = eol + 1;
+    const std::string count = text.substr(0, eol == std::string::npos ? 0 : eol);
+    if (count.empty() || count.size() > 4 || count.find_first_not_of("0123456789") != std::string::npos || std::stoi(count) > kChunk)
+      throw std::invalid_argument("a damaged result (no count of failures)");
+    const int failures = present::check_sweep_rows(std::string_view(text).substr(eol + 1), scene.size(), static_cast<std::size_t>(std::min(kChunk, r.steps - first)), csv);
+    if (failures != std::stoi(count)) throw std::invalid_argument("a damaged result (not the rows of its block)");
+    return failures;
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(run.origin(k) + ": " + e.what());
   }
-  const cln::cl_RA& low = r.from < r.to ? r.from : r.to;
-  const cln::cl_RA& high = r.from < r.to ? r.to : r.from;
-  const int size = switches ? std::min(kChunk + 1, r.steps - first) : std::min(kChunk, r.steps - first);
-  const auto ends = numeric::linspace(low, high, r.steps, first, 1), last = numeric::linspace(low, high, r.steps, first + size - 1, 1);
-  const double lo = cln::double_approx(ends.at(0)), hi = cln::double_approx(last.at(0)), slack = 1e-12 * std::max({std::abs(lo), std::abs(hi), hi - lo});
-  int rows = 0;
-  const std::set<std::string, std::less<>> statuses = {numeric::to_string(numeric::Status::Success), numeric::to_string(numeric::Status::NumericalIssue),
-                                                       numeric::to_string(numeric::Status::NoConvergence)};
-  while (at < text.size()) {
-    const std::size_t eol = text.find('\n', at);
-    if (eol == std::string::npos) throw damaged("its last line is cut");
-    const std::string_view line = std::string_view(text).substr(at, eol - at);
-    at = eol + 1;
-    ++rows;
-    if (!switches) {  // VALUE U1 … Un CASE [STATUS]: the case and the status checked
-      fields(line, sep, f);
-      const auto fn = static_cast<std::size_t>(n);
-      if (f.size() != fn + 3 && (csv || f.size() != fn + 2)) throw damaged("a row of the wrong fields");
-      check_case(f[fn + 1]);
-      if (f.size() == fn + 3) {
-        if (!statuses.count(f.back()) || (!csv && f.back() == "success")) throw damaged("'" + std::string(f.back().substr(0, 40)) + "' is not a status");
-        failures += f.back() != "success";
-      }
-      continue;
-    }
-    // AT  (bracket width W): case B {..} -> case A {..}, or AT,W,B,A.
-    std::string below, above, where, width;
-    if (csv) {
-      fields(line, ",", f);
-      if (f.size() != 4) throw damaged("a switch point of the wrong fields");
-      where = std::string(f[0]), width = std::string(f[1]), below = std::string(f[2]), above = std::string(f[3]);
-    } else {
-      const std::string key = r.parameter.key() + " = ", mid = "  (bracket width ", cases_at = "): case ", arrow = " -> case ";
-      const std::size_t m = line.find(mid), c = line.find(cases_at), a = line.find(arrow);
-      if (line.rfind(key, 0) != 0 || m == std::string::npos || c == std::string::npos || a == std::string::npos || !(key.size() <= m && m < c && c < a))
-        throw damaged("a switch point of the wrong form");
-      where = std::string(line.substr(key.size(), m - key.size()));
-      width = std::string(line.substr(m + mid.size(), c - m - mid.size()));
-      for (auto [from, to, name] : {std::make_tuple(c + cases_at.size(), a, &below), std::make_tuple(a + arrow.size(), line.size(), &above)}) {
-        const std::string both(line.substr(from, to - from));
-        const std::size_t space = both.find(' ');
-        *name = both.substr(0, space);
-        check_case(*name);
-        case_of_scene(*name, n, set);
-        if (space == std::string::npos || both.substr(space + 1) != set.to_string()) throw damaged("'" + both.substr(0, 40) + "' is not a case and its contacts");
-      }
-    }
-    check_case(below);
-    check_case(above);
-    if (below == above) throw damaged("a switch point between a case and itself");
-    const std::optional<double> x = number(where), w = number(width);
-    if (!x || !(*x >= lo - slack && *x <= hi + slack))
-      throw damaged("a switch point at " + where.substr(0, 40) + ", outside the values of its block (" + decimal(ends.at(0)) + " to " + decimal(last.at(0)) + ")");
-    if (!w || !(*w > 0 && *w <= hi - lo + slack)) throw damaged("a bracket width of " + width.substr(0, 40));
-  }
-  if (!switches && (rows != size || failures != expected)) throw damaged("not the rows of its block");
-  return failures;
 }
 
 /// The sweep of a drop scene (a [drop] table): per value, the top body's

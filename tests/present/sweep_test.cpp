@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -115,6 +116,74 @@ TEST(SweepRows, TheTableNamesAStatusOnlyWhenItIsNotSuccessAndCsvQuotesACaseWithA
   EXPECT_EQ(present::sweep_header("mass.1", 32, true).substr(0, 13), "mass.1,U1,U2,");
   EXPECT_EQ(present::sweep_header("K.3-4", 4, false), "K.3-4  U1  U2  U3  U4  case\n");
   EXPECT_EQ(present::sweep_header("K.3-4", 4, true), "K.3-4,U1,U2,U3,U4,case,status\n");
+}
+
+/// The message of what \p f throws (std::invalid_argument), "" when it does not throw.
+template <class F>
+std::string refusal(const F& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+TEST(SweepRows, RowsReadBackAreCheckedAndEachDamageIsNamed) {
+  const Scene s = load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml");
+  const numeric::Range r{Parameter::parse("K.3-4", s), 0, 20, 401};
+  auto points = numeric::sweep(s, r.parameter, numeric::linspace(r.from, r.to, r.steps), numeric::Precision::parse("double"), 2);
+  points[7].status = numeric::Status::NumericalIssue;  // one failure, as a file may hold
+  for (bool csv : {true, false}) {
+    const std::string rows = rows_of(r, 0, points, csv, 2);
+    EXPECT_EQ(present::check_sweep_rows(rows, 4, 401, csv), 1) << (csv ? "csv" : "table");
+    auto damage = [&](const std::string& text, std::size_t size = 401) { return refusal([&] { present::check_sweep_rows(text, 4, size, csv); }); };
+    EXPECT_EQ(damage(rows, 400), "a damaged result (not the rows of its block)");
+    EXPECT_EQ(damage(rows.substr(0, rows.size() - 1)), "a damaged result (its last line is cut)");
+    const std::string sep = csv ? "," : "  ";
+    EXPECT_EQ(damage(replaced(rows, sep + "2.2", sep + "9.9")), "a damaged result ('9.9' is not a case of this scene)");
+    EXPECT_EQ(damage(replaced(rows, sep + "2.2", sep + "1" + sep + "1" + sep + "2.2")), "a damaged result (a row of the wrong fields)");
+    EXPECT_EQ(damage(replaced(rows, "numerical-issue", "numerical_issue")), "a damaged result ('numerical_issue' is not a status)");
+    if (!csv) {
+      EXPECT_EQ(damage(replaced(rows, "\n", "  success\n")), "a damaged result ('success' is not a status)");
+    }
+  }
+}
+
+TEST(SweepRows, SwitchPointsReadBackAreCheckedAndEachDamageIsNamed) {
+  const Scene s = load_scene(std::string(SUPERBALL_CASES_DIR) + "/scenes/paper-4.4-alpha2.toml");
+  const Parameter k34 = Parameter::parse("K.3-4", s);
+  const auto points = numeric::switch_points(s, k34, numeric::linspace(0, 20, 41), 64, 2);
+  ASSERT_GE(points.size(), 2u);
+  for (bool csv : {true, false}) {
+    const std::string text = present::switch_rows("K.3-4", points, csv);
+    auto damage = [&](const std::string& t, const cln::cl_RA& low = 0, const cln::cl_RA& high = 20) {
+      return refusal([&] { present::check_switch_rows(t, "K.3-4", 4, low, high, csv); });
+    };
+    EXPECT_EQ(damage(text), "") << text;
+    const std::string first = text.substr(0, text.find('\n') + 1);
+    const std::string at = csv ? first.substr(0, first.find(',')) : first.substr(8, first.find("  (") - 8);
+    EXPECT_NE(damage(first, 10, 20).find("a damaged result (a switch point at " + at + ", outside the values of its block (10 to 20))"), std::string::npos)
+        << damage(first, 10, 20);
+    EXPECT_EQ(damage(text.substr(0, text.size() - 1)), "a damaged result (its last line is cut)");
+    const std::string name = Vocabulary::paper().case_name(points[0].below), other = Vocabulary::paper().case_name(points[0].above);
+    const std::string same = csv ? replaced(first, "," + other, "," + name) : replaced(first, "-> case " + other + " " + points[0].above.to_string(),
+                                                                                     "-> case " + name + " " + points[0].below.to_string());
+    EXPECT_EQ(damage(same), "a damaged result (a switch point between a case and itself)");
+    if (csv) {
+      EXPECT_EQ(damage(replaced(first, "," + name, ",9.9")), "a damaged result ('9.9' is not a case of this scene)");
+      EXPECT_EQ(damage(replaced(first, "," + name, "," + name + ",x")), "a damaged result (a switch point of the wrong fields)");
+    } else {
+      EXPECT_EQ(damage(replaced(first, "K.3-4 = ", "K.3-5 = ")), "a damaged result (a switch point of the wrong form)");
+      EXPECT_EQ(damage(replaced(first, points[0].below.to_string(), "{1-2}")).rfind("a damaged result ('" + name + " {1-2}' is not a case and its contacts", 0), 0u);
+    }
+  }
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "superball/numeric/range.hpp"
@@ -41,6 +42,22 @@ void write_sweep_rows(const numeric::Range& r, std::size_t first, const std::vec
 std::string switch_rows(const std::string& key, const std::vector<numeric::SwitchPoint>& points, bool csv);
 /// The first line of switch_rows() in CSV: KEY,bracket_width,case_below,case_above.
 std::string switch_header(const std::string& key);
+
+/// Reads back the rows of write_sweep_rows() for \p size values of a scene
+/// of \p bodies bodies (text from a file: a checkpoint, a part) and checks
+/// them: \p size whole lines, each with the fields of the header, the name of
+/// a case of this scene, and a status (in the table only one that is not
+/// success).  Returns the number of rows whose status is not success;
+/// std::invalid_argument("a damaged result (WHAT)") otherwise.
+int check_sweep_rows(std::string_view text, int bodies, std::size_t size, bool csv);
+
+/// Reads back switch_rows() of a sweep of \p key over a scene of \p bodies
+/// bodies, whose values ran from \p low to \p high, and checks them: each
+/// line of its form, its two cases cases of this scene that differ (and in
+/// the text their contacts), its point inside [low, high] and its bracket's
+/// width in (0, high − low]; std::invalid_argument("a damaged result
+/// (WHAT)") otherwise.
+void check_switch_rows(std::string_view text, const std::string& key, int bodies, const cln::cl_RA& low, const cln::cl_RA& high, bool csv);
 
 /// The first line of the rows of a sweep of drops (drop_rows()).
 std::string drop_sweep_header(const std::string& key, bool csv);
