@@ -47,6 +47,56 @@ TEST(Space, check_CompiledPolynomialEqualsSubstitution) {
   }
 }
 
+/// The sign of the exact value of \p p at \p x.
+int exact_sign(const Polynomial& p, const Point& x) {
+  const cl_RA v = p(x);
+  return cln::zerop(v) ? 0 : cln::minusp(v) ? -1 : 1;
+}
+
+TEST(Space, check_SignInDoubleIsTheExactSignEvenAtAndNearZeros) {
+  // The derived conditions of two cases at drawn points of three regimes, and of every
+  // exact factor of M's PSD check: sign() is the sign of the exact value.
+  const Deriver d(Pattern::paper({2, 5}), Obstacle::Finite);
+  const ParameterSpace space(d);
+  int compared = 0;
+  for (const char* closed : {"2-3,3-4", "3-4"}) {
+    const symbolic::Derivation c = d.derive(ContactSet::parse(closed, 4));
+    for (const cl_RA& eps : {cl_RA(1) / 10, cl_RA(1) / 1000, cl_RA(1) / 1000000}) {
+      RegimeSampler sampler(space, eps, 11);
+      for (int k = 0; k < 40; ++k) {
+        const auto x = sampler.draw();
+        ASSERT_TRUE(x);
+        for (const symbolic::Condition& cond : c.conditions) {
+          const Polynomial p(cond.exact.numerator, d.symbols());
+          EXPECT_EQ(p.sign(*x), exact_sign(p, *x)) << cond.about;
+          ++compared;
+        }
+      }
+    }
+  }
+  EXPECT_GT(compared, 200);
+  // Cancellation: (m1 − m2)^3 (m1 + m2) expanded, at m1 = m2 exactly, 1 ulp away and near; a sum whose terms
+  // cancel to far below their size; coordinates of 10^±200.
+  const GiNaC::ex m1 = d.symbols().mass(1), m2 = d.symbols().mass(2);
+  const std::size_t i1 = space.index("m1"), i2 = space.index("m2");
+  const Polynomial cubic(GiNaC::expand(GiNaC::pow(m1 - m2, 3) * (m1 + m2)), d.symbols());
+  const Polynomial shifted(GiNaC::expand(GiNaC::pow(m1 - m2, 2) - GiNaC::numeric(1, 1000000) * m2 * m2), d.symbols());
+  Point x(d.symbols().all().size(), cl_RA(1));
+  for (const cl_RA& at : {cl_RA(3) / 7, cl_RA(10000001) / 10000000, cl_RA(1) / 1000, cl_RA(2) / 3 + cln::expt(cl_RA(2), -60),
+                          cln::expt(cl_RA(10), 200), cln::expt(cl_RA(10), -200), cl_RA(1001) / 1000, cl_RA(999) / 1000}) {
+    for (const cl_RA& ratio : {cl_RA(1), 1 + cln::expt(cl_RA(2), -52), 1 - cln::expt(cl_RA(2), -53), 1 + cln::expt(cl_RA(10), -3),
+                               cl_RA(1001) / 1000, cl_RA(999) / 1000, cl_RA(-1)}) {
+      x[i1] = at * ratio, x[i2] = at;
+      EXPECT_EQ(cubic.sign(x), exact_sign(cubic, x));
+      EXPECT_EQ(shifted.sign(x), exact_sign(shifted, x));
+      EXPECT_EQ(cubic.clone().sign(x), exact_sign(cubic, x));
+    }
+  }
+  x[i1] = x[i2] = cl_RA(5) / 3;
+  EXPECT_EQ(cubic.sign(x), 0);
+  EXPECT_EQ(Polynomial(m1 - m1, d.symbols()).sign(x), 0);
+}
+
 TEST(Space, exam_PolynomialRejectsNonPolynomials) {
   const Deriver d(Pattern::paper({2}), Obstacle::Infinite);
   const GiNaC::ex m1 = d.symbols().mass(1);

@@ -49,6 +49,7 @@ Polynomial::Polynomial(const GiNaC::ex& p, const symbolic::Symbols& symbols) {
     // rounds the same every time.
     for (Term& t : terms_) std::sort(t.powers.begin(), t.powers.end());
     std::sort(terms_.begin(), terms_.end(), [](const Term& a, const Term& b) { return a.powers < b.powers; });
+    prepare();
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("Polynomial::Polynomial(): " + without_function_prefix(e.what()));
   }
@@ -62,6 +63,56 @@ cln::cl_RA Polynomial::operator()(const Point& x) const {
     sum = sum + v;
   }
   return sum;
+}
+
+void Polynomial::prepare() {
+  used_.clear();
+  degree_ = 0;
+  filter_ = true;
+  for (const Term& t : terms_) {
+    int e = 0;
+    for (const auto& [k, power] : t.powers) {
+      used_.push_back(k);
+      e += power;
+      filter_ = filter_ && power >= 0 && k >= 0;
+    }
+    degree_ = std::max(degree_, e);
+    filter_ = filter_ && std::isnormal(t.approx);
+  }
+  std::sort(used_.begin(), used_.end());
+  used_.erase(std::unique(used_.begin(), used_.end()), used_.end());
+}
+
+int Polynomial::sign(const Point& x) const {
+  if (terms_.empty()) return 0;
+  constexpr std::size_t kMost = 64;  // coordinates held on the stack
+  constexpr double u = 0x1p-53, low = 0x1p-1000, high = 0x1p1000;
+  // A product outside [low, high] (but not 0) may have lost its relative accuracy: the exact value decides.
+  const auto in_range = [&](double v) { return v == 0 || (std::fabs(v) >= low && std::fabs(v) <= high); };
+  bool decided = filter_ && !used_.empty() && static_cast<std::size_t>(used_.back()) < std::min(x.size(), kMost);
+  double xd[kMost];
+  for (std::size_t j = 0; decided && j < used_.size(); ++j) {
+    const cln::cl_RA& v = x[static_cast<std::size_t>(used_[j])];
+    const double d = cln::double_approx(v);
+    decided = cln::zerop(v) ? true : d != 0 && in_range(d);
+    xd[used_[j]] = cln::zerop(v) ? 0.0 : d;
+  }
+  if (decided) {
+    double sum = 0, magnitude = 0;
+    for (const Term& t : terms_) {
+      double v = t.approx;
+      for (const auto& [k, e] : t.powers)
+        for (int r = 0; r < e && decided; ++r) v *= xd[k], decided = in_range(v);
+      sum += v;
+      magnitude += std::fabs(v);
+    }
+    const double terms = static_cast<double>(terms_.size()), products = 2.0 + 3.0 * degree_;
+    const auto gamma = [&](double k) { return k * u / (1 - k * u); };
+    const double bound = 2 * (gamma(terms) + 2 * gamma(products)) * magnitude;
+    if (decided && std::isfinite(sum) && std::isfinite(bound) && std::fabs(sum) > bound) return sum > 0 ? 1 : -1;
+  }
+  const cln::cl_RA exact = (*this)(x);
+  return cln::zerop(exact) ? 0 : cln::minusp(exact) ? -1 : 1;
 }
 
 double Polynomial::operator()(const std::vector<double>& x) const {
@@ -78,6 +129,7 @@ Polynomial Polynomial::clone() const {
   Polynomial out;
   out.terms_.reserve(terms_.size());
   for (const Term& t : terms_) out.terms_.push_back(Term{deep_copy(t.coefficient), t.approx, t.powers});
+  out.prepare();
   return out;
 }
 
@@ -93,12 +145,11 @@ CompiledCondition::CompiledCondition(const symbolic::Condition& condition, const
 }
 
 bool CompiledCondition::holds(const Point& x) const {
-  const cln::cl_RA n = numerator(x);
-  int sign = cln::signum(n) > 0 ? 1 : (cln::zerop(n) ? 0 : -1);
+  int sign = numerator.sign(x);
   if (!denominator.is_zero()) {
-    const cln::cl_RA d = denominator(x);
-    if (cln::zerop(d)) return false;
-    if (cln::minusp(d)) sign = -sign;
+    const int d = denominator.sign(x);
+    if (d == 0) return false;
+    sign *= d;
   }
   return strict ? sign > 0 : sign >= 0;
 }
@@ -172,7 +223,7 @@ bool ParameterSpace::admissible(const Point& x) const {
   for (std::size_t k = 0; k < x.size(); ++k)
     if (coordinates_[k].kind != symbolic::SymbolKind::Coupling && !cln::plusp(x[k])) return false;
   for (const Polynomial& m : psd_)
-    if (cln::minusp(m(x))) return false;
+    if (m.sign(x) < 0) return false;
   return true;
 }
 

@@ -134,7 +134,7 @@ void evaluate(Context& ctx, const std::vector<VerifiedCondition>& names, const P
 
 /// Whether \p c is exactly on its boundary at \p x (numerator or denominator zero).
 bool on_boundary(const CompiledCondition& c, const Point& x) {
-  return cln::zerop(c.numerator(x)) || (!c.denominator.is_zero() && cln::zerop(c.denominator(x)));
+  return c.numerator.sign(x) == 0 || (!c.denominator.is_zero() && c.denominator.sign(x) == 0);
 }
 
 /// Bisect the segment from \p hold (the exact form of condition \p c holds)

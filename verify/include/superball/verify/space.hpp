@@ -46,6 +46,16 @@ class Polynomial {
   cln::cl_RA operator()(const Point& x) const;
   /// The value in double at \p x (coefficients rounded once).
   double operator()(const std::vector<double>& x) const;
+  /// The sign of the exact value at \p x: −1, 0 or 1.  Decided in double
+  /// where that is a proof: each term c·∏ x_k^e is computed from the
+  /// coordinates and the coefficient rounded to double (each within 2u of
+  /// its exact value, u = 2⁻⁵³) by E = Σe products (each within u), so
+  /// within γ(2 + 3E) of its exact value, where γ(k) = ku/(1 − ku); the
+  /// sum of T terms adds γ(T − 1)·Σ|t̃|.  Where |Σ t̃| exceeds twice the sum
+  /// of the two bounds (and no product leaves [2⁻¹⁰⁰⁰, 2¹⁰⁰⁰]), its sign is
+  /// the exact one; elsewhere (near a zero of the polynomial) the exact value
+  /// decides.  The same answer as the sign of operator()(x), faster.
+  int sign(const Point& x) const;
   /// Whether it is the zero polynomial.
   bool is_zero() const { return terms_.empty(); }
   /// A copy sharing no CLN object with this one (for another thread).
@@ -58,6 +68,10 @@ class Polynomial {
     std::vector<std::pair<int, int>> powers;  ///< (coordinate, exponent)
   };
   std::vector<Term> terms_;
+  std::vector<int> used_;  ///< the coordinates the terms use, increasing
+  int degree_ = 0;         ///< the largest Σe of a term
+  bool filter_ = true;     ///< sign() may decide in double (exponents ≥ 0, coefficients normal doubles)
+  void prepare();          ///< used_, degree_ and filter_ from terms_
 };
 
 /// A condition "numerator / denominator REL 0" (symbolic::ConditionForm) compiled.
