@@ -39,16 +39,20 @@ std::string rows_block(std::size_t k, const Scene& scene, const Range& r, const 
   return text;
 }
 
-/// Task \p k of the switch points, in increasing value of the parameter
-/// whatever the direction of the range (the values are the same): values
-/// k * kChunk … (k + 1) * kChunk, each block starting at the last value of
-/// the one before, so that a change between two blocks is found.
-std::string switch_block(std::size_t k, const Scene& scene, const Range& r, bool csv, int threads) {
+/// The values of task \p k of the switch points, in increasing value of the
+/// parameter whatever the direction of the range (the values are the same):
+/// values k * kChunk … (k + 1) * kChunk, each block starting at the last
+/// value of the one before, so that a change between two blocks is found.
+std::vector<cln::cl_RA> switch_values(std::size_t k, const Range& r) {
   const cln::cl_RA& low = r.from < r.to ? r.from : r.to;
   const cln::cl_RA& high = r.from < r.to ? r.to : r.from;
   const int first = static_cast<int>(k) * kChunk;
-  const auto values = numeric::linspace(low, high, r.steps, first, std::min(kChunk + 1, r.steps - first));
-  return present::switch_rows(r.parameter.key(), numeric::switch_points(scene, r.parameter, values, 64, threads), csv);
+  return numeric::linspace(low, high, r.steps, first, std::min(kChunk + 1, r.steps - first));
+}
+
+/// Task \p k of the switch points: those between switch_values(k, r).
+std::string switch_block(std::size_t k, const Scene& scene, const Range& r, bool csv, int threads) {
+  return present::switch_rows(r.parameter.key(), numeric::switch_points(scene, r.parameter, switch_values(k, r), 64, threads), csv);
 }
 
 /// Reads back task \p k's text of the rows (rows_block()) or the switch
@@ -62,11 +66,8 @@ int check_block(std::size_t k, const std::string& text, const Scene& scene, cons
   const int first = static_cast<int>(k) * kChunk;
   try {
     if (switches) {
-      const cln::cl_RA& low = r.from < r.to ? r.from : r.to;
-      const cln::cl_RA& high = r.from < r.to ? r.to : r.from;
-      const int size = std::min(kChunk + 1, r.steps - first);
-      present::check_switch_rows(text, r.parameter.key(), scene.size(), numeric::linspace(low, high, r.steps, first, 1).at(0),
-                                 numeric::linspace(low, high, r.steps, first + size - 1, 1).at(0), csv);
+      const std::vector<cln::cl_RA> values = switch_values(k, r);
+      present::check_switch_rows(text, r.parameter.key(), scene.size(), values.front(), values.back(), csv);
       return 0;
     }
     const std::size_t eol = text.find('\n');

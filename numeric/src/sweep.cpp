@@ -758,8 +758,8 @@ std::vector<SweepPoint> entry_sweep(const Scene& first, std::size_t entry, const
           SweepPoint& p = points[from + q];
           p.closed = sol.closed;
           p.status = sol.status;
-          p.velocities_after.resize(sol.velocities_after.size());  // one allocation, not one per body
-          for (std::size_t i = 0; i < sol.velocities_after.size(); ++i) p.velocities_after[i] = T::to_double(sol.velocities_after[i]) * st.unit;
+          p.velocities_after.reserve(sol.velocities_after.size());  // one allocation, not one per body
+          for (const auto& w : sol.velocities_after) p.velocities_after.push_back(T::to_double(w) * st.unit);
         });
     return 0;
   });

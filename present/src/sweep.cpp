@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -18,6 +19,11 @@ using detail::csv_field;
 /// The rows a task of write_sweep_rows() formats: the command hands it its
 /// blocks of 4096 values, which the threads share four tasks each.
 constexpr std::size_t rows_per_task = 1024;
+
+namespace {
+
+/// What a reader of a result says of text that is not that result.
+std::invalid_argument damaged(const std::string& what) { return std::invalid_argument("a damaged result (" + what + ")"); }
 
 /// Whether \p name is the name of a case of a scene of \p n bodies
 /// (Vocabulary::case_name() of one of its contact sets); the set in \p set.
@@ -36,20 +42,23 @@ bool case_of_scene(const std::string& name, int n, ContactSet& set) {
   return false;
 }
 
-/// The names already found to be cases of a scene of \p n bodies, and the check of one more.
-class CaseNames {
+/// The cases of a scene of \p n bodies named in a text read back, each name
+/// checked once.
+class SceneCases {
  public:
-  explicit CaseNames(int n) : n_(n) {}
-  /// \p name is the name of a case of the scene; its contact set in set().
-  void check(std::string_view name) {
-    if (!case_of_scene(std::string(name), n_, set_)) throw damaged("'" + std::string(name.substr(0, 40)) + "' is not a case of this scene");
+  explicit SceneCases(int n) : n_(n) {}
+  /// The contact set of the case called \p name; damaged() when no case of the scene is called so.
+  const ContactSet& of(std::string_view name) {
+    const auto it = known_.find(name);
+    if (it != known_.end()) return it->second;
+    ContactSet set;
+    if (!case_of_scene(std::string(name), n_, set)) throw damaged("'" + std::string(name.substr(0, 40)) + "' is not a case of this scene");
+    return known_.emplace(std::string(name), set).first->second;
   }
-  const ContactSet& set() const { return set_; }
-  static std::invalid_argument damaged(const std::string& what) { return std::invalid_argument("a damaged result (" + what + ")"); }
 
  private:
   int n_;
-  ContactSet set_;
+  std::map<std::string, ContactSet, std::less<>> known_;
 };
 
 /// The fields of \p line split at each \p sep ("," or two spaces), into
@@ -85,11 +94,13 @@ template <class Line>
 void each_line(std::string_view text, const Line& line) {
   for (std::size_t at = 0; at < text.size();) {
     const std::size_t eol = text.find('\n', at);
-    if (eol == std::string_view::npos) throw CaseNames::damaged("its last line is cut");
+    if (eol == std::string_view::npos) throw damaged("its last line is cut");
     line(text.substr(at, eol - at));
     at = eol + 1;
   }
 }
+
+}  // namespace
 
 std::string sweep_header(const std::string& key, int bodies, bool csv) {
   const std::string sep = csv ? "," : "  ";
@@ -103,7 +114,6 @@ void write_sweep_rows(const numeric::Range& r, std::size_t first, const std::vec
   if (points.empty()) return;
   const std::string sep = csv ? "," : "  ";
   const std::vector<std::string> values = detail::decimals(r.from, r.to, r.steps, static_cast<int>(first), static_cast<int>(points.size()), threads);
-  const std::string success = numeric::to_string(numeric::Status::Success);
   // A case's field, made on first use by each thread.
   using Cases = std::vector<std::pair<ContactSet, std::string>>;
   detail::in_blocks<Cases>(points.size(), threads, [&](Cases& cases, std::string& out, std::size_t from, std::size_t to) {
@@ -149,60 +159,59 @@ int check_sweep_rows(std::string_view text, int bodies, std::size_t size, bool c
   const std::string success = numeric::to_string(numeric::Status::Success);
   const std::set<std::string, std::less<>> statuses = {success, numeric::to_string(numeric::Status::NumericalIssue),
                                                        numeric::to_string(numeric::Status::NoConvergence)};
-  std::set<std::string, std::less<>> known;  // the names already found to be cases of this scene
-  CaseNames cases(bodies);
+  SceneCases cases(bodies);
   std::vector<std::string_view> f;
   std::size_t rows = 0;
   int failures = 0;
   each_line(text, [&](std::string_view line) {  // VALUE U1 … Un CASE [STATUS]: the case and the status checked
     ++rows;
     fields(line, sep, f);
-    if (f.size() != n + 3 && (csv || f.size() != n + 2)) throw CaseNames::damaged("a row of the wrong fields");
-    if (!known.count(f[n + 1])) cases.check(f[n + 1]), known.emplace(f[n + 1]);
+    if (f.size() != n + 3 && (csv || f.size() != n + 2)) throw damaged("a row of the wrong fields");
+    cases.of(f[n + 1]);
     if (f.size() == n + 3) {
       if (!statuses.count(f.back()) || (!csv && f.back() == success))
-        throw CaseNames::damaged("'" + std::string(f.back().substr(0, 40)) + "' is not a status");
+        throw damaged("'" + std::string(f.back().substr(0, 40)) + "' is not a status");
       failures += f.back() != success;
     }
   });
-  if (rows != size) throw CaseNames::damaged("not the rows of its block");
+  if (rows != size) throw damaged("not the rows of its block");
   return failures;
 }
 
 void check_switch_rows(std::string_view text, const std::string& key, int bodies, const cln::cl_RA& low, const cln::cl_RA& high, bool csv) {
   const double lo = cln::double_approx(low), hi = cln::double_approx(high), slack = 1e-12 * std::max({std::abs(lo), std::abs(hi), hi - lo});
-  CaseNames cases(bodies);
+  SceneCases cases(bodies);
   std::vector<std::string_view> f;
   each_line(text, [&](std::string_view line) {  // AT  (bracket width W): case B {..} -> case A {..}, or AT,W,B,A.
     std::string below, above, where, width;
     if (csv) {
       fields(line, ",", f);
-      if (f.size() != 4) throw CaseNames::damaged("a switch point of the wrong fields");
+      if (f.size() != 4) throw damaged("a switch point of the wrong fields");
       where = std::string(f[0]), width = std::string(f[1]), below = std::string(f[2]), above = std::string(f[3]);
+      cases.of(below);
+      cases.of(above);
     } else {
       const std::string start = key + " = ", mid = "  (bracket width ", cases_at = "): case ", arrow = " -> case ";
       const std::size_t m = line.find(mid), c = line.find(cases_at), a = line.find(arrow);
       if (line.rfind(start, 0) != 0 || m == std::string::npos || c == std::string::npos || a == std::string::npos || !(start.size() <= m && m < c && c < a))
-        throw CaseNames::damaged("a switch point of the wrong form");
+        throw damaged("a switch point of the wrong form");
       where = std::string(line.substr(start.size(), m - start.size()));
       width = std::string(line.substr(m + mid.size(), c - m - mid.size()));
       for (auto [from, to, name] : {std::make_tuple(c + cases_at.size(), a, &below), std::make_tuple(a + arrow.size(), line.size(), &above)}) {
         const std::string both(line.substr(from, to - from));
         const std::size_t space = both.find(' ');
         *name = both.substr(0, space);
-        cases.check(*name);
-        if (space == std::string::npos || both.substr(space + 1) != cases.set().to_string())
-          throw CaseNames::damaged("'" + both.substr(0, 40) + "' is not a case and its contacts");
+        const ContactSet& set = cases.of(*name);
+        if (space == std::string::npos || both.substr(space + 1) != set.to_string())
+          throw damaged("'" + both.substr(0, 40) + "' is not a case and its contacts");
       }
     }
-    cases.check(below);
-    cases.check(above);
-    if (below == above) throw CaseNames::damaged("a switch point between a case and itself");
+    if (below == above) throw damaged("a switch point between a case and itself");
     const std::optional<double> x = number(where), w = number(width);
     if (!x || !(*x >= lo - slack && *x <= hi + slack))
-      throw CaseNames::damaged("a switch point at " + where.substr(0, 40) + ", outside the values of its block (" + detail::decimal(low) + " to " +
+      throw damaged("a switch point at " + where.substr(0, 40) + ", outside the values of its block (" + detail::decimal(low) + " to " +
                                detail::decimal(high) + ")");
-    if (!w || !(*w > 0 && *w <= hi - lo + slack)) throw CaseNames::damaged("a bracket width of " + width.substr(0, 40));
+    if (!w || !(*w > 0 && *w <= hi - lo + slack)) throw damaged("a bracket width of " + width.substr(0, 40));
   });
 }
 

@@ -93,9 +93,9 @@ int Polynomial::sign(const Point& x) const {
   double xd[kMost];
   for (std::size_t j = 0; decided && j < used_.size(); ++j) {
     const cln::cl_RA& v = x[static_cast<std::size_t>(used_[j])];
-    const double d = cln::double_approx(v);
-    decided = cln::zerop(v) ? true : d != 0 && in_range(d);
-    xd[used_[j]] = cln::zerop(v) ? 0.0 : d;
+    const double d = cln::double_approx(v);  // a value that is not 0 but rounds to 0 or out of range: the exact path
+    decided = in_range(d) && (d != 0 || cln::zerop(v));
+    xd[used_[j]] = d;
   }
   if (decided) {
     double sum = 0, magnitude = 0;

@@ -152,10 +152,6 @@ template <class Task, class Deliver>
 void in_order(std::size_t count, int threads, const Task& task, const Deliver& deliver) {
   using Result = std::decay_t<decltype(task(std::size_t{}))>;
   const auto n = std::min(count, static_cast<std::size_t>(thread_count(threads)));
-  if (n <= 1) {
-    for (std::size_t i = 0; i < count; ++i) deliver(i, task(i));
-    return;
-  }
   const std::size_t window = 2 * n;
   std::mutex m;
   std::condition_variable changed;
@@ -186,10 +182,12 @@ void in_order(std::size_t count, int threads, const Task& task, const Deliver& d
     }
   };
   std::vector<std::thread> pool;
-  pool.reserve(n);
-  try {
-    for (std::size_t t = 0; t < n; ++t) pool.emplace_back(work);
-  } catch (const std::system_error&) {  // no more threads: run with those started
+  if (n > 1) {
+    pool.reserve(n);
+    try {
+      for (std::size_t t = 0; t < n; ++t) pool.emplace_back(work);
+    } catch (const std::system_error&) {  // no more threads: run with those started
+    }
   }
   auto stop = [&](std::exception_ptr e) {
     {
@@ -201,7 +199,7 @@ void in_order(std::size_t count, int threads, const Task& task, const Deliver& d
     for (auto& t : pool) t.join();
     if (error) std::rethrow_exception(error);
   };
-  if (pool.empty()) {
+  if (pool.empty()) {  // one thread, or none to be had: here, one after the other
     for (std::size_t i = 0; i < count; ++i) deliver(i, task(i));
     return;
   }
