@@ -15,7 +15,7 @@ void ClusterSystem<S>::assemble(const Problem<S>& p, int bandwidth) {
   b_ = bandwidth;
   entries_ = static_cast<int>(p.entries.size());
   A_.assign(static_cast<std::size_t>(n_) * static_cast<std::size_t>(b_ + 1), S(0));
-  scale_.assign(static_cast<std::size_t>(n_), S(0));
+  scale_.assign(static_cast<std::size_t>(n_), SizeOf<S>{});
   // Symmetric lower-band storage: add(r, c, v) adds v to A_rc and A_cr.
   auto add = [&](int r, int c, const S& v) {
     if (r < c) std::swap(r, c);
@@ -23,8 +23,9 @@ void ClusterSystem<S>::assemble(const Problem<S>& p, int bandwidth) {
   };
   // Every entry puts terms of size |v| (2|v| on a diagonal it meets twice)
   // into the rows it names, 2|v| in each: scale_ sums them.
+  const SizeOf<S> two = size_of(S(2));
   for (const Entry<S>& e : p.entries) {
-    const S size = S(2) * (e.value < S(0) ? S(-e.value) : e.value);
+    const SizeOf<S> size = two * size_of(e.value);
     scale_[e.i] += size;
     scale_[e.j] += size;
     if (e.diagonal()) {  // v (e_i − e_j)(e_i − e_j)ᵀ
@@ -61,7 +62,7 @@ void ClusterSystem<S>::assemble(const Problem<S>& p, int bandwidth) {
   for (int i = 0; i < nf_; ++i) {
     rhs_[i] += p.mass[i] * p.u[i];
     A(i, 0) += p.mass[i];
-    scale_[i] += p.mass[i];
+    scale_[i] += size_of(p.mass[i]);
     if (i == 0 || p.mass[i] < min_mass_) min_mass_ = p.mass[i];
   }
 }
@@ -77,15 +78,16 @@ bool ClusterSystem<S>::definite_by_bound() const {
   // Weyl's inequality fl(A) is positive definite when γ_k · max_r scale_r <
   // min m.  The factor 4 covers γ_k <= 2 k u (k u <= 1/2) and the rounding
   // of this test's own sums; the principal submatrix on the free bodies
-  // inherits every bound.
+  // inherits every bound.  Where the scales are Magnitudes (MpFloat, exact),
+  // their sums and this product are within (k + 3)·2⁻⁵² of their values
+  // and min m within 2⁻⁵³: inside the same factor 2.
   const S u = ScalarTraits<S>::unit_roundoff(digits_);
   const S k = S(2 * static_cast<long long>(entries_) + 2);
   if (!(S(8) * k * u < S(1))) return false;
-  S worst = S(0);
+  SizeOf<S> worst{};
   for (int r = 0; r < nf_; ++r)
     if (scale_[r] > worst) worst = scale_[r];
-  worst = S(4) * k * u * worst;
-  return worst < min_mass_;
+  return size_of(S(S(4) * k * u)) * worst < size_of(min_mass_);
 }
 
 template <class S>
@@ -231,7 +233,7 @@ bool ClusterSystem<S>::solve(const Problem<S>& p, const std::vector<char>& close
     if (bottom > top) {
       int pivot = bottom;  // the fixed cluster: sums from the top only
       if (cluster_[top] != fixed) {
-        S largest = S(-1);
+        SizeOf<S> largest{};  // below every row's scale, which holds a mass > 0
         for (int k = top; k <= bottom; ++k)
           if (scale_[k] > largest) largest = scale_[k], pivot = k;
       }

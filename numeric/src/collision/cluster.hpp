@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "superball/numeric/problem.hpp"
+#include "collision/magnitude.hpp"
 
 namespace superball::numeric::detail {
 
@@ -68,7 +69,8 @@ class ClusterSystem {
   int definite_ = -1;     ///< definite(): 1 yes, 0 no, −1 not yet known for this problem
   std::vector<S> A_;      ///< lower band of diag(m) + DᵀMD over all n bodies: A(i, d) = A_{i, i−d}
   std::vector<S> rhs_;    ///< b̃ on free bodies
-  std::vector<S> scale_;     ///< per row of A: Σ |terms| the assembly added (mass included), its rounding scale
+  /// per row of A: Σ |terms| the assembly added (mass included), its rounding scale
+  std::vector<SizeOf<S>> scale_;
   S min_mass_ = S(0);        ///< the smallest mass of a free body
   std::vector<int> cluster_;
   std::vector<S> R_, y_;  ///< the reduced banded system and its right side / solution

@@ -85,15 +85,16 @@ double group_momentum_residual(const Problem<S>& p, const std::vector<char>& act
   sum.assign(static_cast<std::size_t>(n), Sized<S>{});
   for (int i = 0; i < nf; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    sum[static_cast<std::size_t>(root_of(parent, i))].add(work.change[k], p.mass[k] * work.y[k].size());  // y's size: |W| + |u|
+    sum[static_cast<std::size_t>(root_of(parent, i))].add(work.change[k], size_of(p.mass[k]) * work.y[k].size());  // y's size: |W| + |u|
   }
   const int anchored = p.fixed_bottom ? root_of(parent, n - 1) : -1;  // the obstacle takes momentum
-  S worst = S(0);  // in S, as the rows: momenta of 1e-308 are beyond double's range
+  using Size = SizeOf<S>;
+  Size worst{};  // not in double, as the rows: momenta of 1e-308 are beyond double's range
   for (int r = 0; r < n; ++r) {
     const auto k = static_cast<std::size_t>(r);
     if (parent[k] != r || r == anchored) continue;
-    const S v = abs_value<S>(sum[k].value()), size = sum[k].size();
-    if (size > S(0) && v > worst * size) worst = v / size;
+    const Size v = size_of(sum[k].value()), size = sum[k].size();
+    if (size > Size{} && v > worst * size) worst = v / size;
   }
   return to_double(worst);
 }
@@ -138,40 +139,46 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   // y = W + u = 2X, the force DᵀMD y gets v (y_k − y_l)(e_i − e_j) from entry
   // (i-j, k-l, v), and the transposed term off the diagonal of M; residuals
   // are relative to the sum of |terms|.
+  // The sizes are SizeOf<S>: S, or a Magnitude of 53 bits where S is MpFloat.
+  using Size = SizeOf<S>;
   std::vector<Sized<S>>& y = work.y;
   std::vector<Sized<S>>& rows = work.rows;
   y.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) y[i].set(W[i] + p.u[i], abs_value<S>(W[i]) + abs_value<S>(p.u[i]));
+  for (int i = 0; i < n; ++i) y[i].set(W[i] + p.u[i], size_of(W[i]) + size_of(p.u[i]));
   rows.assign(static_cast<std::size_t>(n), Sized<S>{});
   S dissipation = S(0);
   for (const Entry<S>& e : p.entries) {
-    const S ykl = y[e.k].value() - y[e.l].value(), v = abs_value<S>(e.value);
-    const S f = e.value * ykl, s = v * (y[e.k].size() + y[e.l].size());
+    const S ykl = y[e.k].value() - y[e.l].value();
+    const Size v = size_of(e.value);
+    const S f = e.value * ykl;
+    const Size s = v * (y[e.k].size() + y[e.l].size());
     rows[e.i].add(f, s), rows[e.j].subtract(f, s);
     if (e.diagonal()) {  // 2 v X_ij² = v y_ij² / 2 (y_ij is y_kl)
       add_half_product(dissipation, f, ykl);
       continue;
     }
     const S yij = y[e.i].value() - y[e.j].value();
-    const S g = e.value * yij, t = v * (y[e.i].size() + y[e.j].size());
+    const S g = e.value * yij;
+    const Size t = v * (y[e.i].size() + y[e.j].size());
     rows[e.k].add(g, t), rows[e.l].subtract(g, t);
     add_product(dissipation, g, ykl);  // 4 v X_ij X_kl
   }
   for (int c = 0; c < nc; ++c) add_half_product(dissipation, out.reactions[static_cast<std::size_t>(c)], S(y[c].value() - y[c + 1].value()));
   out.dissipation = dissipation;
 
-  S motion_s = S(0);  // in S: rows of 1e-308 in CLN floats are beyond double's range
+  Size motion_s{};  // not in double: rows of 1e-308 in CLN floats are beyond double's range
   for (int i = 0; i < nf; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    S r = rows[k].value(), size = rows[k].size();
+    S r = rows[k].value();
+    Size size = rows[k].size();
     r += work.change[k];
-    size += abs_value<S>(work.mw[k]) + abs_value<S>(work.mu[k]);
-    if (i < nc) r -= lambda[k], size += abs_value<S>(lambda[k]);
-    if (i > 0) r += lambda[k - 1], size += abs_value<S>(lambda[k - 1]);
+    size += size_of(work.mw[k]) + size_of(work.mu[k]);
+    if (i < nc) r -= lambda[k], size += size_of(lambda[k]);
+    if (i > 0) r += lambda[k - 1], size += size_of(lambda[k - 1]);
     rows[k].set(r, size);
     // max |r|/size, dividing only where the row beats the largest so far
-    const S ar = abs_value<S>(r);
-    if (size > S(0) && ar > motion_s * size) motion_s = ar / size;
+    const Size ar = size_of(r);
+    if (size > Size{} && ar > motion_s * size) motion_s = ar / size;
   }
   const double motion = std::max(to_double(motion_s), group_momentum_residual(p, active, work));
   // Gaps relative to the largest velocity; reactions relative to the largest
@@ -180,21 +187,21 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   // reactions are about 0, is not taken for a violation.
   // In S, as the rows: gaps of 1e-444 m/s in long double are beyond double's
   // range, and a violated sign there would convert to a residual of 0.
-  S comp_s = S(0), vscale = S(0), lscale = S(0);
-  const auto raise = [](S& to, const S& x) {
+  Size comp_s{}, vscale{}, lscale{};
+  const auto raise = [](Size& to, const Size& x) {
     if (to < x) to = x;
   };
-  for (int i = 0; i < n; ++i) raise(vscale, abs_value<S>(W[i])), raise(vscale, abs_value<S>(p.u[i]));
+  for (int i = 0; i < n; ++i) raise(vscale, size_of(W[i])), raise(vscale, size_of(p.u[i]));
   for (int i = 0; i < nf; ++i) raise(lscale, rows[static_cast<std::size_t>(i)].size());
   for (int c = 0; c < nc; ++c) {
     const auto k = static_cast<std::size_t>(c);
     const S& w = out.gaps[k];
     const S& l = lambda[k];
     if (active[k]) {
-      if (!(w == S(0)) && vscale > S(0)) raise(comp_s, abs_value<S>(w) / vscale);
-      if (l < S(0) && !imposed && lscale > S(0)) raise(comp_s, S(-l) / lscale);
-    } else if (w < S(0) && !imposed && vscale > S(0) && p.constrained_contact(c)) {  // an open contact that is not constrained has no sign
-      raise(comp_s, S(-w) / vscale);
+      if (!(w == S(0)) && vscale > Size{}) raise(comp_s, size_of(w) / vscale);
+      if (l < S(0) && !imposed && lscale > Size{}) raise(comp_s, size_of(l) / lscale);
+    } else if (w < S(0) && !imposed && vscale > Size{} && p.constrained_contact(c)) {  // an open contact that is not constrained has no sign
+      raise(comp_s, size_of(w) / vscale);
     }
   }
   const double comp = to_double(comp_s);

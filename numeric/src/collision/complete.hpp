@@ -7,8 +7,10 @@
 
 #include "superball/numeric/collision.hpp"
 #include "collision/cluster.hpp"
+#include "collision/magnitude.hpp"
 
 namespace superball::numeric::detail {
+
 
 /// A sum and the sum of the magnitudes of its terms, side by side, so that
 /// adding a term updates both with one store (the residual check scatters
@@ -16,15 +18,17 @@ namespace superball::numeric::detail {
 template <class S>
 class Sized {
  public:
-  void add(const S& term, const S& magnitude) { value_ += term, size_ += magnitude; }
+  using Size = SizeOf<S>;
+  void add(const S& term, const Size& magnitude) { value_ += term, size_ += magnitude; }
   /// add(−term, magnitude), without forming −term (x − t and x + (−t) round alike).
-  void subtract(const S& term, const S& magnitude) { value_ -= term, size_ += magnitude; }
+  void subtract(const S& term, const Size& magnitude) { value_ -= term, size_ += magnitude; }
   const S& value() const { return value_; }
-  const S& size() const { return size_; }
-  void set(const S& value, const S& size) { value_ = value, size_ = size; }
+  const Size& size() const { return size_; }
+  void set(const S& value, const Size& size) { value_ = value, size_ = size; }
 
  private:
-  S value_ = S(0), size_ = S(0);
+  S value_ = S(0);
+  Size size_ = Size{};
 };
 /// In double both live in one 16-byte vector (GCC/Clang vector extension).
 template <>
@@ -59,19 +63,6 @@ struct CheckWorkspace {
   std::vector<int> entry_key, entry_group;
   int entry_bodies = -1;
 };
-
-template <class S>
-S abs_value(const S& x) {
-  return x < S(0) ? S(-x) : x;
-}
-/// The same for MpFloat with one copy: a negative number's sign flipped
-/// (±0 and NaN kept as they are, as x < 0 ? −x : x keeps them).
-template <>
-inline MpFloat abs_value<MpFloat>(const MpFloat& x) {
-  MpFloat r = x;
-  if (MpFloat::zero_or_regular(x) && !x.is_zero() && x.raw()->sign < 0) r.raw()->sign = 1;
-  return r;
-}
 
 template <class S>
 double to_double(const S& x) {

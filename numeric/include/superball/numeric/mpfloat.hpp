@@ -76,6 +76,19 @@ class SUPERBALL_NUMERIC_EXPORT MpFloat {
   static bool zero_or_regular(const MpFloat& x) { return x.raw_.exp == kZeroExp || x.raw_.exp > kInfExp; }
   /// The precision in bits.
   long precision() const { return raw_.prec; }
+  /// x = m·2^e with 1/2 ≤ |m| < 1, as std::frexp: m is x's leading word
+  /// rounded to a double (within one unit of its last place, 2⁻⁵³|m|) and e
+  /// any exponent MPFR holds; ±0 gives ±0 and e = 0, NaN and ±∞ give
+  /// themselves.  A magnitude for sizes and ratios, not a rounding of x.
+  friend double frexp(const MpFloat& x, long* e) {
+    *e = 0;
+    const double sign = x.raw_.sign < 0 ? -1.0 : 1.0;
+    if (x.raw_.exp == kZeroExp) return sign * 0.0;
+    if (x.raw_.exp <= kInfExp) return x.raw_.exp == kInfExp ? sign * __builtin_inf() : __builtin_nan("");
+    const double top = static_cast<double>(x.raw_.d[words(x.raw_.prec) - 1]) * 0x1p-64;  // in [1/2, 1]
+    *e = x.raw_.exp + (top == 1.0 ? 1 : 0);  // a word of 64 ones rounds up to 1 = (1/2)·2
+    return sign * (top == 1.0 ? 0.5 : top);
+  }
 
   ///@{
   /// Arithmetic in place, rounded to the larger precision of the two.
