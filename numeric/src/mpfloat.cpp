@@ -285,26 +285,24 @@ bool add(const MpFloat::Raw& a, const MpFloat::Raw& b, int sign_b, long p, MpFlo
   }
   long E = x->exp;
   if (!subtract) {
-    bool carry = false;
+    Wide sum = 0;  // the carry chain as add, adc, …
     for (int k = 0; k <= N; ++k) {
-      const Limb s = W[k] + Y[k];
-      const bool c1 = s < W[k];
-      W[k] = s + (carry ? 1 : 0);
-      carry = c1 || (carry && W[k] == 0);
+      sum += Wide(W[k]) + Y[k];
+      W[k] = static_cast<Limb>(sum);
+      sum >>= 64;
     }
-    if (carry) {  // 1.… : one place right, the bit out joins the sticky one
+    if (sum != 0) {  // 1.… : one place right, the bit out joins the sticky one
       sticky = sticky || (W[0] & 1) != 0;
       for (int k = 0; k < N; ++k) W[k] = (W[k] >> 1) | (W[k + 1] << 63);
       W[N] = (W[N] >> 1) | (Limb(1) << 63);
       ++E;
     }
   } else {
-    bool borrow = sticky;  // a sticky Y: the truncated difference is one less
-    for (int k = 0; k <= N; ++k) {
-      const Limb t = W[k] - Y[k];
-      const bool b1 = W[k] < Y[k];
-      W[k] = t - (borrow ? 1 : 0);
-      borrow = b1 || (borrow && t == 0);
+    Limb borrow = sticky ? 1 : 0;  // a sticky Y: the truncated difference is one less
+    for (int k = 0; k <= N; ++k) {  // the borrow chain as sub, sbb, …
+      const Wide t = Wide(W[k]) - Y[k] - borrow;
+      W[k] = static_cast<Limb>(t);
+      borrow = static_cast<Limb>(t >> 64) & 1;
     }
     int top = N;
     while (top >= 0 && W[top] == 0) --top;
