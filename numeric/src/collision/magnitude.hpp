@@ -38,14 +38,16 @@ class Magnitude {
     const double m = std::fabs(frexp(x, &e));
     set(m, e);
   }
-  friend Magnitude operator+(Magnitude a, const Magnitude& b) {
+  friend Magnitude operator+(const Magnitude& a, const Magnitude& b) {
     if (a.m_ == 0) return b;
     if (b.m_ == 0) return a;
     if (!regular(a) || !regular(b)) return special(a.m_ + b.m_);
-    if (a.e_ < b.e_) return b + a;  // a the larger exponent
-    a.m_ += b.m_ * power_of_two(b.e_ - a.e_);  // in [1/2, 2)
-    if (a.m_ >= 1) a.m_ *= 0.5, ++a.e_;
-    return a;
+    const bool a_larger = a.e_ >= b.e_;
+    Magnitude r = a_larger ? a : b;
+    const Magnitude& y = a_larger ? b : a;
+    r.m_ += y.m_ * power_of_two(y.e_ - r.e_);  // in [1/2, 2)
+    if (r.m_ >= 1) r.m_ *= 0.5, ++r.e_;
+    return r;
   }
   Magnitude& operator+=(const Magnitude& b) { return *this = *this + b; }
   friend Magnitude operator*(Magnitude a, const Magnitude& b) {
