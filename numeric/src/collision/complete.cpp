@@ -139,7 +139,7 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   // y = W + u = 2X, the force DᵀMD y gets v (y_k − y_l)(e_i − e_j) from entry
   // (i-j, k-l, v), and the transposed term off the diagonal of M; residuals
   // are relative to the sum of |terms|.
-  // The sizes are SizeOf<S>: S, or a Magnitude of 53 bits where S is MpFloat.
+  // The sizes are SizeOf<S>: S, or a Magnitude of 53 bits (MpFloat, exact).
   using Size = SizeOf<S>;
   std::vector<Sized<S>>& y = work.y;
   std::vector<Sized<S>>& rows = work.rows;
@@ -185,7 +185,7 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   // row of the equations of motion (momenta, percussions and reactions), so
   // that a reaction at rounding level whose sign came out wrong, where all
   // reactions are about 0, is not taken for a violation.
-  // In S, as the rows: gaps of 1e-444 m/s in long double are beyond double's
+  // Not in double, as the rows: gaps of 1e-444 m/s in long double are beyond double's
   // range, and a violated sign there would convert to a residual of 0.
   Size comp_s{}, vscale{}, lscale{};
   const auto raise = [](Size& to, const Size& x) {
