@@ -59,8 +59,8 @@ TEST(Magnitude, check_SumsProductsQuotientsAndOrderAreThoseOfTheValuesToAFewUlps
 
 TEST(Magnitude, exam_ZeroInfinityAndNaNBehaveAsTheyDoInTheNumbers) {
   const Magnitude zero, two(MpFloat(2)), huge(ScalarTraits<MpFloat>::from(cln::expt(cl_RA(2), 5000), 30));
-  const Magnitude inf(MpFloat(std::numeric_limits<double>::infinity()));
-  const Magnitude nan(MpFloat(std::numeric_limits<double>::quiet_NaN()));
+  const Magnitude inf{MpFloat(std::numeric_limits<double>::infinity())};
+  const Magnitude nan{MpFloat(std::numeric_limits<double>::quiet_NaN())};
   EXPECT_EQ((zero + two).to_double(), 2);
   EXPECT_EQ((two + zero).to_double(), 2);
   EXPECT_EQ((zero * huge).to_double(), 0);
