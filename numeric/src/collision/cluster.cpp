@@ -87,7 +87,7 @@ bool ClusterSystem<S>::definite_by_bound() const {
   SizeOf<S> worst{};
   for (int r = 0; r < nf_; ++r)
     if (scale_[r] > worst) worst = scale_[r];
-  return size_of(S(S(4) * k * u)) * worst < size_of(min_mass_);
+  return size_of<S>(S(4) * k * u) * worst < size_of(min_mass_);
 }
 
 template <class S>

@@ -144,7 +144,13 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   std::vector<Sized<S>>& y = work.y;
   std::vector<Sized<S>>& rows = work.rows;
   y.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) y[i].set(W[i] + p.u[i], size_of(W[i]) + size_of(p.u[i]));
+  Size vscale{};  // the largest |W| and |u|: complementarity's scale of velocities, below
+  for (int i = 0; i < n; ++i) {
+    const Size w = size_of(W[i]), v = size_of(p.u[i]);
+    y[i].set(W[i] + p.u[i], w + v);
+    if (vscale < w) vscale = w;
+    if (vscale < v) vscale = v;
+  }
   rows.assign(static_cast<std::size_t>(n), Sized<S>{});
   S dissipation = S(0);
   for (const Entry<S>& e : p.entries) {
@@ -187,11 +193,10 @@ void complete_solution(const Problem<S>& p, ClusterSystem<S>& system, const std:
   // reactions are about 0, is not taken for a violation.
   // Not in double, as the rows: gaps of 1e-444 m/s in long double are beyond double's
   // range, and a violated sign there would convert to a residual of 0.
-  Size comp_s{}, vscale{}, lscale{};
+  Size comp_s{}, lscale{};
   const auto raise = [](Size& to, const Size& x) {
     if (to < x) to = x;
   };
-  for (int i = 0; i < n; ++i) raise(vscale, size_of(W[i])), raise(vscale, size_of(p.u[i]));
   for (int i = 0; i < nf; ++i) raise(lscale, rows[static_cast<std::size_t>(i)].size());
   for (int c = 0; c < nc; ++c) {
     const auto k = static_cast<std::size_t>(c);

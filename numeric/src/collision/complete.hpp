@@ -11,7 +11,6 @@
 
 namespace superball::numeric::detail {
 
-
 /// A sum and the sum of the magnitudes of its terms, side by side, so that
 /// adding a term updates both with one store (the residual check scatters
 /// over M's entries, and there the stores are the bottleneck).

@@ -16,10 +16,10 @@
 namespace superball::numeric::detail {
 
 /// A size (of the residual check, or of the assembly's rounding scale) where
-/// S's own arithmetic is costly (MpFloat,
-/// and exact rationals, whose sums of magnitudes grow their denominators):
-/// a number m·2^e ≥ 0 with m a double in [1/2, 1) and e a long,
-/// so about 53 bits over any range of exponents S has.  A size (a sum of
+/// S's own arithmetic is costly (MpFloat, and exact rationals, whose sums of
+/// magnitudes grow their denominators): a number m·2^e ≥ 0 with m a double
+/// in [1/2, 1) and e a long, so about 53 bits over any range of exponents S
+/// has.  A size (a sum of
 /// the magnitudes of a row's terms) only scales a residual to compare it
 /// with a tolerance given as a double, so 53 bits are more than it needs;
 /// what it must keep is the range (an MpFloat's values go far beyond
@@ -98,8 +98,9 @@ class Magnitude {
   long e_ = kZeroE;
 };
 
-/// The type of the residual check's sizes: S itself, or Magnitude where S's
-/// arithmetic is costly and a size needs none of its precision.
+/// The type of a size (the residual check's, the assembly's rounding scale):
+/// S itself, or Magnitude where S's arithmetic is costly and a size needs
+/// none of its precision.
 template <class S>
 struct SizeType {
   using type = S;
@@ -129,7 +130,7 @@ inline MpFloat abs_value<MpFloat>(const MpFloat& x) {
   if (MpFloat::zero_or_regular(x) && !x.is_zero() && x.raw()->sign < 0) r.raw()->sign = 1;
   return r;
 }
-/// |x| as a size of the residual check.
+/// |x| as a size.
 template <class S>
 SizeOf<S> size_of(const S& x) {
   return abs_value<S>(x);
