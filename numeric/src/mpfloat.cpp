@@ -20,6 +20,7 @@
 
 #include "superball/numeric/scalar.hpp"
 #include "collision/mpfloat_steps.hpp"
+#include "word_division.hpp"
 
 namespace superball::numeric {
 
@@ -88,7 +89,7 @@ constexpr long kSafeExp = 1L << 29;
 /// out untouched, when E leaves the safe range.  U: 64N − p when known at
 /// compile time (digits:N's precisions leave 1 bit), else −1.
 template <int N, int U>
-bool round_into(const Limb* W, bool sticky, long E, long p, MpFloat::Raw& out) {
+__attribute__((always_inline)) inline bool round_into(const Limb* W, bool sticky, long E, long p, MpFloat::Raw& out) {
   if (E < -kSafeExp || E > kSafeExp) return false;  // before out is touched: out may be an operand
   const int unused = U >= 0 ? U : static_cast<int>(64L * N - p);  // low bits of the lowest word, 0 … 63
   bool half;                                         // the bit just below the last one kept
@@ -171,11 +172,11 @@ template <int N, int U>
 bool div(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
   // q = ⌊A·2^(64(N+1)) / B⌋ on N + 2 words: A/B in (1/2, 2), so q has
   // 64(N + 1) bits or one more; the remainder is the sticky bit.
-  Limb num[2 * N + 1] = {}, q[N + 2], rem[N];
+  Limb num[2 * N + 1] = {}, q[N + 2];
   for (int k = 0; k < N; ++k) num[N + 1 + k] = a.d[k];
-  mpn_tdiv_qr(q, rem, 0, num, 2 * N + 1, b.d, N);
+  detail::divide_words<N>(q, num, b.d);  // the remainder into num[0 … N)
   bool sticky = false;
-  for (int k = 0; k < N; ++k) sticky = sticky || rem[k] != 0;
+  for (int k = 0; k < N; ++k) sticky = sticky || num[k] != 0;
   long E = a.exp - b.exp;  // A/B = 0.q[0 … N] × 2^E when q[N + 1] = 0
   if (q[N + 1] != 0) {
     sticky = sticky || (q[0] & 1) != 0;
@@ -531,9 +532,17 @@ __attribute__((noinline)) MpFloat& in_place_mixed(MpFloat& x, const MpFloat& y, 
   return x;
 }
 
-/// x op= y, in place.
+/// x op= y, in place.  A sum started at a zero (S(0), 64 bits) takes its
+/// first term ±y exactly, at y's precision (x has room for inline_limbs words).
 template <fast::Kind K>
 MpFloat& in_place(MpFloat& x, const MpFloat& y, Op op) {
+  MpFloat::Raw& r = *x.raw();
+  const MpFloat::Raw& t = *y.raw();
+  if (additive(K) && r.exp == __MPFR_EXP_ZERO && t.exp > __MPFR_EXP_INF && r.prec <= t.prec && words(t.prec) <= MpFloat::inline_limbs) {
+    r.prec = t.prec, r.exp = t.exp, r.sign = K == fast::Kind::sub ? -t.sign : t.sign;
+    for (long k = 0, n = words(t.prec); k < n; ++k) r.d[k] = t.d[k];
+    return x;
+  }
   if (x.precision() != y.precision()) return in_place_mixed<K>(x, y, op);
   if (!fast::operate<K>(*x.raw(), *y.raw(), *x.raw()) && !(additive(K) && zero_sum<K>(x, y, x))) op(mp(x), mp(x), mp(y), MPFR_RNDN);
   return x;
