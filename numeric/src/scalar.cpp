@@ -1,6 +1,7 @@
 #include "superball/numeric/scalar.hpp"
 
 #include <cln/float.h>
+#include <cln/integer.h>
 #include <cln/float_io.h>
 #include <cln/rational_io.h>
 #include <cln/real_io.h>
@@ -48,7 +49,16 @@ cln::float_format_t digits_format(int digits) {
   return f < least ? least : f;
 }
 
-double ScalarTraits<double>::from(const cln::cl_RA& r, int) { return cln::double_approx(r); }
+double ScalarTraits<double>::from(const cln::cl_RA& r, int) {
+  // A numerator and denominator of at most 53 bits are doubles exactly, and
+  // IEEE division rounds their quotient correctly, as double_approx() does
+  // (the same double; tests/numeric/scalar_test.cpp): a sweep's or a map's
+  // values, p/q with small p and q, without CLN's long division.
+  const cln::cl_I num = cln::numerator(r), den = cln::denominator(r);
+  if (cln::integer_length(num) <= 53 && cln::integer_length(den) <= 53)
+    return static_cast<double>(cln::cl_I_to_long(num)) / static_cast<double>(cln::cl_I_to_long(den));
+  return cln::double_approx(r);
+}
 
 bool ScalarTraits<double>::sqrt(const cln::cl_RA& square, int, double& out) {
   out = std::sqrt(cln::double_approx(square));

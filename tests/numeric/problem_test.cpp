@@ -3,7 +3,10 @@
 // and the scalar conversions.
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <cmath>
 #include <cstdint>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -281,6 +284,49 @@ TEST(Precision, RejectsNonsense) {
       EXPECT_EQ(std::string(e.what()).rfind("Precision::parse(): ", 0), 0u) << e.what();
     }
   }
+}
+
+/// The bits of \p d.
+std::uint64_t bits_of(double d) {
+  std::uint64_t b;
+  std::memcpy(&b, &d, sizeof b);
+  return b;
+}
+
+/// The double nearest \p r, ties to even, decided exactly: \p d is it when
+/// r is no nearer to either neighbour of d (and at a tie d is even).
+bool nearest_double(const cl_RA& r, double d) {
+  const cl_RA x = cln::rational(cln::cl_DF(d));
+  for (double n : {std::nextafter(d, -1e308), std::nextafter(d, 1e308)}) {
+    const cl_RA y = cln::rational(cln::cl_DF(n));
+    const cl_RA dx = abs_q(r - x), dy = abs_q(r - y);
+    if (dy < dx) return false;
+    if (dy == dx && (bits_of(d) & 1) != 0) return false;
+  }
+  return true;
+}
+
+/// Rationals p/q from 1 to 64 bits each (those of at most 53 take one IEEE
+/// division), converted to double: the nearest double, as CLN's
+/// double_approx() gives it.
+TEST(Scalars, check_RationalsConvertToTheNearestDouble) {
+  std::mt19937_64 draw(11);
+  int fast = 0;
+  for (int t = 0; t < 20000; ++t) {
+    const int pb = 1 + static_cast<int>(draw() % 64), qb = 1 + static_cast<int>(draw() % 64);
+    const auto bits = [&](int b) { return cln::cl_I(static_cast<std::uint64_t>(draw() >> (64 - b))); };
+    cl_RA p = bits(pb), q = bits(qb);
+    if (t % 7 == 0) p = cln::expt(cl_RA(2), pb % 54) - (t % 2);  // powers of two and all ones
+    if (q == 0) q = 1;
+    if (p == 0) p = 1;  // a nonzero quotient: its neighbours are normal doubles, which CLN holds
+    if (t % 2 == 1) p = -p;
+    const cl_RA r = p / q;
+    const double d = numeric::ScalarTraits<double>::from(r, 0);
+    fast += cln::integer_length(cln::numerator(r)) <= 53 && cln::integer_length(cln::denominator(r)) <= 53 ? 1 : 0;
+    ASSERT_TRUE(nearest_double(r, d)) << r << " -> " << d;
+    ASSERT_EQ(bits_of(d), bits_of(cln::double_approx(r))) << r;
+  }
+  EXPECT_GT(fast, 5000);
 }
 
 TEST(Scalars, ConversionsAreCorrectlyRounded) {
