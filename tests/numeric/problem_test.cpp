@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -327,6 +328,34 @@ TEST(Scalars, check_RationalsConvertToTheNearestDouble) {
     ASSERT_EQ(bits_of(d), bits_of(cln::double_approx(r))) << r;
   }
   EXPECT_GT(fast, 5000);
+}
+
+/// The exact value of a long double of 64 bits of significand.
+cl_RA exact_long_double(long double x) {
+  int e = 0;
+  const long double m = std::frexp(x, &e);  // |m| in [1/2, 1): |m|·2⁶⁴ an integer below 2⁶⁴
+  const cl_RA v = cln::cl_I(static_cast<std::uint64_t>(std::ldexp(std::fabs(m), 64))) * cln::expt(cl_RA(2), e - 64);
+  return m < 0 ? cl_RA(-v) : v;
+}
+
+/// Rationals p/q of at most 63 bits each, converted to long double: the
+/// nearest long double, decided exactly (no such p/q is a tie: it has at
+/// most 63 significant bits where it is a binary fraction).
+TEST(Scalars, check_SmallRationalsConvertToTheNearestLongDouble) {
+  if (std::numeric_limits<long double>::digits != 64) GTEST_SKIP() << "long double is not x87's 64-bit significand here";
+  std::mt19937_64 draw(13);
+  for (int t = 0; t < 20000; ++t) {
+    const auto bits = [&](int b) { return cln::cl_I(static_cast<std::uint64_t>(draw() >> (64 - b))); };
+    cl_RA p = bits(1 + static_cast<int>(draw() % 63)), q = bits(1 + static_cast<int>(draw() % 63));
+    if (q == 0) q = 1;
+    if (p == 0) p = 1;
+    const cl_RA r = t % 2 == 0 ? p / q : cl_RA(-p / q);
+    const long double d = numeric::ScalarTraits<long double>::from(r, 0);
+    const cl_RA x = exact_long_double(d), dx = abs_q(r - x);
+    for (long double n : {std::nextafter(d, -1e4000L), std::nextafter(d, 1e4000L)}) {
+      ASSERT_TRUE(dx < abs_q(r - exact_long_double(n))) << r << " -> " << static_cast<double>(d);
+    }
+  }
 }
 
 TEST(Scalars, ConversionsAreCorrectlyRounded) {
