@@ -67,12 +67,12 @@ bool ScalarTraits<double>::sqrt(const cln::cl_RA& square, int, double& out) {
 }
 
 long double ScalarTraits<long double>::from(const cln::cl_RA& r, int) {
-  // A numerator and denominator of at most 63 bits are long doubles exactly
-  // (64 bits of significand or more), and IEEE division rounds their
+  // With x87's 64 bits of significand, a numerator and denominator of at
+  // most 63 bits are long doubles exactly, and IEEE division rounds their
   // quotient correctly; the decimal route below gives the same long double
   // for them (its 40 digits are nearer p/q than any midpoint of two long
-  // doubles, which lies at least 2⁻¹²⁸ of p/q away).
-  if (std::numeric_limits<long double>::digits >= 64) {
+  // doubles, which lies at least 2⁻¹²⁸·|p/q| away).
+  if (std::numeric_limits<long double>::digits == 64) {
     const cln::cl_I num = cln::numerator(r), den = cln::denominator(r);
     if (cln::integer_length(num) <= 63 && cln::integer_length(den) <= 63)
       return static_cast<long double>(cln::cl_I_to_long(num)) / static_cast<long double>(cln::cl_I_to_long(den));
