@@ -1,4 +1,5 @@
 #include "superball/numeric/scalar.hpp"
+#include "scalar_internal.hpp"
 
 #include <cln/float.h>
 #include <cln/integer.h>
@@ -10,6 +11,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -152,24 +154,12 @@ std::string to_string(const cln::cl_RA& x, int) {
   return os.str();
 }
 
-std::string to_decimal(const cln::cl_RA& x, int significant) {
-  if (significant < 1) throw std::invalid_argument("to_decimal(): significant digits must be >= 1");
-  if (cln::zerop(x)) return "0";
-  const bool negative = cln::minusp(x);
-  const cln::cl_RA ax = negative ? cln::cl_RA(-x) : x;
-  // e = floor(log10 |x|): 10^e <= |x| < 10^(e+1)
-  long e = 0;
-  cln::cl_RA p = 1;
-  while (p * 10 <= ax) p = p * 10, ++e;
-  while (p > ax) p = p / 10, --e;
-  // digits = round(|x| / 10^(e - significant + 1)), as an integer
-  cln::cl_RA scale = 1;
-  for (long k = 0; k < std::labs(e - significant + 1); ++k) scale = scale * 10;
-  const cln::cl_RA scaled = e - significant + 1 >= 0 ? ax / scale : ax * scale;
-  cln::cl_I digits = cln::floor1(scaled + cln::cl_RA(1) / 2);
-  std::ostringstream ds;
-  cln::fprint(ds, digits);
-  std::string d = ds.str();
+namespace {
+
+/// The text of to_decimal() from the digits \p d of |x| rounded to
+/// \p significant digits (maybe one more, when the rounding carried into a
+/// new digit) and the exponent e of |x| (10^e <= |x| < 10^(e+1)).
+std::string decimal_text(bool negative, std::string d, long e, int significant) {
   if (static_cast<int>(d.size()) > significant) {  // rounding carried into a new digit
     d.pop_back();
     ++e;
@@ -187,6 +177,78 @@ std::string to_decimal(const cln::cl_RA& x, int significant) {
     out = "0." + std::string(static_cast<std::size_t>(-e - 1), '0') + d;
   }
   return (negative ? "-" : "") + out;
+}
+
+__extension__ typedef unsigned __int128 U128;  // GCC and Clang's 128-bit integer
+
+/// to_decimal()'s digits and exponent of |x| = a/b in 128-bit integers
+/// when a and b have at most 63 bits and a·10^P or b·10^−P (P the power
+/// that scales |x| to \p significant digits) stays below 2¹²⁷: a sweep's or
+/// a map's values.  The same digits as CLN's exact route: round(a·10^P / b)
+/// half up.  False otherwise.
+bool small_decimal(const cln::cl_RA& ax, int significant, std::string& d, long& e) {
+  const cln::cl_I num = cln::numerator(ax), den = cln::denominator(ax);
+  if (cln::integer_length(num) > 63 || cln::integer_length(den) > 63) return false;
+  const U128 a = static_cast<std::uint64_t>(cln::cl_I_to_long(num)), b = static_cast<std::uint64_t>(cln::cl_I_to_long(den));
+  e = 0;  // 10^e <= a/b < 10^(e+1): e in [−19, 18]
+  if (a >= b) {
+    for (U128 p = b; p * 10 <= a; p *= 10) ++e;
+  } else {
+    for (U128 p = a; p < b; p *= 10) --e;
+  }
+  const long P = significant - 1 - e;
+  if (P > 38 || P < -38) return false;
+  U128 t = 1;
+  for (long k = 0; k < std::labs(P); ++k) t *= 10;
+  const U128 half = ~U128(0) >> 1;  // 2¹²⁷ − 1
+  if ((P >= 0 ? a : b) > half / t) return false;
+  const U128 n = P >= 0 ? a * t : a, m = P >= 0 ? b : b * t;
+  U128 q = n / m;
+  if (n % m >= m - n % m) ++q;  // the remainder at least half of m: up
+  char digits[40];
+  int at = 40;
+  do {
+    digits[--at] = static_cast<char>('0' + static_cast<int>(q % 10));
+    q /= 10;
+  } while (q != 0);
+  d.assign(digits + at, digits + 40);
+  return true;
+}
+
+}  // namespace
+
+namespace detail {
+
+std::string to_decimal_by_cln(const cln::cl_RA& x, int significant) {
+  if (significant < 1) throw std::invalid_argument("to_decimal(): significant digits must be >= 1");
+  if (cln::zerop(x)) return "0";
+  const bool negative = cln::minusp(x);
+  const cln::cl_RA ax = negative ? cln::cl_RA(-x) : x;
+  // e = floor(log10 |x|): 10^e <= |x| < 10^(e+1)
+  long e = 0;
+  cln::cl_RA p = 1;
+  while (p * 10 <= ax) p = p * 10, ++e;
+  while (p > ax) p = p / 10, --e;
+  // digits = round(|x| / 10^(e - significant + 1)), as an integer
+  cln::cl_RA scale = 1;
+  for (long k = 0; k < std::labs(e - significant + 1); ++k) scale = scale * 10;
+  const cln::cl_RA scaled = e - significant + 1 >= 0 ? ax / scale : ax * scale;
+  cln::cl_I digits = cln::floor1(scaled + cln::cl_RA(1) / 2);
+  std::ostringstream ds;
+  cln::fprint(ds, digits);
+  return decimal_text(negative, ds.str(), e, significant);
+}
+
+}  // namespace detail
+
+std::string to_decimal(const cln::cl_RA& x, int significant) {
+  if (significant < 1) throw std::invalid_argument("to_decimal(): significant digits must be >= 1");
+  if (cln::zerop(x)) return "0";
+  const bool negative = cln::minusp(x);
+  std::string d;
+  long e = 0;
+  if (small_decimal(negative ? cln::cl_RA(-x) : x, significant, d, e)) return decimal_text(negative, d, e, significant);
+  return detail::to_decimal_by_cln(x, significant);
 }
 
 cln::cl_RA parse_rational(const std::string& fraction) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "scalar_internal.hpp"
 #include "superball/numeric/precision.hpp"
 #include "support.hpp"
 
@@ -356,6 +357,31 @@ TEST(Scalars, check_SmallRationalsConvertToTheNearestLongDouble) {
       ASSERT_TRUE(dx < abs_q(r - exact_long_double(n))) << r << " -> " << static_cast<double>(d);
     }
   }
+}
+
+/// to_decimal()'s shortcut in 128-bit integers gives CLN's text: rationals
+/// of 1 to 70 bits over 1 to 70 bits (those of at most 63 take the
+/// shortcut), ties of the rounding (k/2, k/8 …), every number of digits
+/// from 1 to 40, both signs.
+TEST(Scalars, check_DecimalsAreThoseOfTheExactRoute) {
+  std::mt19937_64 draw(17);
+  const auto bits = [&](int b) { return cln::ash(cln::cl_I(static_cast<std::uint64_t>(draw() >> 1)), b - 63); };
+  int shortcut = 0;
+  for (int t = 0; t < 30000; ++t) {
+    cl_RA q = t % 4 == 0 ? cln::expt(cl_RA(2), static_cast<int>(draw() % 6)) * cln::expt(cl_RA(10), static_cast<int>(draw() % 25)) : cl_RA(bits(1 + static_cast<int>(draw() % 70)));
+    if (q == 0) q = 1;
+    const cl_RA x = (t % 2 == 0 ? 1 : -1) * bits(1 + static_cast<int>(draw() % 70)) / q;
+    const int digits = 1 + static_cast<int>(draw() % 40);
+    shortcut += cln::integer_length(cln::numerator(x)) <= 63 && cln::integer_length(cln::denominator(x)) <= 63 ? 1 : 0;
+    ASSERT_EQ(numeric::to_decimal(x, digits), numeric::detail::to_decimal_by_cln(x, digits)) << x << " to " << digits << " digits";
+  }
+  EXPECT_GT(shortcut, 10000);
+  for (const char* text : {"1/2", "5/2", "-5/2", "1/8", "125/1000", "999999999995/1000", "20", "0", "1/3", "-2/3", "100000000000000000000"})
+    for (int digits : {1, 2, 3, 10, 17})
+      EXPECT_EQ(numeric::to_decimal(cl_RA(text), digits), numeric::detail::to_decimal_by_cln(cl_RA(text), digits)) << text << " " << digits;
+  EXPECT_EQ(numeric::to_decimal(cl_RA(5) / 2, 1), "3");  // half away from zero
+  EXPECT_EQ(numeric::to_decimal(cl_RA(-5) / 2, 1), "-3");
+  EXPECT_EQ(numeric::to_decimal(cl_RA(999999999995) / 1000, 10), "1000000000");  // the rounding carries into a new digit
 }
 
 TEST(Scalars, ConversionsAreCorrectlyRounded) {
