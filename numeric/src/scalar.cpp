@@ -55,7 +55,7 @@ cln::float_format_t digits_format(int digits) {
 double ScalarTraits<double>::from(const cln::cl_RA& r, int) {
   // A numerator and denominator of at most 53 bits are doubles exactly, and
   // IEEE division rounds their quotient correctly, as double_approx() does
-  // (the same double; tests/numeric/scalar_test.cpp): a sweep's or a map's
+  // (the same double; tests/numeric/problem_test.cpp): a sweep's or a map's
   // values, p/q with small p and q, without CLN's long division.
   const cln::cl_I num = cln::numerator(r), den = cln::denominator(r);
   if (cln::integer_length(num) <= 53 && cln::integer_length(den) <= 53)

@@ -3,10 +3,10 @@
 // and the scalar conversions.
 #include <gtest/gtest.h>
 
-#include <cstring>
-#include <limits>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <string>
