@@ -707,7 +707,8 @@ std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, i
                                 " are not among the " + std::to_string(steps));
   std::vector<cln::cl_RA> v;
   v.reserve(static_cast<std::size_t>(count));
-  for (int k = first; k < first + count; ++k) v.push_back(from + (to - from) * k / (steps - 1));
+  const cln::cl_RA step = (to - from) / (steps - 1);  // from + step·k: the exact value from + (to − from)·k/(steps − 1)
+  for (int k = first; k < first + count; ++k) v.push_back(from + step * k);
   return v;
 }
 

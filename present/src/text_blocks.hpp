@@ -15,6 +15,7 @@
 
 #include "superball/numeric/parallel.hpp"
 #include "superball/numeric/scalar.hpp"
+#include "superball/numeric/sweep.hpp"
 #include "superball/present/text_sink.hpp"
 
 namespace superball::present::detail {
@@ -71,9 +72,9 @@ inline std::vector<std::string> decimals(const cln::cl_RA& from, const cln::cl_R
       static_cast<std::size_t>((count + per_task - 1) / per_task), threads,
       [&] { return Ends{numeric::parse_rational(low), numeric::parse_rational(high)}; },
       [&](const Ends& ends, std::size_t t) {
+        const int k0 = first + static_cast<int>(t) * per_task, k1 = std::min(first + count, k0 + per_task);
         std::vector<std::string> texts;
-        for (int k = first + static_cast<int>(t) * per_task; k < std::min(first + count, first + static_cast<int>(t + 1) * per_task); ++k)
-          texts.push_back(decimal(value(ends.from, ends.to, steps, k), 10));
+        for (const cln::cl_RA& v : numeric::linspace(ends.from, ends.to, steps, k0, k1 - k0)) texts.push_back(decimal(v, 10));
         return texts;
       });
   std::vector<std::string> all;
