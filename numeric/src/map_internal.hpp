@@ -22,6 +22,13 @@ namespace superball::numeric::detail {
 /// parse their own copies and never touch the caller's CLN objects (sweep.cpp).
 std::vector<std::string> as_text(const std::vector<cln::cl_RA>& values);
 
+/// The smallest and the largest of \p values (not empty), exactly, as
+/// std::minmax_element() finds them (the first smallest, the last largest):
+/// by their nearest doubles, since rounding keeps the order (a smaller double
+/// is a smaller value), and by CLN's comparison only between values whose
+/// doubles are equal.
+std::pair<std::size_t, std::size_t> extremes(const std::vector<cln::cl_RA>& values);
+
 /// The index of the one entry of M in which the scenes \p a and \p b differ
 /// (as ExactScene, M unchecked), nullopt when they differ in anything else
 /// or in more than one entry: the axis of a map that varies that entry only.

@@ -32,6 +32,17 @@ std::vector<std::string> as_text(const std::vector<cln::cl_RA>& values) {
   return texts;
 }
 
+std::pair<std::size_t, std::size_t> extremes(const std::vector<cln::cl_RA>& values) {
+  std::size_t low = 0, high = 0;
+  double dlow = ScalarTraits<double>::from(values[0], 0), dhigh = dlow;
+  for (std::size_t k = 1; k < values.size(); ++k) {
+    const double d = ScalarTraits<double>::from(values[k], 0);
+    if (d < dlow || (d == dlow && values[k] < values[low])) low = k, dlow = d;
+    if (d > dhigh || (d == dhigh && !(values[k] < values[high]))) high = k, dhigh = d;
+  }
+  return {low, high};
+}
+
 }  // namespace detail
 
 namespace {
@@ -68,8 +79,8 @@ std::pair<Scene, Scene> checked_ends(const Scene& scene, const Parameter& parame
 /// Returns the scenes at the smallest and the largest value (none without values).
 std::optional<std::pair<Scene, Scene>> check_values(const Scene& scene, const Parameter& parameter, const std::vector<cln::cl_RA>& values) {
   if (values.empty()) return std::nullopt;
-  const auto [low, high] = std::minmax_element(values.begin(), values.end());
-  return checked_ends(scene, parameter, *low, *high);
+  const auto [low, high] = detail::extremes(values);
+  return checked_ends(scene, parameter, values[low], values[high]);
 }
 
 ExactPoint solve_exact(const Scene& scene) {
@@ -813,12 +824,17 @@ std::vector<bool> sweep_marking_psd(const Scene& scene, const Parameter& paramet
   for (std::size_t k = 0; k < psd.size(); ++k)
     if (psd[k]) solved.push_back(k);
   if (solved.empty()) {
-    const auto [low, high] = std::minmax_element(values.begin(), values.end());
+    const auto [low, high] = detail::extremes(values);
     throw InputError(scene.origin + ": M is not positive semi-definite at any value of the sweep (" + parameter.key() + " from " +
-                     to_string(*low) + " to " + to_string(*high) + "): nothing to solve");
+                     to_string(values[low]) + " to " + to_string(values[high]) + "): nothing to solve");
   }
-  const auto [low, high] = std::minmax_element(solved.begin(), solved.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
-  check_range(scene, parameter, values[*low], values[*high]);
+  {
+    std::vector<cln::cl_RA> kept;
+    kept.reserve(solved.size());
+    for (std::size_t k : solved) kept.push_back(values[k]);
+    const auto [low, high] = detail::extremes(kept);
+    check_range(scene, parameter, kept[low], kept[high]);
+  }
   const std::size_t total = solved.size();
   auto solve = [&](std::size_t first, std::size_t size) {
     std::vector<cln::cl_RA> chunk;

@@ -1,6 +1,5 @@
 // Sweeps and maps of drop scenes: each value or grid point its own drop(),
 // kept as its label (the sequence of collisions) and its top apex ratio.
-#include <algorithm>
 #include <stdexcept>
 
 #include "map_internal.hpp"
@@ -80,8 +79,8 @@ std::vector<DropPoint> drop_sweep(const Scene& scene, const Parameter& parameter
   check_threads(threads);
   check_drop_scene(scene, "drop_sweep()");
   if (values.empty()) throw std::invalid_argument("drop_sweep(): no value to run");
-  const auto [low, high] = std::minmax_element(values.begin(), values.end());
-  for (const cln::cl_RA* end : {&*low, &*high}) check_drop_at(scene, {&parameter}, {*end}, precision);
+  const auto [low, high] = detail::extremes(values);
+  for (std::size_t end : {low, high}) check_drop_at(scene, {&parameter}, {values[end]}, precision);
   const std::vector<std::string> texts = as_text(values);
   return parallel_map(values.size(), threads, [&scene] { return scene; }, [&](Scene& s, std::size_t k) {
     parameter.assign(s, Number::parse(texts[k]));

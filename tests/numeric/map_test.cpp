@@ -13,6 +13,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <random>
 #include <stdexcept>
 #include <vector>
 #include <string>
@@ -90,6 +91,33 @@ std::pair<int, int> expect_points_are_solves(const Scene& scene, const numeric::
       EXPECT_EQ(p.region.superball, sol.velocities_after[0] > before);
     }
   return {solved, marked};
+}
+
+/// detail::extremes() finds what std::minmax_element() finds with CLN's
+/// order (the first smallest, the last largest): values drawn from a few
+/// (ties), values whose doubles are equal but not they (p/q and
+/// p/q + 1/2⁸⁰), beyond double's range (10^±400), both signs.
+TEST(Map, check_ExtremesAreTheExactOnes) {
+  std::mt19937_64 draw(5);
+  const cl_RA tiny = cln::expt(cl_RA(2), -80);
+  for (int t = 0; t < 3000; ++t) {
+    std::vector<cl_RA> values;
+    const int n = 1 + static_cast<int>(draw() % 12);
+    for (int k = 0; k < n; ++k) {
+      cl_RA v = cl_RA(static_cast<int>(draw() % 7) - 3) / static_cast<int>(1 + draw() % 3);
+      switch (draw() % 5) {
+        case 0: v = v + tiny; break;
+        case 1: v = v - tiny; break;
+        case 2: v = (draw() % 2 == 0 ? 1 : -1) * cln::expt(cl_RA(10), draw() % 2 == 0 ? 400 : -400) + (draw() % 2 == 0 ? tiny : cl_RA(0)); break;
+        default: break;
+      }
+      values.push_back(v);
+    }
+    const auto [low, high] = std::minmax_element(values.begin(), values.end());
+    const auto got = numeric::detail::extremes(values);
+    ASSERT_EQ(got.first, static_cast<std::size_t>(low - values.begin())) << t;
+    ASSERT_EQ(got.second, static_cast<std::size_t>(high - values.begin())) << t;
+  }
 }
 
 TEST(Map, EachPointIsTheSolveOfItsSceneOrHasMNotPsd) {
