@@ -78,8 +78,9 @@ void widen(MpFloat& x, long bits) {
 // (tests/numeric/mpfloat_arithmetic_test.cpp compares them on random operands).
 namespace fast {
 
-__extension__ typedef unsigned __int128 Wide;  // GCC and Clang's 128-bit integer
-using Limb = std::uint64_t;
+using detail::words::Limb;
+using detail::words::Wide;
+using detail::words::compare_words;
 /// Exponents this far from 0 leave the work to MPFR (its range is ±(2^30 − 1)).
 constexpr long kSafeExp = 1L << 29;
 
@@ -232,14 +233,6 @@ bool mul2(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& ou
   if (!round_into2<U>(H, L, false, E, p, out)) return false;
   out.sign = sign;
   return true;
-}
-
-/// Compares the significands of N words: −1, 0 or 1.
-template <int N>
-int compare_words(const Limb* x, const Limb* y) {
-  for (int k = N - 1; k >= 0; --k)
-    if (x[k] != y[k]) return x[k] < y[k] ? -1 : 1;
-  return 0;
 }
 
 /// a + (±b) (\p sign_b: b's sign, flipped for a difference), both regular,

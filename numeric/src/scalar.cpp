@@ -36,6 +36,15 @@ std::string float_text(const cln::cl_F& x) {
   return plain_decimal(os.str());
 }
 
+/// r = p/q in lowest terms with p and q of at most \p bits bits (below
+/// 2⁶³), as machine integers: the shortcuts of the conversions below.
+bool small_parts(const cln::cl_RA& r, unsigned bits, long& p, long& q) {
+  const cln::cl_I num = cln::numerator(r), den = cln::denominator(r);
+  if (cln::integer_length(num) > bits || cln::integer_length(den) > bits) return false;
+  p = cln::cl_I_to_long(num), q = cln::cl_I_to_long(den);
+  return true;
+}
+
 }  // namespace
 
 cln::float_format_t digits_format(int digits) {
@@ -57,9 +66,8 @@ double ScalarTraits<double>::from(const cln::cl_RA& r, int) {
   // IEEE division rounds their quotient correctly, as double_approx() does
   // (the same double; tests/numeric/problem_test.cpp): a sweep's or a map's
   // values, p/q with small p and q, without CLN's long division.
-  const cln::cl_I num = cln::numerator(r), den = cln::denominator(r);
-  if (cln::integer_length(num) <= 53 && cln::integer_length(den) <= 53)
-    return static_cast<double>(cln::cl_I_to_long(num)) / static_cast<double>(cln::cl_I_to_long(den));
+  long p = 0, q = 1;
+  if (small_parts(r, 53, p, q)) return static_cast<double>(p) / static_cast<double>(q);
   return cln::double_approx(r);
 }
 
@@ -74,11 +82,8 @@ long double ScalarTraits<long double>::from(const cln::cl_RA& r, int) {
   // quotient correctly; the decimal route below gives the same long double
   // for them (its 40 digits are nearer p/q than any midpoint of two long
   // doubles, which lies at least 2⁻¹²⁸·|p/q| away).
-  if (std::numeric_limits<long double>::digits == 64) {
-    const cln::cl_I num = cln::numerator(r), den = cln::denominator(r);
-    if (cln::integer_length(num) <= 63 && cln::integer_length(den) <= 63)
-      return static_cast<long double>(cln::cl_I_to_long(num)) / static_cast<long double>(cln::cl_I_to_long(den));
-  }
+  long p = 0, q = 1;
+  if (std::numeric_limits<long double>::digits == 64 && small_parts(r, 63, p, q)) return static_cast<long double>(p) / static_cast<long double>(q);
   // 40 digits, then the C library's correctly rounded decimal conversion.
   return std::strtold(float_text(cln::cl_float(r, cln::float_format(40))).c_str(), nullptr);
 }
@@ -187,9 +192,9 @@ __extension__ typedef unsigned __int128 U128;  // GCC and Clang's 128-bit intege
 /// a map's values.  The same digits as CLN's exact route: round(a·10^P / b)
 /// half up.  False otherwise.
 bool small_decimal(const cln::cl_RA& ax, int significant, std::string& d, long& e) {
-  const cln::cl_I num = cln::numerator(ax), den = cln::denominator(ax);
-  if (cln::integer_length(num) > 63 || cln::integer_length(den) > 63) return false;
-  const U128 a = static_cast<std::uint64_t>(cln::cl_I_to_long(num)), b = static_cast<std::uint64_t>(cln::cl_I_to_long(den));
+  long num = 0, den = 1;
+  if (!small_parts(ax, 63, num, den)) return false;
+  const U128 a = static_cast<std::uint64_t>(num), b = static_cast<std::uint64_t>(den);  // ax ≥ 0
   e = 0;  // 10^e <= a/b < 10^(e+1): e in [−19, 18]
   if (a >= b) {
     for (U128 p = b; p * 10 <= a; p *= 10) ++e;

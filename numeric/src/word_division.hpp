@@ -77,6 +77,14 @@ inline Limb divide_3by2(Limb& r1, Limb& r0, Limb n2, Limb n1, Limb n0, Limb d1, 
   return q;
 }
 
+/// Compares the numbers of N words x and y (least significant first): −1, 0 or 1.
+template <int N>
+int compare_words(const Limb* x, const Limb* y) {
+  for (int k = N - 1; k >= 0; --k)
+    if (x[k] != y[k]) return x[k] < y[k] ? -1 : 1;
+  return 0;
+}
+
 /// x[0 … K) −= q·d[0 … K), returning the word borrowed out of x[K − 1].
 template <int K>
 Limb subtract_multiple(Limb* x, const Limb* d, Limb q) {
@@ -112,20 +120,9 @@ void divide_words(std::uint64_t* q, std::uint64_t* n, const std::uint64_t* d) {
   static_assert(N >= 2, "a divisor of two words or more");
   using words::Limb;
   constexpr int kTop = 2 * N + 1 - N;  // n[kTop … 2N]: the top N words
-  // The top quotient word, 0 or 1: whether n's top N words reach d.
-  bool reach = true;
-  for (int k = N - 1; k >= 0; --k)
-    if (n[kTop + k] != d[k]) {
-      reach = n[kTop + k] > d[k];
-      break;
-    }
-  if (reach) {
-    Limb borrow = 0;
-    for (int k = 0; k < N; ++k) {
-      const words::Wide t = words::Wide(n[kTop + k]) - d[k] - borrow;
-      n[kTop + k] = static_cast<Limb>(t), borrow = static_cast<Limb>(t >> 64) & 1;
-    }
-  }
+  // The top quotient word, 0 or 1: whether n's top N words reach d (then less d).
+  const bool reach = words::compare_words<N>(n + kTop, d) >= 0;
+  if (reach) words::subtract_multiple<N>(n + kTop, d, 1);
   q[N + 1] = reach ? 1 : 0;
   const Limb d1 = d[N - 1], d0 = d[N - 2], v = words::reciprocal_3by2(d1, d0);
   // One quotient word per step, from the top (N + 1 steps): the partial
