@@ -495,40 +495,43 @@ std::vector<char> multipliers(const std::vector<detail::Poly>& B, int k, const s
 }
 
 /// The cluster velocities of the elimination (Elimination) with b_ij = \p B
-/// and r_i = \p r, numbers; nothing when a pivot vanishes.
-std::optional<std::vector<cln::cl_RA>> eliminated_velocities(const std::vector<cln::cl_RA>& B, const std::vector<cln::cl_RA>& r, int k,
-                                                             const std::vector<char>& present, const std::vector<int>& order) {
+/// and r_i = \p r, numbers modulo the prime ℓ = 2⁶¹ − 1; nothing when a
+/// pivot vanishes modulo ℓ.
+std::optional<std::vector<std::uint64_t>> eliminated_velocities(const std::vector<std::uint64_t>& B, const std::vector<std::uint64_t>& r, int k,
+                                                                const std::vector<char>& present, const std::vector<int>& order) {
+  namespace m = detail::mod61;
   const auto K = static_cast<std::size_t>(k);
-  std::vector<cln::cl_RA> p(K), y(K), V(K), l(K * K, 0);
+  std::vector<std::uint64_t> p(K), y(K), V(K), l(K * K, 0);
   for (std::size_t a = 0; a < K; ++a) {
     const auto j = static_cast<std::size_t>(order[a]);
-    cln::cl_RA pj = B[j * K + j], yj = r[j];
+    std::uint64_t pj = B[j * K + j], yj = r[j];
     for (std::size_t c = 0; c < a; ++c) {
       const auto t = static_cast<std::size_t>(order[c]);
       if (!present[j * K + t]) continue;
-      pj -= l[j * K + t] * l[j * K + t] * p[t];
-      yj -= l[j * K + t] * y[t];
+      pj = m::subtract(pj, m::multiply(m::multiply(l[j * K + t], l[j * K + t]), p[t]));
+      yj = m::subtract(yj, m::multiply(l[j * K + t], y[t]));
     }
-    if (cln::zerop(pj)) return std::nullopt;
+    if (pj == 0) return std::nullopt;
     p[j] = pj;
     y[j] = yj;
+    const std::uint64_t inverse = m::inverse(pj);
     for (std::size_t b = a + 1; b < K; ++b) {
       const auto i = static_cast<std::size_t>(order[b]);
       if (!present[i * K + j]) continue;
-      cln::cl_RA v = B[i * K + j];
+      std::uint64_t v = B[i * K + j];
       for (std::size_t c = 0; c < a; ++c) {
         const auto t = static_cast<std::size_t>(order[c]);
-        if (present[i * K + t] && present[j * K + t]) v -= l[i * K + t] * l[j * K + t] * p[t];
+        if (present[i * K + t] && present[j * K + t]) v = m::subtract(v, m::multiply(m::multiply(l[i * K + t], l[j * K + t]), p[t]));
       }
-      l[i * K + j] = v / pj;
+      l[i * K + j] = m::multiply(v, inverse);
     }
   }
   for (std::size_t a = K; a-- > 0;) {
     const auto j = static_cast<std::size_t>(order[a]);
-    V[j] = y[j] / p[j];
+    V[j] = m::multiply(y[j], m::inverse(p[j]));
     for (std::size_t b = a + 1; b < K; ++b) {
       const auto i = static_cast<std::size_t>(order[b]);
-      if (present[i * K + j]) V[j] -= l[i * K + j] * V[i];
+      if (present[i * K + j]) V[j] = m::subtract(V[j], m::multiply(l[i * K + j], V[i]));
     }
   }
   return V;
@@ -1036,43 +1039,44 @@ std::optional<Elimination> eliminate(const System& s, const ContactSet& closed, 
   bool small_only = order == 0;  // the asymptotic forms are the ε⁰ parts: no parameter of negative order
   for (const GiNaC::numeric& o : orders) small_only = small_only && !o.is_negative();
   small_only = small_only && epsilon_order(x.D).is_zero();
-  // A point with 62-bit coordinates, drawn from the case (the output does not depend on it).
+  // A point modulo ℓ = 2⁶¹ − 1, drawn from the case (the output does not depend on it).
+  namespace m = detail::mod61;
   std::mt19937_64 draw(0x5eedu + closed.to_string().size() * 7919u + std::hash<std::string>{}(closed.to_string()));
-  std::vector<cln::cl_I> point(static_cast<std::size_t>(vars)), zeroed;
-  for (auto& v : point) v = cln::cl_I(static_cast<std::uint64_t>(draw() >> 2) + 1);
+  std::vector<std::uint64_t> point(static_cast<std::size_t>(vars)), zeroed;
+  for (auto& v : point) v = draw() % (m::prime - 1) + 1;
   zeroed = point;
   for (std::size_t q = 0; q < orders.size(); ++q)
     if (orders[q].is_positive()) zeroed[q] = 0;
-  auto velocities_at = [&](const std::vector<cln::cl_I>& at) {
-    std::vector<cln::cl_RA> Bx, rx;
-    for (const Poly& b : s.B) Bx.push_back(b.evaluate(at));
-    for (const Poly& r : s.rhs) rx.push_back(r.evaluate(at));
+  auto velocities_at = [&](const std::vector<std::uint64_t>& at) {
+    std::vector<std::uint64_t> Bx, rx;
+    for (const Poly& b : s.B) Bx.push_back(b.evaluate_mod(at));
+    for (const Poly& r : s.rhs) rx.push_back(r.evaluate_mod(at));
     return eliminated_velocities(Bx, rx, k, e.multiplier, e.order);
   };
-  auto value_at = [&](const Linear& f, const std::vector<cln::cl_RA>& V, const std::vector<cln::cl_I>& at) {
-    cln::cl_RA v = f.constant.evaluate(at);
+  auto value_at = [&](const Linear& f, const std::vector<std::uint64_t>& V, const std::vector<std::uint64_t>& at) {
+    std::uint64_t v = f.constant.evaluate_mod(at);
     for (std::size_t c = 0; c < Kc; ++c)
-      if (!f.coefficients[c].is_zero()) v += f.coefficients[c].evaluate(at) * V[c];
+      if (!f.coefficients[c].is_zero()) v = m::add(v, m::multiply(f.coefficients[c].evaluate_mod(at), V[c]));
     return v;
   };
   const auto V = velocities_at(point);
   if (!V) return std::nullopt;
-  const cln::cl_I Dx = x.D.evaluate(point);
+  const std::uint64_t Dx = x.D.evaluate_mod(point);
   for (std::size_t c = 0; c < Kc; ++c)
-    if ((*V)[c] * Dx != x.Vh[c].evaluate(point))
+    if (m::multiply((*V)[c], Dx) != x.Vh[c].evaluate_mod(point))
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the elimination's velocity of cluster " + std::to_string(c + 1) +
                              " is not the Cramer solution");
   for (const Pending& p : pending)
-    if (value_at(p.form, *V, point) * Dx != p.raw.evaluate(point))
+    if (m::multiply(value_at(p.form, *V, point), Dx) != p.raw.evaluate_mod(point))
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the condition on " + p.about +
                              " through the elimination is not the condition");
   const auto V0 = small_only ? velocities_at(zeroed) : std::nullopt;
   if (V0) {
-    const cln::cl_I D0 = x.D.evaluate(zeroed);
+    const std::uint64_t D0 = x.D.evaluate_mod(zeroed);
     for (std::size_t q = 0; q < pending.size(); ++q) {
       const Pending& p = pending[q];
       if (p.raw.is_zero() || !epsilon_order(p.raw).is_zero()) continue;  // the ε⁰ part vanishes: not the dominant balance
-      if (value_at(p.form, *V0, zeroed) * D0 != p.raw.evaluate(zeroed))
+      if (m::multiply(value_at(p.form, *V0, zeroed), D0) != p.raw.evaluate_mod(zeroed))
         throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the condition on " + p.about +
                                " through the elimination at order ε^0 is not the condition's");
       limit[q] = 1;

@@ -85,41 +85,50 @@ Poly Poly::variable(int vars, int k) {
 
 namespace {
 
+/// The pairs of a GiNaC sum or product read in place: a sum's op(k) builds
+/// a new product for every term with a coefficient other than 1, which
+/// reading a polynomial of thousands of terms paid for term by term.  A sum
+/// is Σ rest_k·coeff_k + overall, a product Π rest_k^coeff_k · overall;
+/// the pointers to these protected members are formed through this class.
+struct Pairs : GiNaC::expairseq {
+  static const GiNaC::epvector& of(const GiNaC::expairseq& e) { return e.*(&Pairs::seq); }
+  static const GiNaC::ex& overall(const GiNaC::expairseq& e) { return e.*(&Pairs::overall_coeff); }
+};
+
 /// Reads \p e term by term when it is already an expanded polynomial with
 /// integer coefficients (a sum of integer multiples of products of powers of
 /// symbols): no expand(), which rebuilds every term.  False for anything
 /// else (Poly::from_ex() then drops what was read and expands it).
 bool read_expanded(const GiNaC::ex& e, const Symbols& symbols, int words, std::vector<std::uint64_t>& mono, std::vector<cln::cl_I>& coef) {
   std::vector<std::uint64_t> m(static_cast<std::size_t>(words));
-  auto factor = [&](const GiNaC::ex& f, cln::cl_I& c) {
-    if (GiNaC::is_a<GiNaC::numeric>(f)) {
-      const auto& n = GiNaC::ex_to<GiNaC::numeric>(f);
-      if (!n.is_integer()) return false;
-      c = c * cln::the<cln::cl_I>(n.to_cl_N());
-      return true;
-    }
-    GiNaC::ex base = f;
-    int power = 1;
-    if (GiNaC::is_a<GiNaC::power>(f)) {
-      base = f.op(0);
-      const GiNaC::ex exponent = f.op(1);
-      if (!exponent.info(GiNaC::info_flags::posint) || GiNaC::ex_to<GiNaC::numeric>(exponent) > Poly::max_exponent) return false;
-      power = GiNaC::ex_to<GiNaC::numeric>(exponent).to_int();
-    }
+  auto times = [](const GiNaC::ex& f, cln::cl_I& c) {  // c · f for an integer f
+    if (!GiNaC::is_a<GiNaC::numeric>(f) || !GiNaC::ex_to<GiNaC::numeric>(f).is_integer()) return false;
+    c = c * cln::the<cln::cl_I>(GiNaC::ex_to<GiNaC::numeric>(f).to_cl_N());
+    return true;
+  };
+  auto power_of = [&](const GiNaC::ex& base, const GiNaC::ex& exponent) {  // base^exponent into m
+    if (!exponent.info(GiNaC::info_flags::posint) || GiNaC::ex_to<GiNaC::numeric>(exponent) > Poly::max_exponent) return false;
     const SymbolInfo* info = GiNaC::is_a<GiNaC::symbol>(base) ? symbols.find(base) : nullptr;
     if (!info) return false;
     const int k = info->rank;
-    const std::uint64_t shifted = static_cast<std::uint64_t>(power) << shift_of(k);
     if (m[static_cast<std::size_t>(k / 8)] & (std::uint64_t{0xFF} << shift_of(k))) return false;  // a symbol twice: not canonical
-    m[static_cast<std::size_t>(k / 8)] |= shifted;
+    m[static_cast<std::size_t>(k / 8)] |= static_cast<std::uint64_t>(GiNaC::ex_to<GiNaC::numeric>(exponent).to_int()) << shift_of(k);
     return true;
   };
-  auto term = [&](const GiNaC::ex& t) {
+  auto factor = [&](const GiNaC::ex& f, cln::cl_I& c) {  // a number, a symbol or a power of one
+    if (GiNaC::is_a<GiNaC::numeric>(f)) return times(f, c);
+    if (GiNaC::is_a<GiNaC::power>(f)) return power_of(f.op(0), f.op(1));
+    return power_of(f, 1);
+  };
+  auto term = [&](const GiNaC::ex& t, const GiNaC::ex& coefficient) {  // coefficient · t
     std::fill(m.begin(), m.end(), 0);
     cln::cl_I c = 1;
+    if (!times(coefficient, c)) return false;
     if (GiNaC::is_a<GiNaC::mul>(t)) {
-      for (std::size_t k = 0; k < t.nops(); ++k)
-        if (!factor(t.op(k), c)) return false;
+      const auto& product = GiNaC::ex_to<GiNaC::mul>(t);
+      if (!times(Pairs::overall(product), c)) return false;
+      for (const GiNaC::expair& f : Pairs::of(product))
+        if (!power_of(f.rest, f.coeff)) return false;
     } else if (!factor(t, c)) {
       return false;
     }
@@ -130,11 +139,12 @@ bool read_expanded(const GiNaC::ex& e, const Symbols& symbols, int words, std::v
   };
   if (e.is_zero()) return true;
   if (GiNaC::is_a<GiNaC::add>(e)) {
-    for (std::size_t k = 0; k < e.nops(); ++k)
-      if (!term(e.op(k))) return false;
-    return true;
+    const auto& sum = GiNaC::ex_to<GiNaC::add>(e);
+    for (const GiNaC::expair& t : Pairs::of(sum))
+      if (!term(t.rest, t.coeff)) return false;
+    return Pairs::overall(sum).is_zero() || term(1, Pairs::overall(sum));
   }
-  return term(e);
+  return term(e, 1);
 }
 
 }  // namespace
@@ -443,7 +453,7 @@ std::uint64_t add(std::uint64_t a, std::uint64_t b) {
   return x >= prime ? x - prime : x;
 }
 
-namespace {
+std::uint64_t subtract(std::uint64_t a, std::uint64_t b) { return add(a, b == 0 ? 0 : prime - b); }
 
 std::uint64_t inverse(std::uint64_t a) {  // a^(p−2), a ≠ 0
   std::uint64_t result = 1, base = a;
@@ -453,8 +463,6 @@ std::uint64_t inverse(std::uint64_t a) {  // a^(p−2), a ≠ 0
   }
   return result;
 }
-
-}  // namespace
 
 int gcd_degree(std::vector<std::uint64_t> a, std::vector<std::uint64_t> b) {
   if (a.size() < b.size()) std::swap(a, b);
@@ -500,6 +508,61 @@ std::vector<std::uint64_t> Poly::univariate_mod(int keep, const std::vector<std:
   return out;
 }
 
+std::vector<std::uint64_t> Poly::on_line_mod(const std::vector<std::uint64_t>& a, const std::vector<std::uint64_t>& b) const {
+  std::vector<std::uint64_t> out, term, next;
+  // (a_k + b_k t)^e for each symbol k, e = 0, 1, … as far as a term needs.
+  std::vector<std::vector<std::vector<std::uint64_t>>> powers(static_cast<std::size_t>(vars_));
+  for (std::size_t t = 0; t < size(); ++t) {
+    term.assign(1, mod61::reduce(coef_[t]));
+    const std::uint64_t* m = mono(t);
+    for (int w = 0; w < words_ && term.front(); ++w) {
+      for (std::uint64_t word = m[w]; word;) {
+        const int k = 8 * w + __builtin_clzll(word) / 8;  // as in univariate_mod()
+        const int e = static_cast<int>((word >> shift_of(k)) & 0xFF);
+        word &= ~(std::uint64_t{0xFF} << shift_of(k));
+        auto& table = powers[static_cast<std::size_t>(k)];
+        if (table.empty()) table.push_back({1});
+        while (static_cast<int>(table.size()) <= e) {
+          const std::vector<std::uint64_t>& last = table.back();
+          std::vector<std::uint64_t> times(last.size() + 1, 0);  // last · (a_k + b_k t)
+          for (std::size_t i = 0; i < last.size(); ++i) {
+            times[i] = mod61::add(times[i], mod61::multiply(last[i], a[static_cast<std::size_t>(k)]));
+            times[i + 1] = mod61::multiply(last[i], b[static_cast<std::size_t>(k)]);
+          }
+          table.push_back(std::move(times));
+        }
+        const std::vector<std::uint64_t>& f = table[static_cast<std::size_t>(e)];
+        next.assign(term.size() + f.size() - 1, 0);
+        for (std::size_t i = 0; i < term.size(); ++i)
+          for (std::size_t j = 0; j < f.size(); ++j) next[i + j] = mod61::add(next[i + j], mod61::multiply(term[i], f[j]));
+        term.swap(next);
+      }
+    }
+    if (out.size() < term.size()) out.resize(term.size(), 0);
+    for (std::size_t i = 0; i < term.size(); ++i) out[i] = mod61::add(out[i], term[i]);
+  }
+  while (!out.empty() && out.back() == 0) out.pop_back();
+  return out;
+}
+
+std::uint64_t Poly::evaluate_mod(const std::vector<std::uint64_t>& point) const {
+  if (vars_ == 0) return is_zero() ? 0 : mod61::reduce(coef_.front());
+  const std::vector<std::uint64_t> c = univariate_mod(0, point);  // x_0 kept, then evaluated
+  std::uint64_t v = 0;
+  for (std::size_t d = c.size(); d-- > 0;) v = mod61::add(mod61::multiply(v, point[0]), c[d]);
+  return v;
+}
+
+int Poly::total_degree() const {
+  int most = 0;
+  for (std::size_t t = 0; t < size(); ++t) {
+    int d = 0;
+    for (int k = 0; k < vars_; ++k) d += exponent(t, k);
+    most = std::max(most, d);
+  }
+  return most;
+}
+
 cln::cl_I Poly::evaluate(const std::vector<cln::cl_I>& point) const {
   if (vars_ == 0) return is_zero() ? cln::cl_I(0) : coef_.front();
   // x_0 is kept as the univariate variable, then evaluated.
@@ -527,11 +590,12 @@ GiNaC::ex Poly::to_ex(const Symbols& symbols) const {
       const GiNaC::expair& p = powers.front();
       pairs.emplace_back(p.coeff.is_equal(1) ? p.rest : GiNaC::pow(p.rest, p.coeff), c);
     } else {
-      pairs.emplace_back(GiNaC::mul(std::move(powers)), c);
+      pairs.emplace_back(GiNaC::dynallocate<GiNaC::mul>(std::move(powers)).setflag(GiNaC::status_flags::evaluated), c);
     }
   }
   if (pairs.empty()) return constant;
-  return GiNaC::add(std::move(pairs), constant);
+  if (pairs.size() == 1 && constant.is_zero()) return GiNaC::add(std::move(pairs), constant);
+  return GiNaC::dynallocate<GiNaC::add>(std::move(pairs), constant).setflag(GiNaC::status_flags::evaluated);
 }
 
 namespace {

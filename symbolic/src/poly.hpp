@@ -94,8 +94,16 @@ class Poly {
   /// univariate() modulo the prime 2⁶¹ − 1 (\p point already reduced):
   /// coefficients c_0 … c_d in [0, 2⁶¹ − 1), trailing zeros dropped.
   std::vector<std::uint64_t> univariate_mod(int keep, const std::vector<std::uint64_t>& point) const;
+  /// The polynomial on the line x = a + b·t, modulo the prime 2⁶¹ − 1
+  /// (\p a, \p b already reduced, one entry a symbol): the coefficients
+  /// c_0 … c_d of p(a + b·t) in [0, 2⁶¹ − 1), trailing zeros dropped.
+  std::vector<std::uint64_t> on_line_mod(const std::vector<std::uint64_t>& a, const std::vector<std::uint64_t>& b) const;
+  /// The total degree: the largest sum of exponents over the terms (0 for the zero polynomial).
+  int total_degree() const;
   /// The value at \p point (one integer a symbol).
   cln::cl_I evaluate(const std::vector<cln::cl_I>& point) const;
+  /// The value at \p point modulo the prime 2⁶¹ − 1 (\p point already reduced).
+  std::uint64_t evaluate_mod(const std::vector<std::uint64_t>& point) const;
 
   /// The same polynomial as a GiNaC expression in \p symbols (an add of
   /// products, built without re-expanding).
@@ -128,6 +136,10 @@ constexpr std::uint64_t prime = (std::uint64_t{1} << 61) - 1;
 std::uint64_t reduce(const cln::cl_I& x);
 std::uint64_t multiply(std::uint64_t a, std::uint64_t b);
 std::uint64_t add(std::uint64_t a, std::uint64_t b);
+/// a − b.
+std::uint64_t subtract(std::uint64_t a, std::uint64_t b);
+/// 1 / a, for a ≠ 0.
+std::uint64_t inverse(std::uint64_t a);
 /// The degree of gcd(a, b) of two polynomials modulo the prime (coefficients low to high,
 /// no trailing zeros, neither zero).
 int gcd_degree(std::vector<std::uint64_t> a, std::vector<std::uint64_t> b);

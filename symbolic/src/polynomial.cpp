@@ -1,6 +1,7 @@
 #include "polynomial.hpp"
 
 #include <algorithm>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 
@@ -97,14 +98,27 @@ const GiNaC::ex& Denominator::value() const {
   return q_ex_;
 }
 
-Denominator::Denominator(const Poly& q, const Symbols& symbols, bool probe) : symbols_(&symbols), q_(q) {
-  static const int values[] = {3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97};
-  constexpr int count = sizeof(values) / sizeof(values[0]);
+Denominator::Denominator(const Poly& q, const Symbols& symbols, bool probe) : symbols_(&symbols), q_(q), probe_(probe) {
   const int vars = q.vars();
   std::vector<cln::cl_I> ref(static_cast<std::size_t>(vars));
   for (int k = 0; k < vars; ++k) ref[static_cast<std::size_t>(k)] = symbols.all()[static_cast<std::size_t>(k)].kind == SymbolKind::Coupling ? 0 : 1;
   sign_ = cln::signum(q.evaluate(ref)) > 0 ? 1 : cln::zerop(q.evaluate(ref)) ? 0 : -1;
   if (q_.is_constant() || !probe) return;
+  // The line: fixed pseudo-random points modulo ℓ (the answers do not depend on them, only how fast they come).
+  std::mt19937_64 draw(0x11e5eedu);
+  for (int k = 0; k < vars; ++k) {
+    line_a_.push_back(draw() % mod61::prime);
+    line_b_.push_back(draw() % (mod61::prime - 1) + 1);
+  }
+  line_q_ = q_.on_line_mod(line_a_, line_b_);
+  if (static_cast<int>(line_q_.size()) - 1 != q_.total_degree()) line_q_.clear();  // q_top(b) ≡ 0: the degree drops
+}
+
+void Denominator::make_probes() const {
+  static const int values[] = {3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89, 97};
+  constexpr int count = sizeof(values) / sizeof(values[0]);
+  probed_ = true;
+  const int vars = q_.vars();
   for (int x = 0; x < vars; ++x) {
     const int degree = q_.degree(x);
     if (!degree) continue;
@@ -116,7 +130,7 @@ Denominator::Denominator(const Poly& q, const Symbols& symbols, bool probe) : sy
         if (other != x) probe.point[static_cast<std::size_t>(other)] = values[(k++ * 7 + attempt * 5 + 1) % count] + attempt;
       const std::vector<cln::cl_I> at = q_.univariate(x, probe.point);
       if (static_cast<int>(at.size()) - 1 != degree || cln::zerop(at.back())) continue;  // the leading coefficient vanishes there
-      probe.q_at = univariate_ex(at, symbols.all()[static_cast<std::size_t>(x)].symbol);
+      probe.q_at = univariate_ex(at, symbols_->all()[static_cast<std::size_t>(x)].symbol);
       for (const cln::cl_I& v : probe.point) probe.point_mod.push_back(mod61::reduce(v));
       probe.q_mod = q_.univariate_mod(x, probe.point_mod);
       if (static_cast<int>(probe.q_mod.size()) - 1 != degree) probe.q_mod.clear();
@@ -130,6 +144,12 @@ Denominator::Denominator(const Poly& q, const Symbols& symbols, bool probe) : sy
 bool Denominator::coprime_with(const Poly& p) const {
   if (p.is_zero()) return false;
   if (p.is_constant() || q_.is_constant()) return true;
+  if (!probe_) throw std::logic_error("Denominator::coprime_with(): made without probes");
+  if (!line_q_.empty()) {
+    const std::vector<std::uint64_t> p_line = p.on_line_mod(line_a_, line_b_);
+    if (!p_line.empty() && mod61::gcd_degree(p_line, line_q_) == 0) return true;  // proved on the line
+  }
+  if (!probed_) make_probes();
   for (int x : unprobed_)
     if (p.has(x)) return false;
   for (const Probe& probe : probes_) {

@@ -51,13 +51,18 @@ class Denominator {
   const GiNaC::ex& value() const;
   /// The sign (−1, 0, 1) of q at reference_point() (masses, K's, a = 1, couplings 0).
   int sign_at_reference() const { return sign_; }
-  /// Whether gcd(p, q) is a constant, proved by specialisation: for every
-  /// symbol x of both, the univariate gcd at the probe point is a constant,
-  /// so a common factor cannot involve x (it would keep its degree in x
-  /// there, its leading coefficient dividing q's).  The gcd is first taken
-  /// modulo the prime 2⁶¹ − 1, which proves the same when q's leading
-  /// coefficient does not vanish modulo it (a common factor would keep its
-  /// degree there too); only otherwise over the integers.  False means "not proved".
+  /// Whether gcd(p, q) is a constant, proved by specialisation.  First on
+  /// one line x = a + b·t modulo the prime ℓ = 2⁶¹ − 1: a common factor g
+  /// (q = g·h) has top homogeneous part g_top dividing q's, so when
+  /// q_top(b) ≢ 0 (mod ℓ), g(a + b·t) keeps the degree of g and divides
+  /// both p(a + b·t) and q(a + b·t); their gcd of degree 0 modulo ℓ proves
+  /// g constant (one pass over p's terms).  When that does not prove it:
+  /// for every symbol x of both, the univariate gcd at a probe point is a
+  /// constant, so a common factor cannot involve x (it would keep its degree
+  /// in x there, its leading coefficient dividing q's), modulo ℓ first, over
+  /// the integers only where q's leading coefficient vanishes modulo ℓ.
+  /// False means "not proved".  Not thread-safe (the probe points are made
+  /// on first need).
   bool coprime_with(const Poly& p) const;
 
   /// A fraction p / q in lowest terms.
@@ -81,13 +86,18 @@ class Denominator {
     GiNaC::ex q_at;               ///< q at the point: a polynomial in x only
     std::vector<std::uint64_t> point_mod, q_mod;  ///< the same modulo 2⁶¹ − 1 (q_mod empty when its leading coefficient vanishes there)
   };
+  /// The probes of coprime_with()'s second test, made on first need.
+  void make_probes() const;
   const Symbols* symbols_;
   Poly q_;
+  bool probe_ = true;
+  std::vector<std::uint64_t> line_a_, line_b_, line_q_;  ///< the line and q on it modulo ℓ (line_q_ empty: q_top(b) ≡ 0, not used)
   mutable GiNaC::ex q_ex_;      ///< q as GiNaC, made on first use
   mutable bool have_ex_ = false;
   int sign_ = 0;
-  std::vector<Probe> probes_;
-  std::vector<int> unprobed_;  ///< symbols of q without a usable point
+  mutable bool probed_ = false;
+  mutable std::vector<Probe> probes_;
+  mutable std::vector<int> unprobed_;  ///< symbols of q without a usable point
 };
 
 }  // namespace superball::symbolic::detail

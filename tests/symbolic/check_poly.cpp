@@ -9,6 +9,7 @@
 #include <random>
 
 #include "poly.hpp"
+#include "polynomial.hpp"
 #include "superball/symbolic/symbols.hpp"
 
 namespace superball::symbolic {
@@ -169,6 +170,84 @@ TEST(CheckPoly, BandedDeterminantsAgreeWithGinac) {
       const GiNaC::ex expected = GiNaC::expand(m.determinant(GiNaC::determinant_algo::laplace));
       EXPECT_TRUE(same(detail::determinant(pm, n, static_cast<int>(s.all().size())), expected, s)) << "n = " << n << ", band " << band;
     }
+}
+
+TEST(CheckPoly, ToExGivesGinacsOwnCanonicalForm) {
+  // to_ex() marks the sums and products it builds as evaluated: they must be
+  // the objects GiNaC's own evaluation gives (the same structure and hash),
+  // down to one term, one symbol, a constant and zero.
+  const Symbols& s = symbols();
+  const GiNaC::ex& x = s.all()[0].symbol;
+  const GiNaC::ex& y = s.all()[9].symbol;
+  std::vector<GiNaC::ex> cases = {0, 7, x, -x, 3 * x, GiNaC::pow(x, 2), 5 * x * y, x * GiNaC::pow(y, 3) + 2, x + 1, x + y, -x - y - 4};
+  Random random(12);
+  for (int round = 0; round < 200; ++round) cases.push_back(random.polynomial(s, 1 + random.below(12)));
+  for (const GiNaC::ex& e : cases) {
+    const GiNaC::ex back = Poly::from_ex(e, s).to_ex(s);
+    EXPECT_TRUE(back.is_equal(e)) << e << " came back as " << back;
+    EXPECT_EQ(back.gethash(), e.gethash()) << e;
+    EXPECT_EQ(back.compare(e), 0) << e;
+    EXPECT_TRUE(GiNaC::expand(back - e).is_zero()) << e;
+  }
+}
+
+TEST(CheckPoly, LineAndPointModuloThePrimeAgreeWithGinac) {
+  const Symbols& s = symbols();
+  Random random(2611);
+  const auto vars = s.all().size();
+  const GiNaC::symbol t("t");
+  for (int round = 0; round < 60; ++round) {
+    const GiNaC::ex f = random.polynomial(s, 10);
+    std::vector<cln::cl_I> point;
+    std::vector<std::uint64_t> a, b, point_mod;
+    GiNaC::exmap line, at;
+    for (std::size_t k = 0; k < vars; ++k) {
+      const int ak = random.below(2001) - 1000, bk = random.below(2001) - 1000;
+      a.push_back(detail::mod61::reduce(ak));
+      b.push_back(detail::mod61::reduce(bk));
+      line[s.all()[k].symbol] = ak + bk * t;
+      point.push_back(ak);
+      point_mod.push_back(a.back());
+      at[s.all()[k].symbol] = ak;
+    }
+    const Poly p = Poly::from_ex(f, s);
+    const GiNaC::ex on_line = GiNaC::expand(f.subs(line));
+    std::vector<std::uint64_t> expected;
+    for (int d = 0; d <= on_line.degree(t); ++d)
+      expected.push_back(detail::mod61::reduce(cln::the<cln::cl_I>(GiNaC::ex_to<GiNaC::numeric>(on_line.coeff(t, d)).to_cl_N())));
+    while (!expected.empty() && expected.back() == 0) expected.pop_back();
+    EXPECT_EQ(p.on_line_mod(a, b), expected) << "round " << round;
+    EXPECT_EQ(p.evaluate_mod(point_mod), detail::mod61::reduce(p.evaluate(point))) << "round " << round;
+    EXPECT_EQ(p.evaluate(point), cln::the<cln::cl_I>(GiNaC::ex_to<GiNaC::numeric>(f.subs(at)).to_cl_N())) << "round " << round;
+    int total = 0;
+    for (const GiNaC::ex& term : GiNaC::is_a<GiNaC::add>(f) ? std::vector<GiNaC::ex>(f.begin(), f.end()) : std::vector<GiNaC::ex>{f}) {
+      int d = 0;
+      for (std::size_t k = 0; k < vars; ++k) d += term.degree(s.all()[k].symbol);
+      total = std::max(total, d);
+    }
+    EXPECT_EQ(p.total_degree(), f.is_zero() ? 0 : total) << "round " << round;
+  }
+}
+
+TEST(CheckPoly, CoprimalityIsProvedExactlyWhenTheGcdIsConstant) {
+  // coprime_with() answers true only with a proof; with these polynomials
+  // (a common factor or none) its proofs succeed, so it agrees with GiNaC's gcd.
+  const Symbols& s = symbols();
+  Random random(77);
+  const GiNaC::ex& x = s.all()[3].symbol;
+  int coprime = 0, not_coprime = 0;
+  for (int round = 0; round < 80; ++round) {
+    const GiNaC::ex common = round % 2 ? random.polynomial(s, 3) + x : GiNaC::ex(1);
+    const GiNaC::ex q = GiNaC::expand(common * (random.polynomial(s, 6) + x + 1));
+    const GiNaC::ex p = GiNaC::expand(common * (random.polynomial(s, 6) + 2));
+    if (p.is_zero() || GiNaC::is_a<GiNaC::numeric>(q)) continue;
+    const bool expected = GiNaC::is_a<GiNaC::numeric>(GiNaC::gcd(p, q));
+    const detail::Denominator denominator(Poly::from_ex(q, s), s);
+    EXPECT_EQ(denominator.coprime_with(Poly::from_ex(p, s)), expected) << "round " << round << ": p = " << p << ", q = " << q;
+    (expected ? coprime : not_coprime) += 1;
+  }
+  EXPECT_GT(coprime, 20);
+  EXPECT_GT(not_coprime, 20);
 }
 
 TEST(CheckPoly, MisuseIsAnError) {
