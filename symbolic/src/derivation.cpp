@@ -110,7 +110,9 @@ struct Naming {
 class Rules {
  public:
   Rules(const Deriver& deriver, const std::vector<GiNaC::numeric>& orders, const std::vector<int>& couplings)
-      : deriver_(deriver), sy_(deriver.symbols()), orders_(orders), couplings_(couplings) {}
+      : deriver_(deriver), sy_(deriver.symbols()), couplings_(couplings) {
+    for (const GiNaC::numeric& o : orders) orders_.push_back(cln::the<cln::cl_RA>(o.to_cl_N()));
+  }
 
   /// The condition "raw / determinant REL 0" in its exact, finite and
   /// asymptotic forms (\p parts: the polynomials whose leading orders may
@@ -134,8 +136,9 @@ class Rules {
   /// The terms of the lowest 1 + order() ε-orders of \p p, stripped;
   /// \p leading receives the lowest order.
   Poly dominant(const Poly& p, GiNaC::numeric* leading) const;
-  /// The ε-order of term \p t of \p p.
-  GiNaC::numeric term_order(const Poly& p, std::size_t t) const;
+  /// The ε-order of term \p t of \p p (CLN's rationals: small ones are
+  /// immediate, where each GiNaC::numeric is an object of its own).
+  cln::cl_RA term_order(const Poly& p, std::size_t t) const;
   /// \p p divided by g, the positive integer content times the monomial of
   /// positive symbols common to its terms (g receives it).
   Poly without_positive_monomial(const Poly& p, Poly& g) const;
@@ -143,7 +146,7 @@ class Rules {
  private:
   const Deriver& deriver_;
   const Symbols& sy_;
-  const std::vector<GiNaC::numeric>& orders_;
+  std::vector<cln::cl_RA> orders_;  ///< the ε-order of each symbol
   const std::vector<int>& couplings_;
 };
 
@@ -332,15 +335,15 @@ detail::Poly Rules::dominant(const detail::Poly& p, GiNaC::numeric* leading) con
     if (leading) *leading = 0;
     return p;
   }
-  std::vector<GiNaC::numeric> weight(p.size(), 0);
-  std::vector<GiNaC::numeric> levels;
+  std::vector<cln::cl_RA> weight(p.size(), 0);
+  std::vector<cln::cl_RA> levels;
   for (std::size_t t = 0; t < p.size(); ++t) {
     weight[t] = term_order(p, t);
-    if (std::none_of(levels.begin(), levels.end(), [&](const GiNaC::numeric& w) { return w == weight[t]; })) levels.push_back(weight[t]);
+    if (std::none_of(levels.begin(), levels.end(), [&](const cln::cl_RA& w) { return w == weight[t]; })) levels.push_back(weight[t]);
   }
-  std::sort(levels.begin(), levels.end(), [](const GiNaC::numeric& x, const GiNaC::numeric& y) { return x < y; });
-  if (leading) *leading = levels.front();
-  const GiNaC::numeric& last = levels[std::min(levels.size() - 1, static_cast<std::size_t>(deriver_.order()))];
+  std::sort(levels.begin(), levels.end(), [](const cln::cl_RA& x, const cln::cl_RA& y) { return x < y; });
+  if (leading) *leading = GiNaC::numeric(levels.front());
+  const cln::cl_RA& last = levels[std::min(levels.size() - 1, static_cast<std::size_t>(deriver_.order()))];
   std::vector<std::size_t> terms;
   for (std::size_t t = 0; t < p.size(); ++t)
     if (weight[t] <= last) terms.push_back(t);
@@ -456,18 +459,18 @@ std::optional<Readable> Rules::readable(const detail::Poly& p, Naming& naming) c
 
 GiNaC::numeric Rules::epsilon_order(const detail::Poly& p) const {
   if (p.is_zero()) throw std::invalid_argument("epsilon_order(): the zero polynomial has no order");
-  GiNaC::numeric lowest = 0;
+  cln::cl_RA lowest = 0;
   for (std::size_t t = 0; t < p.size(); ++t) {
-    const GiNaC::numeric w = term_order(p, t);
+    const cln::cl_RA w = term_order(p, t);
     if (t == 0 || w < lowest) lowest = w;
   }
-  return lowest;
+  return GiNaC::numeric(lowest);
 }
 
-GiNaC::numeric Rules::term_order(const detail::Poly& p, std::size_t t) const {
-  GiNaC::numeric w = 0;
+cln::cl_RA Rules::term_order(const detail::Poly& p, std::size_t t) const {
+  cln::cl_RA w = 0;
   for (int k = 0; k < p.vars(); ++k)
-    if (const int e = p.exponent(t, k); e && !orders_[static_cast<std::size_t>(k)].is_zero()) w += orders_[static_cast<std::size_t>(k)] * e;
+    if (const int e = p.exponent(t, k); e && !cln::zerop(orders_[static_cast<std::size_t>(k)])) w = w + orders_[static_cast<std::size_t>(k)] * e;
   return w;
 }
 
