@@ -123,9 +123,9 @@ struct Readable {
 /// cluster enters its velocity through p₁ and y₁ only.  For banded patterns
 /// (near, near2) the multipliers stay in the band, so a case has O(k)
 /// definitions of a few terms each.  Deriver::derive() checks the
-/// definitions against the Cramer solution exactly at a point with 62-bit
-/// random coordinates (a wrong definition passes with probability below
-/// degree/2⁶², Schwartz–Zippel).
+/// definitions against the Cramer solution exactly modulo the prime
+/// 2⁶¹ − 1 at a random point (a wrong definition passes with probability
+/// below degree/(2⁶¹ − 1), Schwartz–Zippel).
 struct Elimination {
   int size = 0;                    ///< k, the free clusters
   std::vector<GiNaC::ex> matrix;   ///< b_ij, row-major k×k (0-based clusters), expanded polynomials
