@@ -482,25 +482,31 @@ int gcd_degree(std::vector<std::uint64_t> a, std::vector<std::uint64_t> b) {
 
 }  // namespace mod61
 
+template <class F>
+void Poly::for_each_power(std::size_t t, F f) const {
+  const std::uint64_t* m = mono(t);
+  for (int w = 0; w < words_; ++w)
+    for (std::uint64_t word = m[w]; word;) {
+      const int k = 8 * w + __builtin_clzll(word) / 8;  // the first nonzero exponent left in the word (shift_of: byte 0 is x_{8w})
+      const int e = static_cast<int>((word >> shift_of(k)) & 0xFF);
+      word &= ~(std::uint64_t{0xFF} << shift_of(k));
+      if (!f(k, e)) return;
+    }
+}
+
 std::vector<std::uint64_t> Poly::univariate_mod(int keep, const std::vector<std::uint64_t>& point) const {
   std::vector<std::uint64_t> out(static_cast<std::size_t>(degree(keep) + 1), 0);
   std::vector<std::vector<std::uint64_t>> powers(static_cast<std::size_t>(vars_));
   for (std::size_t t = 0; t < size(); ++t) {
     std::uint64_t v = mod61::reduce(coef_[t]);
-    // The packed exponents word by word: a term has few symbols, most words and bytes are 0.
-    const std::uint64_t* m = mono(t);
-    for (int w = 0; w < words_ && v; ++w) {
-      for (std::uint64_t word = m[w]; word && v;) {
-        const int k = 8 * w + __builtin_clzll(word) / 8;  // the first nonzero exponent left in the word (shift_of: byte 0 is x_{8w})
-        const int e = static_cast<int>((word >> shift_of(k)) & 0xFF);
-        word &= ~(std::uint64_t{0xFF} << shift_of(k));
-        if (k == keep) continue;
-        auto& table = powers[static_cast<std::size_t>(k)];
-        if (table.empty()) table.push_back(1);
-        while (static_cast<int>(table.size()) <= e) table.push_back(mod61::multiply(table.back(), point[static_cast<std::size_t>(k)]));
-        v = mod61::multiply(v, table[static_cast<std::size_t>(e)]);
-      }
-    }
+    for_each_power(t, [&](int k, int e) {
+      if (k == keep) return true;
+      auto& table = powers[static_cast<std::size_t>(k)];
+      if (table.empty()) table.push_back(1);
+      while (static_cast<int>(table.size()) <= e) table.push_back(mod61::multiply(table.back(), point[static_cast<std::size_t>(k)]));
+      v = mod61::multiply(v, table[static_cast<std::size_t>(e)]);
+      return v != 0;
+    });
     std::uint64_t& slot = out[static_cast<std::size_t>(exponent(t, keep))];
     slot = mod61::add(slot, v);
   }
@@ -514,30 +520,25 @@ std::vector<std::uint64_t> Poly::on_line_mod(const std::vector<std::uint64_t>& a
   std::vector<std::vector<std::vector<std::uint64_t>>> powers(static_cast<std::size_t>(vars_));
   for (std::size_t t = 0; t < size(); ++t) {
     term.assign(1, mod61::reduce(coef_[t]));
-    const std::uint64_t* m = mono(t);
-    for (int w = 0; w < words_ && term.front(); ++w) {
-      for (std::uint64_t word = m[w]; word;) {
-        const int k = 8 * w + __builtin_clzll(word) / 8;  // as in univariate_mod()
-        const int e = static_cast<int>((word >> shift_of(k)) & 0xFF);
-        word &= ~(std::uint64_t{0xFF} << shift_of(k));
-        auto& table = powers[static_cast<std::size_t>(k)];
-        if (table.empty()) table.push_back({1});
-        while (static_cast<int>(table.size()) <= e) {
-          const std::vector<std::uint64_t>& last = table.back();
-          std::vector<std::uint64_t> times(last.size() + 1, 0);  // last · (a_k + b_k t)
-          for (std::size_t i = 0; i < last.size(); ++i) {
-            times[i] = mod61::add(times[i], mod61::multiply(last[i], a[static_cast<std::size_t>(k)]));
-            times[i + 1] = mod61::multiply(last[i], b[static_cast<std::size_t>(k)]);
-          }
-          table.push_back(std::move(times));
+    for_each_power(t, [&](int k, int e) {
+      auto& table = powers[static_cast<std::size_t>(k)];
+      if (table.empty()) table.push_back({1});
+      while (static_cast<int>(table.size()) <= e) {
+        const std::vector<std::uint64_t>& last = table.back();
+        std::vector<std::uint64_t> times(last.size() + 1, 0);  // last · (a_k + b_k t)
+        for (std::size_t i = 0; i < last.size(); ++i) {
+          times[i] = mod61::add(times[i], mod61::multiply(last[i], a[static_cast<std::size_t>(k)]));
+          times[i + 1] = mod61::multiply(last[i], b[static_cast<std::size_t>(k)]);
         }
-        const std::vector<std::uint64_t>& f = table[static_cast<std::size_t>(e)];
-        next.assign(term.size() + f.size() - 1, 0);
-        for (std::size_t i = 0; i < term.size(); ++i)
-          for (std::size_t j = 0; j < f.size(); ++j) next[i + j] = mod61::add(next[i + j], mod61::multiply(term[i], f[j]));
-        term.swap(next);
+        table.push_back(std::move(times));
       }
-    }
+      const std::vector<std::uint64_t>& f = table[static_cast<std::size_t>(e)];
+      next.assign(term.size() + f.size() - 1, 0);
+      for (std::size_t i = 0; i < term.size(); ++i)
+        for (std::size_t j = 0; j < f.size(); ++j) next[i + j] = mod61::add(next[i + j], mod61::multiply(term[i], f[j]));
+      term.swap(next);
+      return true;
+    });
     if (out.size() < term.size()) out.resize(term.size(), 0);
     for (std::size_t i = 0; i < term.size(); ++i) out[i] = mod61::add(out[i], term[i]);
   }
@@ -557,7 +558,10 @@ int Poly::total_degree() const {
   int most = 0;
   for (std::size_t t = 0; t < size(); ++t) {
     int d = 0;
-    for (int k = 0; k < vars_; ++k) d += exponent(t, k);
+    for_each_power(t, [&d](int, int e) {
+      d += e;
+      return true;
+    });
     most = std::max(most, d);
   }
   return most;

@@ -124,6 +124,11 @@ class Poly {
   std::vector<cln::cl_I> coef_;
   const std::uint64_t* mono(std::size_t t) const { return mono_.data() + t * static_cast<std::size_t>(words_); }
   void push(const std::uint64_t* m, const cln::cl_I& c);
+  /// Calls f(k, e) for each symbol x_k of term \p t with its exponent e > 0,
+  /// reading the packed words (a term has few symbols, most bytes are 0),
+  /// until f returns false.
+  template <class F>
+  void for_each_power(std::size_t t, F f) const;
   /// The product with \p q of few terms, as a merge of this polynomial's terms shifted by each of q's.
   Poly times_small(const Poly& q) const;
   friend Poly from_terms(int vars, std::vector<std::uint64_t>&& mono, std::vector<cln::cl_I>&& coef);
