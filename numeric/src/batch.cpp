@@ -66,19 +66,10 @@ template <class S>
 void Batch<S>::solve_each_calling(std::size_t count, void (*set_scene)(void*, std::size_t), void* set_object,
                                   void (*take)(void*, std::size_t, const Solution<S>&), void* take_object) {
   constexpr std::size_t lanes = std::is_same<S, double>::value ? detail::lane_width : 1;
-  // Neighbouring scenes (a map's row, a sweep) mostly take the same case:
-  // a group goes to the lanes when the scene before needed no pivot, else
-  // its scenes are solved one at a time (the same answers either way).
-  bool open = true;
-  const auto solve_alone = [&](std::size_t k) {
-    const Solution<S>& out = solve();
-    open = out.status == Status::Success && out.pivots == 0;
-    take(take_object, k, out);
-  };
   for (std::size_t first = 0; first < count; first += lanes) {
     const std::size_t group = std::min(lanes, count - first);
-    if (group == 1 || !open || !lanes_) {
-      for (std::size_t q = 0; q < group; ++q) set_scene(set_object, first + q), solve_alone(first + q);
+    if (group == 1 || !lanes_) {
+      for (std::size_t q = 0; q < group; ++q) set_scene(set_object, first + q), take(take_object, first + q, solve());
       continue;
     }
     if constexpr (std::is_same<S, double>::value) {
@@ -93,12 +84,11 @@ void Batch<S>::solve_each_calling(std::size_t count, void (*set_scene)(void*, st
       const unsigned solved = todo ? lanes_(problem_, bandwidth_, lane_values_.data(), todo, dense_.settings(), lane_out_.data()) : 0u;
       for (std::size_t q = 0; q < group; ++q) {
         if ((solved >> q) & 1u) {
-          open = true;
           take(take_object, first + q, lane_out_[q]);
           continue;
         }
         set_scene(set_object, first + q);  // the lane's scene set again, and solved alone
-        solve_alone(first + q);
+        take(take_object, first + q, solve());
       }
     }
   }

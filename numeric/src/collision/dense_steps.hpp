@@ -30,17 +30,28 @@ inline void add_half_product(X& x, const A& a, const B& b) {
 }
 ///@}
 
+/// The decisions of a step on one problem: each branch is taken on its
+/// condition.  The fixed-size path in lanes (small.hpp, LaneFlow) solves
+/// several problems at once through the same templates: there a condition
+/// holds per lane, and fails() / leader() say which lanes go on.
+struct OneProblem {
+  /// A branch that gives up on the problem (the step returns false).
+  static bool fails(bool condition) { return condition; }
+  /// A branch that chooses what the step does next.
+  static bool leader(bool condition) { return condition; }
+};
+
 /// The LDLᵀ factors of the symmetric \p nf × \p nf matrix whose lower
 /// triangle \p A holds, in place and without pivoting (A = diag(m) + DᵀMD on
 /// the free bodies is positive definite when M is positive semi-definite): L
 /// below the diagonal, D on it.  False at the first pivot that is not
 /// positive, with no division by it (CLN floats throw on 0), the factors
-/// then partial.
-template <class S, class Matrix>
-bool ldlt_in_place(Matrix& A, int nf) {
+/// then partial.  \p flow takes the decisions (OneProblem).
+template <class S, class Matrix, class Flow = OneProblem>
+bool ldlt_in_place(Matrix& A, int nf, Flow&& flow = Flow{}) {
   for (int k = 0; k < nf; ++k) {
     const S d = A(k, k);
-    if (!(d > S(0))) return false;
+    if (flow.fails(!(d > S(0)))) return false;
     for (int j = k + 1; j < nf; ++j) {
       const S ljk = A(j, k) / d;
       for (int i = j; i < nf; ++i) subtract_product(A(i, j), A(i, k), ljk);
@@ -63,15 +74,16 @@ void ldlt_solve_in_place(const Matrix& A, int nf, Vector&& x) {
 /// The principal pivot transform on (p, p) of the tableau w = t + Tλ of
 /// \p nc contacts: exchanges the basic and the non-basic variable of contact
 /// \p p, an O(nc²) update of \p T and \p t in place (Murty's pivoting step).
-/// False, with both unchanged, when T(p, p) is not positive.
-template <class S, class Tableau, class Column>
-bool principal_pivot(Tableau& T, Column& t, int nc, int p) {
+/// False, with both unchanged, when T(p, p) is not positive.  \p flow
+/// takes the decisions (OneProblem).
+template <class S, class Tableau, class Column, class Flow = OneProblem>
+bool principal_pivot(Tableau& T, Column& t, int nc, int p, Flow&& flow = Flow{}) {
   const S piv = T(p, p);
-  if (!(piv > S(0))) return false;
+  if (flow.fails(!(piv > S(0)))) return false;
   for (int i = 0; i < nc; ++i) {
     if (i == p) continue;
     const S f = T(i, p) / piv;
-    if (f == S(0)) continue;
+    if (flow.leader(f == S(0))) continue;
     for (int j = 0; j < nc; ++j)
       if (j != p) subtract_product(T(i, j), f, T(p, j));
     subtract_product(t(i), f, t(p));

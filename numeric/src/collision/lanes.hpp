@@ -1,7 +1,7 @@
 #pragma once
-// Internal: the fixed-size path of CollisionSolver in lanes (lanes.cpp):
-// lane_width problems of one structure, differing only in the values of
-// M's entries, solved at once in double where they need no pivot.
+// Internal: the fixed-size path of CollisionSolver in lanes
+// (small_solver.cpp): lane_width problems of one structure, differing only
+// in the values of M's entries, solved at once in double.
 
 #include "superball/numeric/collision.hpp"
 
@@ -15,13 +15,16 @@ inline constexpr int lane_width = 4;
 /// values are not read), \p bandwidth DᵀMD's bandwidth (Problem::check()),
 /// \p values the value of entry e in lane q at values[e·lane_width + q],
 /// \p todo the lanes to solve (bit q for lane q).  Returns the lanes solved,
-/// each into out[q]: those among \p todo whose entries are zero where the
-/// first lane of \p todo has them zero, and whose solve by small_solver_for()
-/// would factor the case with every contact open, find no pivot and pass
-/// the residual check with status Success; out[q] is then that solve's
-/// Solution bit for bit.  The other lanes are left to the caller (out[q]
-/// unspecified).  Problems must have every contact constrained and be
-/// in range (Problem::in_range) and inside the safe window (no scaling).
+/// each into out[q], out[q] then the Solution of small_solver_for()'s solve
+/// of lane q's problem alone, bit for bit, with status Success.  Each branch
+/// of that solve on a number (a zero of M, the pivots chosen, the pivot row
+/// of a cluster's reactions) is decided by the first lane still solved; a
+/// lane that would decide otherwise, or whose solve hands over to the
+/// general path or fails the residual check, is left to the caller (out[q]
+/// unspecified).  So the first lane of \p todo is solved exactly when its
+/// solve alone succeeds, and lanes whose solves take the same branches are
+/// solved together.  Problems must have every contact constrained and be in
+/// range (Problem::in_range) and inside the safe window (no scaling).
 using LanesSolve = unsigned (*)(const Problem<double>& p, int bandwidth, const double* values, unsigned todo,
                                 const Settings<double>& settings, Solution<double>* out);
 

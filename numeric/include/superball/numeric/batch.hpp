@@ -71,10 +71,11 @@ class Batch {
   /// called again for a scene the lanes hand back); \p take(k,
   /// solution) receives its solution (valid during the call; problem() is
   /// then some scene of the same group of lanes, not necessarily k's).  In
-  /// double, 4 scenes are set one after another and solved together where
-  /// every contact stays open (the fixed-size path in SIMD lanes, AVX2
-  /// where the processor has it); the others, and every scene in other
-  /// types, are solved by solve().  Scenes are taken in increasing k.
+  /// double, 4 scenes are set one after another and solved together by the
+  /// fixed-size path in SIMD lanes (AVX2 where the processor has it), pivots
+  /// included, as long as they take the branches of the first of them; the
+  /// others, and every scene in other types, are solved by solve().  Scenes
+  /// are taken in increasing k.
   template <class SetScene, class Take>
   void solve_each(std::size_t count, SetScene&& set_scene, Take&& take) {
     using Set = std::remove_reference_t<SetScene>;
@@ -106,7 +107,7 @@ class Batch {
   CollisionSolver<S> dense_;
   ChainSolver<S> banded_;
   Solution<S> out_;
-  /// The fixed-size path in lanes for problem_ (double, the dense solver's fixed-size path only; nullptr otherwise).
+  /// The fixed-size path in lanes for problem_ (double, where solve() takes the dense solver's fixed-size path; nullptr otherwise).
   unsigned (*lanes_)(const Problem<double>&, int, const double*, unsigned, const Settings<double>&, Solution<double>*) = nullptr;
   std::vector<double> lane_values_;  ///< entry e of M in lane q at [e·4 + q]
   std::vector<Solution<S>> lane_out_;
