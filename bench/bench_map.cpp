@@ -90,8 +90,9 @@ void BM_BatchPoints(benchmark::State& state) {
 BENCHMARK(BM_BatchPoints)->Name("batch/paper/double/128x128");
 
 /// BM_BatchPoints through Batch::solve_each(): the grid's points 4 at a
-/// time in SIMD lanes where no contact closes (the map's and the sweep's
-/// way), the others one at a time.  Each item one point.
+/// time in SIMD lanes, pivots included (the map's and the sweep's way), a
+/// lane that branches otherwise than the first one again alone.  Each item
+/// one point.
 void BM_BatchLanes(benchmark::State& state) {
   PaperGrid g;
   double sum = 0;
