@@ -26,6 +26,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
+#include <utility>
 
 namespace superball::numeric::detail {
 
@@ -671,21 +673,23 @@ __attribute__((target("avx2"), flatten)) unsigned lanes_avx2(const Problem<doubl
 }
 #endif
 
+/// make(size) for size = std::integral_constant<int, n>, where 2 <= n <=
+/// small_max_bodies; nullptr for any other n.
+template <class F, class Make, int... k>
+F by_size(int n, Make make, std::integer_sequence<int, k...>) {
+  const F table[] = {make(std::integral_constant<int, k + 2>{})...};
+  return n >= 2 && n <= small_max_bodies ? table[n - 2] : nullptr;
+}
+template <class F, class Make>
+F by_size(int n, Make make) {
+  return by_size<F>(n, make, std::make_integer_sequence<int, small_max_bodies - 1>{});
+}
+
 }  // namespace
 
 template <class S>
 SmallSolve<S> small_solver_for(int n) {
-  static_assert(small_max_bodies == 8, "one case per size below");
-  switch (n) {
-    case 2: return &small_solve<S, 2>;
-    case 3: return &small_solve<S, 3>;
-    case 4: return &small_solve<S, 4>;
-    case 5: return &small_solve<S, 5>;
-    case 6: return &small_solve<S, 6>;
-    case 7: return &small_solve<S, 7>;
-    case 8: return &small_solve<S, 8>;
-    default: return nullptr;
-  }
+  return by_size<SmallSolve<S>>(n, [](auto size) { return &small_solve<S, decltype(size)::value>; });
 }
 
 template SmallSolve<double> small_solver_for<double>(int);
@@ -701,31 +705,12 @@ bool lanes_use_avx2() {
 }
 
 LanesSolve lanes_solver_for(int n, LaneCode code) {
-  static_assert(small_max_bodies == 8, "one case per size below");
 #ifdef SUPERBALL_LANES_AVX2
-  if (code == LaneCode::Best && lanes_use_avx2()) switch (n) {
-      case 2: return &lanes_avx2<2>;
-      case 3: return &lanes_avx2<3>;
-      case 4: return &lanes_avx2<4>;
-      case 5: return &lanes_avx2<5>;
-      case 6: return &lanes_avx2<6>;
-      case 7: return &lanes_avx2<7>;
-      case 8: return &lanes_avx2<8>;
-      default: return nullptr;
-    }
+  if (code == LaneCode::Best && lanes_use_avx2()) return by_size<LanesSolve>(n, [](auto size) { return &lanes_avx2<decltype(size)::value>; });
 #else
   (void)code;
 #endif
-  switch (n) {
-    case 2: return &lanes_baseline<2>;
-    case 3: return &lanes_baseline<3>;
-    case 4: return &lanes_baseline<4>;
-    case 5: return &lanes_baseline<5>;
-    case 6: return &lanes_baseline<6>;
-    case 7: return &lanes_baseline<7>;
-    case 8: return &lanes_baseline<8>;
-    default: return nullptr;
-  }
+  return by_size<LanesSolve>(n, [](auto size) { return &lanes_baseline<decltype(size)::value>; });
 }
 
 }  // namespace superball::numeric::detail
