@@ -26,26 +26,28 @@ struct Growth {
 /// The measurements per width class (1, 2, 3, 4 and more), on the project's
 /// 2-core machine, one process (docs/SYMBOLIC.md, "Limits"), each fitted by
 /// least squares on the logarithms: seconds of one case (`--closed none`)
-/// and of every case (`--all`); megabytes above the process's own of the
-/// largest case (peak resident memory, /usr/bin/time %M, less 13 MB).
-/// Width 4 and more is fitted on --pairs all, whose width is n − 1.
+/// and of every case (`--all`); megabytes (10^6 bytes) above the process's
+/// own of the largest case (peak resident memory, /usr/bin/time %M, less
+/// 13 MB).  Width 4 and more is fitted on --pairs all, whose width is n − 1.
 struct WidthClass {
   Growth one_case, every_case, megabytes;
 };
 constexpr WidthClass kMeasured[] = {
-    // Re-measured after the derivation's polynomial arithmetic was rewritten (user + system CPU seconds, `-j 1`):
-    // near: one case 10: 0.77 s, 11: 2.23, 12: 5.92, 13: 17.6; every case 8: 1.03 s, 9: 4.35, 10: 16.1;
-    // one case 11: 63 MB, 12: 201, 13: 625
-    {{13, 17.3, 2.82}, {10, 15.7, 3.68}, {13, 635.0, 3.21}},
-    // near2: one case 8: 1.12 s, 9: 5.79; every case 6: 1.12 s, 7: 3.28, 8: 10.6; one case 8: 51 MB, 9: 276
-    {{9, 5.79, 5.17}, {8, 10.4, 3.07}, {9, 302.0, 7.19}},
-    // near2 with couplings, re-measured after the derivation's polynomial arithmetic was rewritten (CPU seconds of
-    // the tasks, `derive --task-cpu`, 2 workers, quiet machine): one case (`{}`) 7: 2.6 s, 8: 28 s; every case
-    // 7: 8.6 s, 8: 80.6 s; the largest process (/usr/bin/time %M) 7: 150 MB, 8: 1.13 GB
-    {{8, 28.0, 10.4}, {8, 80.6, 9.34}, {8, 1120.0, 7.3}},
-    // all pairs (re-measured as the narrower ones): one case 6: 0.30 s, 7: 5.28; every case 6: 0.98 s, 7: 18.8;
-    // one case 6: 8.6 MB, 7: 229
-    {{7, 5.28, 17.6}, {7, 18.8, 19.2}, {7, 229.0, 26.6}},
+    // Re-measured after the derivation's coprimality proofs and checks moved to one pass modulo 2^61 − 1 (user +
+    // system CPU seconds, `-j 1`; medians of 6 runs in two passes for runs under 10 s, of 2 for longer ones: the
+    // host's speed moved by up to 1.5 times between passes):
+    // near: one case 10: 0.32 s, 11: 0.86, 12: 2.90, 13: 9.02; every case 8: 1.23 s, 9: 3.92, 10: 15.6;
+    // one case 11: 64 MB, 12: 201, 13: 595
+    {{13, 8.86, 3.09}, {10, 15.0, 3.55}, {13, 601.0, 3.05}},
+    // near2: one case 8: 0.75 s, 9: 4.21; every case 6: 1.59 s, 7: 4.42, 8: 13.2; one case 8: 52 MB, 9: 281
+    {{9, 4.21, 5.61}, {8, 13.0, 2.88}, {9, 281.0, 5.44}},
+    // near2 with couplings, re-measured as the narrower ones (CPU seconds of the tasks, `derive --task-cpu`,
+    // 2 workers): one case (`{}`) 7: 1.64 s, 8: 16.4 s; every case 7: 7.05 s (the median of 12 runs, 5.2 to
+    // 8.0), 8: 66.9 s; the largest process of every case (/usr/bin/time %M) 7: 161 MB, 8: 1.43 GB
+    {{8, 16.4, 10.0}, {8, 66.9, 9.48}, {8, 1430.0, 8.91}},
+    // all pairs (re-measured as the narrower ones): one case 6: 0.14 s, 7: 3.65; every case 6: 0.98 s, 7: 13.7;
+    // one case 6: 9.2 MB, 7: 238
+    {{7, 3.65, 27.0}, {7, 13.7, 13.9}, {7, 238.0, 26.0}},
 };
 constexpr double kProcessBytes = 13e6;      ///< a derive process before its first case (measured 12.8–13.4 MB)
 constexpr double kFiniteObstacleTime = 3;   ///< a finite obstacle against the fixed one (bench_symbolic: 2.3 to 3.8)
