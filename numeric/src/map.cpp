@@ -894,8 +894,7 @@ Map map(const Scene& scene, const Axis& x, const Axis& y, const MapSettings& set
 
 std::pair<double, double> position(const Map& map, const MapBoundary& b) {
   const double along = cln::double_approx((b.low + b.high) / 2);
-  const double fixed = cln::double_approx(b.along_x ? map.y.from + (map.y.to - map.y.from) * b.j / (map.y.steps - 1)
-                                                    : map.x.from + (map.x.to - map.x.from) * b.i / (map.x.steps - 1));
+  const double fixed = cln::double_approx(b.along_x ? map.y.value(b.j) : map.x.value(b.i));
   return b.along_x ? std::pair<double, double>{along, fixed} : std::pair<double, double>{fixed, along};
 }
 

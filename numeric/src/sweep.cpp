@@ -718,10 +718,14 @@ std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, i
                                 " are not among the " + std::to_string(steps));
   std::vector<cln::cl_RA> v;
   v.reserve(static_cast<std::size_t>(count));
-  const cln::cl_RA step = (to - from) / (steps - 1);  // from + step·k: the exact value from + (to − from)·k/(steps − 1)
-  for (int k = first; k < first + count; ++k) v.push_back(from + step * k);
+  const Grid x(from, to, steps);
+  for (int k = first; k < first + count; ++k) v.push_back(x(k));
   return v;
 }
+
+Grid::Grid(const cln::cl_RA& from, const cln::cl_RA& to, int steps) : from_(from), step_((to - from) / (steps - 1)) {}
+
+cln::cl_RA Grid::operator()(int k) const { return from_ + step_ * k; }
 
 Scene with_value(const Scene& scene, const Parameter& parameter, const cln::cl_RA& value) {
   Scene s = scene;

@@ -26,12 +26,8 @@ using detail::csv_field;
 using detail::decimal;
 using detail::in_blocks;
 using detail::number;
-using detail::value;
 
-/// The grid value k of axis \p a, exactly.
-cln::cl_RA value(const numeric::Axis& a, int k) { return value(a.from, a.to, a.steps, k); }
-
-/// decimal(value(a, k), 10) for k = first … first + count − 1, on \p threads threads.
+/// decimal(a.value(k), 10) for k = first … first + count − 1, on \p threads threads.
 std::vector<std::string> decimals(const numeric::Axis& a, int first, int count, int threads) {
   return detail::decimals(a.from, a.to, a.steps, first, count, threads);
 }
@@ -208,8 +204,8 @@ std::string boundaries_csv(const Map& m) {
      << ",bracket_width,psd_low,case_low,superball_low,psd_high,case_high,superball_high\n";
   for (const MapBoundary& b : m.boundaries) {
     const cln::cl_RA mid = (b.low + b.high) / 2;
-    os << (b.along_x ? m.x.parameter.key() : m.y.parameter.key()) << ',' << decimal(b.along_x ? mid : value(m.x, b.i)) << ','
-       << decimal(b.along_x ? value(m.y, b.j) : mid) << ',' << decimal(b.high - b.low, 3);
+    os << (b.along_x ? m.x.parameter.key() : m.y.parameter.key()) << ',' << decimal(b.along_x ? mid : m.x.value(b.i)) << ','
+       << decimal(b.along_x ? m.y.value(b.j) : mid) << ',' << decimal(b.high - b.low, 3);
     for (const auto& [psd, r] : {std::pair<bool, const Region&>{b.below_psd, b.below}, {b.above_psd, b.above}})
       os << ',' << psd << ',' << (psd ? csv_field(case_name(r)) + ',' + std::to_string(r.superball) : std::string(","));
     os << '\n';
@@ -291,7 +287,7 @@ nlohmann::ordered_json map_json_frame(const Map& m, const Scene& scene, const st
 /// The grid values of \p a in double (CLN, on the calling thread).
 std::vector<double> doubles(const numeric::Axis& a) {
   std::vector<double> v;
-  for (int k = 0; k < a.steps; ++k) v.push_back(cln::double_approx(value(a, k)));
+  for (int k = 0; k < a.steps; ++k) v.push_back(cln::double_approx(a.value(k)));
   return v;
 }
 
@@ -410,19 +406,19 @@ std::string map_figure_data(const Map& m, const std::vector<MapMark>& marks, con
   os.precision(17);
   os << "# index 0: x y r g b, the regions\n";
   for (int j = 0; j < m.y.steps; ++j) {
-    const double y = cln::double_approx(value(m.y, j));
+    const double y = cln::double_approx(m.y.value(j));
     for (int i = 0; i < m.x.steps; ++i) {
       const Rgb c = colour(m.at(i, j));
-      os << cln::double_approx(value(m.x, i)) << ' ' << y << ' ' << c.r << ' ' << c.g << ' ' << c.b << '\n';
+      os << cln::double_approx(m.x.value(i)) << ' ' << y << ' ' << c.r << ' ' << c.g << ' ' << c.b << '\n';
     }
     os << '\n';
   }
   os << "\n# index 1: x y U1+/a (NaN where M is not positive semi-definite)\n";
   for (int j = 0; j < m.y.steps; ++j) {
-    const double y = cln::double_approx(value(m.y, j));
+    const double y = cln::double_approx(m.y.value(j));
     for (int i = 0; i < m.x.steps; ++i) {
       const MapPoint& p = m.at(i, j);
-      os << cln::double_approx(value(m.x, i)) << ' ' << y << ' ' << (p.admissible ? number(p.ratio) : std::string("NaN")) << '\n';
+      os << cln::double_approx(m.x.value(i)) << ' ' << y << ' ' << (p.admissible ? number(p.ratio) : std::string("NaN")) << '\n';
     }
     os << '\n';
   }
@@ -544,10 +540,10 @@ std::string drop_map_csv(const numeric::DropMap& m) {
   std::ostringstream os;
   os << m.x.parameter.key() << ',' << m.y.parameter.key() << ",top_apex_ratio,events,end,label\n";
   for (int j = 0; j < m.y.steps; ++j) {
-    const std::string y = decimal(value(m.y, j), 10);
+    const std::string y = decimal(m.y.value(j), 10);
     for (int i = 0; i < m.x.steps; ++i) {
       const numeric::DropPoint& p = m.at(i, j);
-      os << decimal(value(m.x, i), 10) << ',' << y << ',' << number(p.ratio) << ',' << p.events << ',' << p.end << ',' << csv_field(p.label) << '\n';
+      os << decimal(m.x.value(i), 10) << ',' << y << ',' << number(p.ratio) << ',' << p.events << ',' << p.end << ',' << csv_field(p.label) << '\n';
     }
   }
   return os.str();
@@ -620,10 +616,10 @@ std::string drop_map_figure_data(const numeric::DropMap& m) {
   for (int index = 0; index < 2; ++index) {
     os << (index == 0 ? "# index 0: x y r g b, the colour of the label\n" : "\n\n# index 1: x y top apex ratio\n");
     for (int j = 0; j < m.y.steps; ++j) {
-      const double y = cln::double_approx(value(m.y, j));
+      const double y = cln::double_approx(m.y.value(j));
       for (int i = 0; i < m.x.steps; ++i) {
         const numeric::DropPoint& p = m.at(i, j);
-        os << cln::double_approx(value(m.x, i)) << ' ' << y << ' ';
+        os << cln::double_approx(m.x.value(i)) << ' ' << y << ' ';
         if (index == 0) {
           const Rgb c = rgb(kColours[(std::find(labels.begin(), labels.end(), p.label) - labels.begin()) % kColourCount]);
           os << c.r << ' ' << c.g << ' ' << c.b << '\n';

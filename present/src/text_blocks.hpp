@@ -20,9 +20,6 @@
 
 namespace superball::present::detail {
 
-/// The grid value k of \p steps values from \p from to \p to, exactly (numeric::linspace()).
-inline cln::cl_RA value(const cln::cl_RA& from, const cln::cl_RA& to, int steps, int k) { return from + (to - from) * k / (steps - 1); }
-
 /// \p x in decimal to \p digits significant digits (numeric::to_decimal()).
 inline std::string decimal(const cln::cl_RA& x, int digits = 17) { return numeric::to_decimal(x, digits); }
 
@@ -58,7 +55,7 @@ const std::string& cached(std::vector<std::pair<Key, std::string>>& cache, const
   return cache.back().second;
 }
 
-/// decimal(value(from, to, steps, k), 10) for k = first … first + count − 1,
+/// decimal(numeric::Grid(from, to, steps)(k), 10) for k = first … first + count − 1,
 /// on \p threads threads, 64 values a task: each thread computes from its own
 /// copies of the ends, read from their texts (made here): CLN's numbers are
 /// not shared between threads.

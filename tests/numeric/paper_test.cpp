@@ -187,6 +187,15 @@ TEST(SwitchPoints, LinspaceIsExact) {
   for (std::size_t k = 1; k < v.size(); ++k) EXPECT_EQ(v[k] - v[k - 1], cl_RA(1) / 20);
   EXPECT_EQ(numeric::linspace(cl_RA(1) / 3, cl_RA(-1) / 3, 3)[1], 0);
   EXPECT_THROW(numeric::linspace(0, 1, 1), std::invalid_argument);
+  // One grid for linspace(), its chunks and a map's axis: x_k = from + (to − from)·k/(steps − 1) exactly.
+  const cl_RA from = cl_RA(-7) / 3, to = cl_RA(11) / 5;
+  const numeric::Grid x(from, to, 37);
+  const auto all = numeric::linspace(from, to, 37), chunk = numeric::linspace(from, to, 37, 10, 5);
+  for (int k = 0; k < 37; ++k) EXPECT_EQ(x(k), from + (to - from) * k / 36) << k;
+  for (int k = 0; k < 37; ++k) EXPECT_EQ(all[static_cast<std::size_t>(k)], x(k)) << k;
+  for (int k = 0; k < 5; ++k) EXPECT_EQ(chunk[static_cast<std::size_t>(k)], x(10 + k)) << k;
+  EXPECT_EQ(x(0), from);
+  EXPECT_EQ(x(36), to);
 }
 
 }  // namespace

@@ -44,6 +44,8 @@ struct Axis {
   int steps = 2;
   /// x_k = from + (to − from)·k/(steps − 1), k = 0 … steps − 1.
   std::vector<cln::cl_RA> values() const { return linspace(from, to, steps); }
+  /// x_k alone (Grid).
+  cln::cl_RA value(int k) const { return Grid(from, to, steps)(k); }
   /// The axis as KEY=FROM:TO:STEPS in canonical form: the parameter's key
   /// (Parameter::key(), "K.3-4" for "K.03-4") and the ends as exact
   /// fractions ("1/10" for "0.1"), so that two spellings of one axis give

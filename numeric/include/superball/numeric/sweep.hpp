@@ -20,8 +20,22 @@ SUPERBALL_NUMERIC_API_BEGIN
 
 namespace superball::numeric {
 
+/// \p steps equally spaced exact values from \p from to \p to, ends
+/// included (steps >= 2): x_k = from + (to − from)·k/(steps − 1), as
+/// from + step·k.  The values of linspace() and of a map's Axis.
+class Grid {
+ public:
+  /// The grid of \p steps values from \p from to \p to (steps >= 2, not checked: linspace() checks).
+  Grid(const cln::cl_RA& from, const cln::cl_RA& to, int steps);
+  /// x_k.
+  cln::cl_RA operator()(int k) const;
+
+ private:
+  cln::cl_RA from_, step_;
+};
+
 /// `steps` equally spaced exact values from \p from to \p to, ends included
-/// (steps >= 2): x_k = from + (to − from)·k/(steps − 1).  Only x_k for k in
+/// (steps >= 2): x_k of Grid(from, to, steps).  Only x_k for k in
 /// [first, first + count) when \p count >= 0 (a chunk of a long sweep, made
 /// without the others); throws std::invalid_argument when that is not inside
 /// 0 … steps − 1.
