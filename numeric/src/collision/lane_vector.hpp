@@ -11,10 +11,11 @@
 
 namespace superball::numeric::detail {
 
-// Vectors pass by value only between functions inlined into one entry point
-// (every function here is always inlined, and small_solver.cpp's lanes
-// entries are flattened): the compilers' note on the ABI of a 32-byte vector
-// without AVX does not apply.
+// Vectors pass by value only between functions of one target: every
+// function here is always inlined, small_solver.cpp's AVX2 entries inline
+// every call (flatten), and its baseline entries call baseline code only.
+// So the compilers' note on the ABI of a 32-byte vector without AVX does not
+// apply.
 #if defined(__clang__)
 #pragma clang diagnostic ignored "-Wpsabi"
 #elif defined(__GNUC__)

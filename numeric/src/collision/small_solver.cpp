@@ -654,12 +654,15 @@ bool small_solve(const Problem<S>& p, int bandwidth, const Settings<S>& settings
   return s.compute(settings, out);
 }
 
-/// The lanes solve (lanes.hpp) of N bodies, every call inlined into it (so
-/// that its AVX2 copy below is AVX2 code throughout).
+/// The lanes solve (lanes.hpp) of N bodies, the bandwidth a run-time value
+/// (a constant band, as the one-problem path's Full, was measured to gain
+/// nothing in lanes and to cost a fifth of the build of this file).  The
+/// baseline copy calls Small's functions; the AVX2 copy below inlines every
+/// call (flatten), so that it is AVX2 code throughout and no vector passes
+/// between code of two targets.
 template <int N>
-__attribute__((flatten)) unsigned lanes_baseline(const Problem<double>& p, int band, const double* values, unsigned todo,
-                                                 const Settings<double>& settings, Solution<double>* out) {
-  if (band == N - 1) return Small<Lanes, N, true>(p, band, values, todo).compute_lanes(settings, out);
+unsigned lanes_baseline(const Problem<double>& p, int band, const double* values, unsigned todo, const Settings<double>& settings,
+                        Solution<double>* out) {
   return Small<Lanes, N, false>(p, band, values, todo).compute_lanes(settings, out);
 }
 
@@ -668,7 +671,6 @@ __attribute__((flatten)) unsigned lanes_baseline(const Problem<double>& p, int b
 template <int N>
 __attribute__((target("avx2"), flatten)) unsigned lanes_avx2(const Problem<double>& p, int band, const double* values, unsigned todo,
                                                            const Settings<double>& settings, Solution<double>* out) {
-  if (band == N - 1) return Small<Lanes, N, true>(p, band, values, todo).compute_lanes(settings, out);
   return Small<Lanes, N, false>(p, band, values, todo).compute_lanes(settings, out);
 }
 #endif
