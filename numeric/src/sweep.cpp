@@ -723,10 +723,6 @@ std::vector<cln::cl_RA> linspace(const cln::cl_RA& from, const cln::cl_RA& to, i
   return v;
 }
 
-Grid::Grid(const cln::cl_RA& from, const cln::cl_RA& to, int steps) : from_(from), step_((to - from) / (steps - 1)) {}
-
-cln::cl_RA Grid::operator()(int k) const { return from_ + step_ * k; }
-
 Scene with_value(const Scene& scene, const Parameter& parameter, const cln::cl_RA& value) {
   Scene s = scene;
   parameter.set(s, Number::parse(to_string(value)));

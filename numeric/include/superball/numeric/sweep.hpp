@@ -26,9 +26,9 @@ namespace superball::numeric {
 class Grid {
  public:
   /// The grid of \p steps values from \p from to \p to (steps >= 2, not checked: linspace() checks).
-  Grid(const cln::cl_RA& from, const cln::cl_RA& to, int steps);
+  Grid(const cln::cl_RA& from, const cln::cl_RA& to, int steps) : from_(from), step_((to - from) / (steps - 1)) {}
   /// x_k.
-  cln::cl_RA operator()(int k) const;
+  cln::cl_RA operator()(int k) const { return from_ + step_ * k; }
 
  private:
   cln::cl_RA from_, step_;
