@@ -31,7 +31,6 @@ struct LaneMask {
   Bits bits;
 };
 SUPERBALL_LANE LaneMask operator&(LaneMask a, LaneMask b) { return {a.bits & b.bits}; }
-SUPERBALL_LANE LaneMask operator|(LaneMask a, LaneMask b) { return {a.bits | b.bits}; }
 SUPERBALL_LANE LaneMask operator!(LaneMask a) { return {~a.bits}; }
 /// The lanes where \p m holds, lane q as bit q.
 SUPERBALL_LANE unsigned lanes_of(LaneMask m) {

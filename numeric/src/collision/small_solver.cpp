@@ -562,11 +562,8 @@ void Small<S, N, Full>::complete(const Settings<Base>& settings) {
   }
   const Real motion = larger(real(motion_s), group_momentum_residual(active));
   S comp_s = S(0), vscale = S(0), lscale = S(0);
-  for (int i = 0; i < n; ++i) {
-    vscale = select(vscale < magnitude(W[i]), magnitude(W[i]), vscale);
-    vscale = select(vscale < magnitude(u_[i]), magnitude(u_[i]), vscale);
-  }
-  for (int i = 0; i < nf; ++i) lscale = select(lscale < rows[i].size(), rows[i].size(), lscale);
+  for (int i = 0; i < n; ++i) vscale = larger(larger(vscale, magnitude(W[i])), magnitude(u_[i]));
+  for (int i = 0; i < nf; ++i) lscale = larger(lscale, rows[i].size());
   for (int c = 0; c < nc; ++c) {
     const S& w = gaps_[c];
     const S& l = lambda_[c];
