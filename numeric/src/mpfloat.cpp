@@ -68,12 +68,12 @@ void widen(MpFloat& x, long bits) {
 // precision p of 2 to MpFloat::inline_limbs words, computed here on the
 // words: mpfr_mul takes about twice the instructions at these sizes
 // (callgrind: 105 against 226 at 127 bits; its dispatch on precision, flags
-// in thread-local storage); a digits:20 / 50 / 100 solve of the paper scene
-// took 73k / 94k / 137k instructions with the sums here and one function
-// per operation and size, against 97k / 116k / 178k with sums in MPFR; x ±
-// a·b in place and GMP's products of 4–6 words took 7 %, 2 % and 8 % more
-// off (an iteration of bench_solve: 81k → 75k, 106k → 104k, 159k → 146k).
-// Each result is the exact one
+// in thread-local storage), and sums in MPFR made a digits:N solve of the
+// paper scene a quarter slower.  The words stay in registers: a sum's
+// common case (exponents less than 64 apart) and a product's schoolbook
+// are inlined at fixed places, the rare cases are functions of their own,
+// and the choices as random as the data (a carry, a normalising shift, a
+// rounding up) are selects, not branches.  Each result is the exact one
 // rounded once to nearest, ties to even: what MPFR gives, bit for bit
 // (tests/numeric/mpfloat_arithmetic_test.cpp compares them on random operands).
 namespace fast {
@@ -103,34 +103,27 @@ __attribute__((always_inline)) inline bool round_into(const Limb* W, bool sticky
   }
   Limb* d = out.d;
   const Limb ulp = Limb(1) << unused;
-  d[0] = W[1] & ~(ulp - 1);
-  for (int k = 1; k < N; ++k) d[k] = W[k + 1];
-  if (half && (sticky || (d[0] & ulp) != 0)) {  // up: past the half, or a tie with an odd last bit
-    d[0] += ulp;
-    bool carry = d[0] < ulp;
-    for (int k = 1; k < N; ++k) {
-      d[k] += carry ? 1 : 0;
-      carry = carry && d[k] == 0;
-    }
-    if (carry) {  // all ones rounded up: 0.1 × 2^(E + 1)
-      d[N - 1] = Limb(1) << 63;
-      ++E;
-    }
+  const Limb kept = W[1] & ~(ulp - 1);
+  // Up past the half, or at a tie with an odd last bit: the unit added
+  // without a branch (whether it is added is as random as the data).
+  const Limb up = (half & (sticky | ((kept & ulp) != 0))) ? ulp : 0;
+  unsigned char carry = detail::words::add_carry(kept, up, 0, &d[0]);
+  for (int k = 1; k < N; ++k) carry = detail::words::add_carry(W[k + 1], 0, carry, &d[k]);
+  if (carry != 0) {  // all ones rounded up: 0.1 × 2^(E + 1)
+    d[N - 1] = Limb(1) << 63;
+    ++E;
   }
   out.exp = E;
   out.prec = p;
   return true;
 }
 
-/// Products of this many words or more are GMP's mpn_mul_n (assembly);
-/// smaller ones schoolbook() below (callgrind, per digits:N solve of the
-/// paper scene: 12.2k against 13.4k instructions in products of 3 words,
-/// 38.5k against 26.5k in products of 6).
-constexpr int kGmpProductWords = 4;
-
-/// The exact product of the N-word significands \p x and \p y into \p P (2N words).
+/// The exact product of the N-word significands \p x and \p y into \p P
+/// (2N words), inlined into mul() so that the words stay in registers: at
+/// 3 to 6 words this beats GMP's mpn_mul_n (assembly, but a call and its
+/// dispatch), by 2–3 % of a digits:70, 90 or 100 solve of the paper scene.
 template <int N>
-void schoolbook(const Limb* x, const Limb* y, Limb* P) {
+__attribute__((always_inline)) inline void schoolbook(const Limb* x, const Limb* y, Limb* P) {
   for (int j = 0; j < N; ++j) {  // the first row
     const Wide t = Wide(x[0]) * y[j] + (j > 0 ? P[j] : 0);
     P[j] = static_cast<Limb>(t), P[j + 1] = static_cast<Limb>(t >> 64);
@@ -149,19 +142,14 @@ void schoolbook(const Limb* x, const Limb* y, Limb* P) {
 template <int N, int U>
 bool mul(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
   Limb P[2 * N];
-  if (N >= kGmpProductWords) {
-    mpn_mul_n(P, a.d, b.d, N);  // GMP's product, in assembly
-  } else {
-    schoolbook<N>(a.d, b.d, P);
-  }
-  long E = a.exp + b.exp;
-  if ((P[2 * N - 1] >> 63) == 0) {  // 0.01…: one place left
-    for (int k = 2 * N - 1; k > 0; --k) P[k] = (P[k] << 1) | (P[k - 1] >> 63);
-    P[0] <<= 1;
-    --E;
-  }
-  bool sticky = false;
-  for (int k = 0; k < N - 1; ++k) sticky = sticky || P[k] != 0;
+  schoolbook<N>(a.d, b.d, P);
+  // 0.01…: one place left (without a branch: the case is as random as the
+  // data); only the words round_into() reads move, the rest is sticky.
+  const int shift = static_cast<int>(1 - (P[2 * N - 1] >> 63));
+  const long E = a.exp + b.exp - shift;
+  for (int k = 2 * N - 1; k >= N - 1; --k) P[k] = (P[k] << shift) | ((P[k - 1] >> 1) >> (63 - shift));
+  bool sticky = (P[N - 2] << shift) != 0;
+  for (int k = 0; k < N - 2; ++k) sticky = sticky || P[k] != 0;
   const int sign = a.sign * b.sign;
   if (!round_into<N, U>(P + N - 1, sticky, E, p, out)) return false;
   out.sign = sign;
@@ -171,6 +159,30 @@ bool mul(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out
 /// a / b, both regular, of p bits in N words, into out.
 template <int N, int U>
 bool div(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out) {
+  const int sign = a.sign * b.sign;
+  if (U >= 1 || (U < 0 && p < 64L * N)) {  // a bit of the N words unused (digits:N's precisions)
+    // q = ⌊A·2^(64N) / B⌋ on N + 1 words: A/B in (1/2, 2), so q has 64N bits
+    // or one more, of which round_into() keeps p < 64N and reads the next
+    // (the half bit): the rest and the remainder are sticky bits only, so
+    // one quotient word fewer than below suffices.
+    Limb num[2 * N] = {}, q[N + 1], W[N + 1];
+    for (int k = 0; k < N; ++k) num[N + k] = a.d[k];
+    detail::divide_words<N, 2 * N>(q, num, b.d);  // the remainder into num[0 … N)
+    bool sticky = false;
+    for (int k = 0; k < N; ++k) sticky = sticky || num[k] != 0;
+    long E = a.exp - b.exp;  // A/B = 0.W × 2^E, W = q·2^64 when q[N] = 0
+    if (q[N] != 0) {         // 64N + 1 bits: W = q·2^63, one place right
+      W[0] = q[0] << 63;
+      for (int k = 1; k <= N; ++k) W[k] = (q[k - 1] >> 1) | (q[k] << 63);
+      ++E;
+    } else {
+      W[0] = 0;
+      for (int k = 1; k <= N; ++k) W[k] = q[k - 1];
+    }
+    if (!round_into<N, U>(W, sticky, E, p, out)) return false;
+    out.sign = sign;
+    return true;
+  }
   // q = ⌊A·2^(64(N+1)) / B⌋ on N + 2 words: A/B in (1/2, 2), so q has
   // 64(N + 1) bits or one more; the remainder is the sticky bit.
   Limb num[2 * N + 1] = {}, q[N + 2];
@@ -184,7 +196,6 @@ bool div(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& out
     for (int k = 0; k <= N; ++k) q[k] = (q[k] >> 1) | (q[k + 1] << 63);
     ++E;
   }
-  const int sign = a.sign * b.sign;
   if (!round_into<N, U>(q, sticky, E, p, out)) return false;
   out.sign = sign;
   return true;
@@ -208,10 +219,8 @@ bool round_into2(Wide S, Wide F, bool sticky, long E, long p, MpFloat::Raw& out)
     half = (F >> 127) != 0;
     sticky = sticky || (F << 1) != 0;
   }
-  if (half && (sticky || (S & ulp) != 0)) {
-    S += ulp;
-    if (S == 0) S = Wide(1) << 127, ++E;  // all ones rounded up
-  }
+  S += (half & (sticky | ((S & ulp) != 0))) ? ulp : 0;  // up, without a branch (round_into())
+  if (S == 0) S = Wide(1) << 127, ++E;                    // all ones rounded up
   out.d[0] = static_cast<Limb>(S), out.d[1] = static_cast<Limb>(S >> 64);
   out.exp = E;
   out.prec = p;
@@ -235,49 +244,35 @@ bool mul2(const MpFloat::Raw& a, const MpFloat::Raw& b, long p, MpFloat::Raw& ou
   return true;
 }
 
-/// a + (±b) (\p sign_b: b's sign, flipped for a difference), both regular,
-/// of p bits in N words, into out.  The larger magnitude X sits in the top N
-/// of N + 1 words, the smaller Y shifted right by the exponents' difference
-/// below it, the bits of Y that fall off kept as a sticky bit; the sum or
-/// difference of the two windows, normalised, is the exact result truncated
-/// (a difference with a sticky Y is one less, and inexact), which
-/// round_into() rounds once.  A difference that cancels exactly is +0, as
-/// MPFR gives it rounding to nearest.
+/// The sum or difference (\p subtract) of x and y, |x| ≥ |y|, both regular,
+/// of p bits in N words, their exponents \p apart ≥ 64: add()'s rare case,
+/// out of its frame.  X sits in the top N of N + 1 words, Y shifted right by
+/// \p apart below it, the bits of Y that fall off kept as a sticky bit; the
+/// sum or difference of the two windows, normalised, is the exact result
+/// truncated (a difference with a sticky Y is one less, and inexact), which
+/// round_into() rounds once.
 template <int N, int U>
-bool add(const MpFloat::Raw& a, const MpFloat::Raw& b, int sign_b, long p, MpFloat::Raw& out) {
-  const MpFloat::Raw* x = &a;
-  const MpFloat::Raw* y = &b;
-  int sign = a.sign;
-  if (a.exp < b.exp || (a.exp == b.exp && compare_words<N>(a.d, b.d) < 0)) x = &b, y = &a, sign = sign_b;
-  const bool subtract = a.sign != sign_b;
-  const unsigned long apart = static_cast<unsigned long>(x->exp) - static_cast<unsigned long>(y->exp);
+__attribute__((noinline)) bool add_far(const MpFloat::Raw& x, const MpFloat::Raw& y, bool subtract, unsigned long apart, long p,
+                                       MpFloat::Raw& out) {
   Limb W[N + 1], Y[N + 1];
   W[0] = 0;
-  for (int k = 0; k < N; ++k) W[k + 1] = x->d[k];
+  for (int k = 0; k < N; ++k) W[k + 1] = x.d[k];
   bool sticky = false;
-  if (apart == 0) {
-    Y[0] = 0;
-    for (int k = 0; k < N; ++k) Y[k + 1] = y->d[k];
-  } else if (apart < 64) {  // the common case, word by word: Y[k] = y's words k − 1 and k
-    const int bits = static_cast<int>(apart);
-    Y[0] = y->d[0] << (64 - bits);
-    for (int k = 1; k < N; ++k) Y[k] = (y->d[k - 1] >> bits) | (y->d[k] << (64 - bits));
-    Y[N] = y->d[N - 1] >> bits;
-  } else if (apart >= 64UL * (N + 1)) {  // all of Y below the window: nonzero
+  if (apart >= 64UL * (N + 1)) {  // all of Y below the window: nonzero
     for (int k = 0; k <= N; ++k) Y[k] = 0;
     sticky = true;
   } else {  // Y = (0.y × 2^64N) >> apart in the window, y read as words 1 … N of zeros around it
     const int words = static_cast<int>(apart / 64), bits = static_cast<int>(apart % 64);
-    const auto z = [y](int k) -> Limb { return k >= 1 && k <= N ? y->d[k - 1] : 0; };
+    const auto z = [&y](int k) -> Limb { return k >= 1 && k <= N ? y.d[k - 1] : 0; };
     if (bits == 0) {
       for (int k = 0; k <= N; ++k) Y[k] = z(k + words);
     } else {
       for (int k = 0; k <= N; ++k) Y[k] = (z(k + words) >> bits) | (z(k + words + 1) << (64 - bits));
       sticky = (z(words) << (64 - bits)) != 0;  // the bits of the word shifted out
     }
-    for (int k = 1; k < words; ++k) sticky = sticky || y->d[k - 1] != 0;  // the words wholly below the window
+    for (int k = 1; k < words; ++k) sticky = sticky || y.d[k - 1] != 0;  // the words wholly below the window
   }
-  long E = x->exp;
+  long E = x.exp;
   if (!subtract) {
     Wide sum = 0;  // the carry chain as add, adc, …
     for (int k = 0; k <= N; ++k) {
@@ -298,21 +293,89 @@ bool add(const MpFloat::Raw& a, const MpFloat::Raw& b, int sign_b, long p, MpFlo
       W[k] = static_cast<Limb>(t);
       borrow = static_cast<Limb>(t >> 64) & 1;
     }
-    int top = N;
-    while (top >= 0 && W[top] == 0) --top;
-    if (top < 0) {  // exact cancellation: +0
-      out.sign = 1, out.exp = __MPFR_EXP_ZERO, out.prec = p;
-      return true;
+    // X ≥ 2^(64N + 63) and Y < 2^(64N) here: the difference keeps its top bit or loses one
+    if ((W[N] >> 63) == 0) {
+      for (int k = N; k > 0; --k) W[k] = (W[k] << 1) | (W[k - 1] >> 63);
+      W[0] <<= 1;
+      --E;
     }
-    const int words = N - top, bits = __builtin_clzl(W[top]);
-    if (words > 0) {
-      for (int k = N; k >= 0; --k) W[k] = k - words >= 0 ? W[k - words] : 0;
+  }
+  return round_into<N, U>(W, sticky, E, p, out);
+}
+
+/// A difference that cancelled its top word (\p W: N + 1 words, W[N] = 0,
+/// exact): +0 when every word cancelled, else normalised, with E lowered by
+/// the places it moved.  add()'s rare case, out of its frame.
+template <int N>
+__attribute__((noinline)) bool cancelled(Limb* W, long& E) {
+  int top = N;
+  while (top >= 0 && W[top] == 0) --top;
+  if (top < 0) return false;
+  const int words = N - top, bits = __builtin_clzl(W[top]);
+  for (int k = N; k >= 0; --k) W[k] = k - words >= 0 ? W[k - words] : 0;
+  if (bits > 0) {
+    for (int k = N; k > 0; --k) W[k] = (W[k] << bits) | (W[k - 1] >> (64 - bits));
+    W[0] <<= bits;
+  }
+  E -= 64L * words + bits;
+  return true;
+}
+
+/// a + (±b) (\p sign_b: b's sign, flipped for a difference), both regular,
+/// of p bits in N words, into out.  The larger magnitude X sits in the top N
+/// of N + 1 words, the smaller Y shifted right by the exponents' difference
+/// below it.  When they are less than 64 places apart (the common case, here
+/// on words at fixed places, so that they stay in registers) no bit of Y
+/// falls off: the sum or difference of the windows is exact, and
+/// round_into() rounds it once; farther apart, add_far().  A difference that
+/// cancels exactly is +0, as MPFR gives it rounding to nearest.
+template <int N, int U>
+bool add(const MpFloat::Raw& a, const MpFloat::Raw& b, int sign_b, long p, MpFloat::Raw& out) {
+  const bool swap = a.exp < b.exp || (a.exp == b.exp && compare_words<N>(a.d, b.d) < 0);
+  const MpFloat::Raw& x = swap ? b : a;
+  const MpFloat::Raw& y = swap ? a : b;
+  const int sign = swap ? sign_b : a.sign;
+  const bool subtract = a.sign != sign_b;
+  const unsigned long apart = static_cast<unsigned long>(x.exp) - static_cast<unsigned long>(y.exp);
+  if (apart >= 64) {
+    if (!add_far<N, U>(x, y, subtract, apart, p, out)) return false;
+    out.sign = sign;
+    return true;
+  }
+  // Y[k] = the words k − 1 and k of y (y's words at 1 … N, zeros around) shifted right by apart
+  const int bits = static_cast<int>(apart);
+  const auto high = [bits](Limb w) { return (w << 1) << (63 - bits); };  // w << (64 − bits): 0 when bits = 0
+  Limb W[N + 1], Y[N + 1];
+  Y[0] = high(y.d[0]);
+  for (int k = 1; k < N; ++k) Y[k] = (y.d[k - 1] >> bits) | high(y.d[k]);
+  Y[N] = y.d[N - 1] >> bits;
+  long E = x.exp;
+  bool sticky = false;
+  if (!subtract) {
+    W[0] = Y[0];
+    unsigned char carry = 0;  // the carry chain as add, adc, …
+    for (int k = 1; k <= N; ++k) carry = detail::words::add_carry(x.d[k - 1], Y[k], carry, &W[k]);
+    // 1.… : one place right, the bit out joins the sticky one (without a
+    // branch: whether the sum carries is as random as the data)
+    const int shift = carry;
+    sticky = (W[0] & static_cast<Limb>(shift)) != 0;
+    for (int k = 0; k < N; ++k) W[k] = (W[k] >> shift) | ((W[k + 1] << 1) << (63 - shift));
+    W[N] = (W[N] >> shift) | (static_cast<Limb>(shift) << 63);
+    E += shift;
+  } else {
+    unsigned char borrow = detail::words::subtract_borrow(0, Y[0], 0, &W[0]);  // the borrow chain as sub, sbb, …
+    for (int k = 1; k <= N; ++k) borrow = detail::words::subtract_borrow(x.d[k - 1], Y[k], borrow, &W[k]);
+    if (W[N] == 0) {  // the top word cancelled (only 0 or 1 places apart)
+      if (!cancelled<N>(W, E)) {  // exact cancellation: +0
+        out.sign = 1, out.exp = __MPFR_EXP_ZERO, out.prec = p;
+        return true;
+      }
+    } else {
+      const int shift = __builtin_clzl(W[N]);  // 0 … 63
+      for (int k = N; k > 0; --k) W[k] = (W[k] << shift) | ((W[k - 1] >> 1) >> (63 - shift));
+      W[0] <<= shift;
+      E -= shift;
     }
-    if (bits > 0) {
-      for (int k = N; k > 0; --k) W[k] = (W[k] << bits) | (W[k - 1] >> (64 - bits));
-      W[0] <<= bits;
-    }
-    E -= 64L * words + bits;
   }
   if (!round_into<N, U>(W, sticky, E, p, out)) return false;
   out.sign = sign;

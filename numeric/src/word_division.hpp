@@ -77,6 +77,34 @@ inline Limb divide_3by2(Limb& r1, Limb& r0, Limb n2, Limb n1, Limb n0, Limb d1, 
   return q;
 }
 
+/// a + b + carry (0 or 1) into \p sum, returning the carry out (add with carry).
+inline unsigned char add_carry(Limb a, Limb b, unsigned char carry, Limb* sum) {
+#if defined(__x86_64__)
+  unsigned long long r;
+  const unsigned char out = __builtin_ia32_addcarryx_u64(carry, a, b, &r);
+  *sum = r;
+  return out;
+#else
+  const Wide t = Wide(a) + b + carry;
+  *sum = static_cast<Limb>(t);
+  return static_cast<unsigned char>(t >> 64);
+#endif
+}
+
+/// a − b − borrow (0 or 1) into \p difference, returning the borrow out (subtract with borrow).
+inline unsigned char subtract_borrow(Limb a, Limb b, unsigned char borrow, Limb* difference) {
+#if defined(__x86_64__)
+  unsigned long long r;
+  const unsigned char out = __builtin_ia32_sbb_u64(borrow, a, b, &r);
+  *difference = r;
+  return out;
+#else
+  const Wide t = Wide(a) - b - borrow;
+  *difference = static_cast<Limb>(t);
+  return static_cast<unsigned char>((t >> 64) & 1);
+#endif
+}
+
 /// Compares the numbers of N words x and y (least significant first): −1, 0 or 1.
 template <int N>
 int compare_words(const Limb* x, const Limb* y) {
@@ -86,14 +114,19 @@ int compare_words(const Limb* x, const Limb* y) {
 }
 
 /// x[0 … K) −= q·d[0 … K), returning the word borrowed out of x[K − 1].
+/// In words, not in 128-bit sums (those GCC spills to the stack on the
+/// chain of borrows).
 template <int K>
 Limb subtract_multiple(Limb* x, const Limb* d, Limb q) {
   Limb borrow = 0;
   for (int k = 0; k < K; ++k) {
-    const Wide t = Wide(q) * d[k] + borrow;  // < 2¹²⁸
-    const Limb low = static_cast<Limb>(t);
-    borrow = static_cast<Limb>(t >> 64) + (x[k] < low ? 1 : 0);
+    const Wide t = Wide(q) * d[k];
+    Limb low = static_cast<Limb>(t), high = static_cast<Limb>(t >> 64);
+    low += borrow;
+    high += low < borrow ? 1 : 0;  // q·d[k] + borrow < 2¹²⁸
+    high += x[k] < low ? 1 : 0;
     x[k] -= low;
+    borrow = high;
   }
   return borrow;
 }
@@ -111,24 +144,24 @@ Limb add_words(Limb* x, const Limb* d) {
 
 }  // namespace words
 
-/// The quotient and remainder of n (2N + 1 words, least significant first)
-/// by d (N ≥ 2 words, the top bit of d[N − 1] set): q (N + 2 words) =
-/// ⌊n / d⌋ and the remainder into n[0 … N) (n's other words are left
-/// undefined), as GMP's mpn_tdiv_qr(q, r, 0, n, 2N + 1, d, N) gives them.
-template <int N>
+/// The quotient and remainder of n (M words, least significant first; 2N + 1
+/// unless given) by d (N ≥ 2 words, the top bit of d[N − 1] set): q (M − N
+/// + 1 words) = ⌊n / d⌋ and the remainder into n[0 … N) (n's other words are
+/// left undefined), as GMP's mpn_tdiv_qr(q, r, 0, n, M, d, N) gives them.
+template <int N, int M = 2 * N + 1>
 void divide_words(std::uint64_t* q, std::uint64_t* n, const std::uint64_t* d) {
-  static_assert(N >= 2, "a divisor of two words or more");
+  static_assert(N >= 2 && M > N, "a divisor of two words or more, a longer numerator");
   using words::Limb;
-  constexpr int kTop = 2 * N + 1 - N;  // n[kTop … 2N]: the top N words
+  constexpr int kTop = M - N;  // n[kTop … M − 1]: the top N words
   // The top quotient word, 0 or 1: whether n's top N words reach d (then less d).
   const bool reach = words::compare_words<N>(n + kTop, d) >= 0;
   if (reach) words::subtract_multiple<N>(n + kTop, d, 1);
-  q[N + 1] = reach ? 1 : 0;
+  q[M - N] = reach ? 1 : 0;
   const Limb d1 = d[N - 1], d0 = d[N - 2], v = words::reciprocal_3by2(d1, d0);
-  // One quotient word per step, from the top (N + 1 steps): the partial
+  // One quotient word per step, from the top (M − N steps): the partial
   // remainder is n1 over r[0 … N), r = n + j − N + 1, its second word r[N − 1] = n[j].
-  Limb n1 = n[2 * N];
-  for (int j = 2 * N - 1; j >= N - 1; --j) {
+  Limb n1 = n[M - 1];
+  for (int j = M - 2; j >= N - 1; --j) {
     Limb* r = n + (j - N + 1);
     Limb qw;
     if (n1 == d1 && r[N - 1] == d0) {  // the estimate overflows a word: q = 2⁶⁴ − 1, exact here

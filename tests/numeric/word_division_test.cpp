@@ -29,37 +29,39 @@ struct Draw {
   }
 };
 
-template <int N>
+/// Numerators of M words (2N + 1: the quotients of MpFloat's general
+/// precisions; 2N: of digits:N's, one word shorter).
+template <int N, int M = 2 * N + 1>
 void compare_with_gmp(std::uint64_t seed, int draws, int& overflowing_words, int& exact) {
   Draw draw{std::mt19937_64(seed)};
   for (int t = 0; t < draws; ++t) {
     const bool edges = t % 2 == 1;
-    Limb d[N], n[2 * N + 1];
+    Limb d[N], n[M];
     for (Limb& w : d) w = draw.word(edges);
     d[N - 1] |= Limb(1) << 63;  // normalised, as a significand
     for (Limb& w : n) w = draw.word(edges);
     switch (draw.bits() % 4) {  // numerators near a multiple of d
       case 0:
-        for (int k = 0; k < N; ++k) n[N + 1 + k] = d[k];  // the top words are d
+        for (int k = 0; k < N; ++k) n[M - N + k] = d[k];  // the top words are d
         break;
       case 1:
-        for (int k = 0; k < N; ++k) n[N + k] = d[k];  // d one word down: quotient words of all ones
-        n[2 * N] = d[N - 1];
+        for (int k = 0; k < N; ++k) n[M - N - 1 + k] = d[k];  // d one word down: quotient words of all ones
+        n[M - 1] = d[N - 1];
         break;
       default: break;
     }
-    Limb want_q[N + 2], want_r[N], got_q[N + 2], work[2 * N + 1];
-    for (int k = 0; k <= 2 * N; ++k) work[k] = n[k];
-    mpn_tdiv_qr(want_q, want_r, 0, n, 2 * N + 1, d, N);
-    superball::numeric::detail::divide_words<N>(got_q, work, d);
-    std::string where = "N = " + std::to_string(N) + ", draw " + std::to_string(t) + ", seed " + std::to_string(seed);
-    for (int k = 0; k < N + 2; ++k) ASSERT_EQ(got_q[k], want_q[k]) << where << ": quotient word " << k;
+    Limb want_q[M - N + 1], want_r[N], got_q[M - N + 1], work[M];
+    for (int k = 0; k < M; ++k) work[k] = n[k];
+    mpn_tdiv_qr(want_q, want_r, 0, n, M, d, N);
+    superball::numeric::detail::divide_words<N, M>(got_q, work, d);
+    std::string where = "N = " + std::to_string(N) + ", M = " + std::to_string(M) + ", draw " + std::to_string(t) + ", seed " + std::to_string(seed);
+    for (int k = 0; k <= M - N; ++k) ASSERT_EQ(got_q[k], want_q[k]) << where << ": quotient word " << k;
     bool zero = true;
     for (int k = 0; k < N; ++k) {
       ASSERT_EQ(work[k], want_r[k]) << where << ": remainder word " << k;
       zero = zero && want_r[k] == 0;
     }
-    for (int k = 0; k <= N; ++k) overflowing_words += want_q[k] == ~Limb(0) ? 1 : 0;
+    for (int k = 0; k < M - N; ++k) overflowing_words += want_q[k] == ~Limb(0) ? 1 : 0;
     exact += zero ? 1 : 0;
   }
 }
@@ -72,6 +74,17 @@ TEST(WordDivision, check_QuotientsAndRemaindersAreGmps) {
   compare_with_gmp<5>(5, 40000, all_ones, exact);
   compare_with_gmp<6>(6, 40000, all_ones, exact);
   // The draws reach the rare steps: quotient words of all ones, exact quotients.
+  EXPECT_GT(all_ones, 1000);
+  EXPECT_GT(exact, 100);
+}
+
+TEST(WordDivision, check_ShorterNumeratorsToo) {
+  int all_ones = 0, exact = 0;
+  compare_with_gmp<2, 4>(12, 40000, all_ones, exact);
+  compare_with_gmp<3, 6>(13, 40000, all_ones, exact);
+  compare_with_gmp<4, 8>(14, 40000, all_ones, exact);
+  compare_with_gmp<5, 10>(15, 40000, all_ones, exact);
+  compare_with_gmp<6, 12>(16, 40000, all_ones, exact);
   EXPECT_GT(all_ones, 1000);
   EXPECT_GT(exact, 100);
 }
