@@ -112,6 +112,8 @@ class Rules {
   Rules(const Deriver& deriver, const std::vector<GiNaC::numeric>& orders, const std::vector<int>& couplings)
       : deriver_(deriver), sy_(deriver.symbols()), couplings_(couplings) {
     for (const GiNaC::numeric& o : orders) orders_.push_back(cln::the<cln::cl_RA>(o.to_cl_N()));
+    for (std::size_t k = 0; k < orders_.size(); ++k)
+      if (!cln::zerop(orders_[k])) ordered_.push_back(static_cast<int>(k));
   }
 
   /// The condition "raw / determinant REL 0" in its exact, finite and
@@ -147,6 +149,7 @@ class Rules {
   const Deriver& deriver_;
   const Symbols& sy_;
   std::vector<cln::cl_RA> orders_;  ///< the ε-order of each symbol
+  std::vector<int> ordered_;        ///< the symbols of a nonzero ε-order, ascending (term_order() reads only those)
   const std::vector<int>& couplings_;
 };
 
@@ -469,8 +472,10 @@ GiNaC::numeric Rules::epsilon_order(const detail::Poly& p) const {
 
 cln::cl_RA Rules::term_order(const detail::Poly& p, std::size_t t) const {
   cln::cl_RA w = 0;
-  for (int k = 0; k < p.vars(); ++k)
-    if (const int e = p.exponent(t, k); e && !cln::zerop(orders_[static_cast<std::size_t>(k)])) w = w + orders_[static_cast<std::size_t>(k)] * e;
+  for (const int k : ordered_) {
+    if (k >= p.vars()) break;
+    if (const int e = p.exponent(t, k)) w = w + orders_[static_cast<std::size_t>(k)] * e;
+  }
   return w;
 }
 
