@@ -10,6 +10,9 @@
 // tests/numeric/word_division_test.cpp compares the two.
 
 #include <cstdint>
+#if defined(__x86_64__)
+#include <immintrin.h>  // _addcarry_u64, _subborrow_u64 (GCC and Clang)
+#endif
 
 namespace superball::numeric::detail {
 
@@ -81,7 +84,7 @@ inline Limb divide_3by2(Limb& r1, Limb& r0, Limb n2, Limb n1, Limb n0, Limb d1, 
 inline unsigned char add_carry(Limb a, Limb b, unsigned char carry, Limb* sum) {
 #if defined(__x86_64__)
   unsigned long long r;
-  const unsigned char out = __builtin_ia32_addcarryx_u64(carry, a, b, &r);
+  const unsigned char out = _addcarry_u64(carry, a, b, &r);
   *sum = r;
   return out;
 #else
@@ -95,7 +98,7 @@ inline unsigned char add_carry(Limb a, Limb b, unsigned char carry, Limb* sum) {
 inline unsigned char subtract_borrow(Limb a, Limb b, unsigned char borrow, Limb* difference) {
 #if defined(__x86_64__)
   unsigned long long r;
-  const unsigned char out = __builtin_ia32_sbb_u64(borrow, a, b, &r);
+  const unsigned char out = _subborrow_u64(borrow, a, b, &r);
   *difference = r;
   return out;
 #else
