@@ -161,7 +161,8 @@ void add_derive(CLI::App& app, Action& action) {
           std::vector<nlohmann::ordered_json> psd;  // JSON: the conditions on M, made once per process
           std::vector<std::string> prepared(count);  // the largest cases' first stage (prepare_todo()), inherited by the workers
           auto task = [&](std::size_t k) {
-            const Derivation d = deriver.derive(selection.cases[k], prepared[k]);
+            // Compact: the long forms it writes through the elimination are not built (Forms::Printed).
+            const Derivation d = deriver.derive(selection.cases[k], prepared[k], o->expanded ? Forms::All : Forms::Printed);
             if (!json) return report(d, deriver, Style::Text, !shared) + "\n";
             // Compact, several cases: the conditions on M in the first case only (as the text writes them once).
           const std::string element = derivation_json(d, deriver, psd, o->expanded, o->expanded || !shared || k == 0).dump(2);
@@ -227,7 +228,15 @@ void add_derive(CLI::App& app, Action& action) {
             cpu.insert(cpu.end(), workers->task_cpu_seconds().begin(), workers->task_cpu_seconds().end());
             std::cerr << "derive: "
                       << task_cpu_summary(cpu, [&](std::size_t j) {
-                           return j < first.size() ? "prepare " + name(first[j]) : name(run.todo()[j - first.size()]);
+                           if (j >= first_cpu.size()) return name(run.todo()[j - first_cpu.size()]);
+                           std::size_t t = j;  // the first stage's task j: a part of one of the cases prepared
+                           for (std::size_t k : first) {
+                             const int parts = prepare_parts(deriver, selection.cases[k]);
+                             if (t < static_cast<std::size_t>(parts))
+                               return "prepare " + name(k) + (parts > 1 ? " (part " + std::to_string(t + 1) + " of " + std::to_string(parts) + ")" : "");
+                             t -= static_cast<std::size_t>(parts);
+                           }
+                           return std::string("prepare");
                          })
                       << "\n";
           }

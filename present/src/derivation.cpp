@@ -21,6 +21,8 @@ bool through_elimination(const Derivation& d, const GiNaC::ex& p) {
   return d.elimination && (GiNaC::is_a<GiNaC::add>(p) ? p.nops() : 1) > max_inline_exact_terms;
 }
 
+bool through_elimination(const Derivation& d, const Fraction& f) { return d.elimination && f.terms > max_inline_exact_terms; }
+
 nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s, bool expanded) {
   nlohmann::ordered_json j;
   j["kind"] = to_string(c.kind);
@@ -95,11 +97,11 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
   j["symbols"] = symbols;
   // Compact: a value the report writes through the elimination (over max_inline_exact_terms terms) is that
   // form, over the names of elimination.definitions: V1, -(...V1 + ...), p1*p2*...
-  auto through = [&](const GiNaC::ex& p) { return !expanded && through_elimination(d, p); };
+  auto through = [&](const auto& p) { return !expanded && through_elimination(d, p); };
   nlohmann::ordered_json v = nlohmann::ordered_json::object();
   for (int i = 1, cluster = 1; i <= s.bodies(); ++i) {
     const Fraction& f = d.velocities[static_cast<std::size_t>(i - 1)];
-    v["U" + std::to_string(i)] = through(f.numerator) ? cluster_velocity_name(cluster, Style::Ascii) : format_fraction(f, s, Style::Ascii);
+    v["U" + std::to_string(i)] = through(f) ? cluster_velocity_name(cluster, Style::Ascii) : format_fraction(f, s, Style::Ascii);
     if (i < s.bodies() && !d.closed.closed(i - 1)) ++cluster;  // the next body starts a cluster
   }
   j["velocities_after"] = v;
@@ -107,7 +109,7 @@ nlohmann::ordered_json derivation_json(const Derivation& d, const Deriver& deriv
   for (int c = 0; c + 1 < s.bodies(); ++c) {
     if (!d.closed.closed(c)) continue;
     const Fraction& f = d.reactions[static_cast<std::size_t>(c)];
-    r[Pair{c + 1, c + 2}.name()] = through(f.numerator) ? format_linear(d.reactions_eliminated[static_cast<std::size_t>(c)], s, Style::Ascii, true)
+    r[Pair{c + 1, c + 2}.name()] = through(f) ? format_linear(d.reactions_eliminated[static_cast<std::size_t>(c)], s, Style::Ascii, true)
                                                         : format_fraction(f, s, Style::Ascii);
   }
   j["reactions"] = r;

@@ -161,7 +161,7 @@ std::string report(const Derivation& d, const Deriver& deriver, Style style, boo
   // A long case is written through its elimination (Elimination): det(ZᵀAZ) as the product of the pivots,
   // long velocities as cluster velocities V, long reactions as sums over them.
   const Elimination* e = d.elimination ? &*d.elimination : nullptr;
-  auto is_long = [&](const GiNaC::ex& p) { return through_elimination(d, p); };
+  auto is_long = [&](const auto& p) { return through_elimination(d, p); };
   std::string determinant = format_polynomial(d.determinant, sy, style);
   if (is_long(d.determinant)) determinant = format_pivot_product(*e, style);
   if (tex)
@@ -194,7 +194,7 @@ std::string report(const Derivation& d, const Deriver& deriver, Style style, boo
   std::vector<Entry> velocities, reactions;
   for (int i = 1, c = 1; i <= n; ++i) {
     const Fraction& f = d.velocities[static_cast<std::size_t>(i - 1)];
-    velocities.emplace_back(velocity_name(i, style), &f, is_long(f.numerator) ? cluster_velocity_name(c, style) : "");
+    velocities.emplace_back(velocity_name(i, style), &f, is_long(f) ? cluster_velocity_name(c, style) : "");
     if (i < n && !d.closed.closed(i - 1)) ++c;  // the next body starts a cluster
   }
   fractions("velocities after the collision:", velocities);
@@ -202,7 +202,7 @@ std::string report(const Derivation& d, const Deriver& deriver, Style style, boo
     if (!d.closed.closed(c)) continue;
     const Fraction& f = d.reactions[static_cast<std::size_t>(c)];
     reactions.emplace_back(reaction_name(Pair{c + 1, c + 2}, style), &f,
-                           is_long(f.numerator) ? format_linear(d.reactions_eliminated[static_cast<std::size_t>(c)], sy, style, true) : "");
+                           is_long(f) ? format_linear(d.reactions_eliminated[static_cast<std::size_t>(c)], sy, style, true) : "");
   }
   if (!reactions.empty()) fractions("reactions on the closed contacts:", reactions);
   line("check:", words(d.check));

@@ -44,7 +44,7 @@ std::string case_record(const symbolic::Derivation& d, const symbolic::Deriver& 
   nlohmann::ordered_json x;
   x["data"] = present::derivation_json(d, deriver, psd, expanded, with_psd);
   // Compact as the JSON is: a long value written through the elimination (V₁, a sum over the V's).
-  auto through = [&](const symbolic::Fraction& f) { return !expanded && present::through_elimination(d, f.numerator); };
+  auto through = [&](const symbolic::Fraction& f) { return !expanded && present::through_elimination(d, f); };
   std::vector<std::string> vt, vl, rt, rl;
   for (int i = 1, cluster = 1; i <= s.bodies(); ++i) {
     const symbolic::Fraction& f = d.velocities[static_cast<std::size_t>(i - 1)];
@@ -155,7 +155,7 @@ py::list derive(const py::dict& options, bool expanded, int jobs, const py::obje
       // As the command's JSON: compact with several cases, the conditions on M in the first case only.
       std::vector<std::string> prepared(sel.cases.size());  // the largest cases' first stage, inherited by the workers
       auto task = [&](std::size_t k) {
-        return case_record(deriver.derive(sel.cases[k], prepared[k]), deriver, expanded, expanded || sel.cases.size() == 1 || k == 0, psd);
+        return case_record(deriver.derive(sel.cases[k], prepared[k], expanded ? symbolic::Forms::All : symbolic::Forms::Printed), deriver, expanded, expanded || sel.cases.size() == 1 || k == 0, psd);
       };
       derive_kept(checkpoint, options, sel, expanded, plan.workers, prepared, task,
                   [&](std::size_t k, std::string&& text, const std::string& origin) {

@@ -122,7 +122,8 @@ class Rules {
   /// \p limit: whether that form gives the ε⁰ part).
   Condition make_condition(ConditionKind kind, const std::string& about, Relation relation, const Poly& raw,
                            const detail::Denominator& determinant, const std::vector<const Poly*>& parts, Naming& naming,
-                           const EliminatedForm* eliminated = nullptr, bool limit = false, const bool* coprime = nullptr) const;
+                           const EliminatedForm* eliminated = nullptr, bool limit = false, const bool* coprime = nullptr,
+                           Forms forms = Forms::All) const;
   /// The isolated or grouped form of \p p, naming the part it divides by.
   std::optional<Readable> readable(const Poly& p, Naming& naming) const;
   /// The lowest ε-order of the terms of \p p (throws for p = 0).
@@ -552,7 +553,7 @@ std::size_t terms_of(const GiNaC::ex& p) { return GiNaC::is_a<GiNaC::add>(p) ? p
 
 Condition Rules::make_condition(ConditionKind kind, const std::string& about, Relation relation, const detail::Poly& raw,
                                   const detail::Denominator& determinant, const std::vector<const detail::Poly*>& parts,
-                                  Naming& naming, const EliminatedForm* eliminated, bool limit, const bool* coprime) const {
+                                  Naming& naming, const EliminatedForm* eliminated, bool limit, const bool* coprime, Forms forms) const {
   const Symbols& sy = sy_;
   Condition c;
   c.kind = kind;
@@ -585,7 +586,7 @@ Condition Rules::make_condition(ConditionKind kind, const std::string& about, Re
       (reduced.whole ? raw.divided(reduced.content) : detail::Poly::from_ex(reduced.numerator, sy)).scaled(sign);
   // The form's numerator, as a polynomial (positive factors removed when the denominator's sign is proved).
   const detail::Poly kept = proved ? strip(numerator, &c.removed) : numerator;
-  form.numerator = kept.to_ex(sy);
+  // form.numerator (kept in GiNaC): at the end, once it is known whether it is written through the elimination.
   form.denominator = proved ? GiNaC::ex(1) : GiNaC::expand(denominator);
   form.verdict = proved ? verdict(kept, relation) : Verdict::Depends;
   if (form.verdict == Verdict::Depends && proved) form.readable = readable(kept, naming);
@@ -608,31 +609,37 @@ Condition Rules::make_condition(ConditionKind kind, const std::string& about, Re
   // balance is taken in the condition with m_n, not in its limit m_n → ∞
   // (either way the regime's numerator is `kept`).  An unproved denominator
   // gets its own dominant balance.
-  const ConditionForm& regime = c.finite ? *c.finite : c.exact;
+  ConditionForm& regime = c.finite ? *c.finite : c.exact;
   c.asymptotic.denominator = regime.denominator.is_equal(1) ? GiNaC::ex(1) : deriver_.asymptotic(regime.denominator);
   const detail::Poly dominant_balance = dominant(kept, &c.leading_order);
   const bool same = dominant_balance == kept && regime.sign_proved();  // every term is of the leading order: the regime's form again
-  c.asymptotic.numerator = same ? regime.numerator : dominant_balance.to_ex(sy);
   c.asymptotic.verdict = c.asymptotic.sign_proved() ? (same ? regime.verdict : verdict(dominant_balance, relation)) : Verdict::Depends;
   if (c.asymptotic.verdict == Verdict::Depends && c.asymptotic.sign_proved())
     c.asymptotic.readable = same ? regime.readable : readable(dominant_balance, naming);
   c.orders_kept = 1 + deriver_.order();
   // Long forms through the case's elimination (the expanded ones stay).
+  // (\p terms: the form's numerator's, kept or dominant_balance: a
+  // polynomial of k ≥ 1 terms is a GiNaC sum of k, and 0, one of 1, is no
+  // form that depends on the parameters.)
   if (eliminated) {
-    auto is_long = [&](const ConditionForm& f, std::size_t most) {
-      if (!f.sign_proved() || f.verdict != Verdict::Depends || terms_of(f.numerator) <= most) return false;
+    auto is_long = [&](const ConditionForm& f, std::size_t terms, std::size_t most) {
+      if (!f.sign_proved() || f.verdict != Verdict::Depends || terms <= most) return false;
       if (!f.readable) return true;
       const Readable& r = *f.readable;
       const std::size_t named = r.named ? naming.named[static_cast<std::size_t>(r.named - 1)].size() : 0;
       return terms_of(r.quotient) + terms_of(r.remainder) + named > most;
     };
-    ConditionForm& regime_form = c.finite ? *c.finite : c.exact;
-    if (is_long(regime_form, max_inline_exact_terms)) regime_form.eliminated = *eliminated;
-    if (limit && is_long(c.asymptotic, max_inline_terms)) {
+    if (is_long(regime, kept.size(), max_inline_exact_terms)) regime.eliminated = *eliminated;
+    if (limit && is_long(c.asymptotic, same ? kept.size() : dominant_balance.size(), max_inline_terms)) {
       c.asymptotic.eliminated = *eliminated;
       c.asymptotic.eliminated->limit = true;
     }
   }
+  // The numerators in GiNaC: every one, or (Forms::Printed) those a report
+  // writes out, not through the elimination.
+  const bool all = forms == Forms::All;
+  if (all || !regime.eliminated || (same && !c.asymptotic.eliminated)) regime.numerator = kept.to_ex(sy);
+  if (all || !c.asymptotic.eliminated) c.asymptotic.numerator = same ? regime.numerator : dominant_balance.to_ex(sy);
   // Did the leading orders of the parts cancel (the paper's superball condition)?
   if (!raw.is_zero()) {
     const GiNaC::numeric whole = epsilon_order(raw);
@@ -871,19 +878,42 @@ struct Stored {
   Fraction fraction;
   detail::Denominator::Reduced reduced;
   int sign = 1;
+  bool built = true;  ///< fraction is in GiNaC (else only its terms are set: Forms::Printed)
 };
 
+/// The fraction of \p s, whole (numerator / content over D / content),
+/// in GiNaC from its \p numerator.
+void build(Stored& s, const Poly& numerator, const Symbols& sy) {
+  s.reduced.numerator = numerator.divided(s.reduced.content).to_ex(sy);
+  s.fraction = {s.reduced.numerator, s.reduced.denominator};
+  if (s.sign < 0) s.fraction = {GiNaC::expand(-s.fraction.numerator), GiNaC::expand(-s.fraction.denominator)};
+  s.fraction.terms = terms_of(s.fraction.numerator);
+  s.built = true;
+}
+
 /// Phase 4: \p numerator / D in lowest terms, its denominator positive at
-/// the reference point \p ref.
-Stored normalise(const Poly& numerator, const detail::Denominator& denominator, const GiNaC::exmap& ref, const bool* coprime) {
+/// the reference point \p ref.  With \p forms Printed, a numerator of more
+/// than max_inline_exact_terms terms that shares no factor with D is left
+/// unbuilt (Stored::built false; build() makes it): a report writes it
+/// through the case's elimination.
+Stored normalise(const Poly& numerator, const detail::Denominator& denominator, const GiNaC::exmap& ref, const bool* coprime, Forms forms) {
   Stored s;
-  s.reduced = denominator.lowest_terms(numerator, true, coprime);
+  const bool leave = forms == Forms::Printed && numerator.size() > max_inline_exact_terms;
+  s.reduced = denominator.lowest_terms(numerator, !leave, coprime);
+  if (leave && s.reduced.whole) {
+    s.sign = denominator.sign_at_reference() < 0 ? -1 : 1;
+    s.fraction = {0, 0};
+    s.fraction.terms = numerator.size();
+    s.built = false;
+    return s;
+  }
   s.fraction = {s.reduced.numerator, s.reduced.denominator};
   const int sign = s.reduced.whole ? denominator.sign_at_reference() : detail::evaluate(s.fraction.denominator, ref).csgn();
   if (sign < 0) {
     s.fraction = {GiNaC::expand(-s.fraction.numerator), GiNaC::expand(-s.fraction.denominator)};
     s.sign = -1;
   }
+  s.fraction.terms = terms_of(s.fraction.numerator);
   return s;
 }
 
@@ -891,13 +921,15 @@ Stored normalise(const Poly& numerator, const detail::Denominator& denominator, 
 /// equations exactly.  Everything is multiplied by D = det(ZᵀAZ) ≠ 0 first,
 /// so each identity is between polynomials, compared term by term.  Throws
 /// std::logic_error on a failure.
-void check_equations(const System& s, const ContactSet& closed, const Solution& x) {
+/// \p piece of \p pieces (Deriver::prepare()): the equations of the free
+/// bodies i ≡ piece (mod pieces), the contacts and the obstacle in piece 0.
+void check_equations(const System& s, const ContactSet& closed, const Solution& x, int piece = 0, int pieces = 1) {
   const Symbols& sy = *s.sy;
   const int n = s.n;
   const std::size_t N = s.size();
   const std::vector<Poly>& W = x.Wh;
   const std::vector<Poly>& L = x.Lh;
-  for (int i = 0; i < s.free_bodies; ++i) {
+  for (int i = piece; i < s.free_bodies; i += pieces) {
     Poly r = inertia_of(s, i, W, x.uD) + dissipation_of(s, i, W, x.uD);
     if (i + 1 < n) r -= L[static_cast<std::size_t>(i)];
     if (i > 0) r += L[static_cast<std::size_t>(i - 1)];
@@ -905,6 +937,7 @@ void check_equations(const System& s, const ContactSet& closed, const Solution& 
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the equation of motion of body " + std::to_string(i + 1) +
                              " is not satisfied by the solution (residual " + show(GiNaC::normal(r.to_ex(sy) / x.D.to_ex(sy))) + ")");
   }
+  if (piece != 0) return;
   for (int c = 0; c + 1 < n; ++c)
     if (closed.closed(c) && W[static_cast<std::size_t>(c)] != W[static_cast<std::size_t>(c + 1)])
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": contact " + Pair{c + 1, c + 2}.name() + " does not stay closed");
@@ -934,12 +967,14 @@ std::string check_solution(const System& s, const ContactSet& closed, const Solu
       throw std::logic_error(std::string("Deriver::derive(): the denominator of ") + what + " does not divide det(Z^T A Z)");
     return Poly::from_ex(GiNaC::expand(f.numerator * q), sy);
   };
+  // A result left unbuilt (Forms::Printed) is its polynomial, which check_equations() checked.
   for (int i = 0; i < n; ++i)
-    if (times_D(velocities[static_cast<std::size_t>(i)], "a velocity") != x.Wh[static_cast<std::size_t>(i)])
+    if (velocities[static_cast<std::size_t>(i)].built && times_D(velocities[static_cast<std::size_t>(i)], "a velocity") != x.Wh[static_cast<std::size_t>(i)])
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the velocity of body " + std::to_string(i + 1) +
                              " as stored is not the solution");
   for (int c = 0; c + 1 < n; ++c)
-    if (closed.closed(c) && -times_D(reactions[static_cast<std::size_t>(c)], "a reaction") != x.Lh[static_cast<std::size_t>(c)])
+    if (closed.closed(c) && reactions[static_cast<std::size_t>(c)].built &&
+        -times_D(reactions[static_cast<std::size_t>(c)], "a reaction") != x.Lh[static_cast<std::size_t>(c)])
       throw std::logic_error("Deriver::derive(): case " + closed.to_string() + ": the reaction on contact " + Pair{c + 1, c + 2}.name() +
                              " as stored is not the solution");
   return "substituted back: the " + std::to_string(s.free_bodies) +
@@ -1108,8 +1143,8 @@ EliminatedForm eliminated_form(const Linear& f, const Symbols& sy) {
 /// det(ZᵀAZ) through it by the same count of terms), so that it is kept.
 bool elimination_used(const Derivation& d) {
   bool used = terms_of(d.determinant) > max_inline_exact_terms;
-  for (const Fraction& f : d.velocities) used = used || terms_of(f.numerator) > max_inline_exact_terms;
-  for (const Fraction& f : d.reactions) used = used || terms_of(f.numerator) > max_inline_exact_terms;
+  for (const Fraction& f : d.velocities) used = used || f.terms > max_inline_exact_terms;
+  for (const Fraction& f : d.reactions) used = used || f.terms > max_inline_exact_terms;
   for (const Condition& c : d.conditions) used = used || c.exact.eliminated || c.asymptotic.eliminated || (c.finite && c.finite->eliminated);
   return used;
 }
@@ -1192,29 +1227,69 @@ Prepared read_prepared(const System& s, const ContactSet& closed, const std::str
 
 }  // namespace
 
-std::string Deriver::prepare(const ContactSet& closed) const {
+std::string Deriver::prepare(const ContactSet& closed) const { return prepare(closed, 0, 1); }
+
+std::string Deriver::prepare(const ContactSet& closed, int piece, int pieces) const {
   const Symbols& sy = *symbols_;
   if (closed.bodies() != sy.bodies())
     throw std::invalid_argument("Deriver::prepare(): the case " + closed.to_string() + " is for " + std::to_string(closed.bodies()) +
                                 " bodies, the pattern has " + std::to_string(sy.bodies()));
+  if (pieces < 1 || piece < 0 || piece >= pieces)
+    throw std::invalid_argument("Deriver::prepare(): part " + std::to_string(piece) + " of " + std::to_string(pieces) +
+                                ": the parts are 0 to pieces - 1, pieces >= 1");
   const System s = system_of(sy, closed);
   const Solution x = solve(s, closed);
-  check_equations(s, closed, x);
+  check_equations(s, closed, x, piece, pieces);
   const detail::Denominator denominator(x.D, sy);
   const std::vector<Poly> minus_L = negated(x.Lh);
   const Conditions conditions = conditions_of(s, closed, x);
+  // Part 0: the tag, the case, the solution and the flags; the others: the tag, the case and the flags.
   std::string out = kPreparedTag + closed.to_string() + ";";
-  x.D.write(out);
-  for (const Poly& v : x.Vh) v.write(out);
-  for (const std::vector<Poly>* v : {&x.Lh, &x.inertia, &x.dissipation})
-    for (const Poly& p : *v) p.write(out);
-  for (const Poly* p : reduced_numerators(s, closed, x, minus_L, conditions.pending)) out += !p->is_zero() && denominator.coprime_with(*p) ? '1' : '0';
+  if (piece == 0) {
+    x.D.write(out);
+    for (const Poly& v : x.Vh) v.write(out);
+    for (const std::vector<Poly>* v : {&x.Lh, &x.inertia, &x.dissipation})
+      for (const Poly& p : *v) p.write(out);
+  }
+  std::size_t q = 0;  // a flag per numerator: '1' coprime, '0' not proved, '-' another part's
+  for (const Poly* p : reduced_numerators(s, closed, x, minus_L, conditions.pending))
+    out += q++ % static_cast<std::size_t>(pieces) != static_cast<std::size_t>(piece) ? '-' : !p->is_zero() && denominator.coprime_with(*p) ? '1' : '0';
+  return out;
+}
+
+std::string Deriver::join_prepared(const std::vector<std::string>& pieces) {
+  if (pieces.empty()) throw std::invalid_argument("join_prepared(): no part");
+  const std::size_t n = pieces.size(), tag = sizeof kPreparedTag - 1;
+  // The header (tag, case, ';') is the whole of each part but the first, up to its flags.
+  auto header_of = [&](const std::string& p) {
+    const std::size_t end = p.compare(0, tag, kPreparedTag) == 0 ? p.find(';', tag) : std::string::npos;
+    if (end == std::string::npos) throw std::invalid_argument("join_prepared(): a part is not prepared work");
+    return p.substr(0, end + 1);
+  };
+  const std::string header = header_of(pieces[0]);
+  const std::size_t flags = n > 1 ? pieces[1].size() - header_of(pieces[1]).size() : 0;
+  std::string out = pieces[0];
+  if (out.size() < header.size() + flags) throw std::invalid_argument("join_prepared(): the first part is truncated");
+  const std::size_t base = out.size() - flags;  // where the first part's flags start
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::string& p = pieces[k];
+    if (header_of(p) != header) throw std::invalid_argument("join_prepared(): the parts are of different cases");
+    if (k > 0 && p.size() != header.size() + flags) throw std::invalid_argument("join_prepared(): the parts have different numbers of flags");
+    const std::size_t at = k == 0 ? base : header.size();
+    for (std::size_t q = 0; q < flags; ++q) {
+      const char f = p[at + q];
+      const bool own = q % n == k;
+      if (own != (f != '-') || (own && f != '0' && f != '1'))
+        throw std::invalid_argument("join_prepared(): part " + std::to_string(k) + " of " + std::to_string(n) + " is not in its place");
+      if (own) out[base + q] = f;
+    }
+  }
   return out;
 }
 
 Derivation Deriver::derive(const ContactSet& closed) const { return derive(closed, std::string()); }
 
-Derivation Deriver::derive(const ContactSet& closed, const std::string& prepared) const {
+Derivation Deriver::derive(const ContactSet& closed, const std::string& prepared, Forms forms) const {
   const Symbols& sy = *symbols_;
   if (closed.bodies() != sy.bodies())
     throw std::invalid_argument("Deriver::derive(): the case " + closed.to_string() + " is for " + std::to_string(closed.bodies()) +
@@ -1242,12 +1317,12 @@ Derivation Deriver::derive(const ContactSet& closed, const std::string& prepared
   out.free_clusters = s.clusters.free;
   const GiNaC::exmap ref = reference_point(sy);
   std::vector<Stored> velocities, reactions;
-  for (int i = 0; i < s.n; ++i) velocities.push_back(normalise(x.Wh[static_cast<std::size_t>(i)], denominator, ref, coprime()));
+  for (int i = 0; i < s.n; ++i) velocities.push_back(normalise(x.Wh[static_cast<std::size_t>(i)], denominator, ref, coprime(), forms));
+  const std::vector<Poly> minus_L = negated(x.Lh);
   for (int c = 0; c + 1 < s.n; ++c)
-    reactions.push_back(closed.closed(c) ? normalise(-x.Lh[static_cast<std::size_t>(c)], denominator, ref, coprime()) : Stored{});
+    reactions.push_back(closed.closed(c) ? normalise(minus_L[static_cast<std::size_t>(c)], denominator, ref, coprime(), forms) : Stored{});
   for (const Stored& v : velocities) out.velocities.push_back(v.fraction);
   for (const Stored& r : reactions) out.reactions.push_back(r.fraction);
-  out.check = check_solution(s, closed, x, denominator, velocities, reactions);  // phase 5: the stored results are the solution
 
   const Conditions conditions = conditions_of(s, closed, x);  // phase 6
   const std::vector<Pending>& pending = conditions.pending;
@@ -1266,12 +1341,25 @@ Derivation Deriver::derive(const ContactSet& closed, const std::string& prepared
     const Pending& p = pending[q];
     const EliminatedForm form = out.elimination ? eliminated_form(p.form, sy) : EliminatedForm{};
     out.conditions.push_back(rules.make_condition(p.kind, p.about, p.relation, p.raw, denominator, p.parts, naming,
-                                            out.elimination ? &form : nullptr, limit[q] != 0, coprime()));
+                                            out.elimination ? &form : nullptr, limit[q] != 0, coprime(), forms));
   }
   if (out.elimination && !elimination_used(out)) {  // the elimination is kept only when something is written through it
     out.elimination.reset();
     out.reactions_eliminated.clear();
   }
+  // A long result left unbuilt is written through the elimination; without one (a case of too few clusters) it is built now.
+  for (int i = 0; i < s.n && !out.elimination; ++i)
+    if (!velocities[static_cast<std::size_t>(i)].built) {
+      build(velocities[static_cast<std::size_t>(i)], x.Wh[static_cast<std::size_t>(i)], sy);
+      out.velocities[static_cast<std::size_t>(i)] = velocities[static_cast<std::size_t>(i)].fraction;
+    }
+  for (int c = 0; c + 1 < s.n && !out.elimination; ++c)
+    if (!reactions[static_cast<std::size_t>(c)].built) {
+      build(reactions[static_cast<std::size_t>(c)], minus_L[static_cast<std::size_t>(c)], sy);
+      out.reactions[static_cast<std::size_t>(c)] = reactions[static_cast<std::size_t>(c)].fraction;
+    }
+  out.check = check_solution(s, closed, x, denominator, velocities, reactions);  // phase 5: the stored results are the solution
+
   for (std::size_t k = 0; k < naming.named.size(); ++k)
     out.named.push_back(NamedPart{static_cast<int>(k) + 1, naming.named[k].to_ex(sy), rules.positive_terms(naming.named[k])});
   set_actual(out);

@@ -341,13 +341,24 @@ std::string task_cpu_summary(const std::vector<double>& seconds, const std::func
   return out + line + name(largest);
 }
 
-bool split_case(const Deriver& deriver, const ContactSet& closed) {
+namespace {
+
+/// The free clusters of case \p closed (the fixed obstacle's excluded), and its open contacts.
+std::pair<int, int> free_and_open(const Deriver& deriver, const ContactSet& closed) {
   const int n = deriver.symbols().bodies(), fixed = deriver.symbols().obstacle() == Obstacle::Infinite ? 1 : 0;
   int open = 0;
   for (int c = 0; c + 1 < n; ++c) open += closed.closed(c) ? 0 : 1;
-  const int free = open + 1 - fixed;
-  return open >= n - 2 && free >= 4;
+  return {open + 1 - fixed, open};
 }
+
+}  // namespace
+
+bool split_case(const Deriver& deriver, const ContactSet& closed) {
+  const auto [free, open] = free_and_open(deriver, closed);
+  return open >= deriver.symbols().bodies() - 2 && free >= 4;
+}
+
+int prepare_parts(const Deriver& deriver, const ContactSet& closed) { return std::max(1, free_and_open(deriver, closed).first - 3); }
 
 std::vector<std::size_t> prepare_todo(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::vector<std::size_t>& todo, int jobs,
                                       std::vector<std::string>& prepared, const Workers::Interrupt& interrupted,
@@ -359,12 +370,24 @@ std::vector<std::size_t> prepare_todo(const Deriver& deriver, const std::vector<
       if (split_case(deriver, cases.at(k))) which.push_back(k);
   if (cpu) cpu->clear();
   if (which.empty()) return which;
-  Workers workers(which.size(), jobs, [&](std::size_t j) { return deriver.prepare(cases[which[j]]); });
+  struct Task {
+    std::size_t case_index;
+    int part, parts;
+  };
+  std::vector<Task> tasks;  // each case's parts, in order
+  for (std::size_t k : which)
+    for (int p = 0, parts = prepare_parts(deriver, cases.at(k)); p < parts; ++p) tasks.push_back({k, p, parts});
+  Workers workers(tasks.size(), jobs, [&](std::size_t j) { return deriver.prepare(cases[tasks[j].case_index], tasks[j].part, tasks[j].parts); });
   if (progress) progress(0, which.size());
+  std::vector<std::string> pieces;  // the parts of the case delivered last, in order (Workers delivers in task order)
+  std::size_t done = 0;
   workers.run(
       [&](std::size_t j, std::string&& text) {
-        prepared[which[j]] = std::move(text);
-        if (progress) progress(j + 1, which.size());
+        pieces.push_back(std::move(text));
+        if (tasks[j].part + 1 < tasks[j].parts) return;
+        prepared[tasks[j].case_index] = pieces.size() == 1 ? std::move(pieces.front()) : Deriver::join_prepared(pieces);
+        pieces.clear();
+        if (progress) progress(++done, which.size());
       },
       interrupted);
   if (cpu) *cpu = workers.task_cpu_seconds();

@@ -292,6 +292,59 @@ TEST(DeriveCases, PreparedWorkOfAnotherCaseOrTruncatedIsRefused) {
     EXPECT_THROW(deriver.derive(none, text.substr(0, keep)), std::invalid_argument) << keep;
 }
 
+TEST(DeriveCases, APreparedCaseInPartsJoinsToTheWholeByteForByte) {
+  // Finite obstacle: {} has five free clusters (two parts), the cases of one closed contact four (one).
+  const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Finite);
+  const ContactSet none = ContactSet::from_mask(0, 5);
+  EXPECT_EQ(prepare_parts(deriver, none), 2);
+  EXPECT_EQ(prepare_parts(deriver, ContactSet::from_mask(1, 5)), 1);
+  const std::string whole = deriver.prepare(none);
+  for (int pieces : {1, 2, 3, 5}) {
+    std::vector<std::string> parts;
+    for (int k = 0; k < pieces; ++k) parts.push_back(deriver.prepare(none, k, pieces));
+    EXPECT_EQ(Deriver::join_prepared(parts), whole) << pieces;
+    if (pieces > 1) {
+      EXPECT_LT(parts[1].size(), 200u) << "only part 0 carries the solution";
+    }
+  }
+}
+
+TEST(DeriveCases, PartsOutOfPlaceOrOfAnotherCaseAreRefused) {
+  const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Finite);
+  const ContactSet none = ContactSet::from_mask(0, 5), one = ContactSet::from_mask(1, 5);
+  for (const auto& [piece, pieces] : std::vector<std::pair<int, int>>{{2, 2}, {-1, 2}, {0, 0}, {0, -3}})
+    EXPECT_THROW(deriver.prepare(none, piece, pieces), std::invalid_argument) << piece << " of " << pieces;
+  const std::string a = deriver.prepare(none, 0, 2), b = deriver.prepare(none, 1, 2);
+  EXPECT_THROW(Deriver::join_prepared({}), std::invalid_argument);
+  EXPECT_THROW(Deriver::join_prepared({b, a}), std::invalid_argument);                              // out of order
+  EXPECT_THROW(Deriver::join_prepared({a, deriver.prepare(one, 1, 2)}), std::invalid_argument);     // another case
+  EXPECT_THROW(Deriver::join_prepared({a, deriver.prepare(none, 1, 3)}), std::invalid_argument);    // parts of three
+  EXPECT_THROW(Deriver::join_prepared({a, b.substr(0, b.size() - 1)}), std::invalid_argument);      // truncated
+  EXPECT_THROW(Deriver::join_prepared({a.substr(0, 12), b}), std::invalid_argument);                 // not prepared work
+  EXPECT_THROW(Deriver::join_prepared({a, a}), std::invalid_argument);                              // part 0 twice
+}
+
+TEST(DeriveCases, TheLargestCasesArePreparedInPartsOverTheWorkers) {
+  const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Finite);
+  std::vector<ContactSet> cases;
+  std::vector<std::size_t> all;
+  for (std::uint64_t mask = 0; mask < 16; ++mask) {
+    cases.push_back(ContactSet::from_mask(mask, 5));
+    all.push_back(mask);
+  }
+  std::vector<double> cpu;
+  std::vector<std::string> prepared;
+  std::vector<std::pair<std::size_t, std::size_t>> seen;
+  const std::vector<std::size_t> first =
+      prepare_todo(deriver, cases, all, 2, prepared, {}, [&](std::size_t done, std::size_t total) { seen.emplace_back(done, total); }, &cpu);
+  EXPECT_EQ(first, (std::vector<std::size_t>{0, 1, 2, 4, 8}));
+  EXPECT_EQ(cpu.size(), 6u);  // {} in two parts, the four others in one
+  EXPECT_EQ(seen, (std::vector<std::pair<std::size_t, std::size_t>>{{0, 5}, {1, 5}, {2, 5}, {3, 5}, {4, 5}, {5, 5}}));  // by case
+  for (std::size_t k : first) EXPECT_EQ(prepared[k], deriver.prepare(cases[k])) << k;
+  expect_same(deriver.derive(cases[0]), deriver.derive(cases[0], prepared[0]));
+  EXPECT_TRUE(no_children());
+}
+
 TEST(DeriveCases, TheLargestCasesArePreparedInAFirstStageOnlyWithSeveralWorkers) {
   const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Infinite);
   std::vector<ContactSet> cases;

@@ -16,11 +16,14 @@ SUPERBALL_PRESENT_API_BEGIN
 
 namespace superball::present {
 
-/// Whether the text report writes \p p (the numerator of a velocity or a
-/// reaction of \p d, or its determinant) through the case's elimination,
-/// and the compact JSON likewise: the case has one and \p p has more than
-/// symbolic::max_inline_exact_terms terms.
+/// Whether the text report writes \p p (the determinant of \p d) through
+/// the case's elimination, and the compact JSON likewise: the case has one
+/// and \p p has more than symbolic::max_inline_exact_terms terms.
 bool through_elimination(const symbolic::Derivation& d, const GiNaC::ex& p);
+/// The same for \p f, a velocity or a reaction of \p d, by its
+/// symbolic::Fraction::terms (its numerator is not built in GiNaC when so
+/// written under symbolic::Forms::Printed).
+bool through_elimination(const symbolic::Derivation& d, const symbolic::Fraction& f);
 
 /// One condition: kind, about, the exact and asymptotic forms in ASCII
 /// (GiNaC's syntax), text and LaTeX, the readable and eliminated forms when

@@ -20,6 +20,7 @@
 
 #include <ginac/ginac.h>
 
+#include <cstddef>
 #include <map>
 #include <memory>
 #include <optional>
@@ -151,7 +152,9 @@ struct EliminatedForm {
 };
 
 /// One form of a condition: numerator / denominator REL 0, with the
-/// denominator 1 whenever its sign was proved and cleared.
+/// denominator 1 whenever its sign was proved and cleared.  Under
+/// Forms::Printed the numerator of a form written through the elimination
+/// (`eliminated` set) is left 0.
 struct ConditionForm {
   GiNaC::ex numerator = 0;    ///< an expanded polynomial
   GiNaC::ex denominator = 1;  ///< 1, or a polynomial whose sign was not proved
@@ -186,9 +189,14 @@ struct Condition {
 /// the denominator positive on the admissible parameters when proved.
 struct Fraction {
   ///@{
-  /// The numerator and the denominator.
+  /// The numerator and the denominator (both left 0 under Forms::Printed
+  /// when the fraction is written through the case's elimination).
   GiNaC::ex numerator = 0, denominator = 1;
   ///@}
+  /// The terms of the numerator as an expanded polynomial, whether it is
+  /// built or not: a report writes the fraction through the case's
+  /// elimination when it has more than max_inline_exact_terms of them.
+  std::size_t terms = 0;
   /// numerator / denominator as one GiNaC expression.
   GiNaC::ex value() const { return numerator / denominator; }
 };
@@ -235,6 +243,21 @@ int max_bodies(Obstacle obstacle);
 /// than 2, or more than max_bodies(), in one line that gives the rule.
 void check_bodies(int bodies, Obstacle obstacle);
 
+/// Which forms of a case Deriver::derive() builds in GiNaC.
+enum class Forms {
+  /// Every form: velocities, reactions and conditions, also those long
+  /// enough to be written through the case's elimination.
+  All,
+  /// The forms a compact report prints (`derive` without `--expanded`, in
+  /// text or JSON): a velocity or reaction of more than
+  /// max_inline_exact_terms terms that is written through the elimination,
+  /// and a condition's form written through it, keep their polynomial only
+  /// (checked on the polynomials, as every result is) and are not built in
+  /// GiNaC, nor read back; their GiNaC numerators are left 0.  The same
+  /// report, in a fraction of the time and memory of a long case.
+  Printed,
+};
+
 /// Solves evolution cases for one pattern and one obstacle, with the
 /// asymptotic regime and order used for the asymptotic forms.
 class Deriver {
@@ -260,11 +283,25 @@ class Deriver {
   /// (the results in GiNaC, their check against the solution, the
   /// conditions' forms).  Throws as derive() does.
   std::string prepare(const ContactSet& closed) const;
+  /// prepare(\p closed) in \p pieces parts to run side by side: part
+  /// \p piece (0 … pieces − 1) solves the case, checks the equations of
+  /// motion of the free bodies i ≡ piece (mod pieces) and proves the
+  /// coprimality of the numerators q ≡ piece (mod pieces); part 0 also
+  /// checks the contacts and carries the solution.  join_prepared() of the
+  /// parts in order is prepare(\p closed), byte for byte.  Throws
+  /// std::invalid_argument("Deriver::prepare(): ...") unless
+  /// 0 <= piece < pieces, and as prepare() does.
+  std::string prepare(const ContactSet& closed, int piece, int pieces) const;
+  /// The text of prepare() from its parts (prepare(closed, k, pieces.size())
+  /// for k in order).  Throws std::invalid_argument("join_prepared(): ...")
+  /// for no part, or parts of other cases, other sizes or out of order.
+  static std::string join_prepared(const std::vector<std::string>& pieces);
   /// derive(\p closed) finished from \p prepared, the text of
-  /// prepare(\p closed) (the same Derivation; empty: derive(\p closed)).
-  /// Throws std::invalid_argument("Deriver::derive(): ...") for the
-  /// prepared work of another case, or one truncated.
-  Derivation derive(const ContactSet& closed, const std::string& prepared) const;
+  /// prepare(\p closed) (the same Derivation; empty: derive(\p closed)),
+  /// with the forms \p forms says.  Throws
+  /// std::invalid_argument("Deriver::derive(): ...") for the prepared work
+  /// of another case, or one truncated.
+  Derivation derive(const ContactSet& closed, const std::string& prepared, Forms forms = Forms::All) const;
   /// All 2^(n−1) cases, mask order (bit c closes contact (c+1, c+2)).
   std::vector<Derivation> derive_all() const;
 

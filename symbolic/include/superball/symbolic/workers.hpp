@@ -113,6 +113,14 @@ struct DeriveRun {
 /// `{}` alone is a third of it).
 bool split_case(const Deriver& deriver, const ContactSet& closed);
 
+/// The parts of the first stage of a case split_case() takes: its
+/// Deriver::prepare(closed, k, parts), k = 0 … parts − 1, one task each.
+/// One, but free clusters − 3 for the cases of five or more (the checks of
+/// their solution and the coprimality proofs are most of that stage: at 7
+/// bodies near2 with couplings, `{}`'s in one task would be a tenth of the
+/// run's CPU).
+int prepare_parts(const Deriver& deriver, const ContactSet& closed);
+
 /// The first stage of a run over \p jobs worker processes (none below 2),
 /// shared by the command and the Python module: of the cases \p todo
 /// (indices into \p cases, those a run still has to derive), those that
@@ -128,7 +136,8 @@ bool split_case(const Deriver& deriver, const ContactSet& closed);
 /// workers are forked, and again after each case prepared (never when none
 /// is): a progress line may start its thread at the first call, and must
 /// stop it when this returns, before the next fork.  \p cpu (when given)
-/// receives the CPU seconds of each prepare task, in the order returned.
+/// receives the CPU seconds of each prepare task: the prepare_parts() of
+/// each case, in the order returned.
 /// Errors and interrupts as Workers::run().
 std::vector<std::size_t> prepare_todo(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::vector<std::size_t>& todo, int jobs,
                                       std::vector<std::string>& prepared, const Workers::Interrupt& interrupted = {},
