@@ -358,7 +358,10 @@ bool split_case(const Deriver& deriver, const ContactSet& closed) {
   return open >= deriver.symbols().bodies() - 2 && free >= 4;
 }
 
-int prepare_parts(const Deriver& deriver, const ContactSet& closed) { return std::max(1, free_and_open(deriver, closed).first - 3); }
+int prepare_parts(const Deriver& deriver, const ContactSet& closed) {
+  const int free = free_and_open(deriver, closed).first;
+  return free >= 5 ? free - 2 : 1;
+}
 
 std::vector<std::size_t> prepare_todo(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::vector<std::size_t>& todo, int jobs,
                                       std::vector<std::string>& prepared, const Workers::Interrupt& interrupted,

@@ -115,10 +115,10 @@ bool split_case(const Deriver& deriver, const ContactSet& closed);
 
 /// The parts of the first stage of a case split_case() takes: its
 /// Deriver::prepare(closed, k, parts), k = 0 … parts − 1, one task each.
-/// One, but free clusters − 3 for the cases of five or more (the checks of
+/// One, but free clusters − 2 for the cases of five or more (the checks of
 /// their solution and the coprimality proofs are most of that stage: at 7
 /// bodies near2 with couplings, `{}`'s in one task would be a tenth of the
-/// run's CPU).
+/// run's CPU, in four parts about 4 % each).
 int prepare_parts(const Deriver& deriver, const ContactSet& closed);
 
 /// The first stage of a run over \p jobs worker processes (none below 2),
