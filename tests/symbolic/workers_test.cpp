@@ -292,6 +292,16 @@ TEST(DeriveCases, PreparedWorkOfAnotherCaseOrTruncatedIsRefused) {
     EXPECT_THROW(deriver.derive(none, text.substr(0, keep)), std::invalid_argument) << keep;
 }
 
+/// Every case of \p n bodies, in mask order, and their indices (all to do).
+std::pair<std::vector<ContactSet>, std::vector<std::size_t>> every_case(int n) {
+  std::pair<std::vector<ContactSet>, std::vector<std::size_t>> out;
+  for (std::uint64_t mask = 0; mask < (std::uint64_t{1} << (n - 1)); ++mask) {
+    out.first.push_back(ContactSet::from_mask(mask, n));
+    out.second.push_back(mask);
+  }
+  return out;
+}
+
 TEST(DeriveCases, APreparedCaseInPartsJoinsToTheWholeByteForByte) {
   // Finite obstacle: {} has five free clusters (three parts), the cases of one closed contact four (one).
   const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Finite);
@@ -326,12 +336,7 @@ TEST(DeriveCases, PartsOutOfPlaceOrOfAnotherCaseAreRefused) {
 
 TEST(DeriveCases, TheLargestCasesArePreparedInPartsOverTheWorkers) {
   const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Finite);
-  std::vector<ContactSet> cases;
-  std::vector<std::size_t> all;
-  for (std::uint64_t mask = 0; mask < 16; ++mask) {
-    cases.push_back(ContactSet::from_mask(mask, 5));
-    all.push_back(mask);
-  }
+  const auto [cases, all] = every_case(5);
   std::vector<double> cpu;
   std::vector<std::string> prepared;
   std::vector<std::pair<std::size_t, std::size_t>> seen;
@@ -347,12 +352,7 @@ TEST(DeriveCases, TheLargestCasesArePreparedInPartsOverTheWorkers) {
 
 TEST(DeriveCases, TheLargestCasesArePreparedInAFirstStageOnlyWithSeveralWorkers) {
   const Deriver deriver(Pattern::nearest_and_next_nearest(5), Obstacle::Infinite);
-  std::vector<ContactSet> cases;
-  std::vector<std::size_t> all;
-  for (std::uint64_t mask = 0; mask < 16; ++mask) {
-    cases.push_back(ContactSet::from_mask(mask, 5));
-    all.push_back(mask);
-  }
+  const auto [cases, all] = every_case(5);
   std::vector<double> cpu;
   std::vector<std::string> one;
   int calls = 0;
