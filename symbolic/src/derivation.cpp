@@ -881,14 +881,19 @@ struct Stored {
   bool built = true;  ///< fraction is in GiNaC (else only its terms are set: Forms::Printed)
 };
 
-/// The fraction of \p s, whole (numerator / content over D / content),
-/// in GiNaC from its \p numerator.
-void build(Stored& s, const Poly& numerator, const Symbols& sy) {
-  s.reduced.numerator = numerator.divided(s.reduced.content).to_ex(sy);
+/// s.fraction from s.reduced, negated where s.sign < 0, with its terms.
+void set_fraction(Stored& s) {
   s.fraction = {s.reduced.numerator, s.reduced.denominator};
   if (s.sign < 0) s.fraction = {GiNaC::expand(-s.fraction.numerator), GiNaC::expand(-s.fraction.denominator)};
   s.fraction.terms = terms_of(s.fraction.numerator);
   s.built = true;
+}
+
+/// The fraction of \p s, whole (numerator / content over D / content),
+/// in GiNaC from its \p numerator.
+void build(Stored& s, const Poly& numerator, const Symbols& sy) {
+  s.reduced.numerator = numerator.divided(s.reduced.content).to_ex(sy);
+  set_fraction(s);
 }
 
 /// Phase 4: \p numerator / D in lowest terms, its denominator positive at
@@ -900,20 +905,15 @@ Stored normalise(const Poly& numerator, const detail::Denominator& denominator, 
   Stored s;
   const bool leave = forms == Forms::Printed && numerator.size() > max_inline_exact_terms;
   s.reduced = denominator.lowest_terms(numerator, !leave, coprime);
+  const int sign = s.reduced.whole ? denominator.sign_at_reference() : detail::evaluate(s.reduced.denominator, ref).csgn();
+  s.sign = sign < 0 ? -1 : 1;
   if (leave && s.reduced.whole) {
-    s.sign = denominator.sign_at_reference() < 0 ? -1 : 1;
     s.fraction = {0, 0};
     s.fraction.terms = numerator.size();
     s.built = false;
     return s;
   }
-  s.fraction = {s.reduced.numerator, s.reduced.denominator};
-  const int sign = s.reduced.whole ? denominator.sign_at_reference() : detail::evaluate(s.fraction.denominator, ref).csgn();
-  if (sign < 0) {
-    s.fraction = {GiNaC::expand(-s.fraction.numerator), GiNaC::expand(-s.fraction.denominator)};
-    s.sign = -1;
-  }
-  s.fraction.terms = terms_of(s.fraction.numerator);
+  set_fraction(s);
   return s;
 }
 
