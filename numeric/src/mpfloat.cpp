@@ -276,25 +276,17 @@ __attribute__((noinline)) bool add_far(const MpFloat::Raw& x, const MpFloat::Raw
   }
   long E = x.exp;
   if (!subtract) {
-    Wide sum = 0;  // the carry chain as add, adc, …
-    for (int k = 0; k <= N; ++k) {
-      sum += Wide(W[k]) + Y[k];
-      W[k] = static_cast<Limb>(sum);
-      sum >>= 64;
-    }
-    if (sum != 0) {  // 1.… : one place right, the bit out joins the sticky one
+    unsigned char carry = 0;  // the carry chain as add, adc, …
+    for (int k = 0; k <= N; ++k) carry = detail::words::add_carry(W[k], Y[k], carry, &W[k]);
+    if (carry != 0) {  // 1.… : one place right, the bit out joins the sticky one
       sticky = sticky || (W[0] & 1) != 0;
       for (int k = 0; k < N; ++k) W[k] = (W[k] >> 1) | (W[k + 1] << 63);
       W[N] = (W[N] >> 1) | (Limb(1) << 63);
       ++E;
     }
   } else {
-    Limb borrow = sticky ? 1 : 0;  // a sticky Y: the truncated difference is one less
-    for (int k = 0; k <= N; ++k) {  // the borrow chain as sub, sbb, …
-      const Wide t = Wide(W[k]) - Y[k] - borrow;
-      W[k] = static_cast<Limb>(t);
-      borrow = static_cast<Limb>(t >> 64) & 1;
-    }
+    unsigned char borrow = sticky ? 1 : 0;  // a sticky Y: the truncated difference is one less
+    for (int k = 0; k <= N; ++k) borrow = detail::words::subtract_borrow(W[k], Y[k], borrow, &W[k]);  // sub, sbb, …
     // X ≥ 2^(64N + 63) and Y < 2^(64N) here: the difference keeps its top bit or loses one
     if ((W[N] >> 63) == 0) {
       for (int k = N; k > 0; --k) W[k] = (W[k] << 1) | (W[k - 1] >> 63);
