@@ -287,7 +287,7 @@ nlohmann::ordered_json map_json_frame(const Map& m, const Scene& scene, const st
 /// The grid values of \p a in double (CLN, on the calling thread).
 std::vector<double> doubles(const numeric::Axis& a) {
   std::vector<double> v;
-  for (int k = 0; k < a.steps; ++k) v.push_back(cln::double_approx(a.value(k)));
+  for (const cln::cl_RA& x : a.values()) v.push_back(cln::double_approx(x));
   return v;
 }
 
@@ -404,21 +404,20 @@ std::string map_figure_data(const Map& m, const std::vector<MapMark>& marks, con
   };
   std::ostringstream os;
   os.precision(17);
+  const std::vector<double> xs = doubles(m.x), ys = doubles(m.y);
   os << "# index 0: x y r g b, the regions\n";
   for (int j = 0; j < m.y.steps; ++j) {
-    const double y = cln::double_approx(m.y.value(j));
     for (int i = 0; i < m.x.steps; ++i) {
       const Rgb c = colour(m.at(i, j));
-      os << cln::double_approx(m.x.value(i)) << ' ' << y << ' ' << c.r << ' ' << c.g << ' ' << c.b << '\n';
+      os << xs[static_cast<std::size_t>(i)] << ' ' << ys[static_cast<std::size_t>(j)] << ' ' << c.r << ' ' << c.g << ' ' << c.b << '\n';
     }
     os << '\n';
   }
   os << "\n# index 1: x y U1+/a (NaN where M is not positive semi-definite)\n";
   for (int j = 0; j < m.y.steps; ++j) {
-    const double y = cln::double_approx(m.y.value(j));
     for (int i = 0; i < m.x.steps; ++i) {
       const MapPoint& p = m.at(i, j);
-      os << cln::double_approx(m.x.value(i)) << ' ' << y << ' ' << (p.admissible ? number(p.ratio) : std::string("NaN")) << '\n';
+      os << xs[static_cast<std::size_t>(i)] << ' ' << ys[static_cast<std::size_t>(j)] << ' ' << (p.admissible ? number(p.ratio) : std::string("NaN")) << '\n';
     }
     os << '\n';
   }
@@ -539,11 +538,12 @@ std::vector<std::string> drop_map_labels(const numeric::DropMap& m) {
 std::string drop_map_csv(const numeric::DropMap& m) {
   std::ostringstream os;
   os << m.x.parameter.key() << ',' << m.y.parameter.key() << ",top_apex_ratio,events,end,label\n";
+  const std::vector<std::string> xs = decimals(m.x, 0, m.x.steps, 1), ys = decimals(m.y, 0, m.y.steps, 1);
   for (int j = 0; j < m.y.steps; ++j) {
-    const std::string y = decimal(m.y.value(j), 10);
+    const std::string& y = ys[static_cast<std::size_t>(j)];
     for (int i = 0; i < m.x.steps; ++i) {
       const numeric::DropPoint& p = m.at(i, j);
-      os << decimal(m.x.value(i), 10) << ',' << y << ',' << number(p.ratio) << ',' << p.events << ',' << p.end << ',' << csv_field(p.label) << '\n';
+      os << xs[static_cast<std::size_t>(i)] << ',' << y << ',' << number(p.ratio) << ',' << p.events << ',' << p.end << ',' << csv_field(p.label) << '\n';
     }
   }
   return os.str();
@@ -611,15 +611,15 @@ std::string drop_map_summary(const numeric::DropMap& m, const Scene& scene, cons
 
 std::string drop_map_figure_data(const numeric::DropMap& m) {
   const std::vector<std::string> labels = drop_map_labels(m);
+  const std::vector<double> xs = doubles(m.x), ys = doubles(m.y);
   std::ostringstream os;
   os.precision(17);
   for (int index = 0; index < 2; ++index) {
     os << (index == 0 ? "# index 0: x y r g b, the colour of the label\n" : "\n\n# index 1: x y top apex ratio\n");
     for (int j = 0; j < m.y.steps; ++j) {
-      const double y = cln::double_approx(m.y.value(j));
       for (int i = 0; i < m.x.steps; ++i) {
         const numeric::DropPoint& p = m.at(i, j);
-        os << cln::double_approx(m.x.value(i)) << ' ' << y << ' ';
+        os << xs[static_cast<std::size_t>(i)] << ' ' << ys[static_cast<std::size_t>(j)] << ' ';
         if (index == 0) {
           const Rgb c = rgb(kColours[(std::find(labels.begin(), labels.end(), p.label) - labels.begin()) % kColourCount]);
           os << c.r << ' ' << c.g << ' ' << c.b << '\n';
