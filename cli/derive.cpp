@@ -161,8 +161,7 @@ void add_derive(CLI::App& app, Action& action) {
           std::vector<nlohmann::ordered_json> psd;  // JSON: the conditions on M, made once per process
           std::vector<std::string> prepared(count);  // the largest cases' first stage (prepare_todo()), inherited by the workers
           auto task = [&](std::size_t k) {
-            // Compact: the long forms it writes through the elimination are not built (Forms::Printed).
-            const Derivation d = deriver.derive(selection.cases[k], prepared[k], o->expanded ? Forms::All : Forms::Printed);
+            const Derivation d = deriver.derive(selection.cases[k], prepared[k], present::printed_forms(o->expanded));
             if (!json) return report(d, deriver, Style::Text, !shared) + "\n";
             // Compact, several cases: the conditions on M in the first case only (as the text writes them once).
           const std::string element = derivation_json(d, deriver, psd, o->expanded, o->expanded || !shared || k == 0).dump(2);
@@ -225,18 +224,14 @@ void add_derive(CLI::App& app, Action& action) {
               });
           if (o->task_cpu && workers) {  // the first stage's tasks, then one per case
             std::vector<double> cpu = first_cpu;
+            const std::vector<PrepareTask> tasks = prepare_tasks(deriver, selection.cases, first);  // first_cpu's tasks
             cpu.insert(cpu.end(), workers->task_cpu_seconds().begin(), workers->task_cpu_seconds().end());
             std::cerr << "derive: "
                       << task_cpu_summary(cpu, [&](std::size_t j) {
-                           if (j >= first_cpu.size()) return name(run.todo()[j - first_cpu.size()]);
-                           std::size_t t = j;  // the first stage's task j: a part of one of the cases prepared
-                           for (std::size_t k : first) {
-                             const int parts = prepare_parts(deriver, selection.cases[k]);
-                             if (t < static_cast<std::size_t>(parts))
-                               return "prepare " + name(k) + (parts > 1 ? " (part " + std::to_string(t + 1) + " of " + std::to_string(parts) + ")" : "");
-                             t -= static_cast<std::size_t>(parts);
-                           }
-                           return std::string("prepare");
+                           if (j >= tasks.size()) return name(run.todo()[j - tasks.size()]);
+                           const PrepareTask& t = tasks[j];
+                           return "prepare " + name(t.case_index) +
+                                  (t.parts > 1 ? " (part " + std::to_string(t.part + 1) + " of " + std::to_string(t.parts) + ")" : "");
                          })
                       << "\n";
           }

@@ -21,6 +21,8 @@ bool through_elimination(const Derivation& d, const GiNaC::ex& p) {
   return d.elimination && (GiNaC::is_a<GiNaC::add>(p) ? p.nops() : 1) > max_inline_exact_terms;
 }
 
+Forms printed_forms(bool expanded) { return expanded ? Forms::All : Forms::Printed; }
+
 bool through_elimination(const Derivation& d, const Fraction& f) { return d.elimination && f.terms > max_inline_exact_terms; }
 
 nlohmann::ordered_json condition_json(const Condition& c, const Symbols& s, bool expanded) {

@@ -155,7 +155,7 @@ py::list derive(const py::dict& options, bool expanded, int jobs, const py::obje
       // As the command's JSON: compact with several cases, the conditions on M in the first case only.
       std::vector<std::string> prepared(sel.cases.size());  // the largest cases' first stage, inherited by the workers
       auto task = [&](std::size_t k) {
-        return case_record(deriver.derive(sel.cases[k], prepared[k], expanded ? symbolic::Forms::All : symbolic::Forms::Printed), deriver, expanded, expanded || sel.cases.size() == 1 || k == 0, psd);
+        return case_record(deriver.derive(sel.cases[k], prepared[k], present::printed_forms(expanded)), deriver, expanded, expanded || sel.cases.size() == 1 || k == 0, psd);
       };
       derive_kept(checkpoint, options, sel, expanded, plan.workers, prepared, task,
                   [&](std::size_t k, std::string&& text, const std::string& origin) {

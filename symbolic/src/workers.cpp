@@ -363,6 +363,13 @@ int prepare_parts(const Deriver& deriver, const ContactSet& closed) {
   return free >= 5 ? free - 2 : 1;
 }
 
+std::vector<PrepareTask> prepare_tasks(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::vector<std::size_t>& which) {
+  std::vector<PrepareTask> tasks;
+  for (std::size_t k : which)
+    for (int p = 0, parts = prepare_parts(deriver, cases.at(k)); p < parts; ++p) tasks.push_back({k, p, parts});
+  return tasks;
+}
+
 std::vector<std::size_t> prepare_todo(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::vector<std::size_t>& todo, int jobs,
                                       std::vector<std::string>& prepared, const Workers::Interrupt& interrupted,
                                       const std::function<void(std::size_t, std::size_t)>& progress, std::vector<double>* cpu) {
@@ -373,13 +380,7 @@ std::vector<std::size_t> prepare_todo(const Deriver& deriver, const std::vector<
       if (split_case(deriver, cases.at(k))) which.push_back(k);
   if (cpu) cpu->clear();
   if (which.empty()) return which;
-  struct Task {
-    std::size_t case_index;
-    int part, parts;
-  };
-  std::vector<Task> tasks;  // each case's parts, in order
-  for (std::size_t k : which)
-    for (int p = 0, parts = prepare_parts(deriver, cases.at(k)); p < parts; ++p) tasks.push_back({k, p, parts});
+  const std::vector<PrepareTask> tasks = prepare_tasks(deriver, cases, which);
   Workers workers(tasks.size(), jobs, [&](std::size_t j) { return deriver.prepare(cases[tasks[j].case_index], tasks[j].part, tasks[j].parts); });
   if (progress) progress(0, which.size());
   std::vector<std::string> pieces;  // the parts of the case delivered last, in order (Workers delivers in task order)

@@ -16,6 +16,11 @@ SUPERBALL_PRESENT_API_BEGIN
 
 namespace superball::present {
 
+/// The forms derivation_json() (and, compact, report()) print of a case:
+/// every one when \p expanded, else symbolic::Forms::Printed (a long form
+/// written through the case's elimination is printed through it only).
+symbolic::Forms printed_forms(bool expanded);
+
 /// Whether the text report writes \p p (the determinant of \p d) through
 /// the case's elimination, and the compact JSON likewise: the case has one
 /// and \p p has more than symbolic::max_inline_exact_terms terms.

@@ -121,6 +121,17 @@ bool split_case(const Deriver& deriver, const ContactSet& closed);
 /// run's CPU, in four parts about 4 % each).
 int prepare_parts(const Deriver& deriver, const ContactSet& closed);
 
+/// A task of the first stage: one part of one case's Deriver::prepare().
+struct PrepareTask {
+  std::size_t case_index = 0;  ///< the case: its index in the run's cases
+  int part = 0;                ///< the part, 0 … parts − 1
+  int parts = 1;               ///< the case's prepare_parts()
+};
+/// The first stage's tasks for the cases \p which (indices into \p cases,
+/// as prepare_todo() returns them), in its order: each case's
+/// prepare_parts() parts in turn.
+std::vector<PrepareTask> prepare_tasks(const Deriver& deriver, const std::vector<ContactSet>& cases, const std::vector<std::size_t>& which);
+
 /// The first stage of a run over \p jobs worker processes (none below 2),
 /// shared by the command and the Python module: of the cases \p todo
 /// (indices into \p cases, those a run still has to derive), those that
